@@ -1,0 +1,149 @@
+#pragma once
+/// @file layout.hpp
+/// Layout of one controller instance's shared-memory segment.
+///
+/// One POSIX shm object per instance (`/dev/shm/hapticctrl.<instance>`), made of page-aligned
+/// parts so that each process can map each part with the protection its role needs:
+///
+///   page 0          SegmentHeader   written by the core, read by all
+///   page 1          ClaimTable      writer claims: written by any process that claims a role
+///   then, per region (RegionId order), page-aligned:
+///     VPr           written by the UDP bridge          (seqlock)
+///     VP            written by the core                (seqlock, notified every cycle)
+///     force         written by the HMI side            (seqlock)
+///     position      written by the core                (seqlock, notified every cycle)
+///     ctrl          written by up to kCtrlSlots writers (per-writer rings, see ctrl.hpp)
+///     ctrl_ack      written by the core                (ring progress)
+///     telemetry     written by the core                (seqlock)
+///
+/// A second object, `/dev/shm/hapticctrl.<instance>.lock`, carries the core's exclusive flock:
+/// the kernel drops it when the core dies, which is how a stale segment is told from a live one.
+
+#include <array>
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <string_view>
+
+#include "hapticctrl/shm/ctrl.hpp"
+#include "hapticctrl/shm/payloads.hpp"
+#include "hapticctrl/shm/seqlock.hpp"
+
+namespace hapticctrl::shm {
+
+/// Bumped on any change to payloads.hpp, ctrl.hpp or this file.
+inline constexpr std::uint32_t kAbiVersion = 1;
+/// "HAPTICC1" as a little-endian word; stored last when the segment is ready, cleared at exit.
+inline constexpr std::uint64_t kSegmentMagic = 0x3143434954504148ULL;
+inline constexpr std::size_t kPageSize = 4096;
+
+/// The regions of an instance, in layout order.
+enum class RegionId : std::uint32_t {
+  kVpr = 0,
+  kVp,
+  kForce,
+  kPosition,
+  kCtrl,
+  kCtrlAck,
+  kTelemetry,
+  kCount,
+};
+inline constexpr std::size_t kRegionCount = static_cast<std::size_t>(RegionId::kCount);
+
+/// Human-readable region name ("VPr", "VP", ...), for messages.
+[[nodiscard]] std::string_view region_name(RegionId id) noexcept;
+
+/// The in-memory type of each region.
+template <RegionId Id>
+struct RegionTraits;
+template <>
+struct RegionTraits<RegionId::kVpr> {
+  using Type = SeqlockCell<VprPayload>;
+};
+template <>
+struct RegionTraits<RegionId::kVp> {
+  using Type = SeqlockCell<VpPayload>;
+};
+template <>
+struct RegionTraits<RegionId::kForce> {
+  using Type = SeqlockCell<ForcePayload>;
+};
+template <>
+struct RegionTraits<RegionId::kPosition> {
+  using Type = SeqlockCell<PositionPayload>;
+};
+template <>
+struct RegionTraits<RegionId::kCtrl> {
+  using Type = CtrlRegion;
+};
+template <>
+struct RegionTraits<RegionId::kCtrlAck> {
+  using Type = CtrlAckRegion;
+};
+template <>
+struct RegionTraits<RegionId::kTelemetry> {
+  using Type = SeqlockCell<TelemetryPayload>;
+};
+template <RegionId Id>
+using RegionType = typename RegionTraits<Id>::Type;
+
+/// Where a region sits in the segment; recorded in the header and checked on attach.
+struct RegionEntry {
+  std::uint64_t offset = 0;
+  std::uint64_t size = 0;  ///< sizeof the region type (the mapping is page-rounded)
+};
+
+/// The header page. Plain fields are written once before `magic` is stored with release.
+struct SegmentHeader {
+  std::atomic<std::uint64_t> magic{0};
+  std::uint32_t abi_version = 0;
+  std::uint32_t header_size = 0;
+  std::uint64_t segment_size = 0;
+  std::uint64_t generation = 0;  ///< +1 each time a core (re)creates this instance
+  std::int32_t creator_pid = 0;
+  std::uint32_t reserved0 = 0;
+  std::uint64_t creator_start_ticks = 0;
+  std::int64_t period_ns = 0;
+  std::array<char, 48> instance{};
+  std::array<RegionEntry, kRegionCount> regions{};
+  std::atomic<std::uint32_t> core_state{0};   ///< CoreState
+  std::atomic<std::uint32_t> stop_reason{0};  ///< StopReason
+  std::atomic<std::uint64_t> heartbeat_cycle{0};  ///< advanced by the core every cycle
+  std::atomic<std::int64_t> heartbeat_ns{0};      ///< CLOCK_MONOTONIC of the last heartbeat
+};
+
+/// Writer claims: one word per region (see WriterClaim), one per ctrl slot.
+struct ClaimTable {
+  std::array<std::atomic<std::uint64_t>, kRegionCount> region_writer{};
+  std::array<std::atomic<std::uint64_t>, kCtrlSlots> ctrl_writer{};
+};
+
+/// Rounds `n` up to whole pages.
+constexpr std::size_t round_to_pages(std::size_t n) noexcept {
+  return (n + kPageSize - 1) / kPageSize * kPageSize;
+}
+
+inline constexpr std::array<std::size_t, kRegionCount> kRegionSizes{
+    sizeof(RegionType<RegionId::kVpr>),      sizeof(RegionType<RegionId::kVp>),
+    sizeof(RegionType<RegionId::kForce>),    sizeof(RegionType<RegionId::kPosition>),
+    sizeof(RegionType<RegionId::kCtrl>),     sizeof(RegionType<RegionId::kCtrlAck>),
+    sizeof(RegionType<RegionId::kTelemetry>)};
+
+inline constexpr std::size_t kClaimsOffset = round_to_pages(sizeof(SegmentHeader));
+inline constexpr std::size_t kFirstRegionOffset = kClaimsOffset + round_to_pages(sizeof(ClaimTable));
+
+/// Page-aligned offset of a region (RegionId::kCount gives the segment size).
+constexpr std::size_t region_offset(RegionId id) noexcept {
+  std::size_t offset = kFirstRegionOffset;
+  for (std::size_t i = 0; i < static_cast<std::size_t>(id); ++i) {
+    offset += round_to_pages(kRegionSizes[i]);
+  }
+  return offset;
+}
+
+inline constexpr std::size_t kSegmentSize = region_offset(RegionId::kCount);
+
+static_assert(sizeof(SegmentHeader) <= kPageSize);
+static_assert(std::atomic<std::uint64_t>::is_always_lock_free);
+
+}  // namespace hapticctrl::shm

@@ -1,0 +1,167 @@
+#pragma once
+/// @file payloads.hpp
+/// THE contract between hapticctrl processes: the payload of every shared-memory region.
+///
+/// Rules: fixed-size fields only, explicit padding, no pointers, SI units, poses as
+/// {x, y, z, qx, qy, qz, qw} in metres and a unit quaternion, twists and wrenches as
+/// {linear xyz, angular xyz}. Any change to a struct here bumps kAbiVersion (layout.hpp), and the
+/// static_asserts at the bottom pin the sizes so an accidental change fails to compile.
+/// Everything read from shared memory is untrusted input for the reader: validate before use.
+
+#include <array>
+#include <cstdint>
+
+namespace hapticctrl::shm {
+
+using Pose7 = std::array<double, 7>;    ///< x, y, z [m], qx, qy, qz, qw
+using Vector6 = std::array<double, 6>;  ///< linear xyz, angular xyz
+using Joints6 = std::array<double, 6>;  ///< one value per joint, base to wrist
+
+/// Command type of the client session (VirtuoseAPI's COMMAND_TYPE subset).
+enum class CommandType : std::uint32_t { kNone = 0, kImpedance = 1, kVirtmech = 2 };
+
+/// Lifecycle of the core process, in VP and the segment header.
+enum class CoreState : std::uint32_t {
+  kStarting = 0,
+  kRunning = 1,
+  kFailSafe = 2,  ///< fail-safe sequence under way (VP says why)
+  kStopping = 3,  ///< orderly stop under way (same sequence, not a fault)
+  kStopped = 4,
+};
+
+/// Numbered, latched reasons for leaving the cycle. 0 means none.
+enum class StopReason : std::uint32_t {
+  kNone = 0,
+  kConsecutiveMisses = 1,    ///< exactly 5 consecutive deadline misses
+  kStopRequested = 2,        ///< ctrl stop command (orderly, exit 0)
+  kSignal = 3,               ///< SIGINT/SIGTERM (orderly, exit 0)
+  kChronicMisses = 4,        ///< windowed miss rate / leaky bucket over threshold (if enabled)
+  kArmFault = 5,             ///< arm I/O reported a fault or non-finite measures
+  kDurationElapsed = 6,      ///< --duration reached (orderly, exit 0)
+  kVelocityLimit = 7,        ///< handle or joint speed above the safety threshold
+};
+
+/// Bits of the state word carried in VP (and over the protocol).
+namespace state_bits {
+inline constexpr std::uint32_t kPowered = 1U << 0;        ///< motor supply on, commands enabled
+inline constexpr std::uint32_t kEmergencyStop = 1U << 1;  ///< e-stop latched until reset
+inline constexpr std::uint32_t kFailSafe = 1U << 2;       ///< fail-safe sequence started
+inline constexpr std::uint32_t kDegraded = 1U << 3;       ///< this cycle ran the degraded SERVO
+inline constexpr std::uint32_t kCoupled = 1U << 4;        ///< coupling active this cycle
+inline constexpr std::uint32_t kClientStale = 1U << 5;    ///< VPr stale: extrapolating/fading
+inline constexpr std::uint32_t kStopping = 1U << 6;       ///< orderly stop under way
+}  // namespace state_bits
+
+/// VPr: client -> core. Written by the UDP bridge from validated control frames.
+struct VprPayload {
+  std::uint64_t session_id = 0;       ///< 0: no client session
+  std::uint64_t client_sequence = 0;  ///< sequence number of the client frame this came from
+  std::int64_t client_time_ns = 0;    ///< the client's sender timestamp (its own clock)
+  std::int64_t received_time_ns = 0;  ///< bridge receive time, CLOCK_MONOTONIC
+  std::uint32_t command_type = 0;     ///< CommandType
+  std::uint32_t indexing_mode = 0;
+  std::uint32_t watchdog_timeout_us = 0;
+  std::uint32_t flags = 0;  ///< bit 0: object attached
+  Pose7 object_pose{};
+  Vector6 object_twist{};
+  Vector6 impedance_wrench{};  ///< IMPEDANCE: wrench to render at the handle [N, N·m]
+  double object_mass = 0.0;    ///< kg
+  std::array<double, 3> object_inertia{};  ///< principal inertia, kg·m²
+  double client_time_step = 0.0;           ///< s
+  double force_factor = 1.0;
+  double speed_factor = 1.0;
+  Pose7 base_frame{0, 0, 0, 0, 0, 0, 1};
+  Pose7 observation_frame{0, 0, 0, 0, 0, 0, 1};
+  std::array<double, 4> gain_override{};  ///< k_lin, b_lin, k_ang, b_ang; 0 = derived
+  std::array<double, 2> force_limits{};   ///< max force [N], max torque [N·m]; 0 = model's
+};
+
+/// VP: core -> client (read by the UDP bridge once per cycle).
+struct VpPayload {
+  std::uint64_t cycle = 0;
+  std::uint64_t echo_client_sequence = 0;  ///< last VPr client_sequence the core used
+  std::int64_t echo_client_time_ns = 0;
+  std::uint32_t state_word = 0;    ///< state_bits
+  std::uint32_t core_state = 0;    ///< CoreState
+  std::uint32_t stop_reason = 0;   ///< StopReason, once fail-safe or stop has begun
+  std::uint32_t command_type = 0;  ///< CommandType in force
+  Vector6 coupling_wrench{};  ///< wrench the client applies to its object [N, N·m]
+  Pose7 handle_pose{0, 0, 0, 0, 0, 0, 1};
+  Vector6 handle_twist{};
+  Joints6 joint_position{};
+  Joints6 joint_velocity{};
+};
+
+/// force: operator wrench on the simulated handle (written by the HMI side).
+struct ForcePayload {
+  Vector6 wrench{};  ///< base frame, at the handle point [N, N·m]
+};
+
+/// position: arm state for the HMI and monitors.
+struct PositionPayload {
+  std::uint64_t cycle = 0;
+  std::uint32_t state_word = 0;
+  std::uint32_t core_state = 0;
+  Joints6 joint_position{};
+  Joints6 joint_velocity{};
+  Joints6 joint_torque{};  ///< commanded motor torques after saturation [N·m]
+  Pose7 handle_pose{0, 0, 0, 0, 0, 0, 1};
+  Vector6 handle_twist{};
+  Vector6 operator_wrench{};
+  Vector6 coupling_wrench{};
+};
+
+/// Real-time mode the core obtained at start (telemetry).
+enum class RtMode : std::uint32_t {
+  kNone = 0,          ///< SCHED_OTHER, no memory lock
+  kFifo = 1,          ///< SCHED_FIFO but memory not locked
+  kFifoLocked = 2,    ///< SCHED_FIFO and mlockall
+  kFifoLockedRt = 3,  ///< SCHED_FIFO, mlockall, PREEMPT_RT kernel
+};
+
+/// Summary statistics of a latency series, nanoseconds.
+struct LatencySummary {
+  std::int64_t min_ns = 0;
+  std::int64_t avg_ns = 0;
+  std::int64_t max_ns = 0;
+  std::int64_t p50_ns = 0;
+  std::int64_t p99_ns = 0;
+  std::int64_t p999_ns = 0;
+  std::uint64_t samples = 0;
+  std::uint64_t overflows = 0;  ///< samples beyond the histogram's last bin
+};
+
+/// telemetry: cycle health, published by the core at a few tens of Hz.
+struct TelemetryPayload {
+  std::uint64_t cycle = 0;
+  std::int64_t period_ns = 0;
+  std::uint32_t rt_mode = 0;  ///< RtMode
+  std::uint32_t core_state = 0;
+  std::uint32_t stop_reason = 0;
+  std::uint32_t consecutive_misses = 0;
+  std::uint64_t misses_total = 0;
+  std::uint64_t degraded_cycles = 0;
+  std::uint64_t skipped_slots = 0;  ///< periods skipped after late wake-ups
+  std::uint64_t late_servo_discarded = 0;  ///< late main SERVO outputs refused (stale cycle)
+  std::uint32_t window_miss_ppm = 0;  ///< misses per million cycles over the recent window
+  std::uint32_t leaky_bucket_score = 0;
+  LatencySummary wake_latency{};      ///< CLOCK: actual - scheduled wake-up
+  LatencySummary servo_start_delay{}; ///< SERVO start - CLOCK release
+  LatencySummary servo_execution{};   ///< SERVO start to finish
+  LatencySummary measured_period{};   ///< between consecutive CLOCK wake-ups
+  std::uint64_t vpr_torn = 0;       ///< VPr reads that gave up
+  std::uint64_t vpr_stale = 0;      ///< cycles run on extrapolated/faded client data
+  std::uint64_t force_rejected = 0; ///< force samples rejected (non-finite, out of range)
+  std::uint64_t ctrl_accepted = 0;
+  std::uint64_t ctrl_rejected = 0;
+};
+
+// Layout pins: a change here is an ABI change (bump kAbiVersion in layout.hpp).
+static_assert(sizeof(VprPayload) == 416);
+static_assert(sizeof(VpPayload) == 288);
+static_assert(sizeof(ForcePayload) == 48);
+static_assert(sizeof(PositionPayload) == 360);
+static_assert(sizeof(LatencySummary) == 64);
+static_assert(sizeof(TelemetryPayload) == 368);
+
+}  // namespace hapticctrl::shm

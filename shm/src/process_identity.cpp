@@ -51,7 +51,8 @@ bool ProcessIdentity::alive() const {
 }
 
 std::uint64_t pack_identity(const ProcessIdentity& id) noexcept {
-  return (static_cast<std::uint64_t>(id.pid) & kPidMask) | ((id.start_ticks & kStartMask) << kPidBits);
+  return (static_cast<std::uint64_t>(id.pid) & kPidMask) |
+         ((id.start_ticks & kStartMask) << kPidBits);
 }
 
 ProcessIdentity unpack_identity(std::uint64_t word) noexcept {

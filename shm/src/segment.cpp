@@ -21,18 +21,23 @@ constexpr mode_t kSegmentMode = 0660;
 constexpr std::size_t kMaxInstanceName = 32;
 constexpr std::string_view kShmDir = "/dev/shm";
 
-std::string errno_text(int error) { return std::strerror(error); }
+std::string errno_text(int error) {
+  return std::strerror(error);
+}
 
 [[noreturn]] void throw_system(const std::string& what, int error) {
   if (error == EACCES || error == EPERM) {
     throw ShmError(ShmErrc::kPermissionDenied,
-                   what + ": permission denied (segments are mode 0660: run as the owner or a "
-                          "member of the segment's group)");
+                   what +
+                       ": permission denied (segments are mode 0660: run as the owner or a "
+                       "member of the segment's group)");
   }
   throw ShmError(ShmErrc::kSystem, what + ": " + errno_text(error));
 }
 
-std::string shm_path(const std::string& name) { return std::string(kShmDir) + name; }
+std::string shm_path(const std::string& name) {
+  return std::string(kShmDir) + name;
+}
 
 gid_t resolve_group(const std::string& group) {
   std::string buffer(16384, '\0');
@@ -154,8 +159,8 @@ int acquire_instance_lock(const SegmentNames& names, const std::string& instance
     }
     ::close(fd);  // the name was unlinked/replaced under us: try again
   }
-  throw ShmError(ShmErrc::kSystem, "could not take the lock of instance '" + instance +
-                                       "' (it kept being replaced)");
+  throw ShmError(ShmErrc::kSystem,
+                 "could not take the lock of instance '" + instance + "' (it kept being replaced)");
 }
 
 void check_not_world_accessible(const struct stat& st, const std::string& what) {
@@ -171,13 +176,12 @@ void check_not_world_accessible(const struct stat& st, const std::string& what) 
 
 SegmentNames SegmentNames::of(std::string_view instance) {
   const bool valid_chars = std::all_of(instance.begin(), instance.end(), [](char c) {
-    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
-           c == '_' || c == '-';
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
+           c == '-';
   });
   if (instance.empty() || instance.size() > kMaxInstanceName || !valid_chars) {
-    throw ShmError(ShmErrc::kBadInstanceName,
-                   "invalid instance name '" + std::string(instance) +
-                       "': use 1 to 32 characters from [A-Za-z0-9_-]");
+    throw ShmError(ShmErrc::kBadInstanceName, "invalid instance name '" + std::string(instance) +
+                                                  "': use 1 to 32 characters from [A-Za-z0-9_-]");
   }
   const std::string base = "/hapticctrl." + std::string(instance);
   return SegmentNames{base, base + ".lock"};
@@ -194,8 +198,8 @@ Segment Segment::create(const CreateOptions& options) {
   // still map the old one keep a valid (orphaned) mapping and notice via still_current().
   const auto old = peek_existing(seg.names_.segment);
   shm_unlink(seg.names_.segment.c_str());
-  seg.fd_ = shm_open(seg.names_.segment.c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC,
-                     kSegmentMode);
+  seg.fd_ =
+      shm_open(seg.names_.segment.c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, kSegmentMode);
   if (seg.fd_ < 0) {
     throw_system("create " + shm_path(seg.names_.segment), errno);
   }
@@ -229,20 +233,16 @@ Segment Segment::create(const CreateOptions& options) {
                 std::min(options.instance.size(), header->instance.size() - 1),
                 header->instance.begin());
     for (std::size_t i = 0; i < kRegionCount; ++i) {
-      header->regions[i] = RegionEntry{region_offset(static_cast<RegionId>(i)),
-                                       kRegionSizes[i]};
+      header->regions[i] = RegionEntry{region_offset(static_cast<RegionId>(i)), kRegionSizes[i]};
     }
     munmap(all, kSegmentSize);
   }
 
-  seg.header_part_ = Part{map_part(seg.fd_, 0, kClaimsOffset, true,
-                                   "header"),
-                          kClaimsOffset, true};
+  seg.header_part_ = Part{map_part(seg.fd_, 0, kClaimsOffset, true, "header"), kClaimsOffset, true};
   seg.header_ = static_cast<const SegmentHeader*>(seg.header_part_.address);
-  seg.claims_part_ = Part{map_part(seg.fd_, kClaimsOffset,
-                                   kFirstRegionOffset - kClaimsOffset, true,
-                                   "claims"),
-                          kFirstRegionOffset - kClaimsOffset, true};
+  seg.claims_part_ =
+      Part{map_part(seg.fd_, kClaimsOffset, kFirstRegionOffset - kClaimsOffset, true, "claims"),
+           kFirstRegionOffset - kClaimsOffset, true};
   const std::vector<RegionId> core_writes{RegionId::kVp, RegionId::kPosition, RegionId::kCtrlAck,
                                           RegionId::kTelemetry};
   seg.my_claim_ = pack_identity(ProcessIdentity::self());
@@ -285,14 +285,13 @@ Segment Segment::attach(std::string_view instance, const AttachOptions& options)
     }
   }
   if (static_cast<std::size_t>(st.st_size) < sizeof(SegmentHeader)) {
-    throw ShmError(ShmErrc::kLayoutMismatch,
-                   path + " is " + std::to_string(st.st_size) + " bytes, too small to be a " +
-                       "hapticctrl segment");
+    throw ShmError(ShmErrc::kLayoutMismatch, path + " is " + std::to_string(st.st_size) +
+                                                 " bytes, too small to be a " +
+                                                 "hapticctrl segment");
   }
 
-  seg.header_part_ = Part{map_part(seg.fd_, 0, kClaimsOffset, false,
-                                   "header"),
-                          kClaimsOffset, false};
+  seg.header_part_ =
+      Part{map_part(seg.fd_, 0, kClaimsOffset, false, "header"), kClaimsOffset, false};
   seg.header_ = static_cast<const SegmentHeader*>(seg.header_part_.address);
   const SegmentHeader& header = *seg.header_;
   if (header.magic.load(std::memory_order_acquire) != kSegmentMagic) {
@@ -328,10 +327,9 @@ Segment Segment::attach(std::string_view instance, const AttachOptions& options)
   }
 
   if (writes) {
-    seg.claims_part_ = Part{map_part(seg.fd_, kClaimsOffset,
-                                     kFirstRegionOffset - kClaimsOffset, true,
-                                     "claims"),
-                            kFirstRegionOffset - kClaimsOffset, true};
+    seg.claims_part_ =
+        Part{map_part(seg.fd_, kClaimsOffset, kFirstRegionOffset - kClaimsOffset, true, "claims"),
+             kFirstRegionOffset - kClaimsOffset, true};
     seg.my_claim_ = pack_identity(ProcessIdentity::self());
     seg.claim_regions(options.write);
   }
@@ -371,17 +369,18 @@ void Segment::claim_ctrl_slot() {
   for (std::size_t slot = 0; slot < kCtrlSlots; ++slot) {
     if (try_claim(claims->ctrl_writer[slot], my_claim_) == 0) {
       ctrl_slot_ = slot;
-      auto& region = *static_cast<CtrlRegion*>(parts_[static_cast<std::size_t>(RegionId::kCtrl)].address);
-      const auto& acks =
-          *static_cast<const CtrlAckRegion*>(parts_[static_cast<std::size_t>(RegionId::kCtrlAck)].address);
+      auto& region =
+          *static_cast<CtrlRegion*>(parts_[static_cast<std::size_t>(RegionId::kCtrl)].address);
+      const auto& acks = *static_cast<const CtrlAckRegion*>(
+          parts_[static_cast<std::size_t>(RegionId::kCtrlAck)].address);
       ctrl_writer_.emplace(region.slots[slot], acks.slots[slot], slot);
       return;
     }
   }
   release_claims();
-  throw ShmError(ShmErrc::kWriterConflict,
-                 "all " + std::to_string(kCtrlSlots) + " ctrl slots of instance '" + instance_ +
-                     "' are held by live processes");
+  throw ShmError(ShmErrc::kWriterConflict, "all " + std::to_string(kCtrlSlots) +
+                                               " ctrl slots of instance '" + instance_ +
+                                               "' are held by live processes");
 }
 
 void Segment::map_regions(const std::vector<RegionId>& writable_ids) {
@@ -390,9 +389,9 @@ void Segment::map_regions(const std::vector<RegionId>& writable_ids) {
     const bool writable =
         std::find(writable_ids.begin(), writable_ids.end(), id) != writable_ids.end();
     const std::size_t length = round_to_pages(kRegionSizes[i]);
-    parts_[i] = Part{map_part(fd_, region_offset(id), length, writable,
-                              std::string(region_name(id))),
-                     length, writable};
+    parts_[i] =
+        Part{map_part(fd_, region_offset(id), length, writable, std::string(region_name(id))),
+             length, writable};
   }
 }
 
@@ -512,7 +511,9 @@ void Segment::close() noexcept {
   creator_ = false;
 }
 
-Segment::Segment(Segment&& other) noexcept { *this = std::move(other); }
+Segment::Segment(Segment&& other) noexcept {
+  *this = std::move(other);
+}
 
 Segment& Segment::operator=(Segment&& other) noexcept {
   if (this != &other) {
@@ -534,6 +535,8 @@ Segment& Segment::operator=(Segment&& other) noexcept {
   return *this;
 }
 
-Segment::~Segment() { close(); }
+Segment::~Segment() {
+  close();
+}
 
 }  // namespace hapticctrl::shm

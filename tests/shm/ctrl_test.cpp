@@ -17,7 +17,9 @@ CtrlCode expected_code(std::uint32_t i) {
 struct Mailbox {
   std::unique_ptr<CtrlRegion> region = std::make_unique<CtrlRegion>();
   std::unique_ptr<CtrlAckRegion> acks = std::make_unique<CtrlAckRegion>();
-  CtrlWriter writer(std::size_t slot) { return CtrlWriter(region->slots[slot], acks->slots[slot], slot); }
+  CtrlWriter writer(std::size_t slot) {
+    return CtrlWriter(region->slots[slot], acks->slots[slot], slot);
+  }
   CtrlReader reader() { return CtrlReader(*region, *acks); }
 };
 
@@ -65,7 +67,8 @@ TEST(Ctrl, FullRingRefusesOrdinaryCommandsInsteadOfLosingThem) {
   Mailbox box;
   CtrlWriter w = box.writer(0);
   for (std::size_t i = 0; i < kCtrlRingSize; ++i) {
-    ASSERT_EQ(w.send(CtrlCode::kPowerOn, static_cast<std::uint32_t>(i), 0), CtrlSendStatus::kQueued);
+    ASSERT_EQ(w.send(CtrlCode::kPowerOn, static_cast<std::uint32_t>(i), 0),
+              CtrlSendStatus::kQueued);
   }
   EXPECT_EQ(w.send(CtrlCode::kPowerOff, 0, 0), CtrlSendStatus::kFull);
   const auto seen = drain_all(box.reader());

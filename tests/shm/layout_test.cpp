@@ -10,8 +10,7 @@ TEST(Layout, EveryPartStartsOnItsOwnPageSoItCanBeMappedWithItsOwnProtection) {
   for (std::size_t i = 0; i < kRegionCount; ++i) {
     const auto id = static_cast<RegionId>(i);
     EXPECT_EQ(region_offset(id) % kPageSize, 0U) << region_name(id);
-    EXPECT_GE(region_offset(static_cast<RegionId>(i + 1)),
-              region_offset(id) + kRegionSizes[i]);
+    EXPECT_GE(region_offset(static_cast<RegionId>(i + 1)), region_offset(id) + kRegionSizes[i]);
   }
   EXPECT_EQ(kSegmentSize % kPageSize, 0U);
 }

@@ -21,7 +21,9 @@ using test::Child;
 using test::ReadyPipe;
 using test::unique_instance;
 
-std::string shm_file(const std::string& instance) { return "/dev/shm/hapticctrl." + instance; }
+std::string shm_file(const std::string& instance) {
+  return "/dev/shm/hapticctrl." + instance;
+}
 
 bool exists(const std::string& path) {
   struct stat st {};
@@ -93,8 +95,9 @@ TEST(Segment, ConfiguredGroupOwnsTheSegment) {
   struct stat st {};
   ASSERT_EQ(stat(shm_file(name).c_str(), &st), 0);
   EXPECT_EQ(st.st_gid, getegid());
-  expect_shm_error([&] { Segment::create({.instance = unique_instance("g2"), .group = "no-such-group-x"}); },
-                   ShmErrc::kSystem, "unknown group");
+  expect_shm_error(
+      [&] { Segment::create({.instance = unique_instance("g2"), .group = "no-such-group-x"}); },
+      ShmErrc::kSystem, "unknown group");
 }
 
 TEST(Segment, CloseRemovesEveryName) {
@@ -135,7 +138,7 @@ TEST(Segment, BlockedReaderOnReadOnlyMappingIsWokenByPublish) {
     const std::uint32_t seen = seg.region<RegionId::kVp>().sequence_word();
     ready.signal();
     return seg.region<RegionId::kVp>().wait_for_publish(seen, 10s) == WaitStatus::kPublished ? 0
-                                                                                            : 1;
+                                                                                             : 1;
   });
   ASSERT_EQ(ready.wait(), 'r');
   std::this_thread::sleep_for(20ms);
@@ -149,7 +152,8 @@ TEST(Segment, AttachWithoutControllerSaysSo) {
 }
 
 TEST(Segment, BadInstanceNamesAreRefused) {
-  for (const std::string& bad : std::vector<std::string>{"", "a/b", "../x", "with space", std::string(33, 'a')}) {
+  for (const std::string& bad :
+       std::vector<std::string>{"", "a/b", "../x", "with space", std::string(33, 'a')}) {
     expect_shm_error([&] { Segment::attach(bad); }, ShmErrc::kBadInstanceName,
                      "invalid instance name");
   }

@@ -137,6 +137,7 @@ TEST(Seqlock, ConcurrentReadersNeverSeeTornOrOlderPayloads) {
   std::atomic<std::uint64_t> backwards{0};
   std::atomic<std::uint64_t> ok{0};
   std::vector<std::thread> readers;
+  readers.reserve(3);
   for (int r = 0; r < 3; ++r) {
     readers.emplace_back([&] {
       std::uint64_t last = 0;

@@ -154,7 +154,8 @@ class CtrlReader {
         break;  // the overflowed e-stop comes first
       }
       const CtrlEntry& entry = slot.ring[next % kCtrlRingSize];
-      const CtrlCommand command{s, next, static_cast<CtrlCode>(entry.code.load(std::memory_order_relaxed)),
+      const CtrlCommand command{s, next,
+                                static_cast<CtrlCode>(entry.code.load(std::memory_order_relaxed)),
                                 entry.arg.load(std::memory_order_relaxed),
                                 entry.issued_ns.load(std::memory_order_relaxed)};
       if (!handler(command)) {

@@ -106,8 +106,8 @@ struct SegmentHeader {
   std::int64_t period_ns = 0;
   std::array<char, 48> instance{};
   std::array<RegionEntry, kRegionCount> regions{};
-  std::atomic<std::uint32_t> core_state{0};   ///< CoreState
-  std::atomic<std::uint32_t> stop_reason{0};  ///< StopReason
+  std::atomic<std::uint32_t> core_state{0};       ///< CoreState
+  std::atomic<std::uint32_t> stop_reason{0};      ///< StopReason
   std::atomic<std::uint64_t> heartbeat_cycle{0};  ///< advanced by the core every cycle
   std::atomic<std::int64_t> heartbeat_ns{0};      ///< CLOCK_MONOTONIC of the last heartbeat
 };
@@ -130,7 +130,8 @@ inline constexpr std::array<std::size_t, kRegionCount> kRegionSizes{
     sizeof(RegionType<RegionId::kTelemetry>)};
 
 inline constexpr std::size_t kClaimsOffset = round_to_pages(sizeof(SegmentHeader));
-inline constexpr std::size_t kFirstRegionOffset = kClaimsOffset + round_to_pages(sizeof(ClaimTable));
+inline constexpr std::size_t kFirstRegionOffset =
+    kClaimsOffset + round_to_pages(sizeof(ClaimTable));
 
 /// Page-aligned offset of a region (RegionId::kCount gives the segment size).
 constexpr std::size_t region_offset(RegionId id) noexcept {

@@ -32,13 +32,13 @@ enum class CoreState : std::uint32_t {
 /// Numbered, latched reasons for leaving the cycle. 0 means none.
 enum class StopReason : std::uint32_t {
   kNone = 0,
-  kConsecutiveMisses = 1,    ///< exactly 5 consecutive deadline misses
-  kStopRequested = 2,        ///< ctrl stop command (orderly, exit 0)
-  kSignal = 3,               ///< SIGINT/SIGTERM (orderly, exit 0)
-  kChronicMisses = 4,        ///< windowed miss rate / leaky bucket over threshold (if enabled)
-  kArmFault = 5,             ///< arm I/O reported a fault or non-finite measures
-  kDurationElapsed = 6,      ///< --duration reached (orderly, exit 0)
-  kVelocityLimit = 7,        ///< handle or joint speed above the safety threshold
+  kConsecutiveMisses = 1,  ///< exactly 5 consecutive deadline misses
+  kStopRequested = 2,      ///< ctrl stop command (orderly, exit 0)
+  kSignal = 3,             ///< SIGINT/SIGTERM (orderly, exit 0)
+  kChronicMisses = 4,      ///< windowed miss rate / leaky bucket over threshold (if enabled)
+  kArmFault = 5,           ///< arm I/O reported a fault or non-finite measures
+  kDurationElapsed = 6,    ///< --duration reached (orderly, exit 0)
+  kVelocityLimit = 7,      ///< handle or joint speed above the safety threshold
 };
 
 /// Bits of the state word carried in VP (and over the protocol).
@@ -64,8 +64,8 @@ struct VprPayload {
   std::uint32_t flags = 0;  ///< bit 0: object attached
   Pose7 object_pose{};
   Vector6 object_twist{};
-  Vector6 impedance_wrench{};  ///< IMPEDANCE: wrench to render at the handle [N, N·m]
-  double object_mass = 0.0;    ///< kg
+  Vector6 impedance_wrench{};              ///< IMPEDANCE: wrench to render at the handle [N, N·m]
+  double object_mass = 0.0;                ///< kg
   std::array<double, 3> object_inertia{};  ///< principal inertia, kg·m²
   double client_time_step = 0.0;           ///< s
   double force_factor = 1.0;
@@ -85,7 +85,7 @@ struct VpPayload {
   std::uint32_t core_state = 0;    ///< CoreState
   std::uint32_t stop_reason = 0;   ///< StopReason, once fail-safe or stop has begun
   std::uint32_t command_type = 0;  ///< CommandType in force
-  Vector6 coupling_wrench{};  ///< wrench the client applies to its object [N, N·m]
+  Vector6 coupling_wrench{};       ///< wrench the client applies to its object [N, N·m]
   Pose7 handle_pose{0, 0, 0, 0, 0, 0, 1};
   Vector6 handle_twist{};
   Joints6 joint_position{};
@@ -141,17 +141,17 @@ struct TelemetryPayload {
   std::uint32_t consecutive_misses = 0;
   std::uint64_t misses_total = 0;
   std::uint64_t degraded_cycles = 0;
-  std::uint64_t skipped_slots = 0;  ///< periods skipped after late wake-ups
+  std::uint64_t skipped_slots = 0;         ///< periods skipped after late wake-ups
   std::uint64_t late_servo_discarded = 0;  ///< late main SERVO outputs refused (stale cycle)
-  std::uint32_t window_miss_ppm = 0;  ///< misses per million cycles over the recent window
+  std::uint32_t window_miss_ppm = 0;       ///< misses per million cycles over the recent window
   std::uint32_t leaky_bucket_score = 0;
-  LatencySummary wake_latency{};      ///< CLOCK: actual - scheduled wake-up
-  LatencySummary servo_start_delay{}; ///< SERVO start - CLOCK release
-  LatencySummary servo_execution{};   ///< SERVO start to finish
-  LatencySummary measured_period{};   ///< between consecutive CLOCK wake-ups
-  std::uint64_t vpr_torn = 0;       ///< VPr reads that gave up
-  std::uint64_t vpr_stale = 0;      ///< cycles run on extrapolated/faded client data
-  std::uint64_t force_rejected = 0; ///< force samples rejected (non-finite, out of range)
+  LatencySummary wake_latency{};       ///< CLOCK: actual - scheduled wake-up
+  LatencySummary servo_start_delay{};  ///< SERVO start - CLOCK release
+  LatencySummary servo_execution{};    ///< SERVO start to finish
+  LatencySummary measured_period{};    ///< between consecutive CLOCK wake-ups
+  std::uint64_t vpr_torn = 0;          ///< VPr reads that gave up
+  std::uint64_t vpr_stale = 0;         ///< cycles run on extrapolated/faded client data
+  std::uint64_t force_rejected = 0;    ///< force samples rejected (non-finite, out of range)
   std::uint64_t ctrl_accepted = 0;
   std::uint64_t ctrl_rejected = 0;
 };

@@ -33,6 +33,13 @@
 
 namespace hapticctrl::shm {
 
+/// Spin-wait hint (x86 PAUSE); a no-op elsewhere.
+inline void cpu_relax() noexcept {
+#if defined(__x86_64__) || defined(__i386__)
+  __builtin_ia32_pause();
+#endif
+}
+
 /// Outcome of a seqlock read.
 enum class ReadStatus : std::uint8_t {
   kOk,            ///< a consistent snapshot was copied out
@@ -113,7 +120,8 @@ class alignas(64) SeqlockCell {
         return ReadResult{ReadStatus::kNeverWritten, 0, 0};
       }
       if ((before & 1U) != 0) {
-        continue;  // a write is in progress
+        cpu_relax();  // a write is in progress: give it a moment instead of burning attempts
+        continue;
       }
       const std::uint64_t sequence = count_.load(std::memory_order_acquire);
       const std::int64_t stamp = stamp_.load(std::memory_order_acquire);

@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Installs every Debian package hapticctrl needs to build, test, run and benchmark.
+# Idempotent, non-interactive, and silent when everything is already present.
+set -euo pipefail
+
+PACKAGES=(
+  # toolchain
+  g++ cmake ninja-build pkg-config clang clang-format clang-tidy libclang-rt-14-dev
+  # design-card libraries
+  libeigen3-dev liblcm-dev liblcm-bin liblcm-java libtirpc-dev rpcsvc-proto zlib1g-dev
+  libbenchmark-dev libgtest-dev libgmock-dev libncurses-dev
+  # monitoring, analysis and benchmarks
+  default-jdk-headless libjchart2d-java gnuplot-nox rt-tests stress-ng procps util-linux
+)
+
+missing=()
+for pkg in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "ok installed"; then
+    missing+=("$pkg")
+  fi
+done
+[[ ${#missing[@]} -eq 0 ]] && exit 0
+
+echo "setup: installing ${missing[*]}" >&2
+SUDO=()
+if [[ $(id -u) -ne 0 ]]; then
+  if command -v sudo >/dev/null; then
+    SUDO=(sudo)
+  else
+    echo "setup: need root to install: ${missing[*]}" >&2
+    exit 1
+  fi
+fi
+export DEBIAN_FRONTEND=noninteractive
+"${SUDO[@]}" apt-get update -qq
+"${SUDO[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null

@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# The README's test command: installs what is missing, builds, runs every test.
+# Under CI=true it also checks formatting and clang-tidy, and builds and runs the tests with
+# AddressSanitizer+UBSan and with ThreadSanitizer.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+ROOT=$PWD
+JOBS=$(nproc)
+
+scripts/setup.sh
+
+configure_build_test() {  # dir, ctest label regex, extra cmake args...
+  local dir=$1 labels=$2
+  shift 2
+  cmake -S "$ROOT" -B "$dir" -G Ninja -DHAPTICCTRL_WERROR=ON "$@" >/dev/null
+  cmake --build "$dir" -j "$JOBS"
+  local runner=()
+  # Sanitizer runtimes of GCC 12 cannot map their shadow with high mmap randomisation.
+  if [[ -r /proc/sys/vm/mmap_rnd_bits && $(cat /proc/sys/vm/mmap_rnd_bits) -gt 28 ]]; then
+    runner=(setarch "$(uname -m)" -R)
+  fi
+  (cd "$dir" && "${runner[@]}" ctest --output-on-failure -j "$JOBS" -L "$labels" --timeout 600)
+}
+
+echo "== build and test (RelWithDebInfo)"
+configure_build_test build 'unit|sim|integration|bench'
+
+if [[ "${CI:-}" == "true" ]]; then
+  echo "== format and lint"
+  scripts/lint.sh build
+  echo "== AddressSanitizer + UBSan"
+  configure_build_test build-asan 'unit|sim|integration' \
+    -DHAPTICCTRL_SANITIZER=address,undefined -DHAPTICCTRL_BUILD_BENCH=OFF -DCMAKE_BUILD_TYPE=Debug
+  echo "== ThreadSanitizer"
+  configure_build_test build-tsan 'unit|sim|integration' \
+    -DHAPTICCTRL_SANITIZER=thread -DHAPTICCTRL_BUILD_BENCH=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo
+fi
+echo "== all tests passed"

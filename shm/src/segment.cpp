@@ -154,7 +154,13 @@ int acquire_instance_lock(const SegmentNames& names, const std::string& instance
     struct stat named {};
     if (fstat(fd, &held) == 0 && stat(shm_path(names.lock).c_str(), &named) == 0 &&
         held.st_ino == named.st_ino) {
-      set_ownership(fd, shm_path(names.lock), group);
+      try {
+        set_ownership(fd, shm_path(names.lock), group);
+      } catch (...) {
+        shm_unlink(names.lock.c_str());  // we hold the lock: the name is ours to remove
+        ::close(fd);
+        throw;
+      }
       return fd;
     }
     ::close(fd);  // the name was unlinked/replaced under us: try again
@@ -498,6 +504,8 @@ void Segment::close() noexcept {
   header_ = nullptr;
   if (creator_ && fd_ >= 0) {
     shm_unlink(names_.segment.c_str());
+  }
+  if (creator_ && lock_fd_ >= 0) {
     shm_unlink(names_.lock.c_str());  // while still holding the flock (see acquire_instance_lock)
   }
   if (fd_ >= 0) {

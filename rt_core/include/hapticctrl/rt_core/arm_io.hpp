@@ -1,0 +1,43 @@
+#pragma once
+/// @file arm_io.hpp
+/// The arm I/O seam: the only way the servo talks to an arm. The simulator implements it now; a
+/// hardware backend implements the same three calls without touching the servo law.
+
+#include <Eigen/Core>
+
+#include <cstdint>
+
+#include "hapticctrl/rt_core/clock.hpp"
+
+namespace hapticctrl::rt_core {
+
+using Vector6d = Eigen::Matrix<double, 6, 1>;
+
+/// One sample of the arm's sensors (SI units, joint space).
+struct ArmMeasures {
+  Vector6d position = Vector6d::Zero();  ///< rad
+  Vector6d velocity = Vector6d::Zero();  ///< rad/s
+  Vector6d torque = Vector6d::Zero();    ///< torque actually applied by the motors, N·m
+  bool supply_on = false;                ///< motor power supply state
+};
+
+/// What the servo asks of the motors for the next period.
+struct ArmCommands {
+  Vector6d torque = Vector6d::Zero();  ///< N·m, before the arm's own saturation
+  bool enable = false;                 ///< false: motors inhibited (zero torque), brakes engaged
+};
+
+/// Real-time contract of every method: noexcept, no allocation, no blocking; safe in the cycle.
+/// Calls are serialised by the servo (one cycle owner at a time), never concurrent.
+class ArmIo {
+ public:
+  virtual ~ArmIo() = default;
+  /// Reads the sensors. Returns false on an I/O fault (the servo then latches a fault).
+  virtual bool get_measures(ArmMeasures& out) noexcept = 0;
+  /// Applies `commands` for the period `dt` that starts at `now`.
+  virtual void send_commands(const ArmCommands& commands, TimeNs now, TimeNs dt) noexcept = 0;
+  /// Switches the motor power supply (fail-safe and power requests).
+  virtual void set_supply(bool on) noexcept = 0;
+};
+
+}  // namespace hapticctrl::rt_core

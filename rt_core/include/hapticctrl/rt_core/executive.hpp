@@ -1,0 +1,124 @@
+#pragma once
+/// @file executive.hpp
+/// The CLOCK task: the only periodic task. Per slot it wakes at the absolute deadline, releases
+/// the main SERVO (or the degraded SERVO when the main one is still busy), sleeps to 3/4 of the
+/// period, checks whether the main SERVO committed the cycle, feeds the deadline monitor,
+/// updates statistics, the heartbeat and the black box, and sleeps to the next slot.
+///
+/// A wake-up more than half a period late for its slot skips that slot (and any slot passed
+/// meanwhile) and resumes at the next future slot: cycles never run back to back to catch up.
+/// Skipped slots count as misses.
+///
+/// The fail-safe (exactly 5 consecutive misses) and the orderly stop (ctrl stop, signal,
+/// duration) run the same sequence, in this order: inhibit motor commands, power off the supply,
+/// close the protocol (VP says FAILSAFE/STOPPING with the reason), stop the tasks. The caller then
+/// writes the black box (fail-safe), releases the regions and exits with the reason.
+
+#include <array>
+#include <atomic>
+#include <cstdint>
+
+#include "hapticctrl/rt_core/black_box.hpp"
+#include "hapticctrl/rt_core/clock.hpp"
+#include "hapticctrl/rt_core/deadline_monitor.hpp"
+#include "hapticctrl/rt_core/latency_histogram.hpp"
+#include "hapticctrl/rt_core/servo.hpp"
+#include "hapticctrl/shm/layout.hpp"
+#include "hapticctrl/shm/payloads.hpp"
+
+namespace hapticctrl::rt_core {
+
+/// How the CLOCK drives the two SERVO tasks (threads in the process, a scripted fake in tests).
+class ServoTasks {
+ public:
+  virtual ~ServoTasks() = default;
+  /// Releases `role` for `cycle` (the gate was granted just before). Safe in the cycle.
+  virtual void release(ServoRole role, std::uint64_t cycle, TimeNs release_time) noexcept = 0;
+  /// True while `role` has not finished the last cycle released to it.
+  virtual bool busy(ServoRole role) noexcept = 0;
+  /// Start time of the last cycle released to `role`, -1 if it has not started.
+  virtual TimeNs started_at(ServoRole role) noexcept = 0;
+  /// Stops and joins the tasks (fail-safe step 4). Not for the cycle.
+  virtual void stop() noexcept = 0;
+};
+
+/// The steps of the stop sequence, recorded in order with their times.
+enum class StopStep : std::uint8_t {
+  kInhibitCommands = 1,
+  kPowerOffSupply = 2,
+  kCloseProtocol = 3,
+  kStopTasks = 4,
+};
+
+struct ExecutiveConfig {
+  TimeNs period = kNsPerMs;
+  TimeNs duration = 0;              ///< stop after this long (0: run until stopped)
+  std::uint32_t telemetry_every = 20;  ///< publish telemetry every N cycles
+  ChronicMissConfig chronic;
+  shm::RtMode rt_mode = shm::RtMode::kNone;
+};
+
+/// Where the CLOCK publishes (any may be null in tests).
+struct ExecutiveOutputs {
+  shm::SegmentHeader* header = nullptr;
+  shm::SeqlockCell<shm::TelemetryPayload>* telemetry = nullptr;
+  const shm::SeqlockCell<shm::PositionPayload>* position = nullptr;  ///< for the black box
+};
+
+struct ExecutiveResult {
+  shm::StopReason reason = shm::StopReason::kNone;
+  bool fail_safe = false;  ///< a fault (exit non-zero), not an orderly stop
+  std::array<StopStep, 4> steps{};
+  std::array<TimeNs, 4> step_times{};
+  std::size_t step_count = 0;
+  bool protocol_closed_in_vp = false;  ///< VP carried the final state (gate could be closed)
+};
+
+class Executive {
+ public:
+  Executive(const ExecutiveConfig& config, Clock& clock, ServoTasks& tasks, ServoShared& shared,
+            ArmIo& arm, const ExecutiveOutputs& outputs, BlackBox& black_box) noexcept;
+
+  /// Runs until fail-safe or stop. `external_stop` (signals) is polled once per cycle.
+  /// Real-time contract: this *is* the cycle; noexcept, no allocation.
+  ExecutiveResult run(const std::atomic<bool>* external_stop = nullptr) noexcept;
+
+  /// Current figures (also what telemetry carries).
+  [[nodiscard]] shm::TelemetryPayload telemetry() const noexcept;
+  [[nodiscard]] const LatencyHistogram& wake_latency() const noexcept { return wake_latency_; }
+  [[nodiscard]] const DeadlineMonitor& monitor() const noexcept { return monitor_; }
+  [[nodiscard]] std::uint64_t cycles() const noexcept { return cycle_; }
+
+ private:
+  /// Runs one slot; returns a stop reason when the cycle must end.
+  shm::StopReason run_slot(TimeNs scheduled, TimeNs woke) noexcept;
+  void release_servo(TimeNs now) noexcept;
+  void record(const CycleTimes& times, bool miss, std::uint32_t skipped) noexcept;
+  void publish_telemetry(TimeNs now) noexcept;
+  ExecutiveResult stop_sequence(shm::StopReason reason, bool fail_safe) noexcept;
+  static bool is_fault(shm::StopReason reason) noexcept;
+
+  ExecutiveConfig config_;
+  Clock* clock_;
+  ServoTasks* tasks_;
+  ServoShared* shared_;
+  ArmIo* arm_;
+  ExecutiveOutputs outputs_;
+  BlackBox* black_box_;
+
+  DeadlineMonitor monitor_;
+  LatencyHistogram wake_latency_;
+  LatencyHistogram servo_start_delay_;
+  LatencyHistogram servo_execution_;
+  LatencyHistogram measured_period_;
+  std::uint64_t cycle_ = 0;
+  std::uint64_t degraded_cycles_ = 0;
+  std::uint64_t skipped_slots_ = 0;
+  std::uint32_t pending_skipped_ = 0;
+  TimeNs last_woke_ = -1;
+  bool degraded_this_cycle_ = false;
+  shm::StopReason stop_reason_ = shm::StopReason::kNone;
+  shm::CoreState core_state_ = shm::CoreState::kRunning;
+};
+
+}  // namespace hapticctrl::rt_core

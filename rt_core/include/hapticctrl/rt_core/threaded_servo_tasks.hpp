@@ -1,0 +1,68 @@
+#pragma once
+/// @file threaded_servo_tasks.hpp
+/// The real SERVO and degraded SERVO: one thread each, released by the CLOCK through a futex.
+
+#include <atomic>
+#include <cstdint>
+#include <thread>
+
+#include "hapticctrl/rt_core/clock.hpp"
+#include "hapticctrl/rt_core/executive.hpp"
+#include "hapticctrl/rt_core/servo.hpp"
+
+namespace hapticctrl::rt_core {
+
+/// Scheduling of one task thread (applied by the thread itself before its loop).
+struct ThreadPlacement {
+  int fifo_priority = 0;  ///< 0: leave SCHED_OTHER
+  int cpu = -1;           ///< -1: no affinity
+};
+
+class ThreadedServoTasks final : public ServoTasks {
+ public:
+  /// Starts both threads (setup: allocates). `period` scales injected overruns.
+  ThreadedServoTasks(Clock& clock, ServoTask& main_task, ServoTask& degraded_task,
+                     ServoShared& shared, TimeNs period, const ThreadPlacement& main_placement,
+                     const ThreadPlacement& degraded_placement);
+  ThreadedServoTasks(const ThreadedServoTasks&) = delete;
+  ThreadedServoTasks& operator=(const ThreadedServoTasks&) = delete;
+  ~ThreadedServoTasks() override;
+
+  void release(ServoRole role, std::uint64_t cycle, TimeNs release_time) noexcept override;
+  bool busy(ServoRole role) noexcept override;
+  TimeNs started_at(ServoRole role) noexcept override;
+  void stop() noexcept override;
+
+  /// Whether each thread got the scheduling it asked for (reported by the preflight).
+  [[nodiscard]] bool placement_applied(ServoRole role) const noexcept;
+
+ private:
+  struct Worker {
+    ServoTask* task = nullptr;
+    ThreadPlacement placement;
+    std::atomic<std::uint32_t> release_word{0};
+    std::atomic<std::uint64_t> released_cycle{0};
+    std::atomic<std::uint64_t> finished_cycle{0};
+    std::atomic<TimeNs> release_time{0};
+    std::atomic<TimeNs> started{-1};
+    std::atomic<bool> placement_ok{false};
+    std::thread thread;
+  };
+
+  void worker_loop(Worker& worker) noexcept;
+  Worker& worker(ServoRole role) noexcept { return role == ServoRole::kMain ? main_ : degraded_; }
+
+  Clock* clock_;
+  ServoShared* shared_;
+  TimeNs period_;
+  std::atomic<bool> stopping_{false};
+  Worker main_;
+  Worker degraded_;
+};
+
+/// Applies SCHED_FIFO `priority` (if > 0) and CPU affinity (if >= 0) to the calling thread and
+/// touches `stack_bytes` of stack so page faults happen now, not in the cycle. Returns whether
+/// everything asked for was granted. Not for the cycle.
+bool place_current_thread(const ThreadPlacement& placement, std::size_t stack_bytes = 256 * 1024) noexcept;
+
+}  // namespace hapticctrl::rt_core

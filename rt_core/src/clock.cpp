@@ -1,0 +1,30 @@
+#include "hapticctrl/rt_core/clock.hpp"
+
+#include <cerrno>
+#include <ctime>
+
+namespace hapticctrl::rt_core {
+
+TimeNs RealClock::now() noexcept {
+  timespec ts{};
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return static_cast<TimeNs>(ts.tv_sec) * kNsPerS + ts.tv_nsec;
+}
+
+void RealClock::sleep_until(TimeNs deadline) noexcept {
+  timespec ts{};
+  ts.tv_sec = static_cast<time_t>(deadline / kNsPerS);
+  ts.tv_nsec = static_cast<long>(deadline % kNsPerS);
+  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
+  }
+}
+
+void FakeClock::sleep_until(TimeNs deadline) noexcept {
+  if (deadline > now_) {
+    now_ = deadline;
+  }
+  now_ += oversleep_;
+  oversleep_ = 0;
+}
+
+}  // namespace hapticctrl::rt_core

@@ -1,0 +1,279 @@
+#include "hapticctrl/rt_core/executive.hpp"
+
+namespace hapticctrl::rt_core {
+namespace {
+
+/// Bound on waiting for a task to leave the gate during the stop sequence.
+constexpr int kGateCloseAttempts = 2000;
+
+}  // namespace
+
+Executive::Executive(const ExecutiveConfig& config, Clock& clock, ServoTasks& tasks,
+                     ServoShared& shared, ArmIo& arm, const ExecutiveOutputs& outputs,
+                     BlackBox& black_box) noexcept
+    : config_(config),
+      clock_(&clock),
+      tasks_(&tasks),
+      shared_(&shared),
+      arm_(&arm),
+      outputs_(outputs),
+      black_box_(&black_box),
+      monitor_(config.chronic) {}
+
+bool Executive::is_fault(shm::StopReason reason) noexcept {
+  return reason != shm::StopReason::kStopRequested && reason != shm::StopReason::kSignal &&
+         reason != shm::StopReason::kDurationElapsed;
+}
+
+ExecutiveResult Executive::run(const std::atomic<bool>* external_stop) noexcept {
+  const TimeNs period = config_.period;
+  const TimeNs start = clock_->now();
+  const TimeNs first_slot = (start / period + 2) * period;  // aligned, at least a period ahead
+  if (outputs_.header != nullptr) {
+    outputs_.header->core_state.store(static_cast<std::uint32_t>(shm::CoreState::kRunning),
+                                      std::memory_order_release);
+  }
+  std::uint64_t slot = 0;
+  for (;;) {
+    const TimeNs scheduled = first_slot + static_cast<TimeNs>(slot) * period;
+    clock_->sleep_until(scheduled);
+    const TimeNs woke = clock_->now();
+    const TimeNs late = woke - scheduled;
+    wake_latency_.add(late);
+    if (late > period / 2) {
+      // Too late for this slot: skip it and every slot passed meanwhile, resume at the next
+      // future slot. Never run back to back to catch up.
+      const auto passed = static_cast<std::uint64_t>(late / period);
+      const std::uint64_t lateness_in_last = static_cast<std::uint64_t>(late % period);
+      const std::uint64_t skip =
+          passed + 1 - ((lateness_in_last <= static_cast<std::uint64_t>(period / 2)) ? 1U : 0U);
+      skipped_slots_ += skip;
+      pending_skipped_ += static_cast<std::uint32_t>(skip);
+      const MonitorVerdict verdict = monitor_.on_skipped(static_cast<std::uint32_t>(skip));
+      if (verdict == MonitorVerdict::kFailSafe) {
+        return stop_sequence(shm::StopReason::kConsecutiveMisses, true);
+      }
+      if (verdict == MonitorVerdict::kChronicMisses) {
+        return stop_sequence(shm::StopReason::kChronicMisses, true);
+      }
+      slot += skip;
+      if (skip == passed) {
+        // The latest passed slot is recent enough (<= P/2 late): run it now.
+        const TimeNs run_scheduled = first_slot + static_cast<TimeNs>(slot) * period;
+        const shm::StopReason reason = run_slot(run_scheduled, woke);
+        if (reason != shm::StopReason::kNone) {
+          return stop_sequence(reason, is_fault(reason));
+        }
+        ++slot;
+      }
+      continue;
+    }
+    shm::StopReason reason = run_slot(scheduled, woke);
+    if (reason == shm::StopReason::kNone && external_stop != nullptr &&
+        external_stop->load(std::memory_order_acquire)) {
+      reason = shm::StopReason::kSignal;
+    }
+    if (reason == shm::StopReason::kNone && config_.duration > 0 && woke - start >= config_.duration) {
+      reason = shm::StopReason::kDurationElapsed;
+    }
+    if (reason != shm::StopReason::kNone) {
+      return stop_sequence(reason, is_fault(reason));
+    }
+    ++slot;
+  }
+}
+
+shm::StopReason Executive::run_slot(TimeNs scheduled, TimeNs woke) noexcept {
+  const TimeNs period = config_.period;
+  ++cycle_;
+  if (last_woke_ >= 0) {
+    measured_period_.add(woke - last_woke_);
+  }
+  last_woke_ = woke;
+  if (outputs_.header != nullptr) {
+    outputs_.header->heartbeat_cycle.store(cycle_, std::memory_order_relaxed);
+    outputs_.header->heartbeat_ns.store(woke, std::memory_order_release);
+  }
+
+  CycleTimes times;
+  times.scheduled = scheduled;
+  times.woke = woke;
+  release_servo(woke);
+  times.released = clock_->now();
+  times.degraded = degraded_this_cycle_;
+
+  clock_->sleep_until(scheduled + period * 3 / 4);
+  times.checked = clock_->now();
+  (void)tasks_->busy(ServoRole::kMain);  // lets a scripted runner catch up to `checked`
+  if (!times.degraded) {
+    times.servo_started = tasks_->started_at(ServoRole::kMain);
+    if (shared_->main_commit_cycle.load(std::memory_order_acquire) == cycle_) {
+      times.finished = shared_->main_commit_time.load(std::memory_order_relaxed);
+    }
+  }
+  const MonitorVerdict verdict = monitor_.on_cycle(times);
+  const bool miss = verdict != MonitorVerdict::kGood;
+  if (times.servo_started >= 0) {
+    servo_start_delay_.add(times.servo_started - times.released);
+    if (times.finished >= 0) {
+      servo_execution_.add(times.finished - times.servo_started);
+    }
+  }
+  record(times, miss, pending_skipped_);
+  pending_skipped_ = 0;
+  if (cycle_ % config_.telemetry_every == 0) {
+    publish_telemetry(times.checked);
+  }
+
+  switch (verdict) {
+    case MonitorVerdict::kFailSafe:
+      return shm::StopReason::kConsecutiveMisses;
+    case MonitorVerdict::kChronicMisses:
+      return shm::StopReason::kChronicMisses;
+    case MonitorVerdict::kGood:
+    case MonitorVerdict::kMiss:
+      break;
+  }
+  if (shared_->counters.arm_faults.load(std::memory_order_relaxed) > 0) {
+    return shm::StopReason::kArmFault;
+  }
+  if (shared_->stop_requested.load(std::memory_order_acquire)) {
+    return shm::StopReason::kStopRequested;
+  }
+  return shm::StopReason::kNone;
+}
+
+void Executive::release_servo(TimeNs now) noexcept {
+  // The main SERVO still busy with an older cycle: the degraded SERVO takes this one.
+  const ServoRole role = tasks_->busy(ServoRole::kMain) ? ServoRole::kDegraded : ServoRole::kMain;
+  degraded_this_cycle_ = role == ServoRole::kDegraded;
+  if (degraded_this_cycle_) {
+    ++degraded_cycles_;
+    if (tasks_->busy(ServoRole::kDegraded)) {
+      return;  // both stuck: nothing can run this cycle (a miss)
+    }
+  }
+  if (shared_->gate.grant(cycle_)) {
+    tasks_->release(role, cycle_, now);
+  }
+}
+
+void Executive::record(const CycleTimes& times, bool miss, std::uint32_t skipped) noexcept {
+  CycleRecord r;
+  r.cycle = cycle_;
+  r.scheduled = times.scheduled;
+  r.wake_latency = times.woke - times.scheduled;
+  r.servo_start_delay = times.servo_started >= 0 ? times.servo_started - times.released : -1;
+  r.servo_execution =
+      (times.finished >= 0 && times.servo_started >= 0) ? times.finished - times.servo_started : -1;
+  r.flags = (miss ? kRecordMiss : 0U) | (times.degraded ? kRecordDegraded : 0U);
+  r.consecutive_misses = monitor_.consecutive_misses();
+  r.skipped = skipped;
+  if (outputs_.position != nullptr) {
+    shm::PositionPayload pos;
+    if (outputs_.position->read(pos).ok()) {
+      r.state_word = pos.state_word;
+      r.joint_position = pos.joint_position;
+      r.joint_torque = pos.joint_torque;
+    }
+  }
+  black_box_->record(r);
+}
+
+shm::TelemetryPayload Executive::telemetry() const noexcept {
+  shm::TelemetryPayload t;
+  t.cycle = cycle_;
+  t.period_ns = config_.period;
+  t.rt_mode = static_cast<std::uint32_t>(config_.rt_mode);
+  t.core_state = static_cast<std::uint32_t>(core_state_);
+  t.stop_reason = static_cast<std::uint32_t>(stop_reason_);
+  t.consecutive_misses = monitor_.consecutive_misses();
+  t.misses_total = monitor_.total_misses();
+  t.degraded_cycles = degraded_cycles_;
+  t.skipped_slots = skipped_slots_;
+  t.late_servo_discarded = shared_->counters.late_discarded.load(std::memory_order_relaxed);
+  t.window_miss_ppm = monitor_.window_miss_ppm();
+  t.leaky_bucket_score = monitor_.leaky_bucket_score();
+  t.wake_latency = wake_latency_.summary();
+  t.servo_start_delay = servo_start_delay_.summary();
+  t.servo_execution = servo_execution_.summary();
+  t.measured_period = measured_period_.summary();
+  t.vpr_torn = shared_->counters.vpr_torn.load(std::memory_order_relaxed);
+  t.vpr_stale = shared_->counters.vpr_stale.load(std::memory_order_relaxed);
+  t.ctrl_accepted = shared_->counters.ctrl_accepted.load(std::memory_order_relaxed);
+  t.ctrl_rejected = shared_->counters.ctrl_rejected.load(std::memory_order_relaxed);
+  return t;
+}
+
+void Executive::publish_telemetry(TimeNs now) noexcept {
+  if (outputs_.telemetry != nullptr) {
+    outputs_.telemetry->publish_quietly(telemetry(), now);
+  }
+}
+
+ExecutiveResult Executive::stop_sequence(shm::StopReason reason, bool fail_safe) noexcept {
+  ExecutiveResult result;
+  result.reason = reason;
+  result.fail_safe = fail_safe;
+  stop_reason_ = reason;
+  core_state_ = fail_safe ? shm::CoreState::kFailSafe : shm::CoreState::kStopping;
+  auto step = [&](StopStep s) {
+    result.steps[result.step_count] = s;
+    result.step_times[result.step_count] = clock_->now();
+    ++result.step_count;
+  };
+  shared_->stop_reason.store(static_cast<std::uint32_t>(reason), std::memory_order_relaxed);
+  shared_->core_state.store(static_cast<std::uint32_t>(core_state_), std::memory_order_relaxed);
+  if (outputs_.header != nullptr) {
+    outputs_.header->stop_reason.store(static_cast<std::uint32_t>(reason), std::memory_order_relaxed);
+    outputs_.header->core_state.store(static_cast<std::uint32_t>(core_state_),
+                                      std::memory_order_release);
+  }
+
+  // 1. Inhibit motor commands: no commit may enable them from now on, and no task may enter.
+  shared_->inhibit.store(true, std::memory_order_release);
+  shared_->clock_state_bits.fetch_or(
+      fail_safe ? shm::state_bits::kFailSafe : shm::state_bits::kStopping, std::memory_order_acq_rel);
+  bool exclusive = false;
+  for (int attempt = 0; attempt < kGateCloseAttempts && !exclusive; ++attempt) {
+    exclusive = shared_->gate.close() || shared_->gate.closed();
+    if (!exclusive) {
+      clock_->sleep_until(clock_->now() + 10 * kNsPerUs);
+    }
+  }
+  if (exclusive) {
+    ArmCommands inhibit;  // zero torque, motors disabled, brakes on
+    arm_->send_commands(inhibit, clock_->now(), config_.period);
+  }
+  step(StopStep::kInhibitCommands);
+
+  // 2. Power off the (simulated) supply.
+  arm_->set_supply(false);
+  if (exclusive) {
+    shared_->logical.powered = false;
+  }
+  step(StopStep::kPowerOffSupply);
+
+  // 3. Close the protocol: VP says FAILSAFE/STOPPING and why, so the bridge tells the client.
+  if (exclusive && shared_->regions.vp != nullptr) {
+    shm::VpPayload vp;
+    (void)shared_->regions.vp->read(vp);
+    vp.cycle = cycle_;
+    vp.state_word = (shared_->logical.state_word() & ~shm::state_bits::kPowered) |
+                    shared_->clock_state_bits.load(std::memory_order_relaxed);
+    vp.core_state = static_cast<std::uint32_t>(core_state_);
+    vp.stop_reason = static_cast<std::uint32_t>(reason);
+    vp.coupling_wrench = {};
+    shared_->regions.vp->publish(vp, clock_->now());
+    result.protocol_closed_in_vp = true;
+  }
+  publish_telemetry(clock_->now());
+  step(StopStep::kCloseProtocol);
+
+  // 4. Stop the tasks.
+  tasks_->stop();
+  step(StopStep::kStopTasks);
+  return result;
+}
+
+}  // namespace hapticctrl::rt_core

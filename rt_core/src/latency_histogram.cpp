@@ -1,0 +1,77 @@
+#include "hapticctrl/rt_core/latency_histogram.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace hapticctrl::rt_core {
+
+void LatencyHistogram::add(TimeNs sample_ns) noexcept {
+  const TimeNs sample = std::max<TimeNs>(sample_ns, 0);
+  const auto us = static_cast<std::size_t>(sample / kNsPerUs);
+  if (us < kBins) {
+    ++bins_[us];
+  } else {
+    ++overflows_;
+  }
+  if (samples_ == 0 || sample < min_) {
+    min_ = sample;
+  }
+  max_ = std::max(max_, sample);
+  sum_ += static_cast<long double>(sample);
+  ++samples_;
+}
+
+TimeNs LatencyHistogram::percentile(double fraction) const noexcept {
+  if (samples_ == 0) {
+    return 0;
+  }
+  const auto wanted = static_cast<std::uint64_t>(std::ceil(fraction * static_cast<double>(samples_)));
+  std::uint64_t seen = 0;
+  for (std::size_t us = 0; us < kBins; ++us) {
+    seen += bins_[us];
+    if (seen >= wanted && seen > 0) {
+      return std::min<TimeNs>(static_cast<TimeNs>(us + 1) * kNsPerUs, max_);
+    }
+  }
+  return max_;  // in the overflow
+}
+
+shm::LatencySummary LatencyHistogram::summary() const noexcept {
+  shm::LatencySummary s;
+  s.samples = samples_;
+  s.overflows = overflows_;
+  if (samples_ == 0) {
+    return s;
+  }
+  s.min_ns = min_;
+  s.max_ns = max_;
+  s.avg_ns = static_cast<std::int64_t>(sum_ / static_cast<long double>(samples_));
+  s.p50_ns = percentile(0.50);
+  s.p99_ns = percentile(0.99);
+  s.p999_ns = percentile(0.999);
+  return s;
+}
+
+void LatencyHistogram::write_cyclictest_format(std::ostream& out) const {
+  std::size_t last = 0;
+  for (std::size_t us = 0; us < kBins; ++us) {
+    if (bins_[us] != 0) {
+      last = us;
+    }
+  }
+  char line[64];
+  for (std::size_t us = 0; us <= last; ++us) {
+    std::snprintf(line, sizeof(line), "%06zu %06llu\n", us,
+                  static_cast<unsigned long long>(bins_[us]));
+    out << line;
+  }
+  const shm::LatencySummary s = summary();
+  out << "# Total: " << samples_ << "\n";
+  out << "# Min Latencies: " << s.min_ns / kNsPerUs << "\n";
+  out << "# Avg Latencies: " << s.avg_ns / kNsPerUs << "\n";
+  out << "# Max Latencies: " << s.max_ns / kNsPerUs << "\n";
+  out << "# Histogram Overflows: " << overflows_ << "\n";
+}
+
+}  // namespace hapticctrl::rt_core

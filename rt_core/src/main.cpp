@@ -1,0 +1,150 @@
+// hapticctrl-core: the hard-real-time core process.
+#include <unistd.h>
+
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "hapticctrl/rt_core/black_box.hpp"
+#include "hapticctrl/rt_core/core_config.hpp"
+#include "hapticctrl/rt_core/core_report.hpp"
+#include "hapticctrl/rt_core/decoupled_joint_sim.hpp"
+#include "hapticctrl/rt_core/executive.hpp"
+#include "hapticctrl/rt_core/rt_preflight.hpp"
+#include "hapticctrl/rt_core/servo.hpp"
+#include "hapticctrl/rt_core/threaded_servo_tasks.hpp"
+#include "hapticctrl/shm/segment.hpp"
+
+namespace {
+
+using namespace hapticctrl;
+using namespace hapticctrl::rt_core;
+
+std::atomic<bool> g_signal_stop{false};
+static_assert(std::atomic<bool>::is_always_lock_free, "used from a signal handler");
+
+void on_stop_signal(int /*signal*/) { g_signal_stop.store(true, std::memory_order_release); }
+
+void install_signal_handlers() {
+  struct sigaction action {};
+  action.sa_handler = on_stop_signal;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
+
+/// auto: the last CPU (CLOCK and SERVO share it; see docs/rt_core.md for the measurement).
+int resolve_cpu(int requested) {
+  if (requested != -2) {
+    return requested;
+  }
+  const long cpus = sysconf(_SC_NPROCESSORS_ONLN);
+  return cpus >= 2 ? static_cast<int>(cpus - 1) : -1;
+}
+
+int run_core(const CoreConfig& config) {
+  const RtReport rt = rt_preflight(config.rt_policy, config.priority);
+  if (config.rt_policy == RtPolicy::kWarn) {
+    std::cerr << "hapticctrl-core: " << rt.summary() << "\n";
+  }
+  const bool fifo = rt.fifo_granted;
+  const int cpu = resolve_cpu(config.cpu);
+
+  shm::Segment segment =
+      shm::Segment::create({.instance = config.instance, .group = config.group, .period_ns = config.period});
+  DecoupledJointSim arm(DecoupledJointParams{}, &segment.region<shm::RegionId::kForce>());
+  ServoShared shared(arm, segment.ctrl_reader(),
+                     ServoRegions{&segment.region<shm::RegionId::kVpr>(),
+                                  &segment.writable<shm::RegionId::kVp>(),
+                                  &segment.writable<shm::RegionId::kPosition>()},
+                     config.allow_fault_injection);
+  shared.inject_at_cycle = config.inject_at_cycle;
+  shared.inject_cycles = config.inject_cycles;
+  ServoTask main_task(shared, ServoRole::kMain, ServoLaw());
+  ServoTask degraded_task(shared, ServoRole::kDegraded, ServoLaw());
+  BlackBox black_box(static_cast<std::size_t>(2 * kNsPerS / config.period));
+  RealClock clock;
+
+  // The degraded SERVO is left free to run on any CPU, so that it can still run when the main
+  // SERVO hogs the shared CPU.
+  ThreadedServoTasks tasks(clock, main_task, degraded_task, shared, config.period,
+                           ThreadPlacement{fifo ? config.priority - 1 : 0, cpu},
+                           ThreadPlacement{fifo ? config.priority - 2 : 0, -1});
+  place_current_thread(ThreadPlacement{fifo ? config.priority : 0, cpu});
+  install_signal_handlers();
+
+  ExecutiveConfig exec_config;
+  exec_config.period = config.period;
+  exec_config.duration = config.duration;
+  exec_config.telemetry_every =
+      static_cast<std::uint32_t>(std::max<TimeNs>(1, 20 * kNsPerMs / config.period));
+  exec_config.chronic = config.chronic;
+  exec_config.rt_mode = rt.mode();
+  Executive executive(exec_config, clock, tasks, shared, arm,
+                      ExecutiveOutputs{&segment.header_for_writing(),
+                                       &segment.writable<shm::RegionId::kTelemetry>(),
+                                       &segment.region<shm::RegionId::kPosition>()},
+                      black_box);
+  std::cerr << "hapticctrl-core: instance '" << config.instance << "' running, period "
+            << config.period / kNsPerUs << " us, rt mode " << rt_mode_text(rt.mode()) << ", cpu "
+            << cpu << "\n";
+
+  const ExecutiveResult result = executive.run(&g_signal_stop);
+  const shm::TelemetryPayload final_figures = executive.telemetry();
+
+  std::string black_box_path;
+  if (result.fail_safe) {
+    black_box_path = config.blackbox_dir + "/hapticctrl-blackbox-" + config.instance + "-" +
+                     std::to_string(getpid()) + ".csv";
+    try {
+      black_box.write_csv(black_box_path);
+    } catch (const std::exception& e) {
+      std::cerr << "hapticctrl-core: " << e.what() << "\n";
+      black_box_path.clear();
+    }
+  }
+  if (!config.histogram_path.empty()) {
+    std::ofstream histogram(config.histogram_path);
+    executive.wake_latency().write_cyclictest_format(histogram);
+  }
+  segment.close();  // fail-safe step 5: release the regions
+  if (config.json) {
+    std::cout << telemetry_json(final_figures) << std::endl;
+  }
+  if (result.fail_safe) {
+    std::cerr << "hapticctrl-core: FAIL-SAFE after cycle " << final_figures.cycle << ": "
+              << stop_reason_text(result.reason) << " (motors inhibited, supply off, client told)"
+              << (black_box_path.empty() ? "" : "; black box: " + black_box_path) << "\n";
+    return 3;
+  }
+  std::cerr << "hapticctrl-core: stopped after " << final_figures.cycle
+            << " cycles: " << stop_reason_text(result.reason) << "\n";
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CoreConfig config;
+  try {
+    config = parse_core_args(std::vector<std::string>(argv + 1, argv + argc));
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "hapticctrl-core: " << e.what() << "\n";
+    return 64;
+  }
+  if (config.show_help) {
+    std::cout << core_usage();
+    return 0;
+  }
+  try {
+    return run_core(config);
+  } catch (const std::exception& e) {
+    std::cerr << "hapticctrl-core: error: " << e.what() << "\n";
+    return 1;
+  }
+}

@@ -1,0 +1,179 @@
+#include "hapticctrl/rt_core/servo.hpp"
+
+#include <cmath>
+
+namespace hapticctrl::rt_core {
+namespace {
+
+template <std::size_t N>
+bool all_finite(const std::array<double, N>& values) noexcept {
+  for (const double v : values) {
+    if (!std::isfinite(v)) {
+      return false;
+    }
+  }
+  return true;
+}
+
+/// A client sample is usable only if every number in it is finite and in a sane range.
+bool client_sample_valid(const shm::VprPayload& s) noexcept {
+  return s.command_type <= static_cast<std::uint32_t>(shm::CommandType::kVirtmech) &&
+         all_finite(s.object_pose) && all_finite(s.object_twist) &&
+         all_finite(s.impedance_wrench) && all_finite(s.object_inertia) &&
+         std::isfinite(s.object_mass) && s.object_mass >= 0.0 &&
+         std::isfinite(s.client_time_step) && s.client_time_step >= 0.0 &&
+         std::isfinite(s.force_factor) && std::isfinite(s.speed_factor) &&
+         all_finite(s.base_frame) && all_finite(s.observation_frame) &&
+         all_finite(s.gain_override) && all_finite(s.force_limits);
+}
+
+void copy_to(const Vector6d& from, std::array<double, 6>& to) noexcept {
+  for (std::size_t i = 0; i < 6; ++i) {
+    to[i] = from(static_cast<Eigen::Index>(i));
+  }
+}
+
+}  // namespace
+
+StepResult ServoTask::begin(std::uint64_t cycle, TimeNs now, TimeNs dt) noexcept {
+  if (!shared_->gate.enter(cycle)) {
+    return StepResult::kNotGranted;
+  }
+  gather(cycle, now, dt);
+  shared_->gate.leave(cycle);
+  law_.compute(inputs_, role_ == ServoRole::kDegraded, outputs_);
+  return StepResult::kDone;
+}
+
+StepResult ServoTask::finish(std::uint64_t cycle, TimeNs now) noexcept {
+  if (!shared_->gate.enter(cycle)) {
+    shared_->counters.late_discarded.fetch_add(1, std::memory_order_relaxed);
+    return StepResult::kDiscarded;
+  }
+  commit(cycle, now);
+  shared_->gate.leave(cycle);
+  return StepResult::kDone;
+}
+
+StepResult ServoTask::run(std::uint64_t cycle, TimeNs now, TimeNs dt) noexcept {
+  const StepResult begun = begin(cycle, now, dt);
+  return begun == StepResult::kDone ? finish(cycle, now) : begun;
+}
+
+void ServoTask::gather(std::uint64_t cycle, TimeNs now, TimeNs dt) noexcept {
+  ServoShared& s = *shared_;
+  inputs_.cycle = cycle;
+  inputs_.now = now;
+  inputs_.dt = dt;
+  if (!s.arm->get_measures(inputs_.measures)) {
+    s.counters.arm_faults.fetch_add(1, std::memory_order_relaxed);
+  }
+
+  // Logical state from ctrl, in each writer's order.
+  s.ctrl.drain([&](const shm::CtrlCommand& command) {
+    const bool accepted = s.interpreter.apply(command, s.logical);
+    (accepted ? s.counters.ctrl_accepted : s.counters.ctrl_rejected)
+        .fetch_add(1, std::memory_order_relaxed);
+    return accepted;
+  });
+  if (s.logical.stop_requested) {
+    s.stop_requested.store(true, std::memory_order_release);
+  }
+  if (s.inject_at_cycle != 0 && cycle >= s.inject_at_cycle && role_ == ServoRole::kMain) {
+    s.logical.pending_overrun_cycles = s.inject_cycles;
+    s.inject_at_cycle = 0;
+  }
+  if (s.logical.pending_overrun_cycles > 0 && role_ == ServoRole::kMain) {
+    s.overrun_request.store(s.logical.pending_overrun_cycles, std::memory_order_release);
+    s.logical.pending_overrun_cycles = 0;
+  }
+  const bool want_supply = s.logical.powered;
+  if (want_supply != s.supply_on) {
+    s.arm->set_supply(want_supply);
+    s.supply_on = want_supply;
+    s.arm->get_measures(inputs_.measures);
+  }
+  inputs_.logical = s.logical;
+  exchange_client(now);
+}
+
+void ServoTask::exchange_client(TimeNs now) noexcept {
+  ServoShared& s = *shared_;
+  if (s.regions.vpr != nullptr) {
+    shm::VprPayload sample;
+    const shm::ReadResult r = s.regions.vpr->read(sample);
+    if (r.status == shm::ReadStatus::kTorn) {
+      s.counters.vpr_torn.fetch_add(1, std::memory_order_relaxed);
+    } else if (r.ok() && r.sequence != s.last_client_sequence) {
+      s.last_client_sequence = r.sequence;
+      if (client_sample_valid(sample)) {
+        s.last_client = sample;
+        s.client_valid = true;
+        s.last_client_arrival = now;
+      } else {
+        s.counters.vpr_rejected.fetch_add(1, std::memory_order_relaxed);
+      }
+    }
+  }
+  inputs_.client = s.last_client;
+  inputs_.client_valid = s.client_valid;
+  inputs_.client_age = s.client_valid ? now - s.last_client_arrival : 0;
+  if (s.client_valid && s.last_client.session_id != 0 && inputs_.client_age > s.client_stale_after) {
+    s.counters.vpr_stale.fetch_add(1, std::memory_order_relaxed);
+  }
+}
+
+void ServoTask::commit(std::uint64_t cycle, TimeNs now) noexcept {
+  ServoShared& s = *shared_;
+  ArmCommands commands = outputs_.commands;
+  commands.enable =
+      commands.enable && s.logical.powered && !s.inhibit.load(std::memory_order_acquire);
+  if (!commands.enable) {
+    commands.torque.setZero();
+  }
+  s.arm->send_commands(commands, now, inputs_.dt);
+
+  std::uint32_t state_word = s.logical.state_word() |
+                             s.clock_state_bits.load(std::memory_order_relaxed);
+  if (role_ == ServoRole::kDegraded) {
+    state_word |= shm::state_bits::kDegraded;
+  }
+  if (s.client_valid && s.last_client.session_id != 0 && inputs_.client_age > s.client_stale_after) {
+    state_word |= shm::state_bits::kClientStale;
+  }
+  const auto core_state = s.core_state.load(std::memory_order_relaxed);
+  const auto stop_reason = s.stop_reason.load(std::memory_order_relaxed);
+
+  if (s.regions.vp != nullptr) {
+    shm::VpPayload vp;
+    vp.cycle = cycle;
+    vp.echo_client_sequence = s.last_client.client_sequence;
+    vp.echo_client_time_ns = s.last_client.client_time_ns;
+    vp.state_word = state_word;
+    vp.core_state = core_state;
+    vp.stop_reason = stop_reason;
+    vp.command_type = s.last_client.command_type;
+    copy_to(outputs_.coupling_wrench, vp.coupling_wrench);
+    copy_to(inputs_.measures.position, vp.joint_position);
+    copy_to(inputs_.measures.velocity, vp.joint_velocity);
+    s.regions.vp->publish(vp, now);  // the UDP bridge blocks on VP: notify
+  }
+  if (s.regions.position != nullptr) {
+    shm::PositionPayload pos;
+    pos.cycle = cycle;
+    pos.state_word = state_word;
+    pos.core_state = core_state;
+    copy_to(inputs_.measures.position, pos.joint_position);
+    copy_to(inputs_.measures.velocity, pos.joint_velocity);
+    copy_to(commands.torque, pos.joint_torque);
+    copy_to(outputs_.coupling_wrench, pos.coupling_wrench);
+    s.regions.position->publish_quietly(pos, now);
+  }
+  s.commit_cycle.store(cycle, std::memory_order_release);
+  if (role_ == ServoRole::kMain) {
+    s.main_commit_time.store(now, std::memory_order_relaxed);
+    s.main_commit_cycle.store(cycle, std::memory_order_release);
+  }
+}
+
+}  // namespace hapticctrl::rt_core

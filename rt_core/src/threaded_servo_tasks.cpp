@@ -1,0 +1,129 @@
+#include "hapticctrl/rt_core/threaded_servo_tasks.hpp"
+
+#include <pthread.h>
+#include <sched.h>
+
+#include <chrono>
+#include <cstring>
+
+#include "hapticctrl/shm/futex.hpp"
+
+namespace hapticctrl::rt_core {
+
+namespace {
+
+/// Keeps the compiler from eliding the stack prefault.
+void touch_stack(std::size_t bytes) noexcept {
+  constexpr std::size_t kChunk = 16 * 1024;
+  volatile unsigned char buffer[kChunk];
+  std::memset(const_cast<unsigned char*>(buffer), 0, kChunk);
+  if (bytes > kChunk) {
+    touch_stack(bytes - kChunk);
+  }
+}
+
+}  // namespace
+
+bool place_current_thread(const ThreadPlacement& placement, std::size_t stack_bytes) noexcept {
+  bool ok = true;
+  if (placement.cpu >= 0) {
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    CPU_SET(static_cast<unsigned>(placement.cpu), &set);
+    ok = pthread_setaffinity_np(pthread_self(), sizeof(set), &set) == 0 && ok;
+  }
+  if (placement.fifo_priority > 0) {
+    sched_param param{};
+    param.sched_priority = placement.fifo_priority;
+    ok = pthread_setschedparam(pthread_self(), SCHED_FIFO, &param) == 0 && ok;
+  }
+  touch_stack(stack_bytes);
+  return ok;
+}
+
+ThreadedServoTasks::ThreadedServoTasks(Clock& clock, ServoTask& main_task,
+                                       ServoTask& degraded_task, ServoShared& shared,
+                                       TimeNs period, const ThreadPlacement& main_placement,
+                                       const ThreadPlacement& degraded_placement)
+    : clock_(&clock), shared_(&shared), period_(period) {
+  main_.task = &main_task;
+  main_.placement = main_placement;
+  degraded_.task = &degraded_task;
+  degraded_.placement = degraded_placement;
+  main_.thread = std::thread([this] { worker_loop(main_); });
+  degraded_.thread = std::thread([this] { worker_loop(degraded_); });
+  pthread_setname_np(main_.thread.native_handle(), "hc-servo");
+  pthread_setname_np(degraded_.thread.native_handle(), "hc-degraded");
+}
+
+ThreadedServoTasks::~ThreadedServoTasks() { stop(); }
+
+void ThreadedServoTasks::worker_loop(Worker& w) noexcept {
+  w.placement_ok.store(place_current_thread(w.placement), std::memory_order_release);
+  std::uint32_t seen = w.release_word.load(std::memory_order_acquire);
+  while (!stopping_.load(std::memory_order_acquire)) {
+    shm::futex_wait(w.release_word, seen, std::chrono::milliseconds(100));
+    const std::uint32_t now_word = w.release_word.load(std::memory_order_acquire);
+    if (now_word == seen) {
+      continue;
+    }
+    seen = now_word;
+    if (stopping_.load(std::memory_order_acquire)) {
+      break;
+    }
+    const std::uint64_t cycle = w.released_cycle.load(std::memory_order_acquire);
+    const TimeNs start = clock_->now();
+    w.started.store(start, std::memory_order_release);
+    w.task->begin(cycle, start, period_);
+    if (w.task->role() == ServoRole::kMain) {
+      // Fault injection: this SERVO overruns for K cycles (stalls (K - 0.2) periods, so that
+      // exactly K consecutive cycles miss their deadline).
+      const std::uint32_t k = shared_->overrun_request.exchange(0, std::memory_order_acq_rel);
+      if (k > 0) {
+        clock_->sleep_until(w.release_time.load(std::memory_order_relaxed) +
+                            static_cast<TimeNs>(k) * period_ - period_ / 5);
+      }
+    }
+    w.task->finish(cycle, clock_->now());
+    w.finished_cycle.store(cycle, std::memory_order_release);
+  }
+}
+
+void ThreadedServoTasks::release(ServoRole role, std::uint64_t cycle, TimeNs release_time) noexcept {
+  Worker& w = worker(role);
+  w.started.store(-1, std::memory_order_relaxed);
+  w.release_time.store(release_time, std::memory_order_relaxed);
+  w.released_cycle.store(cycle, std::memory_order_release);
+  w.release_word.fetch_add(1, std::memory_order_acq_rel);
+  shm::futex_wake_one(w.release_word);
+}
+
+bool ThreadedServoTasks::busy(ServoRole role) noexcept {
+  Worker& w = worker(role);
+  return w.finished_cycle.load(std::memory_order_acquire) !=
+         w.released_cycle.load(std::memory_order_acquire);
+}
+
+TimeNs ThreadedServoTasks::started_at(ServoRole role) noexcept {
+  return worker(role).started.load(std::memory_order_acquire);
+}
+
+void ThreadedServoTasks::stop() noexcept {
+  stopping_.store(true, std::memory_order_release);
+  for (Worker* w : {&main_, &degraded_}) {
+    w->release_word.fetch_add(1, std::memory_order_acq_rel);
+    shm::futex_wake_all(w->release_word);
+  }
+  for (Worker* w : {&main_, &degraded_}) {
+    if (w->thread.joinable()) {
+      w->thread.join();
+    }
+  }
+}
+
+bool ThreadedServoTasks::placement_applied(ServoRole role) const noexcept {
+  const Worker& w = role == ServoRole::kMain ? main_ : degraded_;
+  return w.placement_ok.load(std::memory_order_acquire);
+}
+
+}  // namespace hapticctrl::rt_core

@@ -25,6 +25,10 @@ void FakeClock::sleep_until(TimeNs deadline) noexcept {
   }
   now_ += oversleep_;
   oversleep_ = 0;
+  if (deadline == oversleep_deadline_) {
+    now_ += oversleep_at_extra_;
+    oversleep_deadline_ = -1;
+  }
 }
 
 }  // namespace hapticctrl::rt_core

@@ -95,9 +95,11 @@ TEST(Segment, ConfiguredGroupOwnsTheSegment) {
   struct stat st {};
   ASSERT_EQ(stat(shm_file(name).c_str(), &st), 0);
   EXPECT_EQ(st.st_gid, getegid());
-  expect_shm_error(
-      [&] { Segment::create({.instance = unique_instance("g2"), .group = "no-such-group-x"}); },
-      ShmErrc::kSystem, "unknown group");
+  const std::string failed = unique_instance("g2");
+  expect_shm_error([&] { Segment::create({.instance = failed, .group = "no-such-group-x"}); },
+                   ShmErrc::kSystem, "unknown group");
+  EXPECT_FALSE(exists(shm_file(failed))) << "a failed create leaves nothing behind";
+  EXPECT_FALSE(exists(shm_file(failed) + ".lock"));
 }
 
 TEST(Segment, CloseRemovesEveryName) {

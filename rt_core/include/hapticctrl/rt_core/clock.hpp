@@ -45,10 +45,17 @@ class FakeClock final : public Clock {
   void advance(TimeNs dt) noexcept { now_ += dt; }
   /// The next sleep_until() wakes `extra` late (tests: a preempted CLOCK).
   void oversleep_next(TimeNs extra) noexcept { oversleep_ = extra; }
+  /// The sleep_until(deadline) call with exactly this deadline wakes `extra` late.
+  void oversleep_at(TimeNs deadline, TimeNs extra) noexcept {
+    oversleep_deadline_ = deadline;
+    oversleep_at_extra_ = extra;
+  }
 
  private:
   TimeNs now_;
   TimeNs oversleep_ = 0;
+  TimeNs oversleep_deadline_ = -1;
+  TimeNs oversleep_at_extra_ = 0;
 };
 
 }  // namespace hapticctrl::rt_core

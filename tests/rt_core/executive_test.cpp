@@ -1,0 +1,251 @@
+// Fake-clock scenarios of the CLOCK/SERVO cycle: each runs seconds of controller time in
+// microseconds of real time, deterministically.
+#include "hapticctrl/rt_core/executive.hpp"
+
+#include <gtest/gtest.h>
+
+#include <memory>
+
+#include "support/mock_arm.hpp"
+#include "support/scripted_servo_tasks.hpp"
+
+namespace hapticctrl::rt_core {
+namespace {
+
+using test::MockArm;
+using test::ScriptedServoTasks;
+
+constexpr TimeNs kPeriod = kNsPerMs;
+constexpr TimeNs kStart = 1'000 * kNsPerS + 123'456;  // deliberately not slot-aligned
+
+/// Everything one scenario needs, with in-process regions.
+struct Rig {
+  explicit Rig(ScriptedServoTasks::Duration main_duration, ExecutiveConfig config = {})
+      : tasks(clock, main_task, degraded_task, shared, kPeriod, std::move(main_duration)),
+        executive(with_defaults(config), clock, tasks, shared, arm,
+                  ExecutiveOutputs{nullptr, telemetry.get(), position.get()}, box) {}
+
+  static ExecutiveConfig with_defaults(ExecutiveConfig c) {
+    c.period = kPeriod;
+    if (c.duration == 0) {
+      c.duration = 200 * kNsPerMs;
+    }
+    return c;
+  }
+  /// The k-th slot's deadline (k from 0), as the executive computes it.
+  static TimeNs slot(std::uint64_t k) {
+    return (kStart / kPeriod + 2) * kPeriod + static_cast<TimeNs>(k) * kPeriod;
+  }
+  shm::CtrlWriter ctrl_writer() { return {ctrl->slots[0], acks->slots[0], 0}; }
+
+  FakeClock clock{kStart};
+  MockArm arm;
+  std::unique_ptr<shm::CtrlRegion> ctrl = std::make_unique<shm::CtrlRegion>();
+  std::unique_ptr<shm::CtrlAckRegion> acks = std::make_unique<shm::CtrlAckRegion>();
+  std::unique_ptr<shm::SeqlockCell<shm::VprPayload>> vpr =
+      std::make_unique<shm::SeqlockCell<shm::VprPayload>>();
+  std::unique_ptr<shm::SeqlockCell<shm::VpPayload>> vp =
+      std::make_unique<shm::SeqlockCell<shm::VpPayload>>();
+  std::unique_ptr<shm::SeqlockCell<shm::PositionPayload>> position =
+      std::make_unique<shm::SeqlockCell<shm::PositionPayload>>();
+  std::unique_ptr<shm::SeqlockCell<shm::TelemetryPayload>> telemetry =
+      std::make_unique<shm::SeqlockCell<shm::TelemetryPayload>>();
+  ServoShared shared{arm, shm::CtrlReader(*ctrl, *acks), ServoRegions{vpr.get(), vp.get(), position.get()},
+                     true};
+  ServoTask main_task{shared, ServoRole::kMain, ServoLaw()};
+  ServoTask degraded_task{shared, ServoRole::kDegraded, ServoLaw()};
+  BlackBox box{4000};
+  ScriptedServoTasks tasks;
+  Executive executive;
+};
+
+/// Main SERVO takes `slow` for the given cycles, 50 µs otherwise.
+ScriptedServoTasks::Duration slow_for(std::uint64_t first, std::uint64_t last, TimeNs slow) {
+  return [=](std::uint64_t cycle) {
+    return (cycle >= first && cycle <= last) ? slow : 50 * kNsPerUs;
+  };
+}
+
+TEST(Executive, NominalRunHasNoMissAndStopsWhenDurationElapses) {
+  Rig rig(slow_for(0, 0, 0));
+  const ExecutiveResult r = rig.executive.run();
+  EXPECT_EQ(r.reason, shm::StopReason::kDurationElapsed);
+  EXPECT_FALSE(r.fail_safe);
+  EXPECT_EQ(rig.executive.monitor().total_misses(), 0U);
+  // The first slot is aligned and ~2 periods after start: 200 slots fit in 200 ms.
+  EXPECT_EQ(rig.executive.cycles(), 200U);
+  const shm::TelemetryPayload t = rig.executive.telemetry();
+  EXPECT_EQ(t.wake_latency.max_ns, 0);  // a fake clock wakes exactly on time
+  EXPECT_EQ(t.servo_start_delay.p50_ns, 5 * kNsPerUs);
+  EXPECT_EQ(t.measured_period.min_ns, kPeriod);
+  EXPECT_EQ(t.measured_period.max_ns, kPeriod);
+}
+
+TEST(Executive, FourMissesThenAGoodCycleDoNotTrip) {
+  Rig rig(slow_for(10, 13, kPeriod * 9 / 10));  // past the 3/4 check, done before next release
+  const ExecutiveResult r = rig.executive.run();
+  EXPECT_FALSE(r.fail_safe);
+  EXPECT_EQ(rig.executive.monitor().total_misses(), 4U);
+  EXPECT_EQ(rig.executive.telemetry().degraded_cycles, 0U);
+}
+
+TEST(Executive, ExactlyFiveConsecutiveMissesTripTheFailSafe) {
+  Rig rig(slow_for(10, 14, kPeriod * 9 / 10));
+  const ExecutiveResult r = rig.executive.run();
+  EXPECT_TRUE(r.fail_safe);
+  EXPECT_EQ(r.reason, shm::StopReason::kConsecutiveMisses);
+  EXPECT_EQ(rig.executive.cycles(), 14U) << "trips on the 5th miss, not later";
+  EXPECT_EQ(rig.executive.monitor().consecutive_misses(), 5U);
+}
+
+TEST(Executive, FailSafeRunsItsStepsInOrderAndLeavesTheArmSafe) {
+  Rig rig(slow_for(10, 14, kPeriod * 9 / 10));
+  rig.ctrl_writer().send(shm::CtrlCode::kPowerOn, 0, 0);
+  const ExecutiveResult r = rig.executive.run();
+  ASSERT_TRUE(r.fail_safe);
+  ASSERT_EQ(r.step_count, 4U);
+  EXPECT_EQ(r.steps[0], StopStep::kInhibitCommands);
+  EXPECT_EQ(r.steps[1], StopStep::kPowerOffSupply);
+  EXPECT_EQ(r.steps[2], StopStep::kCloseProtocol);
+  EXPECT_EQ(r.steps[3], StopStep::kStopTasks);
+  EXPECT_GT(rig.arm.enabled_sends, 0) << "the arm was powered before";
+  EXPECT_FALSE(rig.arm.last.enable);
+  EXPECT_TRUE(rig.arm.last.torque.isZero());
+  EXPECT_FALSE(rig.arm.supply);
+  EXPECT_TRUE(rig.tasks.stopped);
+  EXPECT_TRUE(r.protocol_closed_in_vp);
+  shm::VpPayload vp;
+  ASSERT_TRUE(rig.vp->read(vp).ok());
+  EXPECT_EQ(vp.core_state, static_cast<std::uint32_t>(shm::CoreState::kFailSafe));
+  EXPECT_EQ(vp.stop_reason, static_cast<std::uint32_t>(shm::StopReason::kConsecutiveMisses));
+  EXPECT_NE(vp.state_word & shm::state_bits::kFailSafe, 0U);
+  EXPECT_EQ(vp.state_word & shm::state_bits::kPowered, 0U);
+  shm::TelemetryPayload t;
+  ASSERT_TRUE(rig.telemetry->read(t).ok());
+  EXPECT_EQ(t.core_state, static_cast<std::uint32_t>(shm::CoreState::kFailSafe));
+}
+
+TEST(Executive, ChronicOneInThreeIsReportedButDoesNotTripByDefault) {
+  ExecutiveConfig config;
+  config.duration = 3 * kNsPerS;
+  Rig rig([](std::uint64_t c) { return c % 3 == 0 ? kPeriod * 9 / 10 : 50 * kNsPerUs; }, config);
+  const ExecutiveResult r = rig.executive.run();
+  EXPECT_FALSE(r.fail_safe);
+  const shm::TelemetryPayload t = rig.executive.telemetry();
+  EXPECT_NEAR(t.window_miss_ppm, 333'333, 1'000);
+  EXPECT_GT(t.leaky_bucket_score, 0U);
+  EXPECT_LE(t.consecutive_misses, 1U);
+}
+
+TEST(Executive, ChronicMissesTripWhenAThresholdIsConfigured) {
+  ExecutiveConfig config;
+  config.duration = 3 * kNsPerS;
+  config.chronic.trip_window_ppm = 200'000;
+  Rig rig([](std::uint64_t c) { return c % 3 == 0 ? kPeriod * 9 / 10 : 50 * kNsPerUs; }, config);
+  const ExecutiveResult r = rig.executive.run();
+  EXPECT_TRUE(r.fail_safe);
+  EXPECT_EQ(r.reason, shm::StopReason::kChronicMisses);
+  EXPECT_EQ(rig.executive.cycles(), 1002U) << "trips at the first miss once the window is full";
+}
+
+TEST(Executive, ServoOverrunOf2Point7PeriodsMissesThreeSlotsRunsTwoDegraded) {
+  Rig rig(slow_for(10, 10, kPeriod * 27 / 10));
+  const ExecutiveResult r = rig.executive.run();
+  EXPECT_FALSE(r.fail_safe);
+  const shm::TelemetryPayload t = rig.executive.telemetry();
+  EXPECT_EQ(t.misses_total, 3U);
+  EXPECT_EQ(t.degraded_cycles, 2U);
+  EXPECT_EQ(t.late_servo_discarded, 1U);
+}
+
+TEST(Executive, ClockWakingLateBy2Point7PeriodsSkipsThreeSlots) {
+  Rig rig(slow_for(0, 0, 0));
+  rig.clock.oversleep_at(Rig::slot(10), kPeriod * 27 / 10);
+  const ExecutiveResult r = rig.executive.run();
+  EXPECT_FALSE(r.fail_safe);
+  const shm::TelemetryPayload t = rig.executive.telemetry();
+  EXPECT_EQ(t.skipped_slots, 3U);
+  EXPECT_EQ(t.misses_total, 3U);
+  EXPECT_EQ(rig.executive.cycles(), 200U - 3U) << "skipped slots are not run back to back";
+  EXPECT_EQ(t.wake_latency.max_ns, kPeriod * 27 / 10);
+}
+
+TEST(Executive, ClockWakingSlightlyPastHalfAPeriodSkipsOnlyThatSlot) {
+  Rig rig(slow_for(0, 0, 0));
+  rig.clock.oversleep_at(Rig::slot(20), kPeriod * 6 / 10);
+  rig.executive.run();
+  EXPECT_EQ(rig.executive.telemetry().skipped_slots, 1U);
+}
+
+TEST(Executive, WakeUpLessThanHalfAPeriodLateRunsTheCycleLate) {
+  Rig rig(slow_for(0, 0, 0));
+  rig.clock.oversleep_at(Rig::slot(20), kPeriod * 3 / 10);
+  rig.executive.run();
+  EXPECT_EQ(rig.executive.telemetry().skipped_slots, 0U);
+  EXPECT_EQ(rig.executive.telemetry().wake_latency.max_ns, kPeriod * 3 / 10);
+}
+
+TEST(Executive, StopRequestMidRunStopsInOrderWithoutFault) {
+  Rig rig([&](std::uint64_t) { return 50 * kNsPerUs; });
+  // The request is queued before the run and consumed by the first SERVO cycle.
+  rig.ctrl_writer().send(shm::CtrlCode::kPowerOn, 0, 0);
+  rig.ctrl_writer().send(shm::CtrlCode::kStop, 0, 0);
+  const ExecutiveResult r = rig.executive.run();
+  EXPECT_EQ(r.reason, shm::StopReason::kStopRequested);
+  EXPECT_FALSE(r.fail_safe);
+  EXPECT_EQ(rig.executive.cycles(), 1U);
+  ASSERT_EQ(r.step_count, 4U);
+  EXPECT_FALSE(rig.arm.supply);
+  shm::VpPayload vp;
+  ASSERT_TRUE(rig.vp->read(vp).ok());
+  EXPECT_EQ(vp.core_state, static_cast<std::uint32_t>(shm::CoreState::kStopping));
+  EXPECT_EQ(vp.stop_reason, static_cast<std::uint32_t>(shm::StopReason::kStopRequested));
+}
+
+TEST(Executive, ExternalStopFlagEndsTheRun) {
+  Rig rig(slow_for(0, 0, 0));
+  std::atomic<bool> stop{true};
+  const ExecutiveResult r = rig.executive.run(&stop);
+  EXPECT_EQ(r.reason, shm::StopReason::kSignal);
+  EXPECT_FALSE(r.fail_safe);
+}
+
+TEST(Executive, DegradedCycleCommitsAndLateMainOutputIsDiscarded) {
+  Rig rig(slow_for(10, 10, kPeriod * 3 / 2));
+  rig.executive.run();
+  EXPECT_EQ(rig.tasks.discarded, 1);
+  EXPECT_EQ(rig.executive.telemetry().degraded_cycles, 1U);
+  bool saw_degraded_commit = false;
+  for (std::size_t i = 0; i < rig.box.size(); ++i) {
+    const CycleRecord& rec = rig.box.at(i);
+    if (rec.cycle == 11) {
+      EXPECT_NE(rec.flags & kRecordDegraded, 0U);
+      saw_degraded_commit = (rec.state_word & shm::state_bits::kDegraded) != 0;
+    }
+  }
+  EXPECT_TRUE(saw_degraded_commit) << "the degraded SERVO published cycle 11";
+  shm::VpPayload vp;
+  ASSERT_TRUE(rig.vp->read(vp).ok());
+  EXPECT_EQ(vp.cycle, rig.executive.cycles()) << "VP always carries the newest cycle";
+}
+
+TEST(Executive, FaultInjectionOfFiveCyclesTripsAndOfFourDoesNot) {
+  for (const std::uint32_t k : {4U, 5U}) {
+    Rig rig(slow_for(0, 0, 0));
+    rig.ctrl_writer().send(shm::CtrlCode::kInjectOverrun, k, 0);
+    const ExecutiveResult r = rig.executive.run();
+    EXPECT_EQ(r.fail_safe, k == 5) << "K=" << k;
+    EXPECT_EQ(rig.executive.monitor().total_misses(), k) << "K=" << k;
+  }
+}
+
+TEST(Executive, BlackBoxHoldsTheLastCycles) {
+  Rig rig(slow_for(0, 0, 0));
+  rig.executive.run();
+  ASSERT_EQ(rig.box.size(), 200U);
+  EXPECT_EQ(rig.box.at(0).cycle, 1U);
+  EXPECT_EQ(rig.box.at(199).cycle, 200U);
+}
+
+}  // namespace
+}  // namespace hapticctrl::rt_core

@@ -1,0 +1,100 @@
+#pragma once
+/// ServoTasks for fake-clock tests: the real ServoTask objects run on the test thread, and the
+/// duration of each main SERVO cycle is scripted. A task's commit happens "at" release + its
+/// duration; it is executed lazily the next time the CLOCK looks (busy/started_at/release), which
+/// preserves the order of events because the CLOCK is the only thing that moves fake time.
+
+#include <functional>
+#include <optional>
+
+#include "hapticctrl/rt_core/clock.hpp"
+#include "hapticctrl/rt_core/executive.hpp"
+#include "hapticctrl/rt_core/servo.hpp"
+
+namespace hapticctrl::test {
+
+class ScriptedServoTasks final : public rt_core::ServoTasks {
+ public:
+  using Duration = std::function<rt_core::TimeNs(std::uint64_t cycle)>;
+
+  ScriptedServoTasks(rt_core::FakeClock& clock, rt_core::ServoTask& main_task,
+                     rt_core::ServoTask& degraded_task, rt_core::ServoShared& shared,
+                     rt_core::TimeNs period, Duration main_duration)
+      : clock_(&clock),
+        shared_(&shared),
+        period_(period),
+        main_duration_(std::move(main_duration)),
+        main_{&main_task},
+        degraded_{&degraded_task} {}
+
+  void release(rt_core::ServoRole role, std::uint64_t cycle,
+               rt_core::TimeNs release_time) noexcept override {
+    catch_up();
+    Pending& p = pending(role);
+    const rt_core::TimeNs start = release_time + start_delay;
+    p.task->begin(cycle, start, period_);
+    rt_core::TimeNs duration = role == rt_core::ServoRole::kMain ? main_duration_(cycle) : degraded_duration;
+    if (role == rt_core::ServoRole::kMain) {
+      const std::uint32_t k = shared_->overrun_request.exchange(0);
+      if (k > 0) {
+        duration = static_cast<rt_core::TimeNs>(k) * period_ - period_ / 5;
+      }
+    }
+    p.cycle = cycle;
+    p.started = start;
+    p.finish_at = start + duration;
+    catch_up();
+  }
+  bool busy(rt_core::ServoRole role) noexcept override {
+    catch_up();
+    return pending(role).cycle.has_value();
+  }
+  rt_core::TimeNs started_at(rt_core::ServoRole role) noexcept override {
+    catch_up();
+    return pending(role).started;
+  }
+  void stop() noexcept override { stopped = true; }
+
+  rt_core::TimeNs start_delay = 5 * rt_core::kNsPerUs;
+  rt_core::TimeNs degraded_duration = 20 * rt_core::kNsPerUs;
+  bool stopped = false;
+  int discarded = 0;
+
+ private:
+  struct Pending {
+    rt_core::ServoTask* task;
+    std::optional<std::uint64_t> cycle;
+    rt_core::TimeNs started = -1;
+    rt_core::TimeNs finish_at = 0;
+  };
+  Pending& pending(rt_core::ServoRole role) {
+    return role == rt_core::ServoRole::kMain ? main_ : degraded_;
+  }
+  /// Commits every task whose scripted finish time has come, oldest first.
+  void catch_up() {
+    for (;;) {
+      Pending* next = nullptr;
+      for (Pending* p : {&main_, &degraded_}) {
+        if (p->cycle && p->finish_at <= clock_->now() && (next == nullptr || p->finish_at < next->finish_at)) {
+          next = p;
+        }
+      }
+      if (next == nullptr) {
+        return;
+      }
+      if (next->task->finish(*next->cycle, next->finish_at) == rt_core::StepResult::kDiscarded) {
+        ++discarded;
+      }
+      next->cycle.reset();
+    }
+  }
+
+  rt_core::FakeClock* clock_;
+  rt_core::ServoShared* shared_;
+  rt_core::TimeNs period_;
+  Duration main_duration_;
+  Pending main_;
+  Pending degraded_;
+};
+
+}  // namespace hapticctrl::test

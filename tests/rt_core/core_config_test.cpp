@@ -1,0 +1,59 @@
+#include "hapticctrl/rt_core/core_config.hpp"
+
+#include <gtest/gtest.h>
+
+namespace hapticctrl::rt_core {
+namespace {
+
+CoreConfig parse(std::vector<std::string> args) { return parse_core_args(args); }
+
+void expect_error(std::vector<std::string> args, const std::string& text) {
+  try {
+    parse_core_args(args);
+    FAIL() << "expected an error containing " << text;
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find(text), std::string::npos) << e.what();
+  }
+}
+
+TEST(CoreConfig, Defaults) {
+  const CoreConfig c = parse({});
+  EXPECT_EQ(c.instance, "default");
+  EXPECT_EQ(c.period, kNsPerMs);
+  EXPECT_EQ(c.rt_policy, RtPolicy::kWarn);
+  EXPECT_EQ(c.duration, 0);
+}
+
+TEST(CoreConfig, ParsesEveryOption) {
+  const CoreConfig c = parse({"--instance", "a1", "--period-us", "250", "--duration", "1.5",
+                              "--rt", "ignore", "--priority", "70", "--cpu", "-1", "--json",
+                              "--histogram", "/tmp/h", "--inject-overrun", "100:5",
+                              "--trip-miss-ppm", "1000", "--miss-window", "500"});
+  EXPECT_EQ(c.instance, "a1");
+  EXPECT_EQ(c.period, 250 * kNsPerUs);
+  EXPECT_EQ(c.duration, 1'500'000'000);
+  EXPECT_EQ(c.rt_policy, RtPolicy::kIgnore);
+  EXPECT_EQ(c.priority, 70);
+  EXPECT_EQ(c.cpu, -1);
+  EXPECT_TRUE(c.json);
+  EXPECT_EQ(c.histogram_path, "/tmp/h");
+  EXPECT_EQ(c.inject_at_cycle, 100U);
+  EXPECT_EQ(c.inject_cycles, 5U);
+  EXPECT_TRUE(c.allow_fault_injection);
+  EXPECT_EQ(c.chronic.trip_window_ppm, 1000U);
+  EXPECT_EQ(c.chronic.window_cycles, 500U);
+}
+
+TEST(CoreConfig, RejectsBadInputWithTheOptionName) {
+  expect_error({"--period-us", "50"}, "--period-us: 50 is out of range [100, 10000]");
+  expect_error({"--period-us", "20000"}, "out of range");
+  expect_error({"--period-us", "1ms"}, "is not a number");
+  expect_error({"--rt", "maybe"}, "--rt must be enforce, warn or ignore");
+  expect_error({"--priority", "99"}, "--priority");
+  expect_error({"--inject-overrun", "5"}, "CYCLE:K");
+  expect_error({"--instance"}, "--instance needs a value");
+  expect_error({"--frobnicate"}, "unknown option '--frobnicate'");
+}
+
+}  // namespace
+}  // namespace hapticctrl::rt_core

@@ -1,0 +1,32 @@
+#include "hapticctrl/rt_core/core_report.hpp"
+
+#include <gtest/gtest.h>
+
+namespace hapticctrl::rt_core {
+namespace {
+
+TEST(CoreReport, EveryStopReasonHasAText) {
+  for (std::uint32_t r = 0; r <= 7; ++r) {
+    EXPECT_EQ(stop_reason_text(static_cast<shm::StopReason>(r)).find("unknown"), std::string::npos);
+  }
+  EXPECT_EQ(stop_reason_text(shm::StopReason::kConsecutiveMisses), "5 consecutive deadline misses");
+}
+
+TEST(CoreReport, JsonCarriesTheFigures) {
+  shm::TelemetryPayload t;
+  t.cycle = 42;
+  t.misses_total = 3;
+  t.wake_latency.p99_ns = 81'000;
+  t.rt_mode = static_cast<std::uint32_t>(shm::RtMode::kFifoLocked);
+  const std::string json = telemetry_json(t);
+  EXPECT_EQ(json.front(), '{');
+  EXPECT_EQ(json.back(), '}');
+  EXPECT_NE(json.find("\"cycles\":42"), std::string::npos);
+  EXPECT_NE(json.find("\"misses_total\":3"), std::string::npos);
+  EXPECT_NE(json.find("\"wake_latency\":{\"min_ns\":0"), std::string::npos);
+  EXPECT_NE(json.find("\"p99_ns\":81000"), std::string::npos);
+  EXPECT_NE(json.find("\"rt_mode\":\"SCHED_FIFO+mlockall\""), std::string::npos);
+}
+
+}  // namespace
+}  // namespace hapticctrl::rt_core

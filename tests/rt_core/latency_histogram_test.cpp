@@ -1,0 +1,61 @@
+#include "hapticctrl/rt_core/latency_histogram.hpp"
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <sstream>
+
+namespace hapticctrl::rt_core {
+namespace {
+
+TEST(LatencyHistogram, SummaryOfKnownSamples) {
+  auto h = std::make_unique<LatencyHistogram>();
+  for (int us = 1; us <= 1000; ++us) {
+    h->add(us * kNsPerUs - 500);  // lands in bin us-1
+  }
+  const shm::LatencySummary s = h->summary();
+  EXPECT_EQ(s.samples, 1000U);
+  EXPECT_EQ(s.min_ns, 500);
+  EXPECT_EQ(s.max_ns, 999'500);
+  EXPECT_EQ(s.p50_ns, 500 * kNsPerUs);
+  EXPECT_EQ(s.p99_ns, 990 * kNsPerUs);
+  EXPECT_EQ(s.p999_ns, 999 * kNsPerUs);
+  EXPECT_NEAR(static_cast<double>(s.avg_ns), 500'000.0, 1.0);
+}
+
+TEST(LatencyHistogram, OverflowsAreCountedAndKeepTheMax) {
+  auto h = std::make_unique<LatencyHistogram>();
+  h->add(5 * kNsPerUs);
+  h->add(20 * kNsPerMs);
+  EXPECT_EQ(h->overflows(), 1U);
+  EXPECT_EQ(h->summary().max_ns, 20 * kNsPerMs);
+  EXPECT_EQ(h->percentile(1.0), 20 * kNsPerMs);
+}
+
+TEST(LatencyHistogram, NegativeSamplesCountAsZero) {
+  auto h = std::make_unique<LatencyHistogram>();
+  h->add(-100);
+  EXPECT_EQ(h->bin(0), 1U);
+  EXPECT_EQ(h->summary().min_ns, 0);
+}
+
+TEST(LatencyHistogram, EmptyHistogramSummarisesToZero) {
+  auto h = std::make_unique<LatencyHistogram>();
+  EXPECT_EQ(h->summary().samples, 0U);
+  EXPECT_EQ(h->percentile(0.99), 0);
+}
+
+TEST(LatencyHistogram, WritesCyclictestFormat) {
+  auto h = std::make_unique<LatencyHistogram>();
+  h->add(0);
+  h->add(2 * kNsPerUs + 10);
+  h->add(2 * kNsPerUs + 20);
+  std::ostringstream out;
+  h->write_cyclictest_format(out);
+  EXPECT_EQ(out.str(),
+            "000000 000001\n000001 000000\n000002 000002\n# Total: 3\n# Min Latencies: 0\n"
+            "# Avg Latencies: 1\n# Max Latencies: 2\n# Histogram Overflows: 0\n");
+}
+
+}  // namespace
+}  // namespace hapticctrl::rt_core

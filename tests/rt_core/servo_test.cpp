@@ -1,0 +1,144 @@
+#include "hapticctrl/rt_core/servo.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <memory>
+
+#include "support/mock_arm.hpp"
+
+namespace hapticctrl::rt_core {
+namespace {
+
+using test::MockArm;
+
+struct ServoRig {
+  MockArm arm;
+  std::unique_ptr<shm::CtrlRegion> ctrl = std::make_unique<shm::CtrlRegion>();
+  std::unique_ptr<shm::CtrlAckRegion> acks = std::make_unique<shm::CtrlAckRegion>();
+  std::unique_ptr<shm::SeqlockCell<shm::VprPayload>> vpr =
+      std::make_unique<shm::SeqlockCell<shm::VprPayload>>();
+  std::unique_ptr<shm::SeqlockCell<shm::VpPayload>> vp =
+      std::make_unique<shm::SeqlockCell<shm::VpPayload>>();
+  std::unique_ptr<shm::SeqlockCell<shm::PositionPayload>> position =
+      std::make_unique<shm::SeqlockCell<shm::PositionPayload>>();
+  ServoShared shared{arm, shm::CtrlReader(*ctrl, *acks),
+                     ServoRegions{vpr.get(), vp.get(), position.get()}, false};
+  ServoTask main_task{shared, ServoRole::kMain, ServoLaw()};
+  ServoTask degraded_task{shared, ServoRole::kDegraded, ServoLaw()};
+  shm::CtrlWriter writer{ctrl->slots[0], acks->slots[0], 0};
+
+  StepResult cycle(ServoTask& task, std::uint64_t k) {
+    shared.gate.grant(k);
+    return task.run(k, static_cast<TimeNs>(k) * kNsPerMs, kNsPerMs);
+  }
+  shm::VpPayload last_vp() {
+    shm::VpPayload out;
+    EXPECT_TRUE(vp->read(out).ok());
+    return out;
+  }
+};
+
+TEST(Servo, MotorCommandsStayInhibitedUntilPowerOn) {
+  ServoRig rig;
+  rig.arm.measures.velocity.setConstant(1.0);
+  ASSERT_EQ(rig.cycle(rig.main_task, 1), StepResult::kDone);
+  EXPECT_FALSE(rig.arm.last.enable);
+  EXPECT_TRUE(rig.arm.last.torque.isZero());
+  EXPECT_FALSE(rig.arm.supply);
+
+  rig.writer.send(shm::CtrlCode::kPowerOn, 0, 0);
+  ASSERT_EQ(rig.cycle(rig.main_task, 2), StepResult::kDone);
+  EXPECT_TRUE(rig.arm.supply) << "power-on switches the supply at once";
+  EXPECT_TRUE(rig.arm.last.enable);
+  EXPECT_LT(rig.arm.last.torque(0), 0.0) << "damping opposes the motion";
+  EXPECT_NE(rig.last_vp().state_word & shm::state_bits::kPowered, 0U);
+}
+
+TEST(Servo, EmergencyStopCutsPowerAndLatches) {
+  ServoRig rig;
+  rig.writer.send(shm::CtrlCode::kPowerOn, 0, 0);
+  rig.cycle(rig.main_task, 1);
+  rig.writer.send(shm::CtrlCode::kEmergencyStop, 0, 0);
+  rig.writer.send(shm::CtrlCode::kPowerOn, 0, 0);  // refused while latched
+  rig.cycle(rig.main_task, 2);
+  EXPECT_FALSE(rig.arm.supply);
+  EXPECT_FALSE(rig.arm.last.enable);
+  EXPECT_NE(rig.last_vp().state_word & shm::state_bits::kEmergencyStop, 0U);
+  EXPECT_EQ(rig.shared.counters.ctrl_rejected.load(), 1U);
+}
+
+TEST(Servo, VpEchoesTheClientAndCarriesTheCycle) {
+  ServoRig rig;
+  shm::VprPayload client;
+  client.session_id = 9;
+  client.client_sequence = 1234;
+  client.client_time_ns = 5678;
+  client.command_type = static_cast<std::uint32_t>(shm::CommandType::kImpedance);
+  rig.vpr->publish(client, 0);
+  rig.cycle(rig.main_task, 7);
+  const shm::VpPayload vp = rig.last_vp();
+  EXPECT_EQ(vp.cycle, 7U);
+  EXPECT_EQ(vp.echo_client_sequence, 1234U);
+  EXPECT_EQ(vp.echo_client_time_ns, 5678);
+  EXPECT_EQ(vp.command_type, static_cast<std::uint32_t>(shm::CommandType::kImpedance));
+}
+
+TEST(Servo, NonFiniteClientSampleIsRejectedAndCounted) {
+  ServoRig rig;
+  shm::VprPayload good;
+  good.session_id = 1;
+  good.client_sequence = 1;
+  rig.vpr->publish(good, 0);
+  rig.cycle(rig.main_task, 1);
+  shm::VprPayload bad = good;
+  bad.client_sequence = 2;
+  bad.object_pose[0] = std::numeric_limits<double>::quiet_NaN();
+  rig.vpr->publish(bad, 0);
+  rig.cycle(rig.main_task, 2);
+  EXPECT_EQ(rig.shared.counters.vpr_rejected.load(), 1U);
+  EXPECT_EQ(rig.last_vp().echo_client_sequence, 1U) << "the last valid sample stays in use";
+}
+
+TEST(Servo, StaleClientIsFlagged) {
+  ServoRig rig;
+  shm::VprPayload client;
+  client.session_id = 1;
+  rig.vpr->publish(client, 0);
+  rig.cycle(rig.main_task, 1);
+  rig.cycle(rig.main_task, 10);  // 9 ms later, no new sample
+  EXPECT_NE(rig.last_vp().state_word & shm::state_bits::kClientStale, 0U);
+  EXPECT_GT(rig.shared.counters.vpr_stale.load(), 0U);
+}
+
+TEST(Servo, LateMainCommitAfterDegradedIsDiscarded) {
+  ServoRig rig;
+  rig.shared.gate.grant(5);
+  ASSERT_EQ(rig.main_task.begin(5, 0, kNsPerMs), StepResult::kDone);
+  ASSERT_EQ(rig.cycle(rig.degraded_task, 6), StepResult::kDone);
+  EXPECT_NE(rig.last_vp().state_word & shm::state_bits::kDegraded, 0U);
+  const int sends_before = rig.arm.sends;
+  EXPECT_EQ(rig.main_task.finish(5, 0), StepResult::kDiscarded);
+  EXPECT_EQ(rig.arm.sends, sends_before) << "nothing reached the arm";
+  EXPECT_EQ(rig.last_vp().cycle, 6U);
+  EXPECT_EQ(rig.shared.counters.late_discarded.load(), 1U);
+}
+
+TEST(Servo, InhibitFlagOverridesPower) {
+  ServoRig rig;
+  rig.writer.send(shm::CtrlCode::kPowerOn, 0, 0);
+  rig.shared.inhibit.store(true);
+  rig.cycle(rig.main_task, 1);
+  EXPECT_FALSE(rig.arm.last.enable);
+}
+
+TEST(Servo, ArmReadFaultIsCounted) {
+  ServoRig rig;
+  rig.arm.fail_reads = true;
+  rig.cycle(rig.main_task, 1);
+  EXPECT_EQ(rig.shared.counters.arm_faults.load(), 1U);
+}
+
+}  // namespace
+}  // namespace hapticctrl::rt_core

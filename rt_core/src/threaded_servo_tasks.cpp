@@ -60,7 +60,9 @@ ThreadedServoTasks::~ThreadedServoTasks() { stop(); }
 
 void ThreadedServoTasks::worker_loop(Worker& w) noexcept {
   w.placement_ok.store(place_current_thread(w.placement), std::memory_order_release);
-  std::uint32_t seen = w.release_word.load(std::memory_order_acquire);
+  // Start from the word's initial value, not its current one: a release that happened before
+  // this thread got to run must still be seen.
+  std::uint32_t seen = 0;
   while (!stopping_.load(std::memory_order_acquire)) {
     shm::futex_wait(w.release_word, seen, std::chrono::milliseconds(100));
     const std::uint32_t now_word = w.release_word.load(std::memory_order_acquire);

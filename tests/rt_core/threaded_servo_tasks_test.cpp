@@ -1,0 +1,78 @@
+// The real task threads with the real clock, run briefly (no timing assertions).
+#include "hapticctrl/rt_core/threaded_servo_tasks.hpp"
+
+#include <gtest/gtest.h>
+
+#include <memory>
+
+#include "support/mock_arm.hpp"
+
+namespace hapticctrl::rt_core {
+namespace {
+
+struct ThreadRig {
+  test::MockArm arm;
+  std::unique_ptr<shm::CtrlRegion> ctrl = std::make_unique<shm::CtrlRegion>();
+  std::unique_ptr<shm::CtrlAckRegion> acks = std::make_unique<shm::CtrlAckRegion>();
+  std::unique_ptr<shm::SeqlockCell<shm::VpPayload>> vp =
+      std::make_unique<shm::SeqlockCell<shm::VpPayload>>();
+  ServoShared shared{arm, shm::CtrlReader(*ctrl, *acks), ServoRegions{nullptr, vp.get(), nullptr},
+                     true};
+  ServoTask main_task{shared, ServoRole::kMain, ServoLaw()};
+  ServoTask degraded_task{shared, ServoRole::kDegraded, ServoLaw()};
+  RealClock clock;
+};
+
+bool wait_idle(ThreadedServoTasks& tasks, ServoRole role) {
+  for (int i = 0; i < 5000; ++i) {
+    if (!tasks.busy(role)) {
+      return true;
+    }
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+  return false;
+}
+
+TEST(ThreadedServoTasks, ReleasedCyclesRunAndCommit) {
+  ThreadRig rig;
+  ThreadedServoTasks tasks(rig.clock, rig.main_task, rig.degraded_task, rig.shared, kNsPerMs, {}, {});
+  for (std::uint64_t k = 1; k <= 20; ++k) {
+    ASSERT_TRUE(rig.shared.gate.grant(k));
+    tasks.release(ServoRole::kMain, k, rig.clock.now());
+    ASSERT_TRUE(wait_idle(tasks, ServoRole::kMain)) << "cycle " << k;
+    EXPECT_GE(tasks.started_at(ServoRole::kMain), 0);
+    EXPECT_EQ(rig.shared.main_commit_cycle.load(), k);
+  }
+  tasks.stop();
+}
+
+TEST(ThreadedServoTasks, InjectedOverrunKeepsMainBusyWhileDegradedCommits) {
+  ThreadRig rig;
+  ThreadedServoTasks tasks(rig.clock, rig.main_task, rig.degraded_task, rig.shared, kNsPerMs, {}, {});
+  rig.shared.overrun_request.store(20);  // ~20 ms stall
+  ASSERT_TRUE(rig.shared.gate.grant(1));
+  tasks.release(ServoRole::kMain, 1, rig.clock.now());
+  std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  EXPECT_TRUE(tasks.busy(ServoRole::kMain));
+  ASSERT_TRUE(rig.shared.gate.grant(2));
+  tasks.release(ServoRole::kDegraded, 2, rig.clock.now());
+  ASSERT_TRUE(wait_idle(tasks, ServoRole::kDegraded));
+  EXPECT_EQ(rig.shared.commit_cycle.load(), 2U);
+  ASSERT_TRUE(wait_idle(tasks, ServoRole::kMain));
+  EXPECT_EQ(rig.shared.counters.late_discarded.load(), 1U);
+  EXPECT_EQ(rig.shared.commit_cycle.load(), 2U) << "the late main cycle 1 did not overwrite 2";
+  tasks.stop();
+}
+
+TEST(ThreadedServoTasks, StopJoinsPromptly) {
+  ThreadRig rig;
+  auto tasks = std::make_unique<ThreadedServoTasks>(rig.clock, rig.main_task, rig.degraded_task,
+                                                    rig.shared, kNsPerMs, ThreadPlacement{},
+                                                    ThreadPlacement{});
+  const auto start = std::chrono::steady_clock::now();
+  tasks->stop();
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(2));
+}
+
+}  // namespace
+}  // namespace hapticctrl::rt_core

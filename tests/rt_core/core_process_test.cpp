@@ -1,0 +1,160 @@
+// The real hapticctrl-core binary, driven through shared memory like the other processes do.
+#include <sys/stat.h>
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <optional>
+#include <thread>
+
+#include "hapticctrl/shm/segment.hpp"
+#include "support/child_process.hpp"
+#include "support/spawned_process.hpp"
+
+namespace hapticctrl {
+namespace {
+
+using namespace std::chrono_literals;
+using test::SpawnedProcess;
+
+bool segment_exists(const std::string& instance) {
+  struct stat st {};
+  return stat(("/dev/shm/hapticctrl." + instance).c_str(), &st) == 0 ||
+         stat(("/dev/shm/hapticctrl." + instance + ".lock").c_str(), &st) == 0;
+}
+
+/// Attaches as soon as the core is up (bounded).
+std::optional<shm::Segment> attach_when_ready(const std::string& instance, bool ctrl_writer) {
+  for (int i = 0; i < 1000; ++i) {
+    try {
+      return shm::Segment::attach(instance, {.ctrl_writer = ctrl_writer});
+    } catch (const shm::ShmError&) {
+      std::this_thread::sleep_for(5ms);
+    }
+  }
+  return std::nullopt;
+}
+
+/// Reads VP until `predicate` holds (bounded by `timeout`); returns the matching sample.
+template <typename Predicate>
+std::optional<shm::VpPayload> wait_vp(const shm::Segment& seg, Predicate predicate,
+                                      std::chrono::milliseconds timeout = 5s) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  const auto& vp_cell = seg.region<shm::RegionId::kVp>();
+  while (std::chrono::steady_clock::now() < deadline) {
+    const std::uint32_t seen = vp_cell.sequence_word();
+    shm::VpPayload vp;
+    if (vp_cell.read(vp).ok() && predicate(vp)) {
+      return vp;
+    }
+    vp_cell.wait_for_publish(seen, 20ms);
+  }
+  return std::nullopt;
+}
+
+std::vector<std::string> core_args(const std::string& instance, std::vector<std::string> extra = {}) {
+  std::vector<std::string> args{"--instance", instance, "--period-us", "2000", "--rt", "ignore",
+                                "--blackbox-dir", "/tmp"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  return args;
+}
+
+TEST(CoreProcess, InjectedOverrunTripsFailSafeInOrderAndExitsWithTheReason) {
+  const std::string instance = test::unique_instance("fs");
+  SpawnedProcess core(HAPTICCTRL_CORE_BINARY, core_args(instance, {"--allow-fault-injection"}));
+  auto seg = attach_when_ready(instance, true);
+  ASSERT_TRUE(seg.has_value()) << core.err();
+  seg->ctrl_writer().send(shm::CtrlCode::kPowerOn, 0, 0);
+  const auto powered =
+      wait_vp(*seg, [](const shm::VpPayload& vp) { return (vp.state_word & shm::state_bits::kPowered) != 0; });
+  ASSERT_TRUE(powered.has_value()) << "power-on through ctrl";
+  EXPECT_EQ(powered->core_state, static_cast<std::uint32_t>(shm::CoreState::kRunning));
+
+  seg->ctrl_writer().send(shm::CtrlCode::kInjectOverrun, 5, 0);
+  const auto closed = wait_vp(*seg, [](const shm::VpPayload& vp) {
+    return vp.core_state == static_cast<std::uint32_t>(shm::CoreState::kFailSafe);
+  });
+  ASSERT_TRUE(closed.has_value()) << core.err();
+  // Steps 1 and 2 (inhibit, power off) precede step 3: the closing VP is already unpowered.
+  EXPECT_EQ(closed->state_word & shm::state_bits::kPowered, 0U);
+  EXPECT_NE(closed->state_word & shm::state_bits::kFailSafe, 0U);
+  EXPECT_EQ(closed->stop_reason, static_cast<std::uint32_t>(shm::StopReason::kConsecutiveMisses));
+  EXPECT_TRUE(closed->coupling_wrench == shm::Vector6{});
+
+  shm::TelemetryPayload t;
+  ASSERT_TRUE(seg->region<shm::RegionId::kTelemetry>().read(t).ok());
+  EXPECT_EQ(t.core_state, static_cast<std::uint32_t>(shm::CoreState::kFailSafe));
+  EXPECT_GE(t.misses_total, 5U);
+
+  EXPECT_EQ(core.wait(), 3);
+  const std::string err = core.err();
+  EXPECT_NE(err.find("FAIL-SAFE"), std::string::npos) << err;
+  EXPECT_NE(err.find("5 consecutive deadline misses"), std::string::npos) << err;
+  const auto bb = err.find("black box: ");
+  ASSERT_NE(bb, std::string::npos) << err;
+  const std::string bb_path = err.substr(bb + 11, err.find('\n', bb) - bb - 11);
+  struct stat st {};
+  EXPECT_EQ(stat(bb_path.c_str(), &st), 0) << bb_path;
+  std::remove(bb_path.c_str());
+  seg.reset();
+  EXPECT_FALSE(segment_exists(instance)) << "regions released";
+}
+
+TEST(CoreProcess, StopRequestExitsZeroAndLeavesNoSegment) {
+  const std::string instance = test::unique_instance("stop");
+  SpawnedProcess core(HAPTICCTRL_CORE_BINARY, core_args(instance));
+  auto seg = attach_when_ready(instance, true);
+  ASSERT_TRUE(seg.has_value()) << core.err();
+  seg->ctrl_writer().send(shm::CtrlCode::kStop, 0, 0);
+  const auto stopping = wait_vp(*seg, [](const shm::VpPayload& vp) {
+    return vp.core_state == static_cast<std::uint32_t>(shm::CoreState::kStopping);
+  });
+  ASSERT_TRUE(stopping.has_value());
+  EXPECT_EQ(stopping->stop_reason, static_cast<std::uint32_t>(shm::StopReason::kStopRequested));
+  EXPECT_EQ(core.wait(), 0) << core.err();
+  EXPECT_NE(core.err().find("stop requested"), std::string::npos);
+  seg.reset();
+  EXPECT_FALSE(segment_exists(instance));
+}
+
+TEST(CoreProcess, SigtermStopsCleanly) {
+  const std::string instance = test::unique_instance("term");
+  SpawnedProcess core(HAPTICCTRL_CORE_BINARY, core_args(instance));
+  ASSERT_TRUE(attach_when_ready(instance, false).has_value()) << core.err();
+  core.signal(SIGTERM);
+  EXPECT_EQ(core.wait(), 0) << core.err();
+  EXPECT_NE(core.err().find("stopped by signal"), std::string::npos);
+  EXPECT_FALSE(segment_exists(instance));
+}
+
+TEST(CoreProcess, SecondCoreWithTheSameInstanceIsRefused) {
+  const std::string instance = test::unique_instance("dup");
+  SpawnedProcess first(HAPTICCTRL_CORE_BINARY, core_args(instance));
+  ASSERT_TRUE(attach_when_ready(instance, false).has_value()) << first.err();
+  SpawnedProcess second(HAPTICCTRL_CORE_BINARY, core_args(instance));
+  EXPECT_EQ(second.wait(), 1);
+  EXPECT_NE(second.err().find("already running (core pid " + std::to_string(first.pid())),
+            std::string::npos)
+      << second.err();
+  first.signal(SIGINT);
+  EXPECT_EQ(first.wait(), 0);
+}
+
+TEST(CoreProcess, DurationAndJsonReportTheFigures) {
+  const std::string instance = test::unique_instance("json");
+  SpawnedProcess core(HAPTICCTRL_CORE_BINARY, core_args(instance, {"--duration", "0.3", "--json"}));
+  EXPECT_EQ(core.wait(), 0) << core.err();
+  const std::string out = core.out();
+  EXPECT_NE(out.find("\"stop_reason\":\"duration elapsed\""), std::string::npos) << out;
+  EXPECT_NE(out.find("\"wake_latency\":{"), std::string::npos);
+  EXPECT_FALSE(segment_exists(instance));
+}
+
+TEST(CoreProcess, BadArgumentsAreExplained) {
+  SpawnedProcess core(HAPTICCTRL_CORE_BINARY, {"--period-us", "5"});
+  EXPECT_EQ(core.wait(), 64);
+  EXPECT_NE(core.err().find("--period-us: 5 is out of range"), std::string::npos) << core.err();
+}
+
+}  // namespace
+}  // namespace hapticctrl

@@ -98,8 +98,8 @@ shm::StopReason Executive::run_slot(TimeNs scheduled, TimeNs woke) noexcept {
   CycleTimes times;
   times.scheduled = scheduled;
   times.woke = woke;
-  release_servo(woke);
-  times.released = clock_->now();
+  times.released = clock_->now();  // before the wake syscall, so the start delay includes it
+  release_servo(times.released);
   times.degraded = degraded_this_cycle_;
 
   clock_->sleep_until(scheduled + period * 3 / 4);

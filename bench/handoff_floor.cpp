@@ -101,8 +101,10 @@ int main(int argc, char** argv) {
     std::printf("{\"error\":\"no hand-off completed\"}\n");
     return 1;
   }
-  std::printf("{\"samples\":%zu,\"cpu_a\":%d,\"cpu_b\":%d,\"p50_ns\":%lld,\"p99_ns\":%lld,\"max_ns\":%lld}\n",
-              delays.size(), cpu_a, cpu_b, percentile(delays, 0.50), percentile(delays, 0.99),
-              *std::max_element(delays.begin(), delays.end()));
+  std::printf(
+      "{\"samples\":%zu,\"cpu_a\":%d,\"cpu_b\":%d,\"p50_ns\":%lld,\"p99_ns\":%lld,\"max_ns\":%lld}"
+      "\n",
+      delays.size(), cpu_a, cpu_b, percentile(delays, 0.50), percentile(delays, 0.99),
+      *std::max_element(delays.begin(), delays.end()));
   return 0;
 }

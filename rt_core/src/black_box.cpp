@@ -35,8 +35,8 @@ void BlackBox::write_csv(const std::string& path) const {
     const CycleRecord& r = at(i);
     out << r.cycle << ',' << r.scheduled << ',' << r.wake_latency << ',' << r.servo_start_delay
         << ',' << r.servo_execution << ',' << ((r.flags & kRecordMiss) ? 1 : 0) << ','
-        << ((r.flags & kRecordDegraded) ? 1 : 0) << ',' << r.skipped << ','
-        << r.consecutive_misses << ',' << r.state_word;
+        << ((r.flags & kRecordDegraded) ? 1 : 0) << ',' << r.skipped << ',' << r.consecutive_misses
+        << ',' << r.state_word;
     for (const double q : r.joint_position) {
       out << ',' << q;
     }

@@ -89,7 +89,8 @@ CoreConfig parse_core_args(const std::vector<std::string>& args) {
       c.inject_cycles = parse_number<std::uint32_t>(opt, v.substr(colon + 1), 1, 1000);
       c.allow_fault_injection = true;
     } else if (opt == "--miss-window") {
-      c.chronic.window_cycles = parse_number<std::uint32_t>(opt, value(), 1, DeadlineMonitor::kMaxWindow);
+      c.chronic.window_cycles =
+          parse_number<std::uint32_t>(opt, value(), 1, DeadlineMonitor::kMaxWindow);
     } else if (opt == "--trip-miss-ppm") {
       c.chronic.trip_window_ppm = parse_number<std::uint32_t>(opt, value(), 0, 1'000'000);
     } else if (opt == "--trip-bucket") {

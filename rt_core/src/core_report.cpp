@@ -56,10 +56,11 @@ std::string telemetry_json(const shm::TelemetryPayload& t) {
   out << "{\"cycles\":" << t.cycle << ",\"period_ns\":" << t.period_ns << ",\"rt_mode\":\""
       << rt_mode_text(static_cast<shm::RtMode>(t.rt_mode)) << "\",\"stop_reason\":\""
       << stop_reason_text(reason) << "\",\"stop_reason_code\":" << t.stop_reason
-      << ",\"misses_total\":" << t.misses_total << ",\"consecutive_misses\":"
-      << t.consecutive_misses << ",\"degraded_cycles\":" << t.degraded_cycles
-      << ",\"skipped_slots\":" << t.skipped_slots << ",\"late_servo_discarded\":"
-      << t.late_servo_discarded << ",\"window_miss_ppm\":" << t.window_miss_ppm
+      << ",\"misses_total\":" << t.misses_total
+      << ",\"consecutive_misses\":" << t.consecutive_misses
+      << ",\"degraded_cycles\":" << t.degraded_cycles << ",\"skipped_slots\":" << t.skipped_slots
+      << ",\"late_servo_discarded\":" << t.late_servo_discarded
+      << ",\"window_miss_ppm\":" << t.window_miss_ppm
       << ",\"leaky_bucket_score\":" << t.leaky_bucket_score << ",";
   latency_json(out, "wake_latency", t.wake_latency);
   out << ",";

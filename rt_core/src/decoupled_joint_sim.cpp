@@ -49,7 +49,8 @@ void DecoupledJointSim::send_commands(const ArmCommands& commands, TimeNs /*now*
     return;
   }
   applied_torque_ = commands.torque.cwiseMax(-params_.torque_limit).cwiseMin(params_.torque_limit);
-  const Vector6d total = applied_torque_ + operator_wrench_ - params_.viscous.cwiseProduct(velocity_);
+  const Vector6d total =
+      applied_torque_ + operator_wrench_ - params_.viscous.cwiseProduct(velocity_);
   velocity_ += total.cwiseQuotient(params_.inertia) * h;  // semi-implicit Euler
   position_ += velocity_ * h;
   for (Eigen::Index i = 0; i < 6; ++i) {

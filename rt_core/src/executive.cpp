@@ -73,7 +73,8 @@ ExecutiveResult Executive::run(const std::atomic<bool>* external_stop) noexcept 
         external_stop->load(std::memory_order_acquire)) {
       reason = shm::StopReason::kSignal;
     }
-    if (reason == shm::StopReason::kNone && config_.duration > 0 && woke - start >= config_.duration) {
+    if (reason == shm::StopReason::kNone && config_.duration > 0 &&
+        woke - start >= config_.duration) {
       reason = shm::StopReason::kDurationElapsed;
     }
     if (reason != shm::StopReason::kNone) {
@@ -225,7 +226,8 @@ ExecutiveResult Executive::stop_sequence(shm::StopReason reason, bool fail_safe)
   shared_->stop_reason.store(static_cast<std::uint32_t>(reason), std::memory_order_relaxed);
   shared_->core_state.store(static_cast<std::uint32_t>(core_state_), std::memory_order_relaxed);
   if (outputs_.header != nullptr) {
-    outputs_.header->stop_reason.store(static_cast<std::uint32_t>(reason), std::memory_order_relaxed);
+    outputs_.header->stop_reason.store(static_cast<std::uint32_t>(reason),
+                                       std::memory_order_relaxed);
     outputs_.header->core_state.store(static_cast<std::uint32_t>(core_state_),
                                       std::memory_order_release);
   }
@@ -233,7 +235,8 @@ ExecutiveResult Executive::stop_sequence(shm::StopReason reason, bool fail_safe)
   // 1. Inhibit motor commands: no commit may enable them from now on, and no task may enter.
   shared_->inhibit.store(true, std::memory_order_release);
   shared_->clock_state_bits.fetch_or(
-      fail_safe ? shm::state_bits::kFailSafe : shm::state_bits::kStopping, std::memory_order_acq_rel);
+      fail_safe ? shm::state_bits::kFailSafe : shm::state_bits::kStopping,
+      std::memory_order_acq_rel);
   bool exclusive = false;
   for (int attempt = 0; attempt < kGateCloseAttempts && !exclusive; ++attempt) {
     exclusive = shared_->gate.close() || shared_->gate.closed();

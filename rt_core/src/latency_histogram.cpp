@@ -26,7 +26,8 @@ TimeNs LatencyHistogram::percentile(double fraction) const noexcept {
   if (samples_ == 0) {
     return 0;
   }
-  const auto wanted = static_cast<std::uint64_t>(std::ceil(fraction * static_cast<double>(samples_)));
+  const auto wanted =
+      static_cast<std::uint64_t>(std::ceil(fraction * static_cast<double>(samples_)));
   std::uint64_t seen = 0;
   for (std::size_t us = 0; us < kBins; ++us) {
     seen += bins_[us];

@@ -8,7 +8,8 @@ namespace {
 constexpr std::uint32_t kMaxInjectedOverrun = 1000;
 }  // namespace
 
-bool CommandInterpreter::apply(const shm::CtrlCommand& command, LogicalState& state) const noexcept {
+bool CommandInterpreter::apply(const shm::CtrlCommand& command,
+                               LogicalState& state) const noexcept {
   switch (command.code) {
     case shm::CtrlCode::kPowerOn:
       if (state.estop || state.stop_requested) {

@@ -28,7 +28,9 @@ using namespace hapticctrl::rt_core;
 std::atomic<bool> g_signal_stop{false};
 static_assert(std::atomic<bool>::is_always_lock_free, "used from a signal handler");
 
-void on_stop_signal(int /*signal*/) { g_signal_stop.store(true, std::memory_order_release); }
+void on_stop_signal(int /*signal*/) {
+  g_signal_stop.store(true, std::memory_order_release);
+}
 
 void install_signal_handlers() {
   struct sigaction action {};
@@ -55,14 +57,14 @@ int run_core(const CoreConfig& config) {
   const bool fifo = rt.fifo_granted;
   const int cpu = resolve_cpu(config.cpu);
 
-  shm::Segment segment =
-      shm::Segment::create({.instance = config.instance, .group = config.group, .period_ns = config.period});
+  shm::Segment segment = shm::Segment::create(
+      {.instance = config.instance, .group = config.group, .period_ns = config.period});
   DecoupledJointSim arm(DecoupledJointParams{}, &segment.region<shm::RegionId::kForce>());
-  ServoShared shared(arm, segment.ctrl_reader(),
-                     ServoRegions{&segment.region<shm::RegionId::kVpr>(),
-                                  &segment.writable<shm::RegionId::kVp>(),
-                                  &segment.writable<shm::RegionId::kPosition>()},
-                     config.allow_fault_injection);
+  ServoShared shared(
+      arm, segment.ctrl_reader(),
+      ServoRegions{&segment.region<shm::RegionId::kVpr>(), &segment.writable<shm::RegionId::kVp>(),
+                   &segment.writable<shm::RegionId::kPosition>()},
+      config.allow_fault_injection);
   shared.inject_at_cycle = config.inject_at_cycle;
   shared.inject_cycles = config.inject_cycles;
   ServoTask main_task(shared, ServoRole::kMain, ServoLaw());

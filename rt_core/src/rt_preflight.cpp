@@ -31,10 +31,9 @@ bool file_contains(const std::string& path, const std::string& needle) {
 
 std::string detect_virtualization() {
   const bool vm = file_contains("/proc/cpuinfo", " hypervisor");
-  const bool container = std::ifstream("/.dockerenv").good() ||
-                         std::ifstream("/run/.containerenv").good() ||
-                         file_contains("/proc/1/cgroup", "docker") ||
-                         file_contains("/proc/1/cgroup", "kubepods");
+  const bool container =
+      std::ifstream("/.dockerenv").good() || std::ifstream("/run/.containerenv").good() ||
+      file_contains("/proc/1/cgroup", "docker") || file_contains("/proc/1/cgroup", "kubepods");
   if (vm && container) {
     return "vm+container";
   }
@@ -83,8 +82,9 @@ std::string RtReport::summary() const {
       << "), virtualization " << virtualization << ", SCHED_FIFO "
       << (fifo_granted ? "granted" : "NOT granted") << ", memory "
       << (memory_locked ? "locked" : "NOT locked") << ", RLIMIT_RTPRIO " << rtprio_limit
-      << ", RLIMIT_MEMLOCK " << (memlock_limit_kib < 0 ? std::string("unlimited")
-                                                       : std::to_string(memlock_limit_kib) + " KiB");
+      << ", RLIMIT_MEMLOCK "
+      << (memlock_limit_kib < 0 ? std::string("unlimited")
+                                : std::to_string(memlock_limit_kib) + " KiB");
   for (const auto& p : problems) {
     out << "\n  - " << p;
   }
@@ -106,11 +106,13 @@ RtReport rt_preflight(RtPolicy policy, int fifo_priority) {
   report.memory_locked = mlockall(MCL_CURRENT | MCL_FUTURE) == 0;
 
   if (!report.fifo_granted) {
-    report.problems.push_back("SCHED_FIFO priority " + std::to_string(fifo_priority) +
-                              " refused: run as root or raise RLIMIT_RTPRIO; timing is best effort");
+    report.problems.push_back(
+        "SCHED_FIFO priority " + std::to_string(fifo_priority) +
+        " refused: run as root or raise RLIMIT_RTPRIO; timing is best effort");
   }
   if (!report.memory_locked) {
-    report.problems.push_back("mlockall refused: raise RLIMIT_MEMLOCK; page faults may hit the cycle");
+    report.problems.push_back(
+        "mlockall refused: raise RLIMIT_MEMLOCK; page faults may hit the cycle");
   }
   if (!report.preempt_rt) {
     report.problems.push_back("kernel is not PREEMPT_RT: expect millisecond outliers under load");

@@ -118,7 +118,8 @@ void ServoTask::exchange_client(TimeNs now) noexcept {
   inputs_.client = s.last_client;
   inputs_.client_valid = s.client_valid;
   inputs_.client_age = s.client_valid ? now - s.last_client_arrival : 0;
-  if (s.client_valid && s.last_client.session_id != 0 && inputs_.client_age > s.client_stale_after) {
+  if (s.client_valid && s.last_client.session_id != 0 &&
+      inputs_.client_age > s.client_stale_after) {
     s.counters.vpr_stale.fetch_add(1, std::memory_order_relaxed);
   }
 }
@@ -133,12 +134,13 @@ void ServoTask::commit(std::uint64_t cycle, TimeNs now) noexcept {
   }
   s.arm->send_commands(commands, now, inputs_.dt);
 
-  std::uint32_t state_word = s.logical.state_word() |
-                             s.clock_state_bits.load(std::memory_order_relaxed);
+  std::uint32_t state_word =
+      s.logical.state_word() | s.clock_state_bits.load(std::memory_order_relaxed);
   if (role_ == ServoRole::kDegraded) {
     state_word |= shm::state_bits::kDegraded;
   }
-  if (s.client_valid && s.last_client.session_id != 0 && inputs_.client_age > s.client_stale_after) {
+  if (s.client_valid && s.last_client.session_id != 0 &&
+      inputs_.client_age > s.client_stale_after) {
     state_word |= shm::state_bits::kClientStale;
   }
   const auto core_state = s.core_state.load(std::memory_order_relaxed);

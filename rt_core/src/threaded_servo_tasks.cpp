@@ -14,7 +14,7 @@ namespace {
 
 /// Keeps the compiler from eliding the stack prefault.
 void touch_stack(std::size_t bytes) noexcept {
-  constexpr std::size_t kChunk = 16 * 1024;
+  constexpr std::size_t kChunk = std::size_t{16} * 1024;
   volatile unsigned char buffer[kChunk];
   std::memset(const_cast<unsigned char*>(buffer), 0, kChunk);
   if (bytes > kChunk) {
@@ -41,9 +41,9 @@ bool place_current_thread(const ThreadPlacement& placement, std::size_t stack_by
   return ok;
 }
 
-ThreadedServoTasks::ThreadedServoTasks(Clock& clock, ServoTask& main_task,
-                                       ServoTask& degraded_task, ServoShared& shared,
-                                       TimeNs period, const ThreadPlacement& main_placement,
+ThreadedServoTasks::ThreadedServoTasks(Clock& clock, ServoTask& main_task, ServoTask& degraded_task,
+                                       ServoShared& shared, TimeNs period,
+                                       const ThreadPlacement& main_placement,
                                        const ThreadPlacement& degraded_placement)
     : clock_(&clock), shared_(&shared), period_(period) {
   main_.task = &main_task;
@@ -56,7 +56,9 @@ ThreadedServoTasks::ThreadedServoTasks(Clock& clock, ServoTask& main_task,
   pthread_setname_np(degraded_.thread.native_handle(), "hc-degraded");
 }
 
-ThreadedServoTasks::~ThreadedServoTasks() { stop(); }
+ThreadedServoTasks::~ThreadedServoTasks() {
+  stop();
+}
 
 void ThreadedServoTasks::worker_loop(Worker& w) noexcept {
   w.placement_ok.store(place_current_thread(w.placement), std::memory_order_release);
@@ -91,7 +93,8 @@ void ThreadedServoTasks::worker_loop(Worker& w) noexcept {
   }
 }
 
-void ThreadedServoTasks::release(ServoRole role, std::uint64_t cycle, TimeNs release_time) noexcept {
+void ThreadedServoTasks::release(ServoRole role, std::uint64_t cycle,
+                                 TimeNs release_time) noexcept {
   Worker& w = worker(role);
   w.started.store(-1, std::memory_order_relaxed);
   w.release_time.store(release_time, std::memory_order_relaxed);

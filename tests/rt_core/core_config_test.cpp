@@ -5,9 +5,11 @@
 namespace hapticctrl::rt_core {
 namespace {
 
-CoreConfig parse(std::vector<std::string> args) { return parse_core_args(args); }
+CoreConfig parse(const std::vector<std::string>& args) {
+  return parse_core_args(args);
+}
 
-void expect_error(std::vector<std::string> args, const std::string& text) {
+void expect_error(const std::vector<std::string>& args, const std::string& text) {
   try {
     parse_core_args(args);
     FAIL() << "expected an error containing " << text;
@@ -25,10 +27,17 @@ TEST(CoreConfig, Defaults) {
 }
 
 TEST(CoreConfig, ParsesEveryOption) {
-  const CoreConfig c = parse({"--instance", "a1", "--period-us", "250", "--duration", "1.5",
-                              "--rt", "ignore", "--priority", "70", "--cpu", "-1", "--json",
-                              "--histogram", "/tmp/h", "--inject-overrun", "100:5",
-                              "--trip-miss-ppm", "1000", "--miss-window", "500"});
+  const CoreConfig c = parse({"--instance",  "a1",
+                              "--period-us", "250",
+                              "--duration",  "1.5",
+                              "--rt",        "ignore",
+                              "--priority",  "70",
+                              "--cpu",       "-1",
+                              "--json",      "--histogram",
+                              "/tmp/h",      "--inject-overrun",
+                              "100:5",       "--trip-miss-ppm",
+                              "1000",        "--miss-window",
+                              "500"});
   EXPECT_EQ(c.instance, "a1");
   EXPECT_EQ(c.period, 250 * kNsPerUs);
   EXPECT_EQ(c.duration, 1'500'000'000);

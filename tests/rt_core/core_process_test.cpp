@@ -52,9 +52,10 @@ std::optional<shm::VpPayload> wait_vp(const shm::Segment& seg, Predicate predica
   return std::nullopt;
 }
 
-std::vector<std::string> core_args(const std::string& instance, std::vector<std::string> extra = {}) {
-  std::vector<std::string> args{"--instance", instance, "--period-us", "2000", "--rt", "ignore",
-                                "--blackbox-dir", "/tmp"};
+std::vector<std::string> core_args(const std::string& instance,
+                                   std::vector<std::string> extra = {}) {
+  std::vector<std::string> args{"--instance", instance, "--period-us",    "2000",
+                                "--rt",       "ignore", "--blackbox-dir", "/tmp"};
   args.insert(args.end(), extra.begin(), extra.end());
   return args;
 }
@@ -65,8 +66,9 @@ TEST(CoreProcess, InjectedOverrunTripsFailSafeInOrderAndExitsWithTheReason) {
   auto seg = attach_when_ready(instance, true);
   ASSERT_TRUE(seg.has_value()) << core.err();
   seg->ctrl_writer().send(shm::CtrlCode::kPowerOn, 0, 0);
-  const auto powered =
-      wait_vp(*seg, [](const shm::VpPayload& vp) { return (vp.state_word & shm::state_bits::kPowered) != 0; });
+  const auto powered = wait_vp(*seg, [](const shm::VpPayload& vp) {
+    return (vp.state_word & shm::state_bits::kPowered) != 0;
+  });
   ASSERT_TRUE(powered.has_value()) << "power-on through ctrl";
   EXPECT_EQ(powered->core_state, static_cast<std::uint32_t>(shm::CoreState::kRunning));
 

@@ -20,7 +20,7 @@ TEST(CycleGate, NewerGrantLocksOutALateTask) {
   CycleGate gate;
   gate.grant(10);
   ASSERT_TRUE(gate.enter(10));
-  gate.leave(10);  // the main SERVO now computes without the gate
+  gate.leave(10);               // the main SERVO now computes without the gate
   ASSERT_TRUE(gate.grant(11));  // the degraded SERVO takes cycle 11
   EXPECT_FALSE(gate.enter(10)) << "late commit of cycle 10 is refused";
 }

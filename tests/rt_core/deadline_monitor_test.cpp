@@ -7,9 +7,15 @@ namespace {
 
 constexpr TimeNs kP = kNsPerMs;
 
-CycleTimes good(TimeNs t) { return {t, t, t + 1000, t + 2000, t + 50'000, t + 3 * kP / 4, false}; }
-CycleTimes late(TimeNs t) { return {t, t, t + 1000, t + 2000, -1, t + 3 * kP / 4, false}; }
-CycleTimes degraded(TimeNs t) { return {t, t, t + 1000, -1, -1, t + 3 * kP / 4, true}; }
+CycleTimes good(TimeNs t) {
+  return {t, t, t + 1000, t + 2000, t + 50'000, t + 3 * kP / 4, false};
+}
+CycleTimes late(TimeNs t) {
+  return {t, t, t + 1000, t + 2000, -1, t + 3 * kP / 4, false};
+}
+CycleTimes degraded(TimeNs t) {
+  return {t, t, t + 1000, -1, -1, t + 3 * kP / 4, true};
+}
 
 TEST(DeadlineMonitor, FourMissesThenGoodIsNoFailSafe) {
   DeadlineMonitor m;

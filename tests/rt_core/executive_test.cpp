@@ -50,8 +50,8 @@ struct Rig {
       std::make_unique<shm::SeqlockCell<shm::PositionPayload>>();
   std::unique_ptr<shm::SeqlockCell<shm::TelemetryPayload>> telemetry =
       std::make_unique<shm::SeqlockCell<shm::TelemetryPayload>>();
-  ServoShared shared{arm, shm::CtrlReader(*ctrl, *acks), ServoRegions{vpr.get(), vp.get(), position.get()},
-                     true};
+  ServoShared shared{arm, shm::CtrlReader(*ctrl, *acks),
+                     ServoRegions{vpr.get(), vp.get(), position.get()}, true};
   ServoTask main_task{shared, ServoRole::kMain, ServoLaw()};
   ServoTask degraded_task{shared, ServoRole::kDegraded, ServoLaw()};
   BlackBox box{4000};
@@ -61,9 +61,8 @@ struct Rig {
 
 /// Main SERVO takes `slow` for the given cycles, 50 µs otherwise.
 ScriptedServoTasks::Duration slow_for(std::uint64_t first, std::uint64_t last, TimeNs slow) {
-  return [=](std::uint64_t cycle) {
-    return (cycle >= first && cycle <= last) ? slow : 50 * kNsPerUs;
-  };
+  return
+      [=](std::uint64_t cycle) { return (cycle >= first && cycle <= last) ? slow : 50 * kNsPerUs; };
 }
 
 TEST(Executive, NominalRunHasNoMissAndStopsWhenDurationElapses) {

@@ -28,8 +28,12 @@ void* operator new(std::size_t size) {
   }
   throw std::bad_alloc();
 }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t /*size*/) noexcept { std::free(p); }
+void operator delete(void* p) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, std::size_t /*size*/) noexcept {
+  std::free(p);
+}
 
 namespace hapticctrl::rt_core {
 namespace {
@@ -59,13 +63,14 @@ TEST(NoAllocation, ArmedCyclesAllocateNothing) {
   client.session_id = 1;
   vpr->publish(client, 0);
   DecoupledJointSim arm(DecoupledJointParams{}, force.get());
-  ServoShared shared(arm, shm::CtrlReader(*ctrl, *acks), ServoRegions{vpr.get(), vp.get(), position.get()},
-                     true);
+  ServoShared shared(arm, shm::CtrlReader(*ctrl, *acks),
+                     ServoRegions{vpr.get(), vp.get(), position.get()}, true);
   ServoTask main_task(shared, ServoRole::kMain, ServoLaw());
   ServoTask degraded_task(shared, ServoRole::kDegraded, ServoLaw());
   // Every 50th cycle overruns, so degraded cycles and discarded late commits are exercised too.
-  test::ScriptedServoTasks tasks(clock, main_task, degraded_task, shared, kPeriod,
-                                 [](std::uint64_t c) { return c % 50 == 0 ? kPeriod * 3 / 2 : 100 * kNsPerUs; });
+  test::ScriptedServoTasks tasks(
+      clock, main_task, degraded_task, shared, kPeriod,
+      [](std::uint64_t c) { return c % 50 == 0 ? kPeriod * 3 / 2 : 100 * kNsPerUs; });
   BlackBox box(2000);
   ExecutiveConfig config;
   config.period = kPeriod;

@@ -35,7 +35,8 @@ bool wait_idle(ThreadedServoTasks& tasks, ServoRole role) {
 
 TEST(ThreadedServoTasks, ReleasedCyclesRunAndCommit) {
   ThreadRig rig;
-  ThreadedServoTasks tasks(rig.clock, rig.main_task, rig.degraded_task, rig.shared, kNsPerMs, {}, {});
+  ThreadedServoTasks tasks(rig.clock, rig.main_task, rig.degraded_task, rig.shared, kNsPerMs, {},
+                           {});
   for (std::uint64_t k = 1; k <= 20; ++k) {
     ASSERT_TRUE(rig.shared.gate.grant(k));
     tasks.release(ServoRole::kMain, k, rig.clock.now());
@@ -48,7 +49,8 @@ TEST(ThreadedServoTasks, ReleasedCyclesRunAndCommit) {
 
 TEST(ThreadedServoTasks, InjectedOverrunKeepsMainBusyWhileDegradedCommits) {
   ThreadRig rig;
-  ThreadedServoTasks tasks(rig.clock, rig.main_task, rig.degraded_task, rig.shared, kNsPerMs, {}, {});
+  ThreadedServoTasks tasks(rig.clock, rig.main_task, rig.degraded_task, rig.shared, kNsPerMs, {},
+                           {});
   rig.shared.overrun_request.store(20);  // ~20 ms stall
   ASSERT_TRUE(rig.shared.gate.grant(1));
   tasks.release(ServoRole::kMain, 1, rig.clock.now());
@@ -66,9 +68,9 @@ TEST(ThreadedServoTasks, InjectedOverrunKeepsMainBusyWhileDegradedCommits) {
 
 TEST(ThreadedServoTasks, StopJoinsPromptly) {
   ThreadRig rig;
-  auto tasks = std::make_unique<ThreadedServoTasks>(rig.clock, rig.main_task, rig.degraded_task,
-                                                    rig.shared, kNsPerMs, ThreadPlacement{},
-                                                    ThreadPlacement{});
+  auto tasks =
+      std::make_unique<ThreadedServoTasks>(rig.clock, rig.main_task, rig.degraded_task, rig.shared,
+                                           kNsPerMs, ThreadPlacement{}, ThreadPlacement{});
   const auto start = std::chrono::steady_clock::now();
   tasks->stop();
   EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(2));

@@ -33,7 +33,8 @@ class ScriptedServoTasks final : public rt_core::ServoTasks {
     Pending& p = pending(role);
     const rt_core::TimeNs start = release_time + start_delay;
     p.task->begin(cycle, start, period_);
-    rt_core::TimeNs duration = role == rt_core::ServoRole::kMain ? main_duration_(cycle) : degraded_duration;
+    rt_core::TimeNs duration =
+        role == rt_core::ServoRole::kMain ? main_duration_(cycle) : degraded_duration;
     if (role == rt_core::ServoRole::kMain) {
       const std::uint32_t k = shared_->overrun_request.exchange(0);
       if (k > 0) {
@@ -75,7 +76,8 @@ class ScriptedServoTasks final : public rt_core::ServoTasks {
     for (;;) {
       Pending* next = nullptr;
       for (Pending* p : {&main_, &degraded_}) {
-        if (p->cycle && p->finish_at <= clock_->now() && (next == nullptr || p->finish_at < next->finish_at)) {
+        if (p->cycle && p->finish_at <= clock_->now() &&
+            (next == nullptr || p->finish_at < next->finish_at)) {
           next = p;
         }
       }

@@ -20,8 +20,8 @@ class SpawnedProcess {
  public:
   SpawnedProcess(const std::string& binary, const std::vector<std::string>& args) {
     static int counter = 0;
-    const std::string base = "/tmp/hapticctrl-test-" + std::to_string(getpid()) + "-" +
-                             std::to_string(++counter);
+    const std::string base =
+        "/tmp/hapticctrl-test-" + std::to_string(getpid()) + "-" + std::to_string(++counter);
     out_path_ = base + ".out";
     err_path_ = base + ".err";
     pid_ = fork();

@@ -38,7 +38,9 @@ class BlackBox {
   /// Real-time contract: safe in the cycle (copies into the preallocated ring).
   void record(const CycleRecord& r) noexcept;
 
-  [[nodiscard]] std::size_t size() const noexcept { return count_ < ring_.size() ? count_ : ring_.size(); }
+  [[nodiscard]] std::size_t size() const noexcept {
+    return count_ < ring_.size() ? count_ : ring_.size();
+  }
   [[nodiscard]] std::size_t capacity() const noexcept { return ring_.size(); }
   /// The i-th oldest record still held (0 = oldest).
   [[nodiscard]] const CycleRecord& at(std::size_t i) const noexcept;

@@ -15,9 +15,9 @@ namespace hapticctrl::rt_core {
 
 struct CoreConfig {
   std::string instance = "default";
-  std::string group;                   ///< shm group (mode 0660)
-  TimeNs period = kNsPerMs;            ///< 100 µs .. 10 ms
-  TimeNs duration = 0;                 ///< 0: run until stopped
+  std::string group;         ///< shm group (mode 0660)
+  TimeNs period = kNsPerMs;  ///< 100 µs .. 10 ms
+  TimeNs duration = 0;       ///< 0: run until stopped
   RtPolicy rt_policy = RtPolicy::kWarn;
   int priority = 80;                   ///< CLOCK; SERVO = priority - 1, degraded = priority - 2
   int cpu = -2;                        ///< -2: auto (last CPU), -1: none, >= 0: that CPU

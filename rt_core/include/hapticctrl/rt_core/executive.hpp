@@ -52,7 +52,7 @@ enum class StopStep : std::uint8_t {
 
 struct ExecutiveConfig {
   TimeNs period = kNsPerMs;
-  TimeNs duration = 0;              ///< stop after this long (0: run until stopped)
+  TimeNs duration = 0;                 ///< stop after this long (0: run until stopped)
   std::uint32_t telemetry_every = 20;  ///< publish telemetry every N cycles
   ChronicMissConfig chronic;
   shm::RtMode rt_mode = shm::RtMode::kNone;

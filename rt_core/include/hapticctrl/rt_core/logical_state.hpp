@@ -15,9 +15,9 @@
 namespace hapticctrl::rt_core {
 
 struct LogicalState {
-  bool powered = false;         ///< motor commands enabled
-  bool estop = false;           ///< latched until an explicit reset
-  bool stop_requested = false;  ///< orderly stop asked through ctrl
+  bool powered = false;                      ///< motor commands enabled
+  bool estop = false;                        ///< latched until an explicit reset
+  bool stop_requested = false;               ///< orderly stop asked through ctrl
   std::uint32_t pending_overrun_cycles = 0;  ///< fault injection queued for the main SERVO
 
   /// state_bits for VP/position (kFailSafe/kDegraded/... are added by the caller).

@@ -19,7 +19,7 @@ struct ServoInputs {
   TimeNs dt = 0;
   ArmMeasures measures;
   LogicalState logical;
-  shm::VprPayload client;  ///< last valid client sample
+  shm::VprPayload client;     ///< last valid client sample
   bool client_valid = false;  ///< a valid client sample exists
   TimeNs client_age = 0;      ///< now - arrival of that sample
 };

@@ -63,6 +63,7 @@ class ThreadedServoTasks final : public ServoTasks {
 /// Applies SCHED_FIFO `priority` (if > 0) and CPU affinity (if >= 0) to the calling thread and
 /// touches `stack_bytes` of stack so page faults happen now, not in the cycle. Returns whether
 /// everything asked for was granted. Not for the cycle.
-bool place_current_thread(const ThreadPlacement& placement, std::size_t stack_bytes = 256 * 1024) noexcept;
+bool place_current_thread(const ThreadPlacement& placement,
+                          std::size_t stack_bytes = std::size_t{256} * 1024) noexcept;
 
 }  // namespace hapticctrl::rt_core

@@ -50,6 +50,9 @@ int resolve_cpu(int requested) {
 }
 
 int run_core(const CoreConfig& config) {
+  // Before the segment exists: a stop signal must always run the stop sequence, never the
+  // default action that would leave the segment behind.
+  install_signal_handlers();
   const RtReport rt = rt_preflight(config.rt_policy, config.priority);
   if (config.rt_policy == RtPolicy::kWarn) {
     std::cerr << "hapticctrl-core: " << rt.summary() << "\n";
@@ -78,7 +81,6 @@ int run_core(const CoreConfig& config) {
                            ThreadPlacement{fifo ? config.priority - 1 : 0, cpu},
                            ThreadPlacement{fifo ? config.priority - 2 : 0, -1});
   place_current_thread(ThreadPlacement{fifo ? config.priority : 0, cpu});
-  install_signal_handlers();
 
   ExecutiveConfig exec_config;
   exec_config.period = config.period;

@@ -6,6 +6,7 @@
 
 #include <memory>
 
+#include "support/in_memory_regions.hpp"
 #include "support/mock_arm.hpp"
 #include "support/scripted_servo_tasks.hpp"
 
@@ -36,22 +37,15 @@ struct Rig {
   static TimeNs slot(std::uint64_t k) {
     return (kStart / kPeriod + 2) * kPeriod + static_cast<TimeNs>(k) * kPeriod;
   }
-  shm::CtrlWriter ctrl_writer() { return {ctrl->slots[0], acks->slots[0], 0}; }
+  shm::CtrlWriter ctrl_writer() { return regions.ctrl_writer(); }
 
   FakeClock clock{kStart};
   MockArm arm;
-  std::unique_ptr<shm::CtrlRegion> ctrl = std::make_unique<shm::CtrlRegion>();
-  std::unique_ptr<shm::CtrlAckRegion> acks = std::make_unique<shm::CtrlAckRegion>();
-  std::unique_ptr<shm::SeqlockCell<shm::VprPayload>> vpr =
-      std::make_unique<shm::SeqlockCell<shm::VprPayload>>();
-  std::unique_ptr<shm::SeqlockCell<shm::VpPayload>> vp =
-      std::make_unique<shm::SeqlockCell<shm::VpPayload>>();
-  std::unique_ptr<shm::SeqlockCell<shm::PositionPayload>> position =
-      std::make_unique<shm::SeqlockCell<shm::PositionPayload>>();
-  std::unique_ptr<shm::SeqlockCell<shm::TelemetryPayload>> telemetry =
-      std::make_unique<shm::SeqlockCell<shm::TelemetryPayload>>();
-  ServoShared shared{arm, shm::CtrlReader(*ctrl, *acks),
-                     ServoRegions{vpr.get(), vp.get(), position.get()}, true};
+  test::InMemoryRegions regions;
+  std::unique_ptr<shm::SeqlockCell<shm::VpPayload>>& vp = regions.vp;
+  std::unique_ptr<shm::SeqlockCell<shm::PositionPayload>>& position = regions.position;
+  std::unique_ptr<shm::SeqlockCell<shm::TelemetryPayload>>& telemetry = regions.telemetry;
+  ServoShared shared{arm, regions.ctrl_reader(), regions.servo_regions(), true};
   ServoTask main_task{shared, ServoRole::kMain, ServoLaw()};
   ServoTask degraded_task{shared, ServoRole::kDegraded, ServoLaw()};
   BlackBox box{4000};

@@ -9,6 +9,7 @@
 
 #include "hapticctrl/rt_core/decoupled_joint_sim.hpp"
 #include "hapticctrl/rt_core/executive.hpp"
+#include "support/in_memory_regions.hpp"
 #include "support/scripted_servo_tasks.hpp"
 
 namespace {
@@ -49,22 +50,15 @@ TEST(NoAllocation, CounterSeesAllocations) {
 TEST(NoAllocation, ArmedCyclesAllocateNothing) {
   constexpr TimeNs kPeriod = kNsPerMs;
   FakeClock clock;
-  auto ctrl = std::make_unique<shm::CtrlRegion>();
-  auto acks = std::make_unique<shm::CtrlAckRegion>();
-  auto vpr = std::make_unique<shm::SeqlockCell<shm::VprPayload>>();
-  auto vp = std::make_unique<shm::SeqlockCell<shm::VpPayload>>();
-  auto position = std::make_unique<shm::SeqlockCell<shm::PositionPayload>>();
-  auto telemetry = std::make_unique<shm::SeqlockCell<shm::TelemetryPayload>>();
-  auto force = std::make_unique<shm::SeqlockCell<shm::ForcePayload>>();
+  test::InMemoryRegions regions;
   shm::ForcePayload push;
   push.wrench[0] = 2.0;
-  force->publish(push, 0);
+  regions.force->publish(push, 0);
   shm::VprPayload client;
   client.session_id = 1;
-  vpr->publish(client, 0);
-  DecoupledJointSim arm(DecoupledJointParams{}, force.get());
-  ServoShared shared(arm, shm::CtrlReader(*ctrl, *acks),
-                     ServoRegions{vpr.get(), vp.get(), position.get()}, true);
+  regions.vpr->publish(client, 0);
+  DecoupledJointSim arm(DecoupledJointParams{}, regions.force.get());
+  ServoShared shared(arm, regions.ctrl_reader(), regions.servo_regions(), true);
   ServoTask main_task(shared, ServoRole::kMain, ServoLaw());
   ServoTask degraded_task(shared, ServoRole::kDegraded, ServoLaw());
   // Every 50th cycle overruns, so degraded cycles and discarded late commits are exercised too.
@@ -77,9 +71,9 @@ TEST(NoAllocation, ArmedCyclesAllocateNothing) {
   config.duration = 2 * kNsPerS;
   config.telemetry_every = 10;
   Executive executive(config, clock, tasks, shared, arm,
-                      ExecutiveOutputs{nullptr, telemetry.get(), position.get()}, box);
-  shm::CtrlWriter writer(ctrl->slots[0], acks->slots[0], 0);
-  writer.send(shm::CtrlCode::kPowerOn, 0, 0);
+                      ExecutiveOutputs{nullptr, regions.telemetry.get(), regions.position.get()},
+                      box);
+  regions.ctrl_writer().send(shm::CtrlCode::kPowerOn, 0, 0);
 
   g_allocations = 0;
   g_counting = true;

@@ -6,6 +6,7 @@
 #include <limits>
 #include <memory>
 
+#include "support/in_memory_regions.hpp"
 #include "support/mock_arm.hpp"
 
 namespace hapticctrl::rt_core {
@@ -15,19 +16,13 @@ using test::MockArm;
 
 struct ServoRig {
   MockArm arm;
-  std::unique_ptr<shm::CtrlRegion> ctrl = std::make_unique<shm::CtrlRegion>();
-  std::unique_ptr<shm::CtrlAckRegion> acks = std::make_unique<shm::CtrlAckRegion>();
-  std::unique_ptr<shm::SeqlockCell<shm::VprPayload>> vpr =
-      std::make_unique<shm::SeqlockCell<shm::VprPayload>>();
-  std::unique_ptr<shm::SeqlockCell<shm::VpPayload>> vp =
-      std::make_unique<shm::SeqlockCell<shm::VpPayload>>();
-  std::unique_ptr<shm::SeqlockCell<shm::PositionPayload>> position =
-      std::make_unique<shm::SeqlockCell<shm::PositionPayload>>();
-  ServoShared shared{arm, shm::CtrlReader(*ctrl, *acks),
-                     ServoRegions{vpr.get(), vp.get(), position.get()}, false};
+  test::InMemoryRegions regions;
+  std::unique_ptr<shm::SeqlockCell<shm::VprPayload>>& vpr = regions.vpr;
+  std::unique_ptr<shm::SeqlockCell<shm::VpPayload>>& vp = regions.vp;
+  ServoShared shared{arm, regions.ctrl_reader(), regions.servo_regions(), false};
   ServoTask main_task{shared, ServoRole::kMain, ServoLaw()};
   ServoTask degraded_task{shared, ServoRole::kDegraded, ServoLaw()};
-  shm::CtrlWriter writer{ctrl->slots[0], acks->slots[0], 0};
+  shm::CtrlWriter writer = regions.ctrl_writer();
 
   StepResult cycle(ServoTask& task, std::uint64_t k) {
     shared.gate.grant(k);

@@ -5,6 +5,7 @@
 
 #include <memory>
 
+#include "support/in_memory_regions.hpp"
 #include "support/mock_arm.hpp"
 
 namespace hapticctrl::rt_core {
@@ -12,11 +13,8 @@ namespace {
 
 struct ThreadRig {
   test::MockArm arm;
-  std::unique_ptr<shm::CtrlRegion> ctrl = std::make_unique<shm::CtrlRegion>();
-  std::unique_ptr<shm::CtrlAckRegion> acks = std::make_unique<shm::CtrlAckRegion>();
-  std::unique_ptr<shm::SeqlockCell<shm::VpPayload>> vp =
-      std::make_unique<shm::SeqlockCell<shm::VpPayload>>();
-  ServoShared shared{arm, shm::CtrlReader(*ctrl, *acks), ServoRegions{nullptr, vp.get(), nullptr},
+  test::InMemoryRegions regions;
+  ServoShared shared{arm, regions.ctrl_reader(), ServoRegions{nullptr, regions.vp.get(), nullptr},
                      true};
   ServoTask main_task{shared, ServoRole::kMain, ServoLaw()};
   ServoTask degraded_task{shared, ServoRole::kDegraded, ServoLaw()};

@@ -1,0 +1,86 @@
+#pragma once
+/// @file arm_simulator.hpp
+/// Rigid-body simulation of the arm: M(q) qdd + C(q, qd) qd + G(q) = tau_motor + J^T w_operator
+/// + tau_friction + tau_stops, integrated with semi-implicit Euler in sub-steps. Deterministic,
+/// fixed-size Eigen only; takes dt, never reads a clock.
+///
+/// SimulatedArm wraps it behind the ArmIo seam: motor torque saturation, brakes while the supply
+/// is off (the arm is held), the operator wrench read from the `force` region (validated), and
+/// measures quantised to the encoder resolution with a filtered finite-difference velocity.
+
+#include <cstdint>
+
+#include "hapticctrl/rt_core/arm_dynamics.hpp"
+#include "hapticctrl/rt_core/arm_io.hpp"
+#include "hapticctrl/shm/payloads.hpp"
+#include "hapticctrl/shm/seqlock.hpp"
+
+namespace hapticctrl::rt_core {
+
+struct SimulatorOptions {
+  int substeps = 4;                  ///< integration sub-steps per period
+  bool friction = true;              ///< viscous + Coulomb (smoothed over coulomb_velocity)
+  double coulomb_velocity = 0.01;    ///< rad/s, tanh smoothing of Coulomb friction
+  double stop_stiffness = 300.0;     ///< N·m/rad, joint-limit stops
+  double stop_damping = 3.0;         ///< N·m·s/rad
+};
+
+/// The pure simulator. Real-time contract of every method: noexcept, no allocation.
+class ArmSimulator {
+ public:
+  ArmSimulator(const ArmDynamics& dynamics, const SimulatorOptions& options,
+               const Vector6d& start) noexcept;
+
+  /// Advances by `dt` seconds. `motor_torque` is applied as given (saturate before), the
+  /// operator wrench acts on the handle (base frame). With `brakes` the arm does not move.
+  void step(const Vector6d& motor_torque, const Vector6d& operator_wrench, double dt,
+            bool brakes) noexcept;
+
+  [[nodiscard]] const Vector6d& position() const noexcept { return q_; }
+  [[nodiscard]] const Vector6d& velocity() const noexcept { return qd_; }
+  [[nodiscard]] const ChainState& chain() const noexcept { return chain_; }
+  /// Kinetic + potential energy (J).
+  [[nodiscard]] double energy() const noexcept;
+  void set_state(const Vector6d& q, const Vector6d& qd) noexcept;
+
+ private:
+  [[nodiscard]] Vector6d passive_torques() const noexcept;
+
+  const ArmDynamics* dynamics_;
+  SimulatorOptions options_;
+  Vector6d q_;
+  Vector6d qd_ = Vector6d::Zero();
+  ChainState chain_;
+};
+
+/// ArmIo over the simulator.
+class SimulatedArm final : public ArmIo {
+ public:
+  SimulatedArm(const ArmDynamics& dynamics, const SimulatorOptions& options, const Vector6d& start,
+               const shm::SeqlockCell<shm::ForcePayload>* force) noexcept;
+
+  bool get_measures(ArmMeasures& out) noexcept override;
+  void send_commands(const ArmCommands& commands, TimeNs now, TimeNs dt) noexcept override;
+  void set_supply(bool on) noexcept override { supply_on_ = on; }
+
+  [[nodiscard]] const ArmSimulator& simulator() const noexcept { return sim_; }
+  [[nodiscard]] ArmSimulator& simulator() noexcept { return sim_; }
+  [[nodiscard]] const Vector6d& operator_wrench() const noexcept { return operator_wrench_; }
+  [[nodiscard]] std::uint64_t rejected_force_samples() const noexcept { return rejected_; }
+
+ private:
+  void read_operator_wrench() noexcept;
+  [[nodiscard]] Vector6d quantised(const Vector6d& q) const noexcept;
+
+  const ArmDynamics* dynamics_;
+  ArmSimulator sim_;
+  const shm::SeqlockCell<shm::ForcePayload>* force_;
+  Vector6d operator_wrench_ = Vector6d::Zero();
+  Vector6d applied_torque_ = Vector6d::Zero();
+  Vector6d measured_position_;
+  Vector6d measured_velocity_ = Vector6d::Zero();
+  bool supply_on_ = false;
+  std::uint64_t rejected_ = 0;
+};
+
+}  // namespace hapticctrl::rt_core

@@ -1,0 +1,112 @@
+#include "hapticctrl/rt_core/arm_dynamics.hpp"
+
+namespace hapticctrl::rt_core {
+
+Matrix3d axis_rotation(const Vector3d& axis, double angle) noexcept {
+  return Eigen::AngleAxisd(angle, axis).toRotationMatrix();
+}
+
+std::array<double, 7> pose_of(const ChainState& s) noexcept {
+  const Eigen::Quaterniond q(s.handle_rotation);
+  return {s.handle_position.x(), s.handle_position.y(), s.handle_position.z(),
+          q.x(), q.y(), q.z(), q.w()};
+}
+
+void ArmDynamics::forward_kinematics(const Vector6d& q, ChainState& out) const noexcept {
+  Matrix3d rotation = Matrix3d::Identity();
+  Vector3d position = Vector3d::Zero();
+  for (int i = 0; i < kJoints; ++i) {
+    const JointModel& j = model_.joints[static_cast<std::size_t>(i)];
+    position += rotation * j.origin;  // the joint sits on the previous link
+    out.axis[static_cast<std::size_t>(i)] = rotation * j.axis;
+    rotation = rotation * axis_rotation(j.axis, q(i));
+    out.rotation[static_cast<std::size_t>(i)] = rotation;
+    out.position[static_cast<std::size_t>(i)] = position;
+  }
+  out.handle_rotation = rotation;
+  out.handle_position = position + rotation * model_.handle;
+}
+
+Matrix6d ArmDynamics::jacobian(const ChainState& s) const noexcept {
+  Matrix6d J;
+  for (int i = 0; i < kJoints; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    J.block<3, 1>(0, i) = s.axis[k].cross(s.handle_position - s.position[k]);
+    J.block<3, 1>(3, i) = s.axis[k];
+  }
+  return J;
+}
+
+Vector6d ArmDynamics::inverse_dynamics(const ChainState& s, const Vector6d& qd,
+                                       const Vector6d& qdd, const Vector3d& gravity) const noexcept {
+  // Forward pass in base coordinates: angular velocity/acceleration of each link and linear
+  // acceleration of each joint origin (the base accelerates upward against gravity).
+  std::array<Vector3d, kJoints> omega{};
+  std::array<Vector3d, kJoints> alpha{};
+  std::array<Vector3d, kJoints> force{};
+  std::array<Vector3d, kJoints> moment{};
+  Vector3d w = Vector3d::Zero();
+  Vector3d dw = Vector3d::Zero();
+  Vector3d a = -gravity;
+  Vector3d previous = Vector3d::Zero();
+  for (int i = 0; i < kJoints; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const JointModel& j = model_.joints[k];
+    const Vector3d r = s.position[k] - previous;
+    a = a + dw.cross(r) + w.cross(w.cross(r));
+    const Vector3d joint_rate = s.axis[k] * qd(i);
+    dw = dw + s.axis[k] * qdd(i) + w.cross(joint_rate);
+    w = w + joint_rate;
+    omega[k] = w;
+    alpha[k] = dw;
+    const Vector3d c = s.rotation[k] * j.com;  // com relative to the joint origin
+    const Vector3d a_com = a + dw.cross(c) + w.cross(w.cross(c));
+    const Matrix3d inertia = s.rotation[k] * j.inertia * s.rotation[k].transpose();
+    force[k] = j.mass * a_com;
+    moment[k] = inertia * dw + w.cross(inertia * w) + c.cross(force[k]);
+    previous = s.position[k];
+  }
+  // Backward pass: wrench each joint transmits, about its origin.
+  Vector6d tau;
+  Vector3d f = Vector3d::Zero();
+  Vector3d n = Vector3d::Zero();
+  for (int i = kJoints - 1; i >= 0; --i) {
+    const auto k = static_cast<std::size_t>(i);
+    if (i < kJoints - 1) {
+      n = n + (s.position[k + 1] - s.position[k]).cross(f);
+    }
+    f = f + force[k];
+    n = n + moment[k];
+    tau(i) = s.axis[k].dot(n) + model_.joints[k].rotor_inertia * qdd(i);
+  }
+  return tau;
+}
+
+Matrix6d ArmDynamics::mass_matrix(const ChainState& s) const noexcept {
+  Matrix6d M;
+  const Vector6d zero = Vector6d::Zero();
+  for (int c = 0; c < kJoints; ++c) {
+    M.col(c) = inverse_dynamics(s, zero, Vector6d::Unit(c), Vector3d::Zero());
+  }
+  return M;
+}
+
+Vector6d ArmDynamics::gravity_torque(const ChainState& s) const noexcept {
+  return inverse_dynamics(s, Vector6d::Zero(), Vector6d::Zero(), model_.gravity);
+}
+
+Vector6d ArmDynamics::bias_torque(const ChainState& s, const Vector6d& qd) const noexcept {
+  return inverse_dynamics(s, qd, Vector6d::Zero(), model_.gravity);
+}
+
+double ArmDynamics::potential_energy(const ChainState& s) const noexcept {
+  double energy = 0.0;
+  for (int i = 0; i < kJoints; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const Vector3d com = s.position[k] + s.rotation[k] * model_.joints[k].com;
+    energy -= model_.joints[k].mass * model_.gravity.dot(com);
+  }
+  return energy;
+}
+
+}  // namespace hapticctrl::rt_core

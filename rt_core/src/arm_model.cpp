@@ -1,0 +1,253 @@
+#include "hapticctrl/rt_core/arm_model.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <vector>
+
+#ifndef HAPTICCTRL_DEFAULT_ARM_MODEL
+#define HAPTICCTRL_DEFAULT_ARM_MODEL "rt_core/models/virtuose6d_class.arm"
+#endif
+
+namespace hapticctrl::rt_core {
+namespace {
+
+struct Entry {
+  std::vector<double> numbers;
+  std::string text;
+  int line = 0;
+};
+
+/// section -> key -> entry
+using Sections = std::map<std::string, std::map<std::string, Entry>>;
+
+std::string trim(const std::string& s) {
+  const auto begin = s.find_first_not_of(" \t\r");
+  if (begin == std::string::npos) {
+    return "";
+  }
+  return s.substr(begin, s.find_last_not_of(" \t\r") - begin + 1);
+}
+
+class Parser {
+ public:
+  explicit Parser(std::string source) : source_(std::move(source)) {}
+
+  [[noreturn]] void fail(int line, const std::string& where, const std::string& message) const {
+    std::ostringstream out;
+    out << source_;
+    if (line > 0) {
+      out << ":" << line;
+    }
+    out << ": " << where << ": " << message;
+    throw ArmModelError(out.str());
+  }
+
+  Sections split(const std::string& text) {
+    Sections sections;
+    std::istringstream in(text);
+    std::string raw;
+    std::string section = "model";
+    int line_no = 0;
+    while (std::getline(in, raw)) {
+      ++line_no;
+      const std::string line = trim(raw.substr(0, raw.find('#')));
+      if (line.empty()) {
+        continue;
+      }
+      if (line.front() == '[') {
+        if (line.back() != ']') {
+          fail(line_no, line, "section header must end with ']'");
+        }
+        section = trim(line.substr(1, line.size() - 2));
+        if (sections.count(section) != 0) {
+          fail(line_no, "[" + section + "]", "section appears twice");
+        }
+        sections[section];
+        continue;
+      }
+      const auto eq = line.find('=');
+      if (eq == std::string::npos) {
+        fail(line_no, line, "expected 'key = value'");
+      }
+      const std::string key = trim(line.substr(0, eq));
+      Entry entry;
+      entry.text = trim(line.substr(eq + 1));
+      entry.line = line_no;
+      std::istringstream values(entry.text);
+      std::string token;
+      bool numeric = true;
+      while (values >> token) {
+        char* end = nullptr;
+        const double v = std::strtod(token.c_str(), &end);
+        if (end == token.c_str() || *end != '\0') {
+          numeric = false;
+          break;
+        }
+        entry.numbers.push_back(v);
+      }
+      if (!numeric) {
+        entry.numbers.clear();
+      }
+      if (sections[section].count(key) != 0) {
+        fail(line_no, where(section, key), "given twice");
+      }
+      sections[section][key] = entry;
+    }
+    return sections;
+  }
+
+  static std::string where(const std::string& section, const std::string& key) {
+    return "[" + section + "] " + key;
+  }
+
+  const Entry& get(const Sections& s, const std::string& section, const std::string& key) const {
+    const auto sec = s.find(section);
+    if (sec == s.end()) {
+      fail(0, "[" + section + "]", "section missing");
+    }
+    const auto it = sec->second.find(key);
+    if (it == sec->second.end()) {
+      fail(0, where(section, key), "missing");
+    }
+    return it->second;
+  }
+
+  std::vector<double> numbers(const Sections& s, const std::string& section, const std::string& key,
+                              std::size_t count) const {
+    const Entry& e = get(s, section, key);
+    if (e.numbers.size() != count) {
+      fail(e.line, where(section, key),
+           "expected " + std::to_string(count) + " number(s), got '" + e.text + "'");
+    }
+    for (const double v : e.numbers) {
+      if (!std::isfinite(v)) {
+        fail(e.line, where(section, key), "must be finite");
+      }
+    }
+    return e.numbers;
+  }
+
+  double positive(const Sections& s, const std::string& section, const std::string& key,
+                  bool allow_zero = false) const {
+    const double v = numbers(s, section, key, 1)[0];
+    if (v < 0.0 || (!allow_zero && v == 0.0)) {
+      fail(get(s, section, key).line, where(section, key),
+           std::string("must be ") + (allow_zero ? ">= 0" : "> 0") + ", got " + get(s, section, key).text);
+    }
+    return v;
+  }
+
+  Vector3d vec3(const Sections& s, const std::string& section, const std::string& key) const {
+    const auto v = numbers(s, section, key, 3);
+    return {v[0], v[1], v[2]};
+  }
+
+  Vector3d axis(const Sections& s, const std::string& section) const {
+    const Entry& e = get(s, section, "axis");
+    if (e.text == "x" || e.text == "X") {
+      return Vector3d::UnitX();
+    }
+    if (e.text == "y" || e.text == "Y") {
+      return Vector3d::UnitY();
+    }
+    if (e.text == "z" || e.text == "Z") {
+      return Vector3d::UnitZ();
+    }
+    const Vector3d v = vec3(s, section, "axis");
+    if (std::abs(v.norm() - 1.0) > 1e-6) {
+      fail(e.line, where(section, "axis"), "must be x, y, z or a unit vector, got '" + e.text + "'");
+    }
+    return v;
+  }
+
+ private:
+  std::string source_;
+};
+
+}  // namespace
+
+ArmModel parse_arm_model(const std::string& text, const std::string& source) {
+  Parser p(source);
+  const Sections s = p.split(text);
+  ArmModel m;
+  const Entry& format = p.get(s, "model", "format");
+  if (format.text != "1") {
+    p.fail(format.line, "format", "unsupported format '" + format.text + "' (this build reads 1)");
+  }
+  m.name = p.get(s, "model", "name").text;
+  m.gravity = p.vec3(s, "model", "gravity");
+  for (int i = 0; i < kJoints; ++i) {
+    const std::string sec = "joint " + std::to_string(i + 1);
+    JointModel& j = m.joints[static_cast<std::size_t>(i)];
+    j.origin = p.vec3(s, sec, "origin");
+    j.axis = p.axis(s, sec);
+    j.mass = p.positive(s, sec, "mass");
+    j.com = p.vec3(s, sec, "com");
+    const Vector3d principal = p.vec3(s, sec, "inertia");
+    if ((principal.array() < 0.0).any()) {
+      p.fail(p.get(s, sec, "inertia").line, "[" + sec + "] inertia", "principal moments must be >= 0");
+    }
+    j.inertia = principal.asDiagonal();
+    const auto limits = p.numbers(s, sec, "limits", 2);
+    if (!(limits[0] < limits[1])) {
+      p.fail(p.get(s, sec, "limits").line, "[" + sec + "] limits", "min must be below max");
+    }
+    j.q_min = limits[0];
+    j.q_max = limits[1];
+    j.viscous = p.positive(s, sec, "viscous", true);
+    j.coulomb = p.positive(s, sec, "coulomb", true);
+    j.rotor_inertia = p.positive(s, sec, "rotor_inertia", true);
+    j.torque_peak = p.positive(s, sec, "torque_peak");
+    j.torque_continuous = p.positive(s, sec, "torque_continuous");
+    if (j.torque_continuous > j.torque_peak) {
+      p.fail(p.get(s, sec, "torque_continuous").line, "[" + sec + "] torque_continuous",
+             "must not exceed torque_peak");
+    }
+    const double counts = p.positive(s, sec, "encoder_counts");
+    if (counts != std::floor(counts) || counts < 16 || counts > (1 << 24)) {
+      p.fail(p.get(s, sec, "encoder_counts").line, "[" + sec + "] encoder_counts",
+             "must be a whole number in [16, 2^24]");
+    }
+    j.encoder_counts = static_cast<int>(counts);
+  }
+  m.handle = p.vec3(s, "handle", "origin");
+  const auto coupled = p.numbers(s, "limits", "coupled_j2_j3", 2);
+  if (!(coupled[0] < coupled[1])) {
+    p.fail(p.get(s, "limits", "coupled_j2_j3").line, "[limits] coupled_j2_j3", "min must be below max");
+  }
+  m.limits.coupled_j23_min = coupled[0];
+  m.limits.coupled_j23_max = coupled[1];
+  m.limits.force_peak = p.positive(s, "limits", "force_peak");
+  m.limits.force_continuous = p.positive(s, "limits", "force_continuous");
+  m.limits.torque_peak = p.positive(s, "limits", "torque_peak");
+  m.limits.torque_continuous = p.positive(s, "limits", "torque_continuous");
+  const auto stiffness = p.numbers(s, "limits", "max_stiffness", 2);
+  const auto damping = p.numbers(s, "limits", "max_damping", 2);
+  m.limits.max_stiffness_linear = stiffness[0];
+  m.limits.max_stiffness_angular = stiffness[1];
+  m.limits.max_damping_linear = damping[0];
+  m.limits.max_damping_angular = damping[1];
+  m.limits.max_speed = p.positive(s, "limits", "max_speed");
+  m.limits.force_rate = p.positive(s, "limits", "force_rate");
+  if (m.limits.force_continuous > m.limits.force_peak) {
+    p.fail(0, "[limits] force_continuous", "must not exceed force_peak");
+  }
+  return m;
+}
+
+ArmModel load_arm_model(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) {
+    throw ArmModelError("cannot read arm model file '" + path + "'");
+  }
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return parse_arm_model(buffer.str(), path);
+}
+
+std::string default_arm_model_path() { return HAPTICCTRL_DEFAULT_ARM_MODEL; }
+
+}  // namespace hapticctrl::rt_core

@@ -1,0 +1,152 @@
+#include "hapticctrl/rt_core/arm_simulator.hpp"
+
+#include <Eigen/Cholesky>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace hapticctrl::rt_core {
+namespace {
+
+/// Velocity filter time constant of the measured velocity (s): a 1st-order low-pass on the
+/// encoder finite difference, as ARM_REFERENCE proposes.
+constexpr double kVelocityFilterTau = 0.002;
+/// Operator wrench beyond these is rejected as invalid input (N, N·m).
+constexpr double kMaxOperatorForce = 100.0;
+constexpr double kMaxOperatorTorque = 10.0;
+
+}  // namespace
+
+ArmSimulator::ArmSimulator(const ArmDynamics& dynamics, const SimulatorOptions& options,
+                           const Vector6d& start) noexcept
+    : dynamics_(&dynamics), options_(options), q_(start) {
+  dynamics_->forward_kinematics(q_, chain_);
+}
+
+void ArmSimulator::set_state(const Vector6d& q, const Vector6d& qd) noexcept {
+  q_ = q;
+  qd_ = qd;
+  dynamics_->forward_kinematics(q_, chain_);
+}
+
+Vector6d ArmSimulator::passive_torques() const noexcept {
+  const ArmModel& m = dynamics_->model();
+  Vector6d tau = Vector6d::Zero();
+  for (int i = 0; i < kJoints; ++i) {
+    const JointModel& j = m.joints[static_cast<std::size_t>(i)];
+    if (options_.friction) {
+      tau(i) -= j.viscous * qd_(i) + j.coulomb * std::tanh(qd_(i) / options_.coulomb_velocity);
+    }
+    const double below = q_(i) - j.q_min;
+    const double above = q_(i) - j.q_max;
+    if (below < 0.0) {
+      tau(i) -= options_.stop_stiffness * below + options_.stop_damping * std::min(qd_(i), 0.0);
+    } else if (above > 0.0) {
+      tau(i) -= options_.stop_stiffness * above + options_.stop_damping * std::max(qd_(i), 0.0);
+    }
+  }
+  // Coupled J2 + J3 stop (the Virtuose AXE_2_3 limit) acts on both joints.
+  const double sum = q_(1) + q_(2);
+  const double sum_rate = qd_(1) + qd_(2);
+  double coupled = 0.0;
+  if (sum < m.limits.coupled_j23_min) {
+    coupled = -options_.stop_stiffness * (sum - m.limits.coupled_j23_min) -
+              options_.stop_damping * std::min(sum_rate, 0.0);
+  } else if (sum > m.limits.coupled_j23_max) {
+    coupled = -options_.stop_stiffness * (sum - m.limits.coupled_j23_max) -
+              options_.stop_damping * std::max(sum_rate, 0.0);
+  }
+  tau(1) += coupled;
+  tau(2) += coupled;
+  return tau;
+}
+
+void ArmSimulator::step(const Vector6d& motor_torque, const Vector6d& operator_wrench, double dt,
+                        bool brakes) noexcept {
+  if (brakes) {
+    qd_.setZero();
+    return;
+  }
+  const double h = dt / options_.substeps;
+  for (int n = 0; n < options_.substeps; ++n) {
+    const Matrix6d M = dynamics_->mass_matrix(chain_);
+    const Vector6d bias = dynamics_->bias_torque(chain_, qd_);
+    const Vector6d external = dynamics_->jacobian(chain_).transpose() * operator_wrench;
+    const Vector6d qdd = M.ldlt().solve(motor_torque + external + passive_torques() - bias);
+    qd_ += qdd * h;  // semi-implicit Euler: new velocity, then position
+    q_ += qd_ * h;
+    dynamics_->forward_kinematics(q_, chain_);
+  }
+}
+
+double ArmSimulator::energy() const noexcept {
+  const Matrix6d M = dynamics_->mass_matrix(chain_);
+  return 0.5 * qd_.dot(M * qd_) + dynamics_->potential_energy(chain_);
+}
+
+SimulatedArm::SimulatedArm(const ArmDynamics& dynamics, const SimulatorOptions& options,
+                           const Vector6d& start,
+                           const shm::SeqlockCell<shm::ForcePayload>* force) noexcept
+    : dynamics_(&dynamics), sim_(dynamics, options, start), force_(force), measured_position_(quantised(start)) {}
+
+Vector6d SimulatedArm::quantised(const Vector6d& q) const noexcept {
+  Vector6d out;
+  for (int i = 0; i < kJoints; ++i) {
+    const double step =
+        2.0 * std::numbers::pi / dynamics_->model().joints[static_cast<std::size_t>(i)].encoder_counts;
+    out(i) = std::round(q(i) / step) * step;
+  }
+  return out;
+}
+
+bool SimulatedArm::get_measures(ArmMeasures& out) noexcept {
+  out.position = measured_position_;
+  out.velocity = measured_velocity_;
+  out.torque = applied_torque_;
+  out.supply_on = supply_on_;
+  return out.position.allFinite() && out.velocity.allFinite();
+}
+
+void SimulatedArm::read_operator_wrench() noexcept {
+  if (force_ == nullptr) {
+    return;
+  }
+  shm::ForcePayload sample;
+  if (!force_->read(sample).ok()) {
+    return;  // never written or torn: keep the last valid wrench
+  }
+  bool valid = true;
+  for (std::size_t i = 0; i < 6; ++i) {
+    const double limit = i < 3 ? kMaxOperatorForce : kMaxOperatorTorque;
+    valid = valid && std::isfinite(sample.wrench[i]) && std::abs(sample.wrench[i]) <= limit;
+  }
+  if (!valid) {
+    ++rejected_;
+    return;
+  }
+  for (int i = 0; i < 6; ++i) {
+    operator_wrench_(i) = sample.wrench[static_cast<std::size_t>(i)];
+  }
+}
+
+void SimulatedArm::send_commands(const ArmCommands& commands, TimeNs /*now*/, TimeNs dt) noexcept {
+  read_operator_wrench();
+  const bool enabled = supply_on_ && commands.enable && commands.torque.allFinite();
+  applied_torque_.setZero();
+  if (enabled) {
+    for (int i = 0; i < kJoints; ++i) {
+      const double limit = dynamics_->model().joints[static_cast<std::size_t>(i)].torque_peak;
+      applied_torque_(i) = std::clamp(commands.torque(i), -limit, limit);
+    }
+  }
+  const double h = static_cast<double>(dt) * 1e-9;
+  sim_.step(applied_torque_, operator_wrench_, h, /*brakes=*/!enabled);
+  const Vector6d previous = measured_position_;
+  measured_position_ = quantised(sim_.position());
+  const Vector6d raw_velocity = (measured_position_ - previous) / h;
+  const double blend = h / (kVelocityFilterTau + h);
+  measured_velocity_ += blend * (raw_velocity - measured_velocity_);
+}
+
+}  // namespace hapticctrl::rt_core

@@ -68,8 +68,9 @@ void ArmSimulator::step(const Vector6d& motor_torque, const Vector6d& operator_w
     qd_.setZero();
     return;
   }
-  const double h = dt / options_.substeps;
-  for (int n = 0; n < options_.substeps; ++n) {
+  const int substeps = std::max(1, static_cast<int>(std::ceil(dt / options_.max_substep - 1e-9)));
+  const double h = dt / substeps;
+  for (int n = 0; n < substeps; ++n) {
     const Matrix6d M = dynamics_->mass_matrix(chain_);
     const Vector6d bias = dynamics_->bias_torque(chain_, qd_);
     const Vector6d external = dynamics_->jacobian(chain_).transpose() * operator_wrench;
@@ -82,7 +83,20 @@ void ArmSimulator::step(const Vector6d& motor_torque, const Vector6d& operator_w
 
 double ArmSimulator::energy() const noexcept {
   const Matrix6d M = dynamics_->mass_matrix(chain_);
-  return 0.5 * qd_.dot(M * qd_) + dynamics_->potential_energy(chain_);
+  // Elastic energy stored in compressed joint stops belongs to the total as well.
+  const ArmModel& m = dynamics_->model();
+  auto compression = [](double x, double lo, double hi) {
+    return x < lo ? x - lo : (x > hi ? x - hi : 0.0);
+  };
+  double stops = 0.0;
+  for (int i = 0; i < kJoints; ++i) {
+    const JointModel& j = m.joints[static_cast<std::size_t>(i)];
+    const double c = compression(q_(i), j.q_min, j.q_max);
+    stops += 0.5 * options_.stop_stiffness * c * c;
+  }
+  const double c23 = compression(q_(1) + q_(2), m.limits.coupled_j23_min, m.limits.coupled_j23_max);
+  stops += 0.5 * options_.stop_stiffness * c23 * c23;
+  return 0.5 * qd_.dot(M * qd_) + dynamics_->potential_energy(chain_) + stops;
 }
 
 SimulatedArm::SimulatedArm(const ArmDynamics& dynamics, const SimulatorOptions& options,

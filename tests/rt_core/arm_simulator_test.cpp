@@ -1,0 +1,115 @@
+#include "hapticctrl/rt_core/arm_simulator.hpp"
+
+#include <gtest/gtest.h>
+
+#include <memory>
+
+namespace hapticctrl::rt_core {
+namespace {
+
+const Vector6d kReady = (Vector6d() << 0, -0.6, 1.2, 0, -0.6, 0).finished();
+
+class ArmSimulatorTest : public ::testing::Test {
+ protected:
+  ArmDynamics dynamics{load_arm_model(default_arm_model_path())};
+};
+
+TEST_F(ArmSimulatorTest, EnergyIsConservedWithoutFrictionOrControl) {
+  SimulatorOptions options;
+  options.friction = false;
+  options.stop_damping = 0.0;  // the stops stay elastic: no dissipation anywhere
+  // Mid-range pose: a free swing under gravity for 10 s at 1 kHz, through the elastic stops.
+  const Vector6d start = (Vector6d() << 0.2, -0.5, 1.3, 0.4, 0.2, 0.1).finished();
+  ArmSimulator sim(dynamics, options, start);
+  const double e0 = sim.energy();
+  double swing = 0.0;
+  double last_second = 0.0;
+  for (int k = 0; k < 10'000; ++k) {
+    sim.step(Vector6d::Zero(), Vector6d::Zero(), 1e-3, false);
+    swing = std::max(swing, sim.velocity().norm());
+    if (k >= 9'000) {
+      last_second += sim.energy() / 1000.0;
+    }
+  }
+  EXPECT_GT(swing, 1.0) << "the arm really moved";
+  // Energy is measured from the base plane (|E0| = 4.39 J here, of which up to 2.8 J swing
+  // between kinetic and potential).
+  EXPECT_LT(std::abs(sim.energy() - e0) / std::abs(e0), 0.01);
+  EXPECT_LT(std::abs(last_second - e0) / std::abs(e0), 0.01);
+}
+
+TEST_F(ArmSimulatorTest, BrakesHoldAgainstGravityAndOperatorForce) {
+  ArmSimulator sim(dynamics, SimulatorOptions{}, kReady);
+  Vector6d push;
+  push << 30, 0, -30, 0, 0, 0;
+  for (int k = 0; k < 2000; ++k) {
+    sim.step(Vector6d::Zero(), push, 1e-3, true);
+  }
+  EXPECT_LT((sim.position() - kReady).norm(), 1e-12);
+}
+
+TEST_F(ArmSimulatorTest, UnbrakedArmFallsUnderGravity) {
+  ArmSimulator sim(dynamics, SimulatorOptions{}, kReady);
+  const double z0 = sim.chain().handle_position.z();
+  for (int k = 0; k < 200; ++k) {
+    sim.step(Vector6d::Zero(), Vector6d::Zero(), 1e-3, false);
+  }
+  EXPECT_LT(sim.chain().handle_position.z(), z0 - 0.01);
+}
+
+TEST_F(ArmSimulatorTest, JointStopsHoldTheArmInsideItsLimits) {
+  ArmSimulator sim(dynamics, SimulatorOptions{}, kReady);
+  Vector6d push_j5 = Vector6d::Zero();
+  push_j5(4) = 2.0;
+  for (int k = 0; k < 3000; ++k) {
+    sim.step(push_j5, Vector6d::Zero(), 1e-3, false);
+  }
+  EXPECT_LT(sim.position()(4), 1.4 + 2.0 / 300.0 + 0.01) << "stiff stop: a few mrad of overshoot";
+}
+
+TEST_F(ArmSimulatorTest, SimulatedArmQuantisesAndSaturates) {
+  auto force = std::make_unique<shm::SeqlockCell<shm::ForcePayload>>();
+  SimulatedArm arm(dynamics, SimulatorOptions{}, kReady, force.get());
+  arm.set_supply(true);
+  ArmCommands cmd;
+  cmd.enable = true;
+  cmd.torque.setConstant(1000.0);
+  arm.send_commands(cmd, 0, kNsPerMs);
+  ArmMeasures m;
+  ASSERT_TRUE(arm.get_measures(m));
+  EXPECT_DOUBLE_EQ(m.torque(0), 30.0);
+  EXPECT_DOUBLE_EQ(m.torque(5), 3.0);
+  const double step = 2.0 * 3.141592653589793 / 262144;
+  EXPECT_NEAR(std::remainder(m.position(0), step), 0.0, 1e-12);
+}
+
+TEST_F(ArmSimulatorTest, UnpoweredSimulatedArmDoesNotMoveUnderOperatorForce) {
+  auto force = std::make_unique<shm::SeqlockCell<shm::ForcePayload>>();
+  shm::ForcePayload push;
+  push.wrench[0] = 20.0;
+  force->publish(push, 0);
+  SimulatedArm arm(dynamics, SimulatorOptions{}, kReady, force.get());
+  ArmMeasures before;
+  arm.get_measures(before);
+  for (int k = 0; k < 1000; ++k) {
+    arm.send_commands(ArmCommands{}, 0, kNsPerMs);
+  }
+  ArmMeasures after;
+  arm.get_measures(after);
+  EXPECT_TRUE(after.position.isApprox(before.position));
+  EXPECT_DOUBLE_EQ(arm.operator_wrench()(0), 20.0);
+}
+
+TEST_F(ArmSimulatorTest, InvalidOperatorWrenchIsRejected) {
+  auto force = std::make_unique<shm::SeqlockCell<shm::ForcePayload>>();
+  shm::ForcePayload bad;
+  bad.wrench[2] = 1e9;
+  force->publish(bad, 0);
+  SimulatedArm arm(dynamics, SimulatorOptions{}, kReady, force.get());
+  arm.send_commands(ArmCommands{}, 0, kNsPerMs);
+  EXPECT_EQ(arm.rejected_force_samples(), 1U);
+  EXPECT_TRUE(arm.operator_wrench().isZero());
+}
+
+}  // namespace
+}  // namespace hapticctrl::rt_core

@@ -119,6 +119,7 @@ bool SimulatedArm::get_measures(ArmMeasures& out) noexcept {
   out.velocity = measured_velocity_;
   out.torque = applied_torque_;
   out.supply_on = supply_on_;
+  out.operator_wrench = operator_wrench_;
   return out.position.allFinite() && out.velocity.allFinite();
 }
 

@@ -27,6 +27,7 @@ std::string core_usage() {
   return R"(usage: hapticctrl-core [options]
   --instance NAME          instance name (default "default"); shm /dev/shm/hapticctrl.NAME
   --group NAME             group owning the shared memory (mode 0660)
+  --model FILE             arm model file (default: the shipped Virtuose 6D class model)
   --period-us N            cycle period, 100..10000 µs (default 1000)
   --duration S             stop after S seconds (default: run until stopped)
   --rt enforce|warn|ignore real-time policy (default warn)
@@ -60,6 +61,8 @@ CoreConfig parse_core_args(const std::vector<std::string>& args) {
       c.instance = value();
     } else if (opt == "--group") {
       c.group = value();
+    } else if (opt == "--model") {
+      c.model_path = value();
     } else if (opt == "--period-us") {
       c.period = parse_number<TimeNs>(opt, value(), 100, 10'000) * kNsPerUs;
     } else if (opt == "--duration") {

@@ -13,7 +13,8 @@
 #include "hapticctrl/rt_core/black_box.hpp"
 #include "hapticctrl/rt_core/core_config.hpp"
 #include "hapticctrl/rt_core/core_report.hpp"
-#include "hapticctrl/rt_core/decoupled_joint_sim.hpp"
+#include "hapticctrl/rt_core/arm_dynamics.hpp"
+#include "hapticctrl/rt_core/arm_simulator.hpp"
 #include "hapticctrl/rt_core/executive.hpp"
 #include "hapticctrl/rt_core/rt_preflight.hpp"
 #include "hapticctrl/rt_core/servo.hpp"
@@ -60,9 +61,13 @@ int run_core(const CoreConfig& config) {
   const bool fifo = rt.fifo_granted;
   const int cpu = resolve_cpu(config.cpu);
 
+  const ArmDynamics dynamics(
+      load_arm_model(config.model_path.empty() ? default_arm_model_path() : config.model_path));
   shm::Segment segment = shm::Segment::create(
       {.instance = config.instance, .group = config.group, .period_ns = config.period});
-  DecoupledJointSim arm(DecoupledJointParams{}, &segment.region<shm::RegionId::kForce>());
+  const Vector6d ready_pose = (Vector6d() << 0, -0.6, 1.2, 0, -0.6, 0).finished();
+  SimulatedArm arm(dynamics, SimulatorOptions{}, ready_pose,
+                   &segment.region<shm::RegionId::kForce>());
   ServoShared shared(
       arm, segment.ctrl_reader(),
       ServoRegions{&segment.region<shm::RegionId::kVpr>(), &segment.writable<shm::RegionId::kVp>(),
@@ -70,8 +75,8 @@ int run_core(const CoreConfig& config) {
       config.allow_fault_injection);
   shared.inject_at_cycle = config.inject_at_cycle;
   shared.inject_cycles = config.inject_cycles;
-  ServoTask main_task(shared, ServoRole::kMain, ServoLaw());
-  ServoTask degraded_task(shared, ServoRole::kDegraded, ServoLaw());
+  ServoTask main_task(shared, ServoRole::kMain, ServoLaw(dynamics));
+  ServoTask degraded_task(shared, ServoRole::kDegraded, ServoLaw(dynamics));
   BlackBox black_box(static_cast<std::size_t>(2 * kNsPerS / config.period));
   RealClock clock;
 

@@ -118,10 +118,6 @@ void ServoTask::exchange_client(TimeNs now) noexcept {
   inputs_.client = s.last_client;
   inputs_.client_valid = s.client_valid;
   inputs_.client_age = s.client_valid ? now - s.last_client_arrival : 0;
-  if (s.client_valid && s.last_client.session_id != 0 &&
-      inputs_.client_age > s.client_stale_after) {
-    s.counters.vpr_stale.fetch_add(1, std::memory_order_relaxed);
-  }
 }
 
 void ServoTask::commit(std::uint64_t cycle, TimeNs now) noexcept {
@@ -139,9 +135,12 @@ void ServoTask::commit(std::uint64_t cycle, TimeNs now) noexcept {
   if (role_ == ServoRole::kDegraded) {
     state_word |= shm::state_bits::kDegraded;
   }
-  if (s.client_valid && s.last_client.session_id != 0 &&
-      inputs_.client_age > s.client_stale_after) {
+  if (outputs_.coupled && commands.enable) {
+    state_word |= shm::state_bits::kCoupled;
+  }
+  if (outputs_.client_stale) {
     state_word |= shm::state_bits::kClientStale;
+    s.counters.vpr_stale.fetch_add(1, std::memory_order_relaxed);
   }
   const auto core_state = s.core_state.load(std::memory_order_relaxed);
   const auto stop_reason = s.stop_reason.load(std::memory_order_relaxed);
@@ -156,6 +155,8 @@ void ServoTask::commit(std::uint64_t cycle, TimeNs now) noexcept {
     vp.stop_reason = stop_reason;
     vp.command_type = s.last_client.command_type;
     copy_to(outputs_.coupling_wrench, vp.coupling_wrench);
+    vp.handle_pose = outputs_.handle_pose;
+    copy_to(outputs_.handle_twist, vp.handle_twist);
     copy_to(inputs_.measures.position, vp.joint_position);
     copy_to(inputs_.measures.velocity, vp.joint_velocity);
     s.regions.vp->publish(vp, now);  // the UDP bridge blocks on VP: notify
@@ -168,7 +169,10 @@ void ServoTask::commit(std::uint64_t cycle, TimeNs now) noexcept {
     copy_to(inputs_.measures.position, pos.joint_position);
     copy_to(inputs_.measures.velocity, pos.joint_velocity);
     copy_to(commands.torque, pos.joint_torque);
-    copy_to(outputs_.coupling_wrench, pos.coupling_wrench);
+    pos.handle_pose = outputs_.handle_pose;
+    copy_to(outputs_.handle_twist, pos.handle_twist);
+    copy_to(inputs_.measures.operator_wrench, pos.operator_wrench);
+    copy_to(outputs_.handle_wrench, pos.coupling_wrench);
     s.regions.position->publish_quietly(pos, now);
   }
   s.commit_cycle.store(cycle, std::memory_order_release);

@@ -6,6 +6,7 @@
 
 #include <memory>
 
+#include "support/default_dynamics.hpp"
 #include "support/in_memory_regions.hpp"
 #include "support/mock_arm.hpp"
 #include "support/scripted_servo_tasks.hpp"
@@ -46,8 +47,8 @@ struct Rig {
   std::unique_ptr<shm::SeqlockCell<shm::PositionPayload>>& position = regions.position;
   std::unique_ptr<shm::SeqlockCell<shm::TelemetryPayload>>& telemetry = regions.telemetry;
   ServoShared shared{arm, regions.ctrl_reader(), regions.servo_regions(), true};
-  ServoTask main_task{shared, ServoRole::kMain, ServoLaw()};
-  ServoTask degraded_task{shared, ServoRole::kDegraded, ServoLaw()};
+  ServoTask main_task{shared, ServoRole::kMain, ServoLaw(test::default_dynamics())};
+  ServoTask degraded_task{shared, ServoRole::kDegraded, ServoLaw(test::default_dynamics())};
   BlackBox box{4000};
   ScriptedServoTasks tasks;
   Executive executive;

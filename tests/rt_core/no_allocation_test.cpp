@@ -7,8 +7,9 @@
 #include <memory>
 #include <new>
 
-#include "hapticctrl/rt_core/decoupled_joint_sim.hpp"
+#include "hapticctrl/rt_core/arm_simulator.hpp"
 #include "hapticctrl/rt_core/executive.hpp"
+#include "support/default_dynamics.hpp"
 #include "support/in_memory_regions.hpp"
 #include "support/scripted_servo_tasks.hpp"
 
@@ -56,11 +57,17 @@ TEST(NoAllocation, ArmedCyclesAllocateNothing) {
   regions.force->publish(push, 0);
   shm::VprPayload client;
   client.session_id = 1;
+  client.command_type = static_cast<std::uint32_t>(shm::CommandType::kVirtmech);
+  client.object_pose = {0.63, 0.02, 0.2, 0, 0, 0, 1};
+  client.object_twist = {0.01, 0, 0, 0, 0, 0.1};
+  client.object_mass = 0.3;
+  client.client_time_step = 1e-3;
   regions.vpr->publish(client, 0);
-  DecoupledJointSim arm(DecoupledJointParams{}, regions.force.get());
+  const Vector6d ready = (Vector6d() << 0, -0.6, 1.2, 0, -0.6, 0).finished();
+  SimulatedArm arm(test::default_dynamics(), SimulatorOptions{}, ready, regions.force.get());
   ServoShared shared(arm, regions.ctrl_reader(), regions.servo_regions(), true);
-  ServoTask main_task(shared, ServoRole::kMain, ServoLaw());
-  ServoTask degraded_task(shared, ServoRole::kDegraded, ServoLaw());
+  ServoTask main_task(shared, ServoRole::kMain, ServoLaw(test::default_dynamics()));
+  ServoTask degraded_task(shared, ServoRole::kDegraded, ServoLaw(test::default_dynamics()));
   // Every 50th cycle overruns, so degraded cycles and discarded late commits are exercised too.
   test::ScriptedServoTasks tasks(
       clock, main_task, degraded_task, shared, kPeriod,

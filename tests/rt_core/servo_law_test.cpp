@@ -2,35 +2,201 @@
 
 #include <gtest/gtest.h>
 
+#include "support/default_dynamics.hpp"
+
 namespace hapticctrl::rt_core {
 namespace {
 
-TEST(ServoLaw, UnpoweredOutputsNothing) {
-  ServoLaw law;
+using test::default_dynamics;
+
+const Vector6d kReady = (Vector6d() << 0, -0.6, 1.2, 0, -0.6, 0).finished();
+
+ServoInputs powered_at(const Vector6d& q) {
   ServoInputs in;
-  in.measures.velocity.setConstant(2.0);
+  in.dt = kNsPerMs;
+  in.logical.powered = true;
   in.measures.supply_on = true;
+  in.measures.position = q;
+  return in;
+}
+
+ChainState chain_at(const Vector6d& q) {
+  ChainState s;
+  default_dynamics().forward_kinematics(q, s);
+  return s;
+}
+
+shm::VprPayload virtmech_client(const std::array<double, 7>& object_pose) {
+  shm::VprPayload c;
+  c.session_id = 1;
+  c.command_type = static_cast<std::uint32_t>(shm::CommandType::kVirtmech);
+  c.object_pose = object_pose;
+  c.object_mass = 0.5;
+  c.client_time_step = 1e-3;
+  return c;
+}
+
+TEST(ServoLaw, UnpoweredOutputsNothing) {
+  ServoLaw law(default_dynamics());
+  ServoInputs in = powered_at(kReady);
+  in.logical.powered = false;
   ServoOutputs out;
   law.compute(in, false, out);
   EXPECT_FALSE(out.commands.enable);
   EXPECT_TRUE(out.commands.torque.isZero());
 }
 
-TEST(ServoLaw, PoweredDampsJointVelocityInBothModes) {
-  ServoLaw law(Vector6d::Constant(0.5));
-  ServoInputs in;
-  in.logical.powered = true;
-  in.measures.supply_on = true;
-  in.measures.velocity << 1, -2, 0, 0, 0, 4;
-  for (const bool degraded : {false, true}) {
-    ServoOutputs out;
-    law.compute(in, degraded, out);
-    EXPECT_TRUE(out.commands.enable);
-    EXPECT_DOUBLE_EQ(out.commands.torque(0), -0.5);
-    EXPECT_DOUBLE_EQ(out.commands.torque(1), 1.0);
-    EXPECT_DOUBLE_EQ(out.commands.torque(5), -2.0);
-    EXPECT_TRUE(out.coupling_wrench.isZero());
+TEST(ServoLaw, PoweredWithoutClientCompensatesGravityExactly) {
+  ServoLaw law(default_dynamics());
+  ServoOutputs out;
+  law.compute(powered_at(kReady), false, out);
+  ASSERT_TRUE(out.commands.enable);
+  const Vector6d g = default_dynamics().gravity_torque(chain_at(kReady));
+  EXPECT_LT((out.commands.torque - g).norm(), 1e-12);
+  EXPECT_NEAR(out.handle_pose[0], 0.628, 5e-4);
+}
+
+TEST(ServoLaw, ImpedanceWrenchReachesTheJointsThroughTheJacobianAfterTheRamp) {
+  ServoLaw law(default_dynamics());
+  ServoInputs in = powered_at(kReady);
+  in.client.session_id = 1;
+  in.client.command_type = static_cast<std::uint32_t>(shm::CommandType::kImpedance);
+  in.client.impedance_wrench = {0, 0, -10, 1, 0, 0};
+  in.client_valid = true;
+  ServoOutputs out;
+  law.compute(in, false, out);
+  EXPECT_NEAR(out.handle_wrench.head<3>().norm(), 2.0, 1e-9) << "2000 N/s x 1 ms: first step";
+  for (int k = 0; k < 20; ++k) {
+    law.compute(in, false, out);
   }
+  const ChainState s = chain_at(kReady);
+  const Vector6d expected = default_dynamics().gravity_torque(s) +
+                            default_dynamics().jacobian(s).transpose() *
+                                (Vector6d() << 0, 0, -10, 1, 0, 0).finished();
+  EXPECT_LT((out.commands.torque - expected).norm(), 1e-9);
+}
+
+TEST(ServoLaw, WrenchIsSaturatedToTheDeviceAndClientLimits) {
+  ServoLaw law(default_dynamics());
+  ServoInputs in = powered_at(kReady);
+  in.client.session_id = 1;
+  in.client.command_type = static_cast<std::uint32_t>(shm::CommandType::kImpedance);
+  in.client.impedance_wrench = {500, 0, 0, 0, 0, 50};
+  in.client_valid = true;
+  ServoOutputs out;
+  for (int k = 0; k < 100; ++k) {
+    law.compute(in, false, out);
+  }
+  EXPECT_NEAR(out.handle_wrench.head<3>().norm(), 35.0, 1e-9);
+  EXPECT_NEAR(out.handle_wrench.tail<3>().norm(), 3.0, 1e-9);
+  in.client.force_limits = {5.0, 0.5};
+  for (int k = 0; k < 100; ++k) {
+    law.compute(in, false, out);
+  }
+  EXPECT_NEAR(out.handle_wrench.head<3>().norm(), 5.0, 1e-9);
+  EXPECT_NEAR(out.handle_wrench.tail<3>().norm(), 0.5, 1e-9);
+}
+
+TEST(ServoLaw, GainsFollowObjectMassAndTimeStepWithinDeviceBounds) {
+  ServoLaw law(default_dynamics());
+  shm::VprPayload c;
+  c.object_mass = 0.5;
+  c.client_time_step = 1e-3;
+  CouplingGains g = law.derive_gains(c);
+  EXPECT_DOUBLE_EQ(g.k_linear, 2000.0) << "bounded by the device";
+  EXPECT_DOUBLE_EQ(g.b_linear, 20.0);
+  c.object_mass = 0.01;
+  c.client_time_step = 10e-3;
+  g = law.derive_gains(c);
+  EXPECT_DOUBLE_EQ(g.k_linear, 25.0) << "0.25 m / T^2";
+  EXPECT_NEAR(g.b_linear, 0.7, 1e-12) << "damping ratio 0.7";
+  c.gain_override = {1e6, 5.0, 0, 0};
+  g = law.derive_gains(c);
+  EXPECT_DOUBLE_EQ(g.k_linear, 2000.0) << "override bounded";
+  EXPECT_DOUBLE_EQ(g.b_linear, 5.0);
+}
+
+TEST(ServoLaw, VirtmechPullsTheHandleTowardTheObjectAndReturnsTheOpposite) {
+  ServoLaw law(default_dynamics());
+  ServoInputs in = powered_at(kReady);
+  const ChainState s = chain_at(kReady);
+  in.client = virtmech_client({s.handle_position.x() + 0.002, s.handle_position.y(),
+                               s.handle_position.z(), 0, 0, 0, 1});
+  in.client.object_pose[3] = 0;
+  in.client_valid = true;
+  // The handle frame is the identity rotation at the ready pose (pitches cancel).
+  ServoOutputs out;
+  for (int k = 0; k < 50; ++k) {
+    law.compute(in, false, out);
+  }
+  EXPECT_TRUE(out.coupled);
+  EXPECT_NEAR(out.handle_wrench(0), 4.0, 1e-6) << "2000 N/m x 2 mm";
+  EXPECT_NEAR(out.coupling_wrench(0), -4.0, 1e-6);
+}
+
+TEST(ServoLaw, StaleClientFadesOnTheRampWithoutSteps) {
+  ServoLaw law(default_dynamics());
+  ServoInputs in = powered_at(kReady);
+  const ChainState s = chain_at(kReady);
+  in.client = virtmech_client({s.handle_position.x() + 0.005, s.handle_position.y(),
+                               s.handle_position.z(), 0, 0, 0, 1});
+  in.client_valid = true;
+  ServoOutputs out;
+  for (int k = 0; k < 20; ++k) {
+    law.compute(in, false, out);
+  }
+  ASSERT_NEAR(out.handle_wrench(0), 10.0, 1e-6);
+  double previous = out.handle_wrench(0);
+  double max_step = 0.0;
+  for (int age_ms = 1; age_ms <= 200; ++age_ms) {
+    in.client_age = age_ms * kNsPerMs;
+    law.compute(in, false, out);
+    max_step = std::max(max_step, std::abs(out.handle_wrench(0) - previous));
+    previous = out.handle_wrench(0);
+    if (age_ms == 40) {
+      EXPECT_NEAR(out.handle_wrench(0), 10.0, 1e-6) << "held (extrapolated) before the fade";
+      EXPECT_TRUE(out.client_stale);
+    }
+    if (age_ms == 100) {
+      EXPECT_NEAR(out.fade, 0.5, 1e-9);
+      EXPECT_NEAR(out.handle_wrench(0), 5.0, 1e-6);
+    }
+  }
+  EXPECT_DOUBLE_EQ(out.handle_wrench(0), 0.0);
+  EXPECT_LE(max_step, 2.0 + 1e-9) << "never a step beyond the rate limit";
+}
+
+TEST(ServoLaw, DegradedModeHasNoCoupling) {
+  ServoLaw law(default_dynamics());
+  ServoInputs in = powered_at(kReady);
+  in.client = virtmech_client({0.7, 0, 0.2, 0, 0, 0, 1});
+  in.client_valid = true;
+  ServoOutputs out;
+  law.compute(in, true, out);
+  EXPECT_FALSE(out.coupled);
+  EXPECT_TRUE(out.handle_wrench.isZero());
+}
+
+TEST(ServoLaw, ExcessiveHandleSpeedBrakesInsteadOfRendering) {
+  ServoLaw law(default_dynamics());
+  ServoInputs in = powered_at(kReady);
+  in.measures.velocity << 0, 3.0, 0, 0, 0, 0;  // fast shoulder swing: > 1 m/s at the handle
+  ServoOutputs out;
+  law.compute(in, false, out);
+  EXPECT_GT(law.counters().speed_limited, 0U);
+  const ChainState s = chain_at(kReady);
+  const Vector3d v = (default_dynamics().jacobian(s) * in.measures.velocity).head<3>();
+  EXPECT_LT(out.handle_wrench.head<3>().dot(v), 0.0) << "the wrench opposes the motion";
+}
+
+TEST(ServoLaw, JointLimitWallsPushBack) {
+  ServoLaw law(default_dynamics());
+  Vector6d q = kReady;
+  q(4) = 1.39;  // inside J5's 0.05 rad margin below +1.4
+  ServoOutputs out;
+  law.compute(powered_at(q), false, out);
+  const Vector6d g = default_dynamics().gravity_torque(chain_at(q));
+  EXPECT_LT(out.commands.torque(4) - g(4), -0.5);
 }
 
 }  // namespace

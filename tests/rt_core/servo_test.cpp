@@ -6,6 +6,7 @@
 #include <limits>
 #include <memory>
 
+#include "support/default_dynamics.hpp"
 #include "support/in_memory_regions.hpp"
 #include "support/mock_arm.hpp"
 
@@ -20,8 +21,8 @@ struct ServoRig {
   std::unique_ptr<shm::SeqlockCell<shm::VprPayload>>& vpr = regions.vpr;
   std::unique_ptr<shm::SeqlockCell<shm::VpPayload>>& vp = regions.vp;
   ServoShared shared{arm, regions.ctrl_reader(), regions.servo_regions(), false};
-  ServoTask main_task{shared, ServoRole::kMain, ServoLaw()};
-  ServoTask degraded_task{shared, ServoRole::kDegraded, ServoLaw()};
+  ServoTask main_task{shared, ServoRole::kMain, ServoLaw(test::default_dynamics())};
+  ServoTask degraded_task{shared, ServoRole::kDegraded, ServoLaw(test::default_dynamics())};
   shm::CtrlWriter writer = regions.ctrl_writer();
 
   StepResult cycle(ServoTask& task, std::uint64_t k) {

@@ -5,6 +5,7 @@
 
 #include <memory>
 
+#include "support/default_dynamics.hpp"
 #include "support/in_memory_regions.hpp"
 #include "support/mock_arm.hpp"
 
@@ -16,8 +17,8 @@ struct ThreadRig {
   test::InMemoryRegions regions;
   ServoShared shared{arm, regions.ctrl_reader(), ServoRegions{nullptr, regions.vp.get(), nullptr},
                      true};
-  ServoTask main_task{shared, ServoRole::kMain, ServoLaw()};
-  ServoTask degraded_task{shared, ServoRole::kDegraded, ServoLaw()};
+  ServoTask main_task{shared, ServoRole::kMain, ServoLaw(test::default_dynamics())};
+  ServoTask degraded_task{shared, ServoRole::kDegraded, ServoLaw(test::default_dynamics())};
   RealClock clock;
 };
 

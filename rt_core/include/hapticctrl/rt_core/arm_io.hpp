@@ -19,6 +19,9 @@ struct ArmMeasures {
   Vector6d velocity = Vector6d::Zero();  ///< rad/s
   Vector6d torque = Vector6d::Zero();    ///< torque actually applied by the motors, N·m
   bool supply_on = false;                ///< motor power supply state
+  /// Wrench the operator applies at the handle (base frame), when the arm senses it (the
+  /// simulator does; hardware without a force sensor reports zero).
+  Vector6d operator_wrench = Vector6d::Zero();
 };
 
 /// What the servo asks of the motors for the next period.

@@ -65,7 +65,6 @@ struct ServoShared {
   bool client_valid = false;
   std::uint64_t last_client_sequence = 0;
   TimeNs last_client_arrival = 0;
-  TimeNs client_stale_after = 5 * kNsPerMs;
 
   ServoCounters counters;
   /// Set by the CLOCK at the start of the stop sequence: motor commands stay disabled.

@@ -1,11 +1,19 @@
 #pragma once
 /// @file servo_law.hpp
-/// The control law seam: inputs of one cycle in, motor commands and coupling wrench out.
-/// Pure computation: no clock, no I/O, no allocation; `dt` and `now` come in the inputs.
+/// The control law: inputs of one cycle in, motor torques and coupling wrench out. Pure
+/// computation on fixed-size Eigen types: no clock (`now`/`dt` arrive in the inputs), no I/O,
+/// no allocation. docs/control.md explains the law, the gains and the safety layers.
 ///
-/// F2 law (until F3's Cartesian control lands): joint damping when powered, nothing otherwise;
-/// no coupling. The degraded SERVO runs the same code with `degraded = true`.
+/// Per cycle: forward kinematics, Jacobian and handle twist; gravity compensation (always when
+/// powered); the client's command (NONE, IMPEDANCE wrench, or VIRTMECH spring-damper coupling to
+/// the virtual object, with stale-data extrapolation and fade); passivity guard on the coupling
+/// port; saturation and rate limit of the handle wrench; speed safety; soft joint-limit walls;
+/// joint torque saturation. The degraded SERVO runs the same code with `degraded = true`:
+/// coupling off, gravity compensation and joint damping only.
 
+#include <cstdint>
+
+#include "hapticctrl/rt_core/arm_dynamics.hpp"
 #include "hapticctrl/rt_core/arm_io.hpp"
 #include "hapticctrl/rt_core/logical_state.hpp"
 #include "hapticctrl/shm/payloads.hpp"
@@ -26,20 +34,76 @@ struct ServoInputs {
 
 struct ServoOutputs {
   ArmCommands commands;
+  /// Wrench the coupling applies to the client's object (what VP reports), base frame.
   Vector6d coupling_wrench = Vector6d::Zero();
+  /// Wrench the controller renders on the handle (before the Jacobian transpose), base frame.
+  Vector6d handle_wrench = Vector6d::Zero();
+  std::array<double, 7> handle_pose{0, 0, 0, 0, 0, 0, 1};
+  Vector6d handle_twist = Vector6d::Zero();
+  double fade = 1.0;  ///< 1: fresh client data, 0: faded out
+  bool coupled = false;
+  bool client_stale = false;
+};
+
+/// Coupling gains (base frame): linear N/m, N·s/m; angular N·m/rad, N·m·s/rad.
+struct CouplingGains {
+  double k_linear = 0.0;
+  double b_linear = 0.0;
+  double k_angular = 0.0;
+  double b_angular = 0.0;
+};
+
+struct LawConfig {
+  TimeNs stale_after = 5 * kNsPerMs;      ///< older client data is extrapolated, flagged stale
+  TimeNs extrapolate_max = 50 * kNsPerMs; ///< extrapolation horizon
+  TimeNs fade_after = 50 * kNsPerMs;      ///< then the coupling fades ...
+  TimeNs fade_duration = 100 * kNsPerMs;  ///< ... to zero over this ramp ("link lost")
+  double joint_damping = 0.02;            ///< N·m·s/rad, always when powered (degraded too)
+  double wall_margin = 0.05;              ///< rad before a joint limit where the soft wall starts
+  double wall_stiffness = 20.0;           ///< N·m/rad
+  bool passivity_guard = true;
+  double default_object_mass = 0.5;       ///< kg, when the client declares none
+  double default_time_step = 1e-3;        ///< s, when the client declares none
+};
+
+/// Counters of the law (cycle-safe reads).
+struct LawCounters {
+  std::uint64_t non_finite_outputs = 0;
+  std::uint64_t speed_limited = 0;
+  std::uint64_t passivity_active = 0;
+  std::uint64_t rate_limited = 0;
 };
 
 class ServoLaw {
  public:
-  /// Joint damping gains of the safe behaviour, N·m·s/rad.
-  explicit ServoLaw(const Vector6d& damping = Vector6d::Constant(0.02)) noexcept
-      : damping_(damping) {}
+  ServoLaw(const ArmDynamics& dynamics, const LawConfig& config = {}) noexcept;
 
   /// Real-time contract: noexcept, no allocation; safe in the cycle.
   void compute(const ServoInputs& in, bool degraded, ServoOutputs& out) noexcept;
 
+  /// Gains the controller derives from the object's mass/inertia and the client's time step,
+  /// bounded by the device (model limits), then overridden (within the same bounds) by the
+  /// client's non-zero overrides. Real-time contract: safe in the cycle.
+  [[nodiscard]] CouplingGains derive_gains(const shm::VprPayload& client) const noexcept;
+
+  /// Energy the passivity observer has seen enter the coupling network (J); negative means the
+  /// network generated energy (the guard then adds damping).
+  [[nodiscard]] double observed_energy() const noexcept { return observed_energy_; }
+  [[nodiscard]] const LawCounters& counters() const noexcept { return counters_; }
+  [[nodiscard]] const LawConfig& config() const noexcept { return config_; }
+
  private:
-  Vector6d damping_;
+  Vector6d client_wrench(const ServoInputs& in, const ChainState& chain, const Vector6d& twist,
+                         double dt, ServoOutputs& out) noexcept;
+  Vector6d limit_wrench(const Vector6d& wrench, const shm::VprPayload& client, double dt) noexcept;
+  Vector6d joint_walls(const Vector6d& q) const noexcept;
+
+  const ArmDynamics* dynamics_;
+  LawConfig config_;
+  ChainState chain_;
+  Vector6d last_wrench_ = Vector6d::Zero();
+  double observed_energy_ = 0.0;
+  LawCounters counters_;
 };
 
 }  // namespace hapticctrl::rt_core

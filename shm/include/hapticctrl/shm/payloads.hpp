@@ -107,8 +107,8 @@ struct PositionPayload {
   Joints6 joint_torque{};  ///< commanded motor torques after saturation [N·m]
   Pose7 handle_pose{0, 0, 0, 0, 0, 0, 1};
   Vector6 handle_twist{};
-  Vector6 operator_wrench{};
-  Vector6 coupling_wrench{};
+  Vector6 operator_wrench{};  ///< operator's wrench on the handle, base frame
+  Vector6 coupling_wrench{};  ///< wrench the controller renders on the handle, base frame
 };
 
 /// Real-time mode the core obtained at start (telemetry).

@@ -1,0 +1,14 @@
+#pragma once
+/// The shipped default arm model's dynamics, loaded once per test binary.
+
+#include "hapticctrl/rt_core/arm_dynamics.hpp"
+
+namespace hapticctrl::test {
+
+inline const rt_core::ArmDynamics& default_dynamics() {
+  static const rt_core::ArmDynamics dynamics(
+      rt_core::load_arm_model(rt_core::default_arm_model_path()));
+  return dynamics;
+}
+
+}  // namespace hapticctrl::test

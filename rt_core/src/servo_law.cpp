@@ -10,6 +10,8 @@ namespace {
 /// stiffness, and the damping ratio of the derived damping.
 constexpr double kStiffnessFraction = 0.25;
 constexpr double kDampingRatio = 0.7;
+/// Per-sample gain of the link-delay average (about 20 samples).
+constexpr double kDelayFilterGain = 0.05;
 
 Vector6d to_vector(const std::array<double, 6>& a) noexcept {
   Vector6d v;
@@ -36,10 +38,14 @@ double bounded(double value, double upper) noexcept { return std::clamp(value, 0
 ServoLaw::ServoLaw(const ArmDynamics& dynamics, const LawConfig& config) noexcept
     : dynamics_(&dynamics), config_(config) {}
 
-CouplingGains ServoLaw::derive_gains(const shm::VprPayload& c) const noexcept {
+CouplingGains ServoLaw::derive_gains(const shm::VprPayload& c, double link_delay) const noexcept {
   const ArmLimits& lim = dynamics_->model().limits;
   const double mass = c.object_mass > 0.0 ? c.object_mass : config_.default_object_mass;
-  const double step = c.client_time_step > 0.0 ? c.client_time_step : config_.default_time_step;
+  // The object sees the coupling's answer to its own motion one client step plus a round trip
+  // of the link later: that whole lag bounds the stiffness it can take.
+  const double client_step =
+      c.client_time_step > 0.0 ? c.client_time_step : config_.default_time_step;
+  const double step = client_step + 2.0 * std::max(0.0, link_delay);
   const double largest_inertia =
       std::max({c.object_inertia[0], c.object_inertia[1], c.object_inertia[2]});
   // Without a declared inertia: a solid 5 cm sphere of the object's mass.
@@ -68,7 +74,7 @@ CouplingGains ServoLaw::derive_gains(const shm::VprPayload& c) const noexcept {
 }
 
 Vector6d ServoLaw::client_wrench(const ServoInputs& in, const ChainState& chain,
-                                 const Vector6d& twist, double dt, ServoOutputs& out) noexcept {
+                                 const Vector6d& twist, ServoOutputs& out) noexcept {
   const shm::VprPayload& c = in.client;
   if (!in.client_valid || c.session_id == 0) {
     return Vector6d::Zero();  // no session: the rate limiter ramps any previous wrench out
@@ -118,36 +124,23 @@ Vector6d ServoLaw::client_wrench(const ServoInputs& in, const ChainState& chain,
     object_r = Eigen::AngleAxisd(object_w.norm() * horizon, object_w.normalized()) * object_r;
   }
 
-  const CouplingGains g = derive_gains(c);
+  // Link delay estimate: average age of client samples at the moment they arrive (staleness
+  // after that is the fade's business, not the gains').
+  if (in.client_age < previous_age_) {
+    link_delay_ += (static_cast<double>(in.client_age) * 1e-9 - link_delay_) * kDelayFilterGain;
+  }
+  previous_age_ = in.client_age;
+  const CouplingGains g = derive_gains(c, link_delay_);
   const Vector3d e_p = object_p - chain.handle_position;
   const Eigen::AngleAxisd e_rot(object_r * chain.handle_rotation.transpose());
   const Vector3d e_r = e_rot.axis() * e_rot.angle();
   Vector6d e_rate;
   e_rate << object_v - twist.head<3>(), object_w - twist.tail<3>();
   Vector6d w;
-  w << g.k_linear * e_p + g.b_linear * e_rate.head<3>(), g.k_angular * e_r + g.b_angular * e_rate.tail<3>();
+  w << g.k_linear * e_p + g.b_linear * e_rate.head<3>(),
+      g.k_angular * e_r + g.b_angular * e_rate.tail<3>();
 
-  // Passivity observer on the coupling port: the energy that entered the network is the
-  // integral of w . d(error)/dt; if it turns negative the network generated energy (delay,
-  // sampling, loss) and the passivity controller adds just enough damping to dissipate it.
-  observed_energy_ += w.dot(e_rate) * dt;
-  if (config_.passivity_guard && observed_energy_ < 0.0) {
-    const double rate_sq = e_rate.squaredNorm();
-    if (rate_sq > 1e-12) {
-      const double alpha = -observed_energy_ / (dt * rate_sq);
-      const ArmLimits& lim = dynamics_->model().limits;
-      const double alpha_lin = std::min(alpha, lim.max_damping_linear);
-      const double alpha_ang = std::min(alpha, lim.max_damping_angular);
-      w.head<3>() += alpha_lin * e_rate.head<3>();
-      w.tail<3>() += alpha_ang * e_rate.tail<3>();
-      observed_energy_ += (alpha_lin * e_rate.head<3>().squaredNorm() +
-                           alpha_ang * e_rate.tail<3>().squaredNorm()) * dt;
-      ++counters_.passivity_active;
-    }
-  }
   out.coupled = true;
-  // The object feels the opposite of what the handle feels, in the client's frame.
-  out.coupling_wrench << -(base_r * w.head<3>()) * fade, -(base_r * w.tail<3>()) * fade;
   return w * (fade * force_factor);
 }
 
@@ -194,6 +187,36 @@ Vector6d ServoLaw::joint_walls(const Vector6d& q) const noexcept {
   return tau;
 }
 
+Vector6d ServoLaw::guard_passivity(const Vector6d& wrench, const Vector6d& twist,
+                                   double dt) noexcept {
+  // One-port passivity observer (Hannaford & Ryu) at the user's port, the handle: during the
+  // last period the rendered wrench was `last_applied_` while the handle moved with `twist`, so
+  // the user gave the port -w . v dt. The running total going negative means the port has
+  // delivered more energy to the hand than it received (delay, loss, sampling, an unstable
+  // client): the passivity controller then adds just enough damping on the handle's motion to
+  // dissipate the deficit, bounded by the damping the device renders stably (model limits).
+  observed_energy_ -= last_applied_.dot(twist) * dt;
+  Vector6d w = wrench;
+  const double speed_sq = twist.squaredNorm();
+  if (config_.passivity_guard && observed_energy_ < 0.0 && speed_sq > 1e-12) {
+    const ArmLimits& lim = dynamics_->model().limits;
+    const double alpha = -observed_energy_ / (dt * speed_sq);
+    const double alpha_lin = std::min(alpha, lim.max_damping_linear);
+    const double alpha_ang = std::min(alpha, lim.max_damping_angular);
+    w.head<3>() -= alpha_lin * twist.head<3>();
+    w.tail<3>() -= alpha_ang * twist.tail<3>();
+    observed_energy_ += (alpha_lin * twist.head<3>().squaredNorm() +
+                         alpha_ang * twist.tail<3>().squaredNorm()) * dt;
+    ++counters_.passivity_active;
+  }
+  const ArmLimits& lim = dynamics_->model().limits;
+  w.head<3>() = clamp_norm(w.head<3>(), lim.force_peak);
+  w.tail<3>() = clamp_norm(w.tail<3>(), lim.torque_peak);
+  last_applied_ = w;
+  last_wrench_ = w;
+  return w;
+}
+
 void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) noexcept {
   const double dt = static_cast<double>(in.dt) * 1e-9;
   const Vector6d& q = in.measures.position;
@@ -216,14 +239,27 @@ void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) 
     return;
   }
 
-  Vector6d target = degraded ? Vector6d::Zero() : client_wrench(in, chain_, twist, dt, out);
+  Vector6d target = degraded ? Vector6d::Zero() : client_wrench(in, chain_, twist, out);
   const ArmLimits& lim = dynamics_->model().limits;
   if (twist.head<3>().norm() > lim.max_speed) {
     // Speed safety (FD-style): drop the rendered wrench and brake the handle instead.
     target << -lim.max_damping_linear * twist.head<3>(), Vector3d::Zero();
     ++counters_.speed_limited;
   }
-  const Vector6d wrench = limit_wrench(target, in.client, dt);
+  Vector6d wrench = limit_wrench(target, in.client, dt);
+  if (out.coupled || in.client.command_type ==
+                          static_cast<std::uint32_t>(shm::CommandType::kImpedance)) {
+    wrench = guard_passivity(wrench, twist, dt);
+  } else {
+    last_applied_.setZero();
+  }
+  if (out.coupled) {
+    // The object feels the opposite of the rendered wrench, in the client's frame, unscaled.
+    const Matrix3d base_r = to_quaternion(in.client.base_frame).normalized().toRotationMatrix();
+    const double force_factor = in.client.force_factor > 0.0 ? in.client.force_factor : 1.0;
+    out.coupling_wrench << -(base_r * wrench.head<3>()) / force_factor,
+        -(base_r * wrench.tail<3>()) / force_factor;
+  }
   out.handle_wrench = wrench;
 
   Vector6d tau = dynamics_->gravity_torque(chain_) - config_.joint_damping * qd + joint_walls(q) +

@@ -81,21 +81,25 @@ class ServoLaw {
   /// Real-time contract: noexcept, no allocation; safe in the cycle.
   void compute(const ServoInputs& in, bool degraded, ServoOutputs& out) noexcept;
 
-  /// Gains the controller derives from the object's mass/inertia and the client's time step,
-  /// bounded by the device (model limits), then overridden (within the same bounds) by the
-  /// client's non-zero overrides. Real-time contract: safe in the cycle.
-  [[nodiscard]] CouplingGains derive_gains(const shm::VprPayload& client) const noexcept;
+  /// Gains the controller derives from the object's mass/inertia, the client's time step and
+  /// the link's one-way delay (s), bounded by the device (model limits), then overridden (within
+  /// the same bounds) by the client's non-zero overrides. Real-time contract: safe in the cycle.
+  [[nodiscard]] CouplingGains derive_gains(const shm::VprPayload& client,
+                                           double link_delay = 0.0) const noexcept;
+  /// Current estimate of the client link's one-way delay (s).
+  [[nodiscard]] double link_delay() const noexcept { return link_delay_; }
 
-  /// Energy the passivity observer has seen enter the coupling network (J); negative means the
-  /// network generated energy (the guard then adds damping).
+  /// Net energy the user has given the rendering port at the handle (J): negative means the port
+  /// delivered more energy to the hand than it received (the guard then adds damping).
   [[nodiscard]] double observed_energy() const noexcept { return observed_energy_; }
   [[nodiscard]] const LawCounters& counters() const noexcept { return counters_; }
   [[nodiscard]] const LawConfig& config() const noexcept { return config_; }
 
  private:
   Vector6d client_wrench(const ServoInputs& in, const ChainState& chain, const Vector6d& twist,
-                         double dt, ServoOutputs& out) noexcept;
+                         ServoOutputs& out) noexcept;
   Vector6d limit_wrench(const Vector6d& wrench, const shm::VprPayload& client, double dt) noexcept;
+  Vector6d guard_passivity(const Vector6d& wrench, const Vector6d& twist, double dt) noexcept;
   Vector6d joint_walls(const Vector6d& q) const noexcept;
 
   const ArmDynamics* dynamics_;
@@ -103,6 +107,9 @@ class ServoLaw {
   ChainState chain_;
   Vector6d last_wrench_ = Vector6d::Zero();
   double observed_energy_ = 0.0;
+  double link_delay_ = 0.0;
+  TimeNs previous_age_ = 0;
+  Vector6d last_applied_ = Vector6d::Zero();  ///< rendered wrench applied during this period
   LawCounters counters_;
 };
 

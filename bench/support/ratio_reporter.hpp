@@ -23,6 +23,12 @@ class RatioReporter : public benchmark::ConsoleReporter {
     ConsoleReporter::ReportRuns(runs);
   }
 
+  /// Nanoseconds per iteration of a benchmark that ran, 0 otherwise.
+  [[nodiscard]] double ns(const std::string& name) const {
+    const auto it = ns_per_iteration_.find(name);
+    return it == ns_per_iteration_.end() ? 0.0 : it->second;
+  }
+
   /// Prints "numerator / denominator = ratio" for each pair whose results exist.
   void print_ratios(const std::vector<std::pair<std::string, std::string>>& pairs) const {
     std::printf("\n%-58s %-40s %10s\n", "measured", "same-run baseline", "ratio");

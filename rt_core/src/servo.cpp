@@ -155,8 +155,8 @@ void ServoTask::commit(std::uint64_t cycle, TimeNs now) noexcept {
     vp.stop_reason = stop_reason;
     vp.command_type = s.last_client.command_type;
     copy_to(outputs_.coupling_wrench, vp.coupling_wrench);
-    vp.handle_pose = outputs_.handle_pose;
-    copy_to(outputs_.handle_twist, vp.handle_twist);
+    vp.handle_pose = outputs_.client_handle_pose;
+    copy_to(outputs_.client_handle_twist, vp.handle_twist);
     copy_to(inputs_.measures.position, vp.joint_position);
     copy_to(inputs_.measures.velocity, vp.joint_velocity);
     s.regions.vp->publish(vp, now);  // the UDP bridge blocks on VP: notify

@@ -217,6 +217,20 @@ Vector6d ServoLaw::guard_passivity(const Vector6d& wrench, const Vector6d& twist
   return w;
 }
 
+void ServoLaw::express_for_client(const shm::VprPayload& c, const Vector6d& twist,
+                                  ServoOutputs& out) const noexcept {
+  // Client frames: base_frame is our base in its environment frame; speed_factor scales
+  // displacements between the device and the simulation.
+  const double speed_factor = c.speed_factor > 0.0 ? c.speed_factor : 1.0;
+  Eigen::Quaterniond base_q = to_quaternion(c.base_frame);
+  base_q = base_q.norm() > 0.5 ? base_q.normalized() : Eigen::Quaterniond::Identity();
+  const Vector3d base_p(c.base_frame[0], c.base_frame[1], c.base_frame[2]);
+  const Vector3d p = base_p + base_q * (chain_.handle_position * speed_factor);
+  const Eigen::Quaterniond q = base_q * Eigen::Quaterniond(chain_.handle_rotation);
+  out.client_handle_pose = {p.x(), p.y(), p.z(), q.x(), q.y(), q.z(), q.w()};
+  out.client_handle_twist << base_q * (twist.head<3>() * speed_factor), base_q * twist.tail<3>();
+}
+
 void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) noexcept {
   const double dt = static_cast<double>(in.dt) * 1e-9;
   const Vector6d& q = in.measures.position;
@@ -226,6 +240,7 @@ void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) 
   const Vector6d twist = J * qd;
   out.handle_pose = pose_of(chain_);
   out.handle_twist = twist;
+  express_for_client(in.client, twist, out);
   out.coupling_wrench.setZero();
   out.handle_wrench.setZero();
   out.coupled = false;

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "support/default_dynamics.hpp"
 
 namespace hapticctrl::rt_core {
@@ -197,6 +199,28 @@ TEST(ServoLaw, JointLimitWallsPushBack) {
   law.compute(powered_at(q), false, out);
   const Vector6d g = default_dynamics().gravity_torque(chain_at(q));
   EXPECT_LT(out.commands.torque(4) - g(4), -0.5);
+}
+
+}  // namespace
+}  // namespace hapticctrl::rt_core
+
+namespace hapticctrl::rt_core {
+namespace {
+
+TEST(ServoLaw, HandleIsReportedInTheClientsEnvironmentFrame) {
+  ServoLaw law(test::default_dynamics());
+  ServoInputs in;
+  in.dt = kNsPerMs;
+  in.measures.position = (Vector6d() << 0, -0.6, 1.2, 0, -0.6, 0).finished();
+  // Our base sits 1 m along the client's x, turned 90 degrees about z.
+  in.client.base_frame = {1.0, 0, 0, 0, 0, std::sqrt(0.5), std::sqrt(0.5)};
+  in.client.speed_factor = 2.0;
+  ServoOutputs out;
+  law.compute(in, false, out);
+  EXPECT_NEAR(out.client_handle_pose[0], 1.0, 1e-9);             // base x (0.628) -> client +y
+  EXPECT_NEAR(out.client_handle_pose[1], 2.0 * 0.62821, 2e-5);  // scaled by the speed factor
+  EXPECT_NEAR(out.client_handle_pose[2], 2.0 * 0.22741, 2e-5);
+  EXPECT_NEAR(out.handle_pose[0], 0.62821, 2e-5) << "the base-frame pose is unchanged";
 }
 
 }  // namespace

@@ -38,8 +38,11 @@ struct ServoOutputs {
   Vector6d coupling_wrench = Vector6d::Zero();
   /// Wrench the controller renders on the handle (before the Jacobian transpose), base frame.
   Vector6d handle_wrench = Vector6d::Zero();
-  std::array<double, 7> handle_pose{0, 0, 0, 0, 0, 0, 1};
-  Vector6d handle_twist = Vector6d::Zero();
+  std::array<double, 7> handle_pose{0, 0, 0, 0, 0, 0, 1};  ///< base frame
+  Vector6d handle_twist = Vector6d::Zero();                 ///< base frame
+  /// The same, in the client's environment frame (through its base frame and speed factor).
+  std::array<double, 7> client_handle_pose{0, 0, 0, 0, 0, 0, 1};
+  Vector6d client_handle_twist = Vector6d::Zero();
   double fade = 1.0;  ///< 1: fresh client data, 0: faded out
   bool coupled = false;
   bool client_stale = false;
@@ -101,6 +104,8 @@ class ServoLaw {
   Vector6d limit_wrench(const Vector6d& wrench, const shm::VprPayload& client, double dt) noexcept;
   Vector6d guard_passivity(const Vector6d& wrench, const Vector6d& twist, double dt) noexcept;
   Vector6d joint_walls(const Vector6d& q) const noexcept;
+  void express_for_client(const shm::VprPayload& client, const Vector6d& twist,
+                          ServoOutputs& out) const noexcept;
 
   const ArmDynamics* dynamics_;
   LawConfig config_;

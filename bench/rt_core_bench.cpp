@@ -122,9 +122,10 @@ int main(int argc, char** argv) {
   const double cycle_1ms = reporter.ns("BM_FullCycle1ms");
   const double cycle_100us = reporter.ns("BM_FullCycle100us");
   if (cycle_1ms > 0 && cycle_100us > 0) {
-    std::printf("\nshare of the period: 1 ms cycle %.0f ns = %.2f %% of 1 ms; "
-                "100 us cycle %.0f ns = %.2f %% of 100 us\n",
-                cycle_1ms, cycle_1ms / 1e4, cycle_100us, cycle_100us / 1e3);
+    std::printf(
+        "\nshare of the period: 1 ms cycle %.0f ns = %.2f %% of 1 ms; "
+        "100 us cycle %.0f ns = %.2f %% of 100 us\n",
+        cycle_1ms, cycle_1ms / 1e4, cycle_100us, cycle_100us / 1e3);
   }
   benchmark::Shutdown();
   return 0;

@@ -8,8 +8,13 @@ Matrix3d axis_rotation(const Vector3d& axis, double angle) noexcept {
 
 std::array<double, 7> pose_of(const ChainState& s) noexcept {
   const Eigen::Quaterniond q(s.handle_rotation);
-  return {s.handle_position.x(), s.handle_position.y(), s.handle_position.z(),
-          q.x(), q.y(), q.z(), q.w()};
+  return {s.handle_position.x(),
+          s.handle_position.y(),
+          s.handle_position.z(),
+          q.x(),
+          q.y(),
+          q.z(),
+          q.w()};
 }
 
 void ArmDynamics::forward_kinematics(const Vector6d& q, ChainState& out) const noexcept {
@@ -28,17 +33,17 @@ void ArmDynamics::forward_kinematics(const Vector6d& q, ChainState& out) const n
 }
 
 Matrix6d ArmDynamics::jacobian(const ChainState& s) const noexcept {
-  Matrix6d J;
+  Matrix6d jac;
   for (int i = 0; i < kJoints; ++i) {
     const auto k = static_cast<std::size_t>(i);
-    J.block<3, 1>(0, i) = s.axis[k].cross(s.handle_position - s.position[k]);
-    J.block<3, 1>(3, i) = s.axis[k];
+    jac.block<3, 1>(0, i) = s.axis[k].cross(s.handle_position - s.position[k]);
+    jac.block<3, 1>(3, i) = s.axis[k];
   }
-  return J;
+  return jac;
 }
 
-Vector6d ArmDynamics::inverse_dynamics(const ChainState& s, const Vector6d& qd,
-                                       const Vector6d& qdd, const Vector3d& gravity) const noexcept {
+Vector6d ArmDynamics::inverse_dynamics(const ChainState& s, const Vector6d& qd, const Vector6d& qdd,
+                                       const Vector3d& gravity) const noexcept {
   // Forward pass in base coordinates: angular velocity/acceleration of each link and linear
   // acceleration of each joint origin (the base accelerates upward against gravity).
   std::array<Vector3d, kJoints> omega{};
@@ -83,12 +88,12 @@ Vector6d ArmDynamics::inverse_dynamics(const ChainState& s, const Vector6d& qd,
 }
 
 Matrix6d ArmDynamics::mass_matrix(const ChainState& s) const noexcept {
-  Matrix6d M;
+  Matrix6d inertia_matrix;
   const Vector6d zero = Vector6d::Zero();
   for (int c = 0; c < kJoints; ++c) {
-    M.col(c) = inverse_dynamics(s, zero, Vector6d::Unit(c), Vector3d::Zero());
+    inertia_matrix.col(c) = inverse_dynamics(s, zero, Vector6d::Unit(c), Vector3d::Zero());
   }
-  return M;
+  return inertia_matrix;
 }
 
 Vector6d ArmDynamics::gravity_torque(const ChainState& s) const noexcept {

@@ -135,7 +135,8 @@ class Parser {
     const double v = numbers(s, section, key, 1)[0];
     if (v < 0.0 || (!allow_zero && v == 0.0)) {
       fail(get(s, section, key).line, where(section, key),
-           std::string("must be ") + (allow_zero ? ">= 0" : "> 0") + ", got " + get(s, section, key).text);
+           std::string("must be ") + (allow_zero ? ">= 0" : "> 0") + ", got " +
+               get(s, section, key).text);
     }
     return v;
   }
@@ -156,9 +157,10 @@ class Parser {
     if (e.text == "z" || e.text == "Z") {
       return Vector3d::UnitZ();
     }
-    const Vector3d v = vec3(s, section, "axis");
+    Vector3d v = vec3(s, section, "axis");
     if (std::abs(v.norm() - 1.0) > 1e-6) {
-      fail(e.line, where(section, "axis"), "must be x, y, z or a unit vector, got '" + e.text + "'");
+      fail(e.line, where(section, "axis"),
+           "must be x, y, z or a unit vector, got '" + e.text + "'");
     }
     return v;
   }
@@ -188,7 +190,8 @@ ArmModel parse_arm_model(const std::string& text, const std::string& source) {
     j.com = p.vec3(s, sec, "com");
     const Vector3d principal = p.vec3(s, sec, "inertia");
     if ((principal.array() < 0.0).any()) {
-      p.fail(p.get(s, sec, "inertia").line, "[" + sec + "] inertia", "principal moments must be >= 0");
+      p.fail(p.get(s, sec, "inertia").line, "[" + sec + "] inertia",
+             "principal moments must be >= 0");
     }
     j.inertia = principal.asDiagonal();
     const auto limits = p.numbers(s, sec, "limits", 2);
@@ -216,7 +219,8 @@ ArmModel parse_arm_model(const std::string& text, const std::string& source) {
   m.handle = p.vec3(s, "handle", "origin");
   const auto coupled = p.numbers(s, "limits", "coupled_j2_j3", 2);
   if (!(coupled[0] < coupled[1])) {
-    p.fail(p.get(s, "limits", "coupled_j2_j3").line, "[limits] coupled_j2_j3", "min must be below max");
+    p.fail(p.get(s, "limits", "coupled_j2_j3").line, "[limits] coupled_j2_j3",
+           "min must be below max");
   }
   m.limits.coupled_j23_min = coupled[0];
   m.limits.coupled_j23_max = coupled[1];
@@ -248,6 +252,8 @@ ArmModel load_arm_model(const std::string& path) {
   return parse_arm_model(buffer.str(), path);
 }
 
-std::string default_arm_model_path() { return HAPTICCTRL_DEFAULT_ARM_MODEL; }
+std::string default_arm_model_path() {
+  return HAPTICCTRL_DEFAULT_ARM_MODEL;
+}
 
 }  // namespace hapticctrl::rt_core

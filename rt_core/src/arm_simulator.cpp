@@ -71,10 +71,11 @@ void ArmSimulator::step(const Vector6d& motor_torque, const Vector6d& operator_w
   const int substeps = std::max(1, static_cast<int>(std::ceil(dt / options_.max_substep - 1e-9)));
   const double h = dt / substeps;
   for (int n = 0; n < substeps; ++n) {
-    const Matrix6d M = dynamics_->mass_matrix(chain_);
+    const Matrix6d inertia_matrix = dynamics_->mass_matrix(chain_);
     const Vector6d bias = dynamics_->bias_torque(chain_, qd_);
     const Vector6d external = dynamics_->jacobian(chain_).transpose() * operator_wrench;
-    const Vector6d qdd = M.ldlt().solve(motor_torque + external + passive_torques() - bias);
+    const Vector6d qdd =
+        inertia_matrix.ldlt().solve(motor_torque + external + passive_torques() - bias);
     qd_ += qdd * h;  // semi-implicit Euler: new velocity, then position
     q_ += qd_ * h;
     dynamics_->forward_kinematics(q_, chain_);
@@ -82,7 +83,7 @@ void ArmSimulator::step(const Vector6d& motor_torque, const Vector6d& operator_w
 }
 
 double ArmSimulator::energy() const noexcept {
-  const Matrix6d M = dynamics_->mass_matrix(chain_);
+  const Matrix6d inertia_matrix = dynamics_->mass_matrix(chain_);
   // Elastic energy stored in compressed joint stops belongs to the total as well.
   const ArmModel& m = dynamics_->model();
   auto compression = [](double x, double lo, double hi) {
@@ -96,19 +97,22 @@ double ArmSimulator::energy() const noexcept {
   }
   const double c23 = compression(q_(1) + q_(2), m.limits.coupled_j23_min, m.limits.coupled_j23_max);
   stops += 0.5 * options_.stop_stiffness * c23 * c23;
-  return 0.5 * qd_.dot(M * qd_) + dynamics_->potential_energy(chain_) + stops;
+  return 0.5 * qd_.dot(inertia_matrix * qd_) + dynamics_->potential_energy(chain_) + stops;
 }
 
 SimulatedArm::SimulatedArm(const ArmDynamics& dynamics, const SimulatorOptions& options,
                            const Vector6d& start,
                            const shm::SeqlockCell<shm::ForcePayload>* force) noexcept
-    : dynamics_(&dynamics), sim_(dynamics, options, start), force_(force), measured_position_(quantised(start)) {}
+    : dynamics_(&dynamics),
+      sim_(dynamics, options, start),
+      force_(force),
+      measured_position_(quantised(start)) {}
 
 Vector6d SimulatedArm::quantised(const Vector6d& q) const noexcept {
   Vector6d out;
   for (int i = 0; i < kJoints; ++i) {
-    const double step =
-        2.0 * std::numbers::pi / dynamics_->model().joints[static_cast<std::size_t>(i)].encoder_counts;
+    const double step = 2.0 * std::numbers::pi /
+                        dynamics_->model().joints[static_cast<std::size_t>(i)].encoder_counts;
     out(i) = std::round(q(i) / step) * step;
   }
   return out;

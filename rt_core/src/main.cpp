@@ -10,11 +10,11 @@
 #include <thread>
 #include <vector>
 
+#include "hapticctrl/rt_core/arm_dynamics.hpp"
+#include "hapticctrl/rt_core/arm_simulator.hpp"
 #include "hapticctrl/rt_core/black_box.hpp"
 #include "hapticctrl/rt_core/core_config.hpp"
 #include "hapticctrl/rt_core/core_report.hpp"
-#include "hapticctrl/rt_core/arm_dynamics.hpp"
-#include "hapticctrl/rt_core/arm_simulator.hpp"
 #include "hapticctrl/rt_core/executive.hpp"
 #include "hapticctrl/rt_core/rt_preflight.hpp"
 #include "hapticctrl/rt_core/servo.hpp"

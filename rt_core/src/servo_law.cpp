@@ -31,7 +31,9 @@ Vector3d clamp_norm(const Vector3d& v, double limit) noexcept {
   return n > limit && n > 0.0 ? Vector3d(v * (limit / n)) : v;
 }
 
-double bounded(double value, double upper) noexcept { return std::clamp(value, 0.0, upper); }
+double bounded(double value, double upper) noexcept {
+  return std::clamp(value, 0.0, upper);
+}
 
 }  // namespace
 
@@ -177,7 +179,8 @@ Vector6d ServoLaw::joint_walls(const Vector6d& q) const noexcept {
   const double k = config_.wall_stiffness;
   for (int i = 0; i < kJoints; ++i) {
     const JointModel& j = m.joints[static_cast<std::size_t>(i)];
-    tau(i) += k * std::max(0.0, j.q_min + margin - q(i)) - k * std::max(0.0, q(i) - (j.q_max - margin));
+    tau(i) +=
+        k * std::max(0.0, j.q_min + margin - q(i)) - k * std::max(0.0, q(i) - (j.q_max - margin));
   }
   const double sum = q(1) + q(2);
   const double coupled = k * std::max(0.0, m.limits.coupled_j23_min + margin - sum) -
@@ -205,8 +208,9 @@ Vector6d ServoLaw::guard_passivity(const Vector6d& wrench, const Vector6d& twist
     const double alpha_ang = std::min(alpha, lim.max_damping_angular);
     w.head<3>() -= alpha_lin * twist.head<3>();
     w.tail<3>() -= alpha_ang * twist.tail<3>();
-    observed_energy_ += (alpha_lin * twist.head<3>().squaredNorm() +
-                         alpha_ang * twist.tail<3>().squaredNorm()) * dt;
+    observed_energy_ +=
+        (alpha_lin * twist.head<3>().squaredNorm() + alpha_ang * twist.tail<3>().squaredNorm()) *
+        dt;
     ++counters_.passivity_active;
   }
   const ArmLimits& lim = dynamics_->model().limits;
@@ -236,8 +240,8 @@ void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) 
   const Vector6d& q = in.measures.position;
   const Vector6d& qd = in.measures.velocity;
   dynamics_->forward_kinematics(q, chain_);
-  const Matrix6d J = dynamics_->jacobian(chain_);
-  const Vector6d twist = J * qd;
+  const Matrix6d jac = dynamics_->jacobian(chain_);
+  const Vector6d twist = jac * qd;
   out.handle_pose = pose_of(chain_);
   out.handle_twist = twist;
   express_for_client(in.client, twist, out);
@@ -262,8 +266,8 @@ void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) 
     ++counters_.speed_limited;
   }
   Vector6d wrench = limit_wrench(target, in.client, dt);
-  if (out.coupled || in.client.command_type ==
-                          static_cast<std::uint32_t>(shm::CommandType::kImpedance)) {
+  if (out.coupled ||
+      in.client.command_type == static_cast<std::uint32_t>(shm::CommandType::kImpedance)) {
     wrench = guard_passivity(wrench, twist, dt);
   } else {
     last_applied_.setZero();
@@ -278,7 +282,7 @@ void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) 
   out.handle_wrench = wrench;
 
   Vector6d tau = dynamics_->gravity_torque(chain_) - config_.joint_damping * qd + joint_walls(q) +
-                 J.transpose() * wrench;
+                 jac.transpose() * wrench;
   for (int i = 0; i < kJoints; ++i) {
     const double limit = dynamics_->model().joints[static_cast<std::size_t>(i)].torque_peak;
     tau(i) = std::clamp(tau(i), -limit, limit);

@@ -1,7 +1,7 @@
 #include "hapticctrl/rt_core/arm_dynamics.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
+#include <Eigen/Eigenvalues>
 
 namespace hapticctrl::rt_core {
 namespace {
@@ -10,10 +10,10 @@ const Vector6d kReady = (Vector6d() << 0, -0.6, 1.2, 0, -0.6, 0).finished();
 
 class ArmDynamicsTest : public ::testing::Test {
  protected:
-  ArmDynamics dynamics{load_arm_model(default_arm_model_path())};
+  ArmDynamics dynamics_{load_arm_model(default_arm_model_path())};
   ChainState at(const Vector6d& q) {
     ChainState s;
-    dynamics.forward_kinematics(q, s);
+    dynamics_.forward_kinematics(q, s);
     return s;
   }
 };
@@ -29,7 +29,7 @@ TEST_F(ArmDynamicsTest, JacobianTransposeMatchesKdlExample) {
   const ChainState s = at(kReady);
   Vector6d wrench;
   wrench << 0, 0, -10, 1, 0, 0;  // 10 N down + 1 N·m about x
-  const Vector6d tau = dynamics.jacobian(s).transpose() * wrench;
+  const Vector6d tau = dynamics_.jacobian(s).transpose() * wrench;
   const Vector6d expected = (Vector6d() << 0, 6.28, 3.81, 0.83, 1.00, 1.00).finished();  // [M]
   for (int i = 0; i < 6; ++i) {
     EXPECT_NEAR(tau(i), expected(i), 0.006) << "joint " << i + 1;
@@ -39,17 +39,17 @@ TEST_F(ArmDynamicsTest, JacobianTransposeMatchesKdlExample) {
 TEST_F(ArmDynamicsTest, JacobianMatchesFiniteDifferenceOfKinematics) {
   const Vector6d q = (Vector6d() << 0.3, -0.4, 1.0, 0.5, -0.3, 0.7).finished();
   const ChainState s = at(q);
-  const Matrix6d J = dynamics.jacobian(s);
+  const Matrix6d jac = dynamics_.jacobian(s);
   const double h = 1e-7;
   for (int i = 0; i < 6; ++i) {
     const ChainState t = at(q + h * Vector6d::Unit(i));
     const Vector3d dp = (t.handle_position - s.handle_position) / h;
-    EXPECT_NEAR((dp - J.block<3, 1>(0, i)).norm(), 0.0, 1e-5) << "column " << i;
+    EXPECT_NEAR((dp - jac.block<3, 1>(0, i)).norm(), 0.0, 1e-5) << "column " << i;
   }
 }
 
 TEST_F(ArmDynamicsTest, GravityTorqueAtReadyPose) {
-  const Vector6d g = dynamics.gravity_torque(at(kReady));
+  const Vector6d g = dynamics_.gravity_torque(at(kReady));
   // Slender rods of the stated masses (see the model file about ARM_REFERENCE's [M] figures).
   EXPECT_NEAR(g(0), 0.0, 1e-9);
   EXPECT_NEAR(g(1), -3.806, 0.002);
@@ -60,19 +60,20 @@ TEST_F(ArmDynamicsTest, GravityTorqueAtReadyPose) {
 
 TEST_F(ArmDynamicsTest, GravityTorqueIsTheGradientOfPotentialEnergy) {
   const Vector6d q = (Vector6d() << 0.2, -0.8, 1.4, 0.3, 0.5, -0.2).finished();
-  const Vector6d g = dynamics.gravity_torque(at(q));
+  const Vector6d g = dynamics_.gravity_torque(at(q));
   const double h = 1e-6;
   for (int i = 0; i < 6; ++i) {
-    const double dv = (dynamics.potential_energy(at(q + h * Vector6d::Unit(i))) -
-                       dynamics.potential_energy(at(q - h * Vector6d::Unit(i)))) / (2 * h);
+    const double dv = (dynamics_.potential_energy(at(q + h * Vector6d::Unit(i))) -
+                       dynamics_.potential_energy(at(q - h * Vector6d::Unit(i)))) /
+                      (2 * h);
     EXPECT_NEAR(g(i), dv, 1e-5) << "joint " << i + 1;
   }
 }
 
 TEST_F(ArmDynamicsTest, MassMatrixIsSymmetricPositiveDefinite) {
-  const Matrix6d M = dynamics.mass_matrix(at(kReady));
-  EXPECT_LT((M - M.transpose()).norm(), 1e-12);
-  const Eigen::SelfAdjointEigenSolver<Matrix6d> eig(M);
+  const Matrix6d inertia_matrix = dynamics_.mass_matrix(at(kReady));
+  EXPECT_LT((inertia_matrix - inertia_matrix.transpose()).norm(), 1e-12);
+  const Eigen::SelfAdjointEigenSolver<Matrix6d> eig(inertia_matrix);
   EXPECT_GT(eig.eigenvalues().minCoeff(), 0.0);
 }
 

@@ -46,8 +46,10 @@ TEST(ArmModel, DefaultModelLoads) {
 TEST(ArmModel, ErrorsNameTheFileLineAndField) {
   const std::string text = default_text();
   expect_error(edit(text, "joint 3", "mass", "mass = -1"), "[joint 3] mass: must be > 0");
-  expect_error(edit(text, "joint 2", "limits", "limits = 1 -1"), "[joint 2] limits: min must be below max");
-  expect_error(edit(text, "joint 1", "axis", "axis = 1 1 0"), "[joint 1] axis: must be x, y, z or a unit vector");
+  expect_error(edit(text, "joint 2", "limits", "limits = 1 -1"),
+               "[joint 2] limits: min must be below max");
+  expect_error(edit(text, "joint 1", "axis", "axis = 1 1 0"),
+               "[joint 1] axis: must be x, y, z or a unit vector");
   expect_error(edit(text, "joint 4", "com", "com = 0 0"), "[joint 4] com: expected 3 number(s)");
   expect_error(edit(text, "joint 5", "torque_continuous", "torque_continuous = 9"),
                "[joint 5] torque_continuous: must not exceed torque_peak");

@@ -11,7 +11,7 @@ const Vector6d kReady = (Vector6d() << 0, -0.6, 1.2, 0, -0.6, 0).finished();
 
 class ArmSimulatorTest : public ::testing::Test {
  protected:
-  ArmDynamics dynamics{load_arm_model(default_arm_model_path())};
+  ArmDynamics dynamics_{load_arm_model(default_arm_model_path())};
 };
 
 TEST_F(ArmSimulatorTest, EnergyIsConservedWithoutFrictionOrControl) {
@@ -20,7 +20,7 @@ TEST_F(ArmSimulatorTest, EnergyIsConservedWithoutFrictionOrControl) {
   options.stop_damping = 0.0;  // the stops stay elastic: no dissipation anywhere
   // Mid-range pose: a free swing under gravity for 10 s at 1 kHz, through the elastic stops.
   const Vector6d start = (Vector6d() << 0.2, -0.5, 1.3, 0.4, 0.2, 0.1).finished();
-  ArmSimulator sim(dynamics, options, start);
+  ArmSimulator sim(dynamics_, options, start);
   const double e0 = sim.energy();
   double swing = 0.0;
   double last_second = 0.0;
@@ -39,7 +39,7 @@ TEST_F(ArmSimulatorTest, EnergyIsConservedWithoutFrictionOrControl) {
 }
 
 TEST_F(ArmSimulatorTest, BrakesHoldAgainstGravityAndOperatorForce) {
-  ArmSimulator sim(dynamics, SimulatorOptions{}, kReady);
+  ArmSimulator sim(dynamics_, SimulatorOptions{}, kReady);
   Vector6d push;
   push << 30, 0, -30, 0, 0, 0;
   for (int k = 0; k < 2000; ++k) {
@@ -49,7 +49,7 @@ TEST_F(ArmSimulatorTest, BrakesHoldAgainstGravityAndOperatorForce) {
 }
 
 TEST_F(ArmSimulatorTest, UnbrakedArmFallsUnderGravity) {
-  ArmSimulator sim(dynamics, SimulatorOptions{}, kReady);
+  ArmSimulator sim(dynamics_, SimulatorOptions{}, kReady);
   const double z0 = sim.chain().handle_position.z();
   for (int k = 0; k < 200; ++k) {
     sim.step(Vector6d::Zero(), Vector6d::Zero(), 1e-3, false);
@@ -58,7 +58,7 @@ TEST_F(ArmSimulatorTest, UnbrakedArmFallsUnderGravity) {
 }
 
 TEST_F(ArmSimulatorTest, JointStopsHoldTheArmInsideItsLimits) {
-  ArmSimulator sim(dynamics, SimulatorOptions{}, kReady);
+  ArmSimulator sim(dynamics_, SimulatorOptions{}, kReady);
   Vector6d push_j5 = Vector6d::Zero();
   push_j5(4) = 2.0;
   for (int k = 0; k < 3000; ++k) {
@@ -69,7 +69,7 @@ TEST_F(ArmSimulatorTest, JointStopsHoldTheArmInsideItsLimits) {
 
 TEST_F(ArmSimulatorTest, SimulatedArmQuantisesAndSaturates) {
   auto force = std::make_unique<shm::SeqlockCell<shm::ForcePayload>>();
-  SimulatedArm arm(dynamics, SimulatorOptions{}, kReady, force.get());
+  SimulatedArm arm(dynamics_, SimulatorOptions{}, kReady, force.get());
   arm.set_supply(true);
   ArmCommands cmd;
   cmd.enable = true;
@@ -88,7 +88,7 @@ TEST_F(ArmSimulatorTest, UnpoweredSimulatedArmDoesNotMoveUnderOperatorForce) {
   shm::ForcePayload push;
   push.wrench[0] = 20.0;
   force->publish(push, 0);
-  SimulatedArm arm(dynamics, SimulatorOptions{}, kReady, force.get());
+  SimulatedArm arm(dynamics_, SimulatorOptions{}, kReady, force.get());
   ArmMeasures before;
   arm.get_measures(before);
   for (int k = 0; k < 1000; ++k) {
@@ -105,7 +105,7 @@ TEST_F(ArmSimulatorTest, InvalidOperatorWrenchIsRejected) {
   shm::ForcePayload bad;
   bad.wrench[2] = 1e9;
   force->publish(bad, 0);
-  SimulatedArm arm(dynamics, SimulatorOptions{}, kReady, force.get());
+  SimulatedArm arm(dynamics_, SimulatorOptions{}, kReady, force.get());
   arm.send_commands(ArmCommands{}, 0, kNsPerMs);
   EXPECT_EQ(arm.rejected_force_samples(), 1U);
   EXPECT_TRUE(arm.operator_wrench().isZero());

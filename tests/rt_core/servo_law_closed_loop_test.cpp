@@ -53,10 +53,10 @@ struct Loop {
 };
 
 TEST(ClosedLoop, GravityCompensationHoldsTheHandleFromSeveralPoses) {
-  const std::array<Vector6d, 4> poses{
-      kReady, (Vector6d() << 0.5, -0.9, 1.6, 0.3, 0.4, -0.2).finished(),
-      (Vector6d() << -1.0, -0.2, 0.8, -1.0, -0.8, 1.0).finished(),
-      (Vector6d() << 1.5, -1.2, 2.2, 1.5, 1.0, 0.0).finished()};
+  const std::array<Vector6d, 4> poses{kReady,
+                                      (Vector6d() << 0.5, -0.9, 1.6, 0.3, 0.4, -0.2).finished(),
+                                      (Vector6d() << -1.0, -0.2, 0.8, -1.0, -0.8, 1.0).finished(),
+                                      (Vector6d() << 1.5, -1.2, 2.2, 1.5, 1.0, 0.0).finished()};
   for (const Vector6d& pose : poses) {
     Loop loop(pose);
     const Vector3d start = loop.handle();
@@ -178,7 +178,8 @@ PassivityRun run_delayed_coupling(bool guard, int delay_ms, double loss, unsigne
     x += v * 1e-3;
     const double e = loop.law.observed_energy();
     result.lowest_energy = std::isfinite(e) ? std::min(result.lowest_energy, e) : -1e9;
-    result.max_object_speed = std::isfinite(v.norm()) ? std::max(result.max_object_speed, v.norm()) : 1e9;
+    result.max_object_speed =
+        std::isfinite(v.norm()) ? std::max(result.max_object_speed, v.norm()) : 1e9;
     result.max_handle_speed =
         std::max(result.max_handle_speed, loop.out.handle_twist.head<3>().norm());
   }

@@ -72,9 +72,9 @@ TEST(ServoLaw, ImpedanceWrenchReachesTheJointsThroughTheJacobianAfterTheRamp) {
     law.compute(in, false, out);
   }
   const ChainState s = chain_at(kReady);
-  const Vector6d expected = default_dynamics().gravity_torque(s) +
-                            default_dynamics().jacobian(s).transpose() *
-                                (Vector6d() << 0, 0, -10, 1, 0, 0).finished();
+  const Vector6d expected =
+      default_dynamics().gravity_torque(s) +
+      default_dynamics().jacobian(s).transpose() * (Vector6d() << 0, 0, -10, 1, 0, 0).finished();
   EXPECT_LT((out.commands.torque - expected).norm(), 1e-9);
 }
 
@@ -122,8 +122,8 @@ TEST(ServoLaw, VirtmechPullsTheHandleTowardTheObjectAndReturnsTheOpposite) {
   ServoLaw law(default_dynamics());
   ServoInputs in = powered_at(kReady);
   const ChainState s = chain_at(kReady);
-  in.client = virtmech_client({s.handle_position.x() + 0.002, s.handle_position.y(),
-                               s.handle_position.z(), 0, 0, 0, 1});
+  in.client = virtmech_client(
+      {s.handle_position.x() + 0.002, s.handle_position.y(), s.handle_position.z(), 0, 0, 0, 1});
   in.client.object_pose[3] = 0;
   in.client_valid = true;
   // The handle frame is the identity rotation at the ready pose (pitches cancel).
@@ -140,8 +140,8 @@ TEST(ServoLaw, StaleClientFadesOnTheRampWithoutSteps) {
   ServoLaw law(default_dynamics());
   ServoInputs in = powered_at(kReady);
   const ChainState s = chain_at(kReady);
-  in.client = virtmech_client({s.handle_position.x() + 0.005, s.handle_position.y(),
-                               s.handle_position.z(), 0, 0, 0, 1});
+  in.client = virtmech_client(
+      {s.handle_position.x() + 0.005, s.handle_position.y(), s.handle_position.z(), 0, 0, 0, 1});
   in.client_valid = true;
   ServoOutputs out;
   for (int k = 0; k < 20; ++k) {
@@ -217,7 +217,7 @@ TEST(ServoLaw, HandleIsReportedInTheClientsEnvironmentFrame) {
   in.client.speed_factor = 2.0;
   ServoOutputs out;
   law.compute(in, false, out);
-  EXPECT_NEAR(out.client_handle_pose[0], 1.0, 1e-9);             // base x (0.628) -> client +y
+  EXPECT_NEAR(out.client_handle_pose[0], 1.0, 1e-9);            // base x (0.628) -> client +y
   EXPECT_NEAR(out.client_handle_pose[1], 2.0 * 0.62821, 2e-5);  // scaled by the speed factor
   EXPECT_NEAR(out.client_handle_pose[2], 2.0 * 0.22741, 2e-5);
   EXPECT_NEAR(out.handle_pose[0], 0.62821, 2e-5) << "the base-frame pose is unchanged";

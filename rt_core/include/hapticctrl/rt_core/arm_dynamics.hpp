@@ -39,7 +39,8 @@ class ArmDynamics {
   /// Joint torques for (qd, qdd) under `gravity`, plus an external wrench applied *by* the handle
   /// on the environment (Newton-Euler). Rotor inertia is included.
   [[nodiscard]] Vector6d inverse_dynamics(const ChainState& s, const Vector6d& qd,
-                                          const Vector6d& qdd, const Vector3d& gravity) const noexcept;
+                                          const Vector6d& qdd,
+                                          const Vector3d& gravity) const noexcept;
   /// Joint-space inertia (with rotor inertias).
   [[nodiscard]] Matrix6d mass_matrix(const ChainState& s) const noexcept;
   /// Torque that holds the arm against gravity: G(q).

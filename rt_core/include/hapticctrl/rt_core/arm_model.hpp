@@ -18,11 +18,11 @@ using Matrix3d = Eigen::Matrix<double, 3, 3>;
 inline constexpr int kJoints = 6;
 
 struct JointModel {
-  Vector3d origin = Vector3d::Zero();  ///< joint position in the previous link frame (q = 0)
-  Vector3d axis = Vector3d::UnitZ();   ///< unit rotation axis in this joint's frame
-  double mass = 0.0;                   ///< of the link this joint moves, kg
-  Vector3d com = Vector3d::Zero();     ///< centre of mass in this link's frame
-  Matrix3d inertia = Matrix3d::Zero(); ///< about the centre of mass, link frame
+  Vector3d origin = Vector3d::Zero();   ///< joint position in the previous link frame (q = 0)
+  Vector3d axis = Vector3d::UnitZ();    ///< unit rotation axis in this joint's frame
+  double mass = 0.0;                    ///< of the link this joint moves, kg
+  Vector3d com = Vector3d::Zero();      ///< centre of mass in this link's frame
+  Matrix3d inertia = Matrix3d::Zero();  ///< about the centre of mass, link frame
   double q_min = 0.0;
   double q_max = 0.0;
   double viscous = 0.0;        ///< N·m·s/rad

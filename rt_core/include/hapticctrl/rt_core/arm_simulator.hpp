@@ -22,10 +22,10 @@ struct SimulatorOptions {
   /// drifts 0.28 % in 10 s of free swinging with elastic stops (4 sub-steps: 1.3 %), measured
   /// 2026-11-22 (tests/rt_core/arm_simulator_test.cpp).
   double max_substep = 125e-6;
-  bool friction = true;              ///< viscous + Coulomb (smoothed over coulomb_velocity)
-  double coulomb_velocity = 0.01;    ///< rad/s, tanh smoothing of Coulomb friction
-  double stop_stiffness = 300.0;     ///< N·m/rad, joint-limit stops
-  double stop_damping = 3.0;         ///< N·m·s/rad
+  bool friction = true;            ///< viscous + Coulomb (smoothed over coulomb_velocity)
+  double coulomb_velocity = 0.01;  ///< rad/s, tanh smoothing of Coulomb friction
+  double stop_stiffness = 300.0;   ///< N·m/rad, joint-limit stops
+  double stop_damping = 3.0;       ///< N·m·s/rad
 };
 
 /// The pure simulator. Real-time contract of every method: noexcept, no allocation.

@@ -16,7 +16,7 @@ namespace hapticctrl::rt_core {
 struct CoreConfig {
   std::string instance = "default";
   std::string group;         ///< shm group (mode 0660)
-  std::string model_path;  ///< arm model file (empty: the shipped default)
+  std::string model_path;    ///< arm model file (empty: the shipped default)
   TimeNs period = kNsPerMs;  ///< 100 µs .. 10 ms
   TimeNs duration = 0;       ///< 0: run until stopped
   RtPolicy rt_policy = RtPolicy::kWarn;

@@ -39,7 +39,7 @@ struct ServoOutputs {
   /// Wrench the controller renders on the handle (before the Jacobian transpose), base frame.
   Vector6d handle_wrench = Vector6d::Zero();
   std::array<double, 7> handle_pose{0, 0, 0, 0, 0, 0, 1};  ///< base frame
-  Vector6d handle_twist = Vector6d::Zero();                 ///< base frame
+  Vector6d handle_twist = Vector6d::Zero();                ///< base frame
   /// The same, in the client's environment frame (through its base frame and speed factor).
   std::array<double, 7> client_handle_pose{0, 0, 0, 0, 0, 0, 1};
   Vector6d client_handle_twist = Vector6d::Zero();
@@ -57,16 +57,16 @@ struct CouplingGains {
 };
 
 struct LawConfig {
-  TimeNs stale_after = 5 * kNsPerMs;      ///< older client data is extrapolated, flagged stale
-  TimeNs extrapolate_max = 50 * kNsPerMs; ///< extrapolation horizon
-  TimeNs fade_after = 50 * kNsPerMs;      ///< then the coupling fades ...
-  TimeNs fade_duration = 100 * kNsPerMs;  ///< ... to zero over this ramp ("link lost")
-  double joint_damping = 0.02;            ///< N·m·s/rad, always when powered (degraded too)
-  double wall_margin = 0.05;              ///< rad before a joint limit where the soft wall starts
-  double wall_stiffness = 20.0;           ///< N·m/rad
+  TimeNs stale_after = 5 * kNsPerMs;       ///< older client data is extrapolated, flagged stale
+  TimeNs extrapolate_max = 50 * kNsPerMs;  ///< extrapolation horizon
+  TimeNs fade_after = 50 * kNsPerMs;       ///< then the coupling fades ...
+  TimeNs fade_duration = 100 * kNsPerMs;   ///< ... to zero over this ramp ("link lost")
+  double joint_damping = 0.02;             ///< N·m·s/rad, always when powered (degraded too)
+  double wall_margin = 0.05;               ///< rad before a joint limit where the soft wall starts
+  double wall_stiffness = 20.0;            ///< N·m/rad
   bool passivity_guard = true;
-  double default_object_mass = 0.5;       ///< kg, when the client declares none
-  double default_time_step = 1e-3;        ///< s, when the client declares none
+  double default_object_mass = 0.5;  ///< kg, when the client declares none
+  double default_time_step = 1e-3;   ///< s, when the client declares none
 };
 
 /// Counters of the law (cycle-safe reads).

@@ -236,6 +236,13 @@ ArmModel parse_arm_model(const std::string& text, const std::string& source) {
   m.limits.max_damping_angular = damping[1];
   m.limits.max_speed = p.positive(s, "limits", "max_speed");
   m.limits.force_rate = p.positive(s, "limits", "force_rate");
+  m.limits.workspace_center = p.vec3(s, "limits", "workspace_center");
+  m.limits.workspace_half_size = p.vec3(s, "limits", "workspace_half_size");
+  if ((m.limits.workspace_half_size.array() <= 0.0).any()) {
+    p.fail(p.get(s, "limits", "workspace_half_size").line, "[limits] workspace_half_size",
+           "must be > 0 on every axis");
+  }
+  m.limits.workspace_stiffness = p.positive(s, "limits", "workspace_stiffness", true);
   if (m.limits.force_continuous > m.limits.force_peak) {
     p.fail(0, "[limits] force_continuous", "must not exceed force_peak");
   }

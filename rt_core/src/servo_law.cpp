@@ -172,6 +172,20 @@ Vector6d ServoLaw::limit_wrench(const Vector6d& wrench, const shm::VprPayload& c
   return limited;
 }
 
+Vector6d ServoLaw::workspace_wall() noexcept {
+  // A soft wall outside the workspace box pushes the handle back in; it starts at zero force on
+  // the box's faces, so it never steps.
+  const ArmLimits& lim = dynamics_->model().limits;
+  const Vector3d offset = chain_.handle_position - lim.workspace_center;
+  const Vector3d outside = (offset.cwiseAbs() - lim.workspace_half_size).cwiseMax(0.0);
+  Vector6d wall = Vector6d::Zero();
+  if ((outside.array() > 0.0).any()) {
+    wall.head<3>() = -lim.workspace_stiffness * outside.cwiseProduct(offset.cwiseSign());
+    ++counters_.workspace_walls;
+  }
+  return wall;
+}
+
 Vector6d ServoLaw::joint_walls(const Vector6d& q) const noexcept {
   const ArmModel& m = dynamics_->model();
   Vector6d tau = Vector6d::Zero();
@@ -282,7 +296,7 @@ void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) 
   out.handle_wrench = wrench;
 
   Vector6d tau = dynamics_->gravity_torque(chain_) - config_.joint_damping * qd + joint_walls(q) +
-                 jac.transpose() * wrench;
+                 jac.transpose() * workspace_wall() + jac.transpose() * wrench;
   for (int i = 0; i < kJoints; ++i) {
     const double limit = dynamics_->model().joints[static_cast<std::size_t>(i)].torque_peak;
     tau(i) = std::clamp(tau(i), -limit, limit);

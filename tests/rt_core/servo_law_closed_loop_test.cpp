@@ -53,10 +53,12 @@ struct Loop {
 };
 
 TEST(ClosedLoop, GravityCompensationHoldsTheHandleFromSeveralPoses) {
+  // Poses spread over the workspace box (handle at (0.63, 0, 0.23), (0.52, 0.18, 0.14),
+  // (0.63, -0.17, 0.16), (0.40, 0.11, 0.14) m), wrist joints far from zero.
   const std::array<Vector6d, 4> poses{kReady,
-                                      (Vector6d() << 0.5, -0.9, 1.6, 0.3, 0.4, -0.2).finished(),
-                                      (Vector6d() << -1.0, -0.2, 0.8, -1.0, -0.8, 1.0).finished(),
-                                      (Vector6d() << 1.5, -1.2, 2.2, 1.5, 1.0, 0.0).finished()};
+                                      (Vector6d() << 0.3, -0.7, 1.4, 0.5, 0.3, -0.4).finished(),
+                                      (Vector6d() << -0.3, -0.4, 1.0, -0.6, -0.5, 0.8).finished(),
+                                      (Vector6d() << 0.1, -0.9, 1.8, 1.0, 0.9, 0.3).finished()};
   for (const Vector6d& pose : poses) {
     Loop loop(pose);
     const Vector3d start = loop.handle();

@@ -1,6 +1,7 @@
 #include "hapticctrl/rt_core/servo_law.hpp"
 
 #include <gtest/gtest.h>
+#include <Eigen/QR>
 
 #include <cmath>
 
@@ -189,6 +190,23 @@ TEST(ServoLaw, ExcessiveHandleSpeedBrakesInsteadOfRendering) {
   const ChainState s = chain_at(kReady);
   const Vector3d v = (default_dynamics().jacobian(s) * in.measures.velocity).head<3>();
   EXPECT_LT(out.handle_wrench.head<3>().dot(v), 0.0) << "the wrench opposes the motion";
+}
+
+TEST(ServoLaw, WorkspaceWallPushesTheHandleBackIntoTheBox) {
+  ServoLaw law(default_dynamics());
+  // Shoulder and elbow pitched down: the handle is below the box's bottom face (z = 0.025 m).
+  const Vector6d q = (Vector6d() << 0, 0.5, 0.5, 0, 0, 0).finished();
+  ServoOutputs out;
+  for (int k = 0; k < 50; ++k) {
+    law.compute(powered_at(q), false, out);
+  }
+  EXPECT_GT(law.counters().workspace_walls, 0U);
+  const ChainState s = chain_at(q);
+  const Vector6d extra = out.commands.torque - default_dynamics().gravity_torque(s);
+  // Map the extra joint torque back to a handle force: it must push up, into the box.
+  const Vector6d wrench =
+      default_dynamics().jacobian(s).transpose().completeOrthogonalDecomposition().solve(extra);
+  EXPECT_GT(wrench(2), 1.0) << "pushed back up into the box";
 }
 
 TEST(ServoLaw, JointLimitWallsPushBack) {

@@ -44,8 +44,11 @@ struct ArmLimits {
   double max_stiffness_angular = 0.0;
   double max_damping_linear = 0.0;
   double max_damping_angular = 0.0;
-  double max_speed = 0.0;   ///< handle speed safety threshold, m/s
-  double force_rate = 0.0;  ///< N/s
+  double max_speed = 0.0;                        ///< handle speed safety threshold, m/s
+  double force_rate = 0.0;                       ///< N/s
+  Vector3d workspace_center = Vector3d::Zero();  ///< handle workspace box, base frame
+  Vector3d workspace_half_size = Vector3d::Zero();
+  double workspace_stiffness = 0.0;  ///< N/m, soft wall outside the box
 };
 
 struct ArmModel {

@@ -75,6 +75,7 @@ struct LawCounters {
   std::uint64_t speed_limited = 0;
   std::uint64_t passivity_active = 0;
   std::uint64_t rate_limited = 0;
+  std::uint64_t workspace_walls = 0;  ///< cycles with the handle outside the workspace box
 };
 
 class ServoLaw {
@@ -104,6 +105,7 @@ class ServoLaw {
   Vector6d limit_wrench(const Vector6d& wrench, const shm::VprPayload& client, double dt) noexcept;
   Vector6d guard_passivity(const Vector6d& wrench, const Vector6d& twist, double dt) noexcept;
   Vector6d joint_walls(const Vector6d& q) const noexcept;
+  Vector6d workspace_wall() noexcept;
   void express_for_client(const shm::VprPayload& client, const Vector6d& twist,
                           ServoOutputs& out) const noexcept;
 

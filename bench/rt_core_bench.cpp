@@ -75,58 +75,48 @@ void BM_SimulatorStep1ms(benchmark::State& state) {
 }
 BENCHMARK(BM_SimulatorStep1ms);
 
-/// One full 1 ms cycle as the SERVO runs it: measures, law, commands (simulator integration).
-void BM_FullCycle1ms(benchmark::State& state) {
+/// One full cycle as the SERVO runs it: measures, law, commands (simulator integration).
+void run_full_cycle(benchmark::State& state, TimeNs period) {
   auto force = std::make_unique<shm::SeqlockCell<shm::ForcePayload>>();
   SimulatedArm arm(dynamics(), SimulatorOptions{}, kReady, force.get());
   arm.set_supply(true);
   ServoLaw law(dynamics());
   ServoInputs in = coupled_inputs();
+  in.dt = period;
   ServoOutputs out;
   for (auto _ : state) {
     arm.get_measures(in.measures);
     law.compute(in, false, out);
-    arm.send_commands(out.commands, 0, kNsPerMs);
+    arm.send_commands(out.commands, 0, period);
   }
+}
+
+void BM_FullCycle1ms(benchmark::State& state) {
+  run_full_cycle(state, kNsPerMs);
 }
 BENCHMARK(BM_FullCycle1ms);
 
-/// The same at 100 µs: the simulator runs a single sub-step.
+/// At 100 µs the simulator runs a single sub-step.
 void BM_FullCycle100us(benchmark::State& state) {
-  auto force = std::make_unique<shm::SeqlockCell<shm::ForcePayload>>();
-  SimulatedArm arm(dynamics(), SimulatorOptions{}, kReady, force.get());
-  arm.set_supply(true);
-  ServoLaw law(dynamics());
-  ServoInputs in = coupled_inputs();
-  in.dt = 100 * kNsPerUs;
-  ServoOutputs out;
-  for (auto _ : state) {
-    arm.get_measures(in.measures);
-    law.compute(in, false, out);
-    arm.send_commands(out.commands, 0, 100 * kNsPerUs);
-  }
+  run_full_cycle(state, 100 * kNsPerUs);
 }
 BENCHMARK(BM_FullCycle100us);
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) {
-    return 1;
-  }
-  hapticctrl::bench::RatioReporter reporter;
-  benchmark::RunSpecifiedBenchmarks(&reporter);
-  reporter.print_ratios({{"BM_ControlLaw", "BM_ForwardKinematicsAndJacobian"},
-                         {"BM_FullCycle1ms", "BM_SimulatorStep1ms"}});
-  const double cycle_1ms = reporter.ns("BM_FullCycle1ms");
-  const double cycle_100us = reporter.ns("BM_FullCycle100us");
-  if (cycle_1ms > 0 && cycle_100us > 0) {
-    std::printf(
-        "\nshare of the period: 1 ms cycle %.0f ns = %.2f %% of 1 ms; "
-        "100 us cycle %.0f ns = %.2f %% of 100 us\n",
-        cycle_1ms, cycle_1ms / 1e4, cycle_100us, cycle_100us / 1e3);
-  }
-  benchmark::Shutdown();
-  return 0;
+  return hapticctrl::bench::run_with_ratios(
+      argc, argv,
+      {{"BM_ControlLaw", "BM_ForwardKinematicsAndJacobian"},
+       {"BM_FullCycle1ms", "BM_SimulatorStep1ms"}},
+      [](const hapticctrl::bench::RatioReporter& reporter) {
+        const double cycle_1ms = reporter.ns("BM_FullCycle1ms");
+        const double cycle_100us = reporter.ns("BM_FullCycle100us");
+        if (cycle_1ms > 0 && cycle_100us > 0) {
+          std::printf(
+              "\nshare of the period: 1 ms cycle %.0f ns = %.2f %% of 1 ms; "
+              "100 us cycle %.0f ns = %.2f %% of 100 us\n",
+              cycle_1ms, cycle_1ms / 1e4, cycle_100us, cycle_100us / 1e3);
+        }
+      });
 }

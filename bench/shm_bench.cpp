@@ -216,21 +216,13 @@ BENCHMARK(BM_WakeRoundTripUdpLoopback)->UseRealTime()->MinTime(1.0);
 }  // namespace
 
 int main(int argc, char** argv) {
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) {
-    return 1;
-  }
-  hapticctrl::bench::RatioReporter reporter;
-  benchmark::RunSpecifiedBenchmarks(&reporter);
-  reporter.print_ratios({
-      {"BM_SeqlockPublishQuietly", "BM_StructCopyBaseline"},
-      {"BM_SeqlockRead", "BM_StructCopyBaseline"},
-      {"BM_SeqlockPublishWithWake", "BM_SeqlockPublishQuietly"},
-      {"BM_WakeRoundTripFutex/min_time:1.000/real_time",
-       "BM_WakeRoundTripPipe/min_time:1.000/real_time"},
-      {"BM_WakeRoundTripFutex/min_time:1.000/real_time",
-       "BM_WakeRoundTripUdpLoopback/min_time:1.000/real_time"},
-  });
-  benchmark::Shutdown();
-  return 0;
+  const std::string futex = "BM_WakeRoundTripFutex/min_time:1.000/real_time";
+  return hapticctrl::bench::run_with_ratios(
+      argc, argv,
+      {{"BM_SeqlockPublishQuietly", "BM_StructCopyBaseline"},
+       {"BM_SeqlockRead", "BM_StructCopyBaseline"},
+       {"BM_SeqlockPublishWithWake", "BM_SeqlockPublishQuietly"},
+       {futex, "BM_WakeRoundTripPipe/min_time:1.000/real_time"},
+       {futex, "BM_WakeRoundTripUdpLoopback/min_time:1.000/real_time"}},
+      [](const hapticctrl::bench::RatioReporter&) {});
 }

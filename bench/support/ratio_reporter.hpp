@@ -61,4 +61,22 @@ class RatioReporter : public benchmark::ConsoleReporter {
   std::map<std::string, double> ns_per_iteration_;
 };
 
+/// The common main(): runs the selected benchmarks, prints the ratio table for `pairs`, then
+/// calls `epilogue(reporter)` for anything else the binary reports.
+template <typename Epilogue>
+int run_with_ratios(int argc, char** argv,
+                    const std::vector<std::pair<std::string, std::string>>& pairs,
+                    Epilogue epilogue) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) {
+    return 1;
+  }
+  RatioReporter reporter;
+  benchmark::RunSpecifiedBenchmarks(&reporter);
+  reporter.print_ratios(pairs);
+  epilogue(reporter);
+  benchmark::Shutdown();
+  return 0;
+}
+
 }  // namespace hapticctrl::bench

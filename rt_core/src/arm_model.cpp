@@ -5,6 +5,8 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #ifndef HAPTICCTRL_DEFAULT_ARM_MODEL
@@ -141,6 +143,26 @@ class Parser {
     return v;
   }
 
+  /// "min max" with min < max.
+  std::pair<double, double> range(const Sections& s, const std::string& section,
+                                  const std::string& key) const {
+    const auto v = numbers(s, section, key, 2);
+    if (!(v[0] < v[1])) {
+      fail(get(s, section, key).line, where(section, key), "min must be below max");
+    }
+    return {v[0], v[1]};
+  }
+
+  /// Two values, both > 0 (linear and angular).
+  std::pair<double, double> positive_pair(const Sections& s, const std::string& section,
+                                          const std::string& key) const {
+    const auto v = numbers(s, section, key, 2);
+    if (!(v[0] > 0.0 && v[1] > 0.0)) {
+      fail(get(s, section, key).line, where(section, key), "both values must be > 0");
+    }
+    return {v[0], v[1]};
+  }
+
   Vector3d vec3(const Sections& s, const std::string& section, const std::string& key) const {
     const auto v = numbers(s, section, key, 3);
     return {v[0], v[1], v[2]};
@@ -194,12 +216,7 @@ ArmModel parse_arm_model(const std::string& text, const std::string& source) {
              "principal moments must be >= 0");
     }
     j.inertia = principal.asDiagonal();
-    const auto limits = p.numbers(s, sec, "limits", 2);
-    if (!(limits[0] < limits[1])) {
-      p.fail(p.get(s, sec, "limits").line, "[" + sec + "] limits", "min must be below max");
-    }
-    j.q_min = limits[0];
-    j.q_max = limits[1];
+    std::tie(j.q_min, j.q_max) = p.range(s, sec, "limits");
     j.viscous = p.positive(s, sec, "viscous", true);
     j.coulomb = p.positive(s, sec, "coulomb", true);
     j.rotor_inertia = p.positive(s, sec, "rotor_inertia", true);
@@ -217,23 +234,16 @@ ArmModel parse_arm_model(const std::string& text, const std::string& source) {
     j.encoder_counts = static_cast<int>(counts);
   }
   m.handle = p.vec3(s, "handle", "origin");
-  const auto coupled = p.numbers(s, "limits", "coupled_j2_j3", 2);
-  if (!(coupled[0] < coupled[1])) {
-    p.fail(p.get(s, "limits", "coupled_j2_j3").line, "[limits] coupled_j2_j3",
-           "min must be below max");
-  }
-  m.limits.coupled_j23_min = coupled[0];
-  m.limits.coupled_j23_max = coupled[1];
+  std::tie(m.limits.coupled_j23_min, m.limits.coupled_j23_max) =
+      p.range(s, "limits", "coupled_j2_j3");
   m.limits.force_peak = p.positive(s, "limits", "force_peak");
   m.limits.force_continuous = p.positive(s, "limits", "force_continuous");
   m.limits.torque_peak = p.positive(s, "limits", "torque_peak");
   m.limits.torque_continuous = p.positive(s, "limits", "torque_continuous");
-  const auto stiffness = p.numbers(s, "limits", "max_stiffness", 2);
-  const auto damping = p.numbers(s, "limits", "max_damping", 2);
-  m.limits.max_stiffness_linear = stiffness[0];
-  m.limits.max_stiffness_angular = stiffness[1];
-  m.limits.max_damping_linear = damping[0];
-  m.limits.max_damping_angular = damping[1];
+  std::tie(m.limits.max_stiffness_linear, m.limits.max_stiffness_angular) =
+      p.positive_pair(s, "limits", "max_stiffness");
+  std::tie(m.limits.max_damping_linear, m.limits.max_damping_angular) =
+      p.positive_pair(s, "limits", "max_damping");
   m.limits.max_speed = p.positive(s, "limits", "max_speed");
   m.limits.force_rate = p.positive(s, "limits", "force_rate");
   m.limits.workspace_center = p.vec3(s, "limits", "workspace_center");

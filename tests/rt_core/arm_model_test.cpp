@@ -57,6 +57,10 @@ TEST(ArmModel, ErrorsNameTheFileLineAndField) {
                "[joint 6] encoder_counts");
   expect_error(edit(text, "limits", "force_rate", "force_rate = nan"), "[limits] force_rate");
   expect_error(edit(text, "model", "format", "format = 2"), "unsupported format '2'");
+  expect_error(edit(text, "limits", "max_stiffness", "max_stiffness = -5 20"),
+               "[limits] max_stiffness: both values must be > 0");
+  expect_error(edit(text, "limits", "coupled_j2_j3", "coupled_j2_j3 = 1 1"),
+               "[limits] coupled_j2_j3: min must be below max");
   expect_error(edit(text, "joint 2", "inertia", "# gone"), "[joint 2] inertia: missing");
   expect_error(text + "\n[joint 1]\n", "section appears twice");
   expect_error("format = 1\nthis is not a key value line\n", "test.arm:2");

@@ -30,7 +30,8 @@ if [[ "${CI:-}" == "true" ]]; then
   scripts/lint.sh build
   echo "== AddressSanitizer + UBSan"
   configure_build_test build-asan 'unit|sim|integration' \
-    -DHAPTICCTRL_SANITIZER=address,undefined -DHAPTICCTRL_BUILD_BENCH=OFF -DCMAKE_BUILD_TYPE=Debug
+    -DHAPTICCTRL_SANITIZER=address,undefined -DHAPTICCTRL_BUILD_BENCH=OFF -DCMAKE_BUILD_TYPE=Debug \
+    -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g"  # asserts on (EIGEN_NO_MALLOC), Eigen still fast enough
   echo "== ThreadSanitizer"
   configure_build_test build-tsan 'unit|sim|integration' \
     -DHAPTICCTRL_SANITIZER=thread -DHAPTICCTRL_BUILD_BENCH=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo

@@ -223,8 +223,6 @@ ExecutiveResult Executive::stop_sequence(shm::StopReason reason, bool fail_safe)
     result.step_times[result.step_count] = clock_->now();
     ++result.step_count;
   };
-  shared_->stop_reason.store(static_cast<std::uint32_t>(reason), std::memory_order_relaxed);
-  shared_->core_state.store(static_cast<std::uint32_t>(core_state_), std::memory_order_relaxed);
   if (outputs_.header != nullptr) {
     outputs_.header->stop_reason.store(static_cast<std::uint32_t>(reason),
                                        std::memory_order_relaxed);
@@ -258,6 +256,10 @@ ExecutiveResult Executive::stop_sequence(shm::StopReason reason, bool fail_safe)
   step(StopStep::kPowerOffSupply);
 
   // 3. Close the protocol: VP says FAILSAFE/STOPPING and why, so the bridge tells the client.
+  // Only now (no task can commit any more) does the servo's view of the state change, so the
+  // first VP that says FAILSAFE is this one, already unpowered.
+  shared_->stop_reason.store(static_cast<std::uint32_t>(reason), std::memory_order_relaxed);
+  shared_->core_state.store(static_cast<std::uint32_t>(core_state_), std::memory_order_relaxed);
   if (exclusive && shared_->regions.vp != nullptr) {
     shm::VpPayload vp;
     (void)shared_->regions.vp->read(vp);

@@ -1,7 +1,6 @@
 #include "hapticctrl/rt_core/servo_law.hpp"
 
 #include <gtest/gtest.h>
-#include <Eigen/QR>
 
 #include <cmath>
 
@@ -203,10 +202,11 @@ TEST(ServoLaw, WorkspaceWallPushesTheHandleBackIntoTheBox) {
   EXPECT_GT(law.counters().workspace_walls, 0U);
   const ChainState s = chain_at(q);
   const Vector6d extra = out.commands.torque - default_dynamics().gravity_torque(s);
-  // Map the extra joint torque back to a handle force: it must push up, into the box.
-  const Vector6d wrench =
-      default_dynamics().jacobian(s).transpose().completeOrthogonalDecomposition().solve(extra);
-  EXPECT_GT(wrench(2), 1.0) << "pushed back up into the box";
+  // The extra joint torque must have a component of J^T * (upward force) (the wrist is singular
+  // here, and the shoulder torque saturates, so project rather than invert J^T).
+  const Vector6d up = default_dynamics().jacobian(s).transpose() * Vector6d::Unit(2);
+  const double force = extra.dot(up) / up.squaredNorm();
+  EXPECT_GT(force, 1.0) << "pushed back up into the box";
 }
 
 TEST(ServoLaw, JointLimitWallsPushBack) {

@@ -260,6 +260,7 @@ ExecutiveResult Executive::stop_sequence(shm::StopReason reason, bool fail_safe)
   // first VP that says FAILSAFE is this one, already unpowered.
   shared_->stop_reason.store(static_cast<std::uint32_t>(reason), std::memory_order_relaxed);
   shared_->core_state.store(static_cast<std::uint32_t>(core_state_), std::memory_order_relaxed);
+  publish_telemetry(clock_->now());  // before VP: whoever sees VP close finds telemetry agreeing
   if (exclusive && shared_->regions.vp != nullptr) {
     shm::VpPayload vp;
     (void)shared_->regions.vp->read(vp);
@@ -272,7 +273,6 @@ ExecutiveResult Executive::stop_sequence(shm::StopReason reason, bool fail_safe)
     shared_->regions.vp->publish(vp, clock_->now());
     result.protocol_closed_in_vp = true;
   }
-  publish_telemetry(clock_->now());
   step(StopStep::kCloseProtocol);
 
   // 4. Stop the tasks.

@@ -15,6 +15,13 @@ bool all_finite(const std::array<double, N>& values) noexcept {
   return true;
 }
 
+/// A frame pose's rotation must be a unit quaternion (1 % tolerance for float clients).
+bool unit_quaternion(const shm::Pose7& pose) noexcept {
+  const double norm_sq =
+      pose[3] * pose[3] + pose[4] * pose[4] + pose[5] * pose[5] + pose[6] * pose[6];
+  return std::abs(norm_sq - 1.0) <= 0.02;
+}
+
 /// A client sample is usable only if every number in it is finite and in a sane range.
 bool client_sample_valid(const shm::VprPayload& s) noexcept {
   return s.command_type <= static_cast<std::uint32_t>(shm::CommandType::kVirtmech) &&
@@ -24,6 +31,7 @@ bool client_sample_valid(const shm::VprPayload& s) noexcept {
          std::isfinite(s.client_time_step) && s.client_time_step >= 0.0 &&
          std::isfinite(s.force_factor) && std::isfinite(s.speed_factor) &&
          all_finite(s.base_frame) && all_finite(s.observation_frame) &&
+         unit_quaternion(s.base_frame) && unit_quaternion(s.observation_frame) &&
          all_finite(s.gain_override) && all_finite(s.force_limits);
 }
 

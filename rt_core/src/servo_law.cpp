@@ -37,6 +37,18 @@ double bounded(double value, double upper) noexcept {
 
 }  // namespace
 
+ClientFrame client_frame_of(const shm::VprPayload& c) noexcept {
+  ClientFrame frame;
+  const Eigen::Quaterniond q = to_quaternion(c.base_frame);
+  if (q.norm() > 0.5) {
+    frame.rotation = q.normalized();
+  }
+  frame.origin = Vector3d(c.base_frame[0], c.base_frame[1], c.base_frame[2]);
+  frame.speed_factor = c.speed_factor > 0.0 ? c.speed_factor : 1.0;
+  frame.force_factor = c.force_factor > 0.0 ? c.force_factor : 1.0;
+  return frame;
+}
+
 ServoLaw::ServoLaw(const ArmDynamics& dynamics, const LawConfig& config) noexcept
     : dynamics_(&dynamics), config_(config) {}
 
@@ -75,8 +87,9 @@ CouplingGains ServoLaw::derive_gains(const shm::VprPayload& c, double link_delay
   return g;
 }
 
-Vector6d ServoLaw::client_wrench(const ServoInputs& in, const ChainState& chain,
-                                 const Vector6d& twist, ServoOutputs& out) noexcept {
+Vector6d ServoLaw::client_wrench(const ServoInputs& in, const ClientFrame& frame,
+                                 const ChainState& chain, const Vector6d& twist,
+                                 ServoOutputs& out) noexcept {
   const shm::VprPayload& c = in.client;
   if (!in.client_valid || c.session_id == 0) {
     return Vector6d::Zero();  // no session: the rate limiter ramps any previous wrench out
@@ -91,18 +104,15 @@ Vector6d ServoLaw::client_wrench(const ServoInputs& in, const ChainState& chain,
   if (fade <= 0.0) {
     return Vector6d::Zero();
   }
-  const double force_factor = c.force_factor > 0.0 ? c.force_factor : 1.0;
-  const double speed_factor = c.speed_factor > 0.0 ? c.speed_factor : 1.0;
   // Client poses are in its environment frame; base_frame is our base in that frame.
-  const Eigen::Quaterniond base_q = to_quaternion(c.base_frame).normalized();
-  const Matrix3d base_r = base_q.toRotationMatrix();
-  const Vector3d base_p(c.base_frame[0], c.base_frame[1], c.base_frame[2]);
+  const Matrix3d base_r = frame.rotation.toRotationMatrix();
+  const double speed_factor = frame.speed_factor;
 
   if (c.command_type == static_cast<std::uint32_t>(shm::CommandType::kImpedance)) {
     const Vector6d env = to_vector(c.impedance_wrench);
     Vector6d w;
     w << base_r.transpose() * env.head<3>(), base_r.transpose() * env.tail<3>();
-    return w * (fade * force_factor);
+    return w * (fade * frame.force_factor);
   }
   if (c.command_type != static_cast<std::uint32_t>(shm::CommandType::kVirtmech)) {
     return Vector6d::Zero();
@@ -113,7 +123,7 @@ Vector6d ServoLaw::client_wrench(const ServoInputs& in, const ChainState& chain,
   }
   // Object state in the base frame (positions de-scaled by the speed factor).
   const Vector3d object_p_env(c.object_pose[0], c.object_pose[1], c.object_pose[2]);
-  Vector3d object_p = base_r.transpose() * (object_p_env - base_p) / speed_factor;
+  Vector3d object_p = base_r.transpose() * (object_p_env - frame.origin) / speed_factor;
   Matrix3d object_r = base_r.transpose() * object_q_env.normalized().toRotationMatrix();
   const Vector6d twist_env = to_vector(c.object_twist);
   const Vector3d object_v = base_r.transpose() * twist_env.head<3>() / speed_factor;
@@ -143,7 +153,7 @@ Vector6d ServoLaw::client_wrench(const ServoInputs& in, const ChainState& chain,
       g.k_angular * e_r + g.b_angular * e_rate.tail<3>();
 
   out.coupled = true;
-  return w * (fade * force_factor);
+  return w * (fade * frame.force_factor);
 }
 
 Vector6d ServoLaw::limit_wrench(const Vector6d& wrench, const shm::VprPayload& client,
@@ -235,18 +245,13 @@ Vector6d ServoLaw::guard_passivity(const Vector6d& wrench, const Vector6d& twist
   return w;
 }
 
-void ServoLaw::express_for_client(const shm::VprPayload& c, const Vector6d& twist,
+void ServoLaw::express_for_client(const ClientFrame& frame, const Vector6d& twist,
                                   ServoOutputs& out) const noexcept {
-  // Client frames: base_frame is our base in its environment frame; speed_factor scales
-  // displacements between the device and the simulation.
-  const double speed_factor = c.speed_factor > 0.0 ? c.speed_factor : 1.0;
-  Eigen::Quaterniond base_q = to_quaternion(c.base_frame);
-  base_q = base_q.norm() > 0.5 ? base_q.normalized() : Eigen::Quaterniond::Identity();
-  const Vector3d base_p(c.base_frame[0], c.base_frame[1], c.base_frame[2]);
-  const Vector3d p = base_p + base_q * (chain_.handle_position * speed_factor);
-  const Eigen::Quaterniond q = base_q * Eigen::Quaterniond(chain_.handle_rotation);
+  const Vector3d p = frame.origin + frame.rotation * (chain_.handle_position * frame.speed_factor);
+  const Eigen::Quaterniond q = frame.rotation * Eigen::Quaterniond(chain_.handle_rotation);
   out.client_handle_pose = {p.x(), p.y(), p.z(), q.x(), q.y(), q.z(), q.w()};
-  out.client_handle_twist << base_q * (twist.head<3>() * speed_factor), base_q * twist.tail<3>();
+  out.client_handle_twist << frame.rotation * (twist.head<3>() * frame.speed_factor),
+      frame.rotation * twist.tail<3>();
 }
 
 void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) noexcept {
@@ -258,7 +263,8 @@ void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) 
   const Vector6d twist = jac * qd;
   out.handle_pose = pose_of(chain_);
   out.handle_twist = twist;
-  express_for_client(in.client, twist, out);
+  const ClientFrame frame = client_frame_of(in.client);
+  express_for_client(frame, twist, out);
   out.coupling_wrench.setZero();
   out.handle_wrench.setZero();
   out.coupled = false;
@@ -272,7 +278,7 @@ void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) 
     return;
   }
 
-  Vector6d target = degraded ? Vector6d::Zero() : client_wrench(in, chain_, twist, out);
+  Vector6d target = degraded ? Vector6d::Zero() : client_wrench(in, frame, chain_, twist, out);
   const ArmLimits& lim = dynamics_->model().limits;
   if (twist.head<3>().norm() > lim.max_speed) {
     // Speed safety (FD-style): drop the rendered wrench and brake the handle instead.
@@ -288,15 +294,13 @@ void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) 
   }
   if (out.coupled) {
     // The object feels the opposite of the rendered wrench, in the client's frame, unscaled.
-    const Matrix3d base_r = to_quaternion(in.client.base_frame).normalized().toRotationMatrix();
-    const double force_factor = in.client.force_factor > 0.0 ? in.client.force_factor : 1.0;
-    out.coupling_wrench << -(base_r * wrench.head<3>()) / force_factor,
-        -(base_r * wrench.tail<3>()) / force_factor;
+    out.coupling_wrench << -(frame.rotation * wrench.head<3>()) / frame.force_factor,
+        -(frame.rotation * wrench.tail<3>()) / frame.force_factor;
   }
   out.handle_wrench = wrench;
 
   Vector6d tau = dynamics_->gravity_torque(chain_) - config_.joint_damping * qd + joint_walls(q) +
-                 jac.transpose() * workspace_wall() + jac.transpose() * wrench;
+                 jac.transpose() * (workspace_wall() + wrench);
   for (int i = 0; i < kJoints; ++i) {
     const double limit = dynamics_->model().joints[static_cast<std::size_t>(i)].torque_peak;
     tau(i) = std::clamp(tau(i), -limit, limit);

@@ -97,6 +97,18 @@ TEST(Servo, NonFiniteClientSampleIsRejectedAndCounted) {
   EXPECT_EQ(rig.last_vp().echo_client_sequence, 1U) << "the last valid sample stays in use";
 }
 
+TEST(Servo, ClientFrameThatIsNotARotationIsRejected) {
+  ServoRig rig;
+  shm::VprPayload bad;
+  bad.session_id = 1;
+  bad.client_sequence = 1;
+  bad.base_frame = {0, 0, 0, 0, 0, 0, 0};  // zero quaternion
+  rig.vpr->publish(bad, 0);
+  rig.cycle(rig.main_task, 1);
+  EXPECT_EQ(rig.shared.counters.vpr_rejected.load(), 1U);
+  EXPECT_EQ(rig.last_vp().echo_client_sequence, 0U) << "never used";
+}
+
 TEST(Servo, StaleClientIsFlagged) {
   ServoRig rig;
   shm::VprPayload client;

@@ -56,6 +56,19 @@ struct CouplingGains {
   double b_angular = 0.0;
 };
 
+/// How the client's environment frame relates to ours, derived once per cycle from its sample:
+/// `base_frame` is our base in its environment (a degenerate quaternion counts as identity), and
+/// the speed/force factors scale displacements and rendered forces (non-positive means 1).
+struct ClientFrame {
+  Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();
+  Vector3d origin = Vector3d::Zero();
+  double speed_factor = 1.0;
+  double force_factor = 1.0;
+};
+
+/// Real-time contract: safe in the cycle.
+ClientFrame client_frame_of(const shm::VprPayload& client) noexcept;
+
 struct LawConfig {
   TimeNs stale_after = 5 * kNsPerMs;       ///< older client data is extrapolated, flagged stale
   TimeNs extrapolate_max = 50 * kNsPerMs;  ///< extrapolation horizon
@@ -100,13 +113,13 @@ class ServoLaw {
   [[nodiscard]] const LawConfig& config() const noexcept { return config_; }
 
  private:
-  Vector6d client_wrench(const ServoInputs& in, const ChainState& chain, const Vector6d& twist,
-                         ServoOutputs& out) noexcept;
+  Vector6d client_wrench(const ServoInputs& in, const ClientFrame& frame, const ChainState& chain,
+                         const Vector6d& twist, ServoOutputs& out) noexcept;
   Vector6d limit_wrench(const Vector6d& wrench, const shm::VprPayload& client, double dt) noexcept;
   Vector6d guard_passivity(const Vector6d& wrench, const Vector6d& twist, double dt) noexcept;
   Vector6d joint_walls(const Vector6d& q) const noexcept;
   Vector6d workspace_wall() noexcept;
-  void express_for_client(const shm::VprPayload& client, const Vector6d& twist,
+  void express_for_client(const ClientFrame& frame, const Vector6d& twist,
                           ServoOutputs& out) const noexcept;
 
   const ArmDynamics* dynamics_;

@@ -19,6 +19,24 @@ inline std::string unique_instance(const std::string& tag) {
   return "t" + std::to_string(getpid()) + "-" + std::to_string(++counter) + "-" + tag;
 }
 
+/// Polls `pid` for up to `timeout`: its exit status, 128+signal if killed, -1 on timeout.
+/// Sets `reaped` once the process has been collected.
+inline int wait_for_exit(pid_t pid, std::chrono::milliseconds timeout, bool& reaped) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  while (std::chrono::steady_clock::now() < deadline) {
+    int status = 0;
+    if (waitpid(pid, &status, WNOHANG) == pid) {
+      reaped = true;
+      if (WIFEXITED(status)) {
+        return WEXITSTATUS(status);
+      }
+      return WIFSIGNALED(status) ? 128 + WTERMSIG(status) : -1;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  return -1;
+}
+
 /// A forked child running `body`; its return value is the exit status. The destructor kills
 /// and reaps it, so a failing test never leaves a process behind.
 class Child {
@@ -49,20 +67,7 @@ class Child {
   /// Waits up to `timeout` for the child to exit; returns its exit status, 128+signal if it was
   /// killed, or -1 on timeout.
   int wait(std::chrono::milliseconds timeout = std::chrono::seconds(30)) {
-    const auto deadline = std::chrono::steady_clock::now() + timeout;
-    while (std::chrono::steady_clock::now() < deadline) {
-      int status = 0;
-      const pid_t r = waitpid(pid_, &status, WNOHANG);
-      if (r == pid_) {
-        reaped_ = true;
-        if (WIFEXITED(status)) {
-          return WEXITSTATUS(status);
-        }
-        return WIFSIGNALED(status) ? 128 + WTERMSIG(status) : -1;
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    }
-    return -1;
+    return wait_for_exit(pid_, timeout, reaped_);
   }
 
   void kill_now(int sig = SIGKILL) { kill(pid_, sig); }

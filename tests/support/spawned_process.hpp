@@ -14,6 +14,8 @@
 #include <thread>
 #include <vector>
 
+#include "support/child_process.hpp"
+
 namespace hapticctrl::test {
 
 class SpawnedProcess {
@@ -56,16 +58,7 @@ class SpawnedProcess {
 
   /// Exit status, 128+signal if killed, -1 on timeout.
   int wait(std::chrono::milliseconds timeout = std::chrono::seconds(30)) {
-    const auto deadline = std::chrono::steady_clock::now() + timeout;
-    while (std::chrono::steady_clock::now() < deadline) {
-      int status = 0;
-      if (waitpid(pid_, &status, WNOHANG) == pid_) {
-        reaped_ = true;
-        return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(2));
-    }
-    return -1;
+    return wait_for_exit(pid_, timeout, reaped_);
   }
 
   [[nodiscard]] std::string out() const { return slurp(out_path_); }

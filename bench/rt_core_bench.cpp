@@ -27,6 +27,7 @@ ServoInputs coupled_inputs() {
   in.logical.powered = true;
   in.client.session_id = 1;
   in.client.command_type = static_cast<std::uint32_t>(shm::CommandType::kVirtmech);
+  in.client.flags = shm::vpr_flags::kObjectAttached;
   in.client.object_pose = {0.63, 0.01, 0.23, 0, 0, 0, 1};
   in.client.object_twist = {0.02, 0, 0, 0, 0, 0.1};
   in.client.object_mass = 0.3;

@@ -114,8 +114,9 @@ Vector6d ServoLaw::client_wrench(const ServoInputs& in, const ClientFrame& frame
     w << base_r.transpose() * env.head<3>(), base_r.transpose() * env.tail<3>();
     return w * (fade * frame.force_factor);
   }
-  if (c.command_type != static_cast<std::uint32_t>(shm::CommandType::kVirtmech)) {
-    return Vector6d::Zero();
+  if (c.command_type != static_cast<std::uint32_t>(shm::CommandType::kVirtmech) ||
+      (c.flags & shm::vpr_flags::kObjectAttached) == 0) {
+    return Vector6d::Zero();  // VIRTMECH couples an attached object only
   }
   const Eigen::Quaterniond object_q_env = to_quaternion(c.object_pose);
   if (object_q_env.norm() < 0.5) {

@@ -18,6 +18,8 @@ std::string_view region_name(RegionId id) noexcept {
       return "ctrl_ack";
     case RegionId::kTelemetry:
       return "telemetry";
+    case RegionId::kLinkStats:
+      return "link_stats";
     case RegionId::kCount:
       break;
   }

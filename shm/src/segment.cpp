@@ -227,6 +227,7 @@ Segment Segment::create(const CreateOptions& options) {
     new (base + region_offset(RegionId::kCtrl)) RegionType<RegionId::kCtrl>();
     new (base + region_offset(RegionId::kCtrlAck)) RegionType<RegionId::kCtrlAck>();
     new (base + region_offset(RegionId::kTelemetry)) RegionType<RegionId::kTelemetry>();
+    new (base + region_offset(RegionId::kLinkStats)) RegionType<RegionId::kLinkStats>();
     const ProcessIdentity me = ProcessIdentity::self();
     header->abi_version = kAbiVersion;
     header->header_size = sizeof(SegmentHeader);

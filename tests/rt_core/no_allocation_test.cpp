@@ -58,6 +58,7 @@ TEST(NoAllocation, ArmedCyclesAllocateNothing) {
   shm::VprPayload client;
   client.session_id = 1;
   client.command_type = static_cast<std::uint32_t>(shm::CommandType::kVirtmech);
+  client.flags = shm::vpr_flags::kObjectAttached;
   client.object_pose = {0.63, 0.02, 0.2, 0, 0, 0, 1};
   client.object_twist = {0.01, 0, 0, 0, 0, 0.1};
   client.object_mass = 0.3;

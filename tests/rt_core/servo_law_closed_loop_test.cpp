@@ -98,6 +98,7 @@ TEST(ClosedLoop, CouplingBalancesTheOperatorForceAgainstAFixedObject) {
   const Vector3d p = loop.handle();
   client.session_id = 1;
   client.command_type = static_cast<std::uint32_t>(shm::CommandType::kVirtmech);
+  client.flags = shm::vpr_flags::kObjectAttached;
   client.object_pose = {p.x(), p.y(), p.z(), 0, 0, 0, 1};
   client.object_mass = 0.5;
   client.client_time_step = 1e-3;
@@ -149,6 +150,7 @@ PassivityRun run_delayed_coupling(bool guard, int delay_ms, double loss, unsigne
   std::deque<Vector3d> to_client;
   loop.in.client.session_id = 1;
   loop.in.client.command_type = static_cast<std::uint32_t>(shm::CommandType::kVirtmech);
+  loop.in.client.flags = shm::vpr_flags::kObjectAttached;
   loop.in.client.object_mass = mass;
   loop.in.client.client_time_step = 1e-3;
   loop.in.client.object_pose = {x.x(), x.y(), x.z(), 0, 0, 0, 1};

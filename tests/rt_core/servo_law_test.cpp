@@ -32,6 +32,7 @@ shm::VprPayload virtmech_client(const std::array<double, 7>& object_pose) {
   shm::VprPayload c;
   c.session_id = 1;
   c.command_type = static_cast<std::uint32_t>(shm::CommandType::kVirtmech);
+  c.flags = shm::vpr_flags::kObjectAttached;
   c.object_pose = object_pose;
   c.object_mass = 0.5;
   c.client_time_step = 1e-3;

@@ -32,7 +32,7 @@
 namespace hapticctrl::shm {
 
 /// Bumped on any change to payloads.hpp, ctrl.hpp or this file.
-inline constexpr std::uint32_t kAbiVersion = 1;
+inline constexpr std::uint32_t kAbiVersion = 2;  // 2: link_stats region (F4)
 /// "HAPTICC1" as a little-endian word; stored last when the segment is ready, cleared at exit.
 inline constexpr std::uint64_t kSegmentMagic = 0x3143434954504148ULL;
 inline constexpr std::size_t kPageSize = 4096;
@@ -46,6 +46,7 @@ enum class RegionId : std::uint32_t {
   kCtrl,
   kCtrlAck,
   kTelemetry,
+  kLinkStats,
   kCount,
 };
 inline constexpr std::size_t kRegionCount = static_cast<std::size_t>(RegionId::kCount);
@@ -83,6 +84,10 @@ struct RegionTraits<RegionId::kCtrlAck> {
 template <>
 struct RegionTraits<RegionId::kTelemetry> {
   using Type = SeqlockCell<TelemetryPayload>;
+};
+template <>
+struct RegionTraits<RegionId::kLinkStats> {
+  using Type = SeqlockCell<LinkStatsPayload>;
 };
 template <RegionId Id>
 using RegionType = typename RegionTraits<Id>::Type;
@@ -127,7 +132,7 @@ inline constexpr std::array<std::size_t, kRegionCount> kRegionSizes{
     sizeof(RegionType<RegionId::kVpr>),      sizeof(RegionType<RegionId::kVp>),
     sizeof(RegionType<RegionId::kForce>),    sizeof(RegionType<RegionId::kPosition>),
     sizeof(RegionType<RegionId::kCtrl>),     sizeof(RegionType<RegionId::kCtrlAck>),
-    sizeof(RegionType<RegionId::kTelemetry>)};
+    sizeof(RegionType<RegionId::kTelemetry>), sizeof(RegionType<RegionId::kLinkStats>)};
 
 inline constexpr std::size_t kClaimsOffset = round_to_pages(sizeof(SegmentHeader));
 inline constexpr std::size_t kFirstRegionOffset =

@@ -52,6 +52,11 @@ inline constexpr std::uint32_t kClientStale = 1U << 5;    ///< VPr stale: extrap
 inline constexpr std::uint32_t kStopping = 1U << 6;       ///< orderly stop under way
 }  // namespace state_bits
 
+/// Bits of VprPayload::flags.
+namespace vpr_flags {
+inline constexpr std::uint32_t kObjectAttached = 1U << 0;  ///< VIRTMECH couples only when set
+}  // namespace vpr_flags
+
 /// VPr: client -> core. Written by the UDP bridge from validated control frames.
 struct VprPayload {
   std::uint64_t session_id = 0;       ///< 0: no client session
@@ -61,7 +66,7 @@ struct VprPayload {
   std::uint32_t command_type = 0;     ///< CommandType
   std::uint32_t indexing_mode = 0;
   std::uint32_t watchdog_timeout_us = 0;
-  std::uint32_t flags = 0;  ///< bit 0: object attached
+  std::uint32_t flags = 0;  ///< vpr_flags
   Pose7 object_pose{};
   Vector6 object_twist{};
   Vector6 impedance_wrench{};              ///< IMPEDANCE: wrench to render at the handle [N, N·m]
@@ -156,6 +161,46 @@ struct TelemetryPayload {
   std::uint64_t ctrl_rejected = 0;
 };
 
+/// Why the UDP bridge dropped an incoming datagram (index into LinkStatsPayload::dropped).
+enum class LinkDrop : std::uint32_t {
+  kSize = 0,   ///< truncated, oversized, or not a multiple of 4 bytes
+  kMagic,      ///< not a hapticctrl frame
+  kVersion,    ///< another major protocol version
+  kCrc,        ///< CRC-32 mismatch
+  kMalformed,  ///< XDR decoding failed or unknown frame type
+  kToken,      ///< no session, wrong session token, or another source address
+  kSequence,   ///< replayed or reordered (not newer than the last accepted)
+  kRange,      ///< non-finite or out-of-range value
+  kUnexpected, ///< a frame type the bridge never accepts (WELCOME, ANSWER, ...)
+  kCount,
+};
+inline constexpr std::size_t kLinkDropCount = static_cast<std::size_t>(LinkDrop::kCount);
+/// Stable short names of LinkDrop values, for telemetry and logs.
+inline constexpr std::array<const char*, kLinkDropCount> kLinkDropNames{
+    "size", "magic", "version", "crc", "malformed", "token", "sequence", "range", "unexpected"};
+
+/// link_stats: the UDP bridge's session and frame counters (written by hapticctrl-udp).
+struct LinkStatsPayload {
+  std::uint64_t session_id = 0;  ///< current session token's public id (0: no session)
+  std::uint32_t peer_ipv4 = 0;   ///< client address (host byte order), 0 without a session
+  std::uint32_t peer_port = 0;
+  std::uint32_t watchdog_ms = 0;
+  std::uint32_t features = 0;        ///< protocol features in use
+  std::uint64_t frames_in = 0;       ///< datagrams received
+  std::uint64_t frames_out = 0;      ///< datagrams sent
+  std::uint64_t control_accepted = 0;
+  std::uint64_t params_applied = 0;  ///< PARAM frames applied (duplicates re-acknowledged only)
+  std::uint64_t param_duplicates = 0;
+  std::uint64_t params_rejected = 0;
+  std::uint64_t sessions_opened = 0;
+  std::uint64_t sessions_closed = 0;     ///< by BYE
+  std::uint64_t watchdog_expiries = 0;   ///< sessions closed because the client fell silent
+  std::uint64_t refused_busy = 0;
+  std::uint64_t refused_version = 0;
+  std::uint64_t send_failures = 0;
+  std::array<std::uint64_t, kLinkDropCount> dropped{};
+};
+
 // Layout pins: a change here is an ABI change (bump kAbiVersion in layout.hpp).
 static_assert(sizeof(VprPayload) == 416);
 static_assert(sizeof(VpPayload) == 288);
@@ -163,5 +208,6 @@ static_assert(sizeof(ForcePayload) == 48);
 static_assert(sizeof(PositionPayload) == 360);
 static_assert(sizeof(LatencySummary) == 64);
 static_assert(sizeof(TelemetryPayload) == 368);
+static_assert(sizeof(LinkStatsPayload) == 192);
 
 }  // namespace hapticctrl::shm

@@ -1,0 +1,156 @@
+#pragma once
+/// @file session.hpp
+/// The UDP bridge's protocol state machine: one client session at a time, driven by datagrams
+/// and the clock, with no socket of its own (the caller sends the reply it produces). The
+/// receive side (on_datagram, check_watchdog) runs on one thread; the answer side (answer) on
+/// another, reading the session through an in-process seqlock.
+///
+/// Real-time contract: every member after construction is noexcept and allocation-free; the
+/// only syscall is getrandom() when a session opens.
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <span>
+
+#include "hapticctrl/protocol/codec.hpp"
+#include "hapticctrl/protocol/udp_socket.hpp"
+#include "hapticctrl/shm/ctrl.hpp"
+#include "hapticctrl/shm/payloads.hpp"
+#include "hapticctrl/shm/seqlock.hpp"
+
+namespace hapticctrl::udp_bridge {
+
+using TimeNs = std::int64_t;
+
+/// Where accepted client data goes: the controller's VPr region and a ctrl slot.
+struct ControllerPorts {
+  shm::SeqlockCell<shm::VprPayload>* vpr = nullptr;
+  shm::CtrlWriter* ctrl = nullptr;
+  std::int64_t period_ns = 0;
+};
+
+/// What the answer thread needs to know about the session.
+struct SessionView {
+  std::uint64_t token = 0;  ///< 0: no session
+  protocol::Endpoint peer{};
+  std::uint32_t features = 0;
+  std::uint32_t pad = 0;
+};
+
+/// Counters shared by both threads (relaxed atomics), copied into the link_stats region.
+struct LinkCounters {
+  std::atomic<std::uint64_t> frames_in{0};
+  std::atomic<std::uint64_t> frames_out{0};
+  std::atomic<std::uint64_t> control_accepted{0};
+  std::atomic<std::uint64_t> params_applied{0};
+  std::atomic<std::uint64_t> param_duplicates{0};
+  std::atomic<std::uint64_t> params_rejected{0};
+  std::atomic<std::uint64_t> sessions_opened{0};
+  std::atomic<std::uint64_t> sessions_closed{0};
+  std::atomic<std::uint64_t> watchdog_expiries{0};
+  std::atomic<std::uint64_t> refused_busy{0};
+  std::atomic<std::uint64_t> refused_version{0};
+  std::atomic<std::uint64_t> send_failures{0};
+  std::array<std::atomic<std::uint64_t>, shm::kLinkDropCount> dropped{};
+
+  void drop(shm::LinkDrop why) noexcept {
+    dropped[static_cast<std::size_t>(why)].fetch_add(1, std::memory_order_relaxed);
+  }
+  [[nodiscard]] std::uint64_t dropped_for(shm::LinkDrop why) const noexcept {
+    return dropped[static_cast<std::size_t>(why)].load(std::memory_order_relaxed);
+  }
+};
+
+/// Bridge-wide settings.
+struct SessionSettings {
+  std::uint32_t default_watchdog_ms = 100;
+};
+
+/// The drop reason a codec status stands for.
+[[nodiscard]] shm::LinkDrop drop_reason_of(protocol::DecodeStatus status) noexcept;
+
+class Session {
+ public:
+  /// `random_token` returns a fresh unpredictable 64-bit value (getrandom in production).
+  Session(SessionSettings settings, std::function<std::uint64_t()> random_token);
+
+  /// Connects the session to a running controller (or, with nullptr ports, to none: HELLO is
+  /// then refused with NO_CONTROLLER). Closing an active session publishes "no session" first.
+  void set_controller(const ControllerPorts* ports, TimeNs now) noexcept;
+
+  /// Handles one datagram from `from`. Writes at most one reply frame into `reply` and returns
+  /// its length (0: nothing to send); the reply always goes back to `from`.
+  std::size_t on_datagram(std::span<const std::uint8_t> bytes, const protocol::Endpoint& from,
+                          TimeNs now, std::span<std::uint8_t> reply) noexcept;
+
+  /// Counts a datagram that did not fit the receive buffer.
+  void on_oversized() noexcept;
+
+  /// Closes the session if the client has been silent longer than its watchdog.
+  /// Returns true if it did.
+  bool check_watchdog(TimeNs now) noexcept;
+
+  /// Closes the session (bridge shutdown or controller gone); the core then ramps out.
+  void close(TimeNs now) noexcept;
+
+  /// Answer side: encodes the answer frame for one VP sample into `out`; returns its length
+  /// and the destination, or 0 when there is no session.
+  std::size_t answer(const shm::VpPayload& vp, TimeNs now, std::span<std::uint8_t> out,
+                     protocol::Endpoint& to) noexcept;
+
+  [[nodiscard]] LinkCounters& counters() noexcept { return counters_; }
+  /// Copies the counters and session into a link_stats payload.
+  void fill_stats(shm::LinkStatsPayload& out) const noexcept;
+
+ private:
+  struct LastAck {
+    std::uint32_t sequence = 0;
+    hcp_ack_status status = HCP_ACK_OK;
+    char reason[HCP_TEXT_BYTES] = {};  // NOLINT(*-avoid-c-arrays): the XDR field's shape
+  };
+
+  std::size_t on_hello(const hcp_frame& in, const protocol::Endpoint& from, TimeNs now,
+                       std::span<std::uint8_t> reply) noexcept;
+  std::size_t on_param(const hcp_frame& in, bool values_ok, TimeNs now,
+                       std::span<std::uint8_t> reply) noexcept;
+  std::size_t on_bye(const hcp_frame& in, TimeNs now, std::span<std::uint8_t> reply) noexcept;
+  void on_control(const hcp_frame& in, TimeNs now) noexcept;
+  [[nodiscard]] bool from_session(const hcp_frame& in, const protocol::Endpoint& from) const noexcept;
+  hcp_ack_status apply(const hcp_param& param, TimeNs now) noexcept;
+  std::size_t refuse(hcp_refuse_code code, std::uint32_t peer_version, std::uint32_t retry_ms,
+                     std::string_view reason, TimeNs now, std::span<std::uint8_t> reply) noexcept;
+  std::size_t ack(TimeNs now, std::span<std::uint8_t> reply) noexcept;
+  std::size_t welcome(TimeNs now, std::span<std::uint8_t> reply) noexcept;
+  void open(const hcp_frame& hello, const protocol::Endpoint& from, TimeNs now) noexcept;
+  void end_session(TimeNs now) noexcept;
+  void publish_vpr(TimeNs now) noexcept;
+  void publish_view() noexcept;
+
+  SessionSettings settings_;
+  std::function<std::uint64_t()> random_token_;
+  ControllerPorts ports_{};
+  bool have_controller_ = false;
+
+  // Receive-thread state.
+  SessionView session_{};
+  std::uint64_t session_number_ = 0;
+  std::uint32_t watchdog_ms_ = 0;
+  TimeNs last_heard_ = 0;
+  bool have_control_seq_ = false;
+  std::uint32_t last_control_seq_ = 0;
+  std::uint64_t control_seq_high_ = 0;  ///< 64-bit extension of the control sequence
+  bool have_param_seq_ = false;
+  LastAck last_ack_{};
+  std::uint32_t reply_sequence_ = 0;
+  std::uint32_t control_received_ = 0;
+  shm::VprPayload vpr_{};
+
+  // Shared with the answer thread.
+  shm::SeqlockCell<SessionView> view_;
+  std::atomic<std::uint32_t> control_received_shared_{0};
+  std::uint32_t answer_sequence_ = 0;  ///< answer thread only
+  LinkCounters counters_;
+};
+
+}  // namespace hapticctrl::udp_bridge

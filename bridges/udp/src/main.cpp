@@ -1,0 +1,227 @@
+// hapticctrl-udp: the UDP/XDR bridge between one client and a running hapticctrl-core.
+//
+// Threads: this one receives datagrams, runs the session and its watchdog, and publishes the
+// link counters; an answer thread, started per controller attachment, blocks on VP publishes
+// and sends one ANSWER per controller cycle. Exit: 0 on signal or --duration, 64 usage, 1 error.
+#include <sys/random.h>
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <ctime>
+#include <exception>
+#include <optional>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include "hapticctrl/shm/segment.hpp"
+#include "hapticctrl/udp_bridge/bridge_config.hpp"
+#include "hapticctrl/udp_bridge/session.hpp"
+
+namespace {
+
+using hapticctrl::protocol::Endpoint;
+using hapticctrl::protocol::FrameBuffer;
+using hapticctrl::protocol::Received;
+using hapticctrl::protocol::UdpSocket;
+using hapticctrl::udp_bridge::BridgeConfig;
+using hapticctrl::udp_bridge::Session;
+namespace shm = hapticctrl::shm;
+
+std::atomic<bool> g_stop{false};
+
+void on_signal(int /*sig*/) { g_stop.store(true); }
+
+std::int64_t monotonic_ns() {
+  timespec ts{};
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
+}
+
+std::uint64_t random_token() {
+  std::uint64_t token = 0;
+  while (getrandom(&token, sizeof token, 0) != static_cast<ssize_t>(sizeof token)) {
+  }
+  return token;
+}
+
+/// The loop every mode shares: one datagram (or 10 ms), its reply, the watchdog, and every
+/// 100 ms `periodic()`, until it returns false or the bridge is told to stop.
+template <typename Periodic>
+void serve(UdpSocket& socket, Session& session, std::int64_t end_ns, Periodic periodic) {
+  FrameBuffer in{};
+  FrameBuffer reply{};
+  std::int64_t next_periodic = 0;
+  while (!g_stop.load()) {
+    Endpoint from;
+    const Received r = socket.receive(in, from, std::chrono::milliseconds(10));
+    const std::int64_t now = monotonic_ns();
+    if (r.status == Received::Status::kDatagram) {
+      const std::size_t n = session.on_datagram({in.data(), r.size}, from, now, reply);
+      if (n != 0) {
+        const bool sent = socket.send_to({reply.data(), n}, from);
+        (sent ? session.counters().frames_out : session.counters().send_failures)
+            .fetch_add(1, std::memory_order_relaxed);
+      }
+    } else if (r.status == Received::Status::kOversized) {
+      session.on_oversized();
+    }
+    session.check_watchdog(now);
+    if (end_ns != 0 && now >= end_ns) {
+      g_stop.store(true);
+    }
+    if (now >= next_periodic) {
+      next_periodic = now + 100'000'000;
+      if (!periodic()) {
+        return;
+      }
+    }
+  }
+}
+
+/// Serves one controller until it goes away (or the bridge stops).
+void run_attached(shm::Segment& segment, UdpSocket& socket, Session& session,
+                  std::int64_t end_ns) {
+  hapticctrl::udp_bridge::ControllerPorts ports{
+      &segment.writable<shm::RegionId::kVpr>(), &segment.ctrl_writer(),
+      segment.header().period_ns};
+  auto& stats = segment.writable<shm::RegionId::kLinkStats>();
+  session.set_controller(&ports, monotonic_ns());
+
+  std::atomic<bool> answering{true};
+  std::thread answers([&] {
+    const auto& vp = segment.region<shm::RegionId::kVp>();
+    FrameBuffer out{};
+    while (answering.load(std::memory_order_relaxed)) {
+      const std::uint32_t seen = vp.sequence_word();
+      if (vp.wait_for_publish(seen, std::chrono::milliseconds(50)) != shm::WaitStatus::kPublished) {
+        continue;
+      }
+      shm::VpPayload sample;
+      if (!vp.read(sample).ok()) {
+        continue;
+      }
+      Endpoint to;
+      const std::size_t n = session.answer(sample, monotonic_ns(), out, to);
+      if (n != 0) {
+        const bool sent = socket.send_to({out.data(), n}, to);
+        (sent ? session.counters().frames_out : session.counters().send_failures)
+            .fetch_add(1, std::memory_order_relaxed);
+      }
+    }
+  });
+
+  serve(socket, session, end_ns, [&] {
+    shm::LinkStatsPayload s;
+    session.fill_stats(s);
+    stats.publish_quietly(s, monotonic_ns());
+    return segment.core_alive() && segment.still_current();
+  });
+  session.set_controller(nullptr, monotonic_ns());  // ends the session: the core ramps out
+  shm::LinkStatsPayload s;
+  session.fill_stats(s);
+  stats.publish_quietly(s, monotonic_ns());
+  answering.store(false);
+  answers.join();
+  if (!g_stop.load()) {
+    std::fprintf(stderr, "hapticctrl-udp: controller '%s' went away; waiting for it\n",
+                 segment.instance().c_str());
+  }
+}
+
+std::optional<shm::Segment> try_attach(const std::string& instance) {
+  try {
+    return shm::Segment::attach(
+        instance, shm::AttachOptions{{shm::RegionId::kVpr, shm::RegionId::kLinkStats}, true});
+  } catch (const shm::ShmError& e) {
+    if (e.code() == shm::ShmErrc::kNoController) {
+      return std::nullopt;
+    }
+    throw;
+  }
+}
+
+void print_json(const Session& session) {
+  shm::LinkStatsPayload s;
+  session.fill_stats(s);
+  std::printf(
+      "{\"frames_in\":%llu,\"frames_out\":%llu,\"control_accepted\":%llu,"
+      "\"params_applied\":%llu,\"param_duplicates\":%llu,\"params_rejected\":%llu,"
+      "\"sessions_opened\":%llu,\"sessions_closed\":%llu,\"watchdog_expiries\":%llu,"
+      "\"refused_busy\":%llu,\"refused_version\":%llu,\"send_failures\":%llu,\"dropped\":{",
+      static_cast<unsigned long long>(s.frames_in), static_cast<unsigned long long>(s.frames_out),
+      static_cast<unsigned long long>(s.control_accepted),
+      static_cast<unsigned long long>(s.params_applied),
+      static_cast<unsigned long long>(s.param_duplicates),
+      static_cast<unsigned long long>(s.params_rejected),
+      static_cast<unsigned long long>(s.sessions_opened),
+      static_cast<unsigned long long>(s.sessions_closed),
+      static_cast<unsigned long long>(s.watchdog_expiries),
+      static_cast<unsigned long long>(s.refused_busy),
+      static_cast<unsigned long long>(s.refused_version),
+      static_cast<unsigned long long>(s.send_failures));
+  for (std::size_t i = 0; i < shm::kLinkDropCount; ++i) {
+    std::printf("%s\"%s\":%llu", i == 0 ? "" : ",", shm::kLinkDropNames[i],
+                static_cast<unsigned long long>(s.dropped[i]));
+  }
+  std::printf("}}\n");
+}
+
+int run(const BridgeConfig& config) {
+  UdpSocket socket(Endpoint::resolve(config.bind_address, config.port));
+  std::printf("hapticctrl-udp: listening on %s for instance '%s'\n",
+              socket.local_endpoint().to_string().c_str(), config.instance.c_str());
+  std::fflush(stdout);
+  Session session({config.watchdog_ms}, random_token);
+  const std::int64_t end_ns =
+      config.duration_s > 0.0
+          ? monotonic_ns() + static_cast<std::int64_t>(config.duration_s * 1e9)
+          : 0;
+  bool said_waiting = false;
+  while (!g_stop.load()) {
+    std::optional<shm::Segment> segment = try_attach(config.instance);
+    if (segment) {
+      said_waiting = false;
+      run_attached(*segment, socket, session, end_ns);
+      continue;
+    }
+    if (!said_waiting) {
+      std::fprintf(stderr, "hapticctrl-udp: no controller for instance '%s' yet; waiting\n",
+                   config.instance.c_str());
+      said_waiting = true;
+    }
+    bool first = true;  // serve (refusing HELLOs) for 100 ms, then try to attach again
+    serve(socket, session, end_ns, [&first] { return std::exchange(first, false); });
+  }
+  if (config.json) {
+    print_json(session);
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  BridgeConfig config;
+  try {
+    config = BridgeConfig::parse(std::vector<std::string>(argv + 1, argv + argc));
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "hapticctrl-udp: %s\n%s", e.what(), BridgeConfig::usage());
+    return 64;
+  }
+  if (config.help) {
+    std::printf("%s", BridgeConfig::usage());
+    return 0;
+  }
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+  try {
+    return run(config);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "hapticctrl-udp: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,442 @@
+#include "hapticctrl/udp_bridge/session.hpp"
+
+#include <arpa/inet.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <utility>
+
+#include "hapticctrl/protocol/values.hpp"
+
+namespace hapticctrl::udp_bridge {
+namespace {
+
+using protocol::DecodeStatus;
+using shm::LinkDrop;
+
+template <typename From, std::size_t N, typename To>
+void copy_array(const From (&from)[N], To& to) noexcept {  // NOLINT(*-avoid-c-arrays)
+  for (std::size_t i = 0; i < N; ++i) {
+    to[i] = static_cast<typename To::value_type>(from[i]);
+  }
+}
+
+template <typename From, typename To, std::size_t N>
+void copy_out(const From& from, To (&to)[N]) noexcept {  // NOLINT(*-avoid-c-arrays)
+  for (std::size_t i = 0; i < N; ++i) {
+    to[i] = static_cast<To>(from[i]);
+  }
+}
+
+shm::VprPayload fresh_vpr(std::uint64_t session_number) noexcept {
+  shm::VprPayload v;
+  v.session_id = session_number;
+  return v;
+}
+
+}  // namespace
+
+LinkDrop drop_reason_of(DecodeStatus status) noexcept {
+  switch (status) {
+    case DecodeStatus::kBadSize:
+      return LinkDrop::kSize;
+    case DecodeStatus::kBadMagic:
+      return LinkDrop::kMagic;
+    case DecodeStatus::kBadCrc:
+      return LinkDrop::kCrc;
+    case DecodeStatus::kBadVersion:
+      return LinkDrop::kVersion;
+    case DecodeStatus::kOutOfRange:
+      return LinkDrop::kRange;
+    case DecodeStatus::kMalformed:
+    case DecodeStatus::kOk:
+      break;
+  }
+  return LinkDrop::kMalformed;
+}
+
+Session::Session(SessionSettings settings, std::function<std::uint64_t()> random_token)
+    : settings_(settings), random_token_(std::move(random_token)) {
+  view_.publish_quietly(session_, 0);
+}
+
+void Session::set_controller(const ControllerPorts* ports, TimeNs now) noexcept {
+  if (session_.token != 0) {
+    end_session(now);
+  }
+  have_controller_ = ports != nullptr && ports->vpr != nullptr;
+  ports_ = have_controller_ ? *ports : ControllerPorts{};
+}
+
+void Session::on_oversized() noexcept {
+  counters_.frames_in.fetch_add(1, std::memory_order_relaxed);
+  counters_.drop(LinkDrop::kSize);
+}
+
+std::size_t Session::on_datagram(std::span<const std::uint8_t> bytes,
+                                 const protocol::Endpoint& from, TimeNs now,
+                                 std::span<std::uint8_t> reply) noexcept {
+  counters_.frames_in.fetch_add(1, std::memory_order_relaxed);
+  hcp_frame in;
+  const DecodeStatus status = protocol::decode(bytes, in);
+  // A PARAM with a bad value from the session is answered (REJECTED), not silently dropped.
+  const bool param_out_of_range = status == DecodeStatus::kOutOfRange && in.body.type == HCP_PARAM;
+  if (status != DecodeStatus::kOk && !param_out_of_range) {
+    counters_.drop(drop_reason_of(status));
+    return 0;
+  }
+  switch (in.body.type) {
+    case HCP_HELLO:
+      return on_hello(in, from, now, reply);
+    case HCP_CONTROL_OBJECT:
+    case HCP_CONTROL_WRENCH:
+    case HCP_KEEPALIVE:
+      if (!from_session(in, from)) {
+        counters_.drop(LinkDrop::kToken);
+        return 0;
+      }
+      on_control(in, now);
+      return 0;
+    case HCP_PARAM:
+      if (!from_session(in, from)) {
+        counters_.drop(LinkDrop::kToken);
+        return 0;
+      }
+      return on_param(in, !param_out_of_range, now, reply);
+    case HCP_BYE:
+      if (!from_session(in, from)) {
+        counters_.drop(LinkDrop::kToken);
+        return 0;
+      }
+      return on_bye(in, now, reply);
+    case HCP_REFUSE:  // the client refuses our WELCOME (no common version): end its session
+      if (from_session(in, from)) {
+        end_session(now);
+      } else {
+        counters_.drop(LinkDrop::kToken);
+      }
+      return 0;
+    case HCP_WELCOME:
+    case HCP_ANSWER:
+    case HCP_ACK:
+      break;
+  }
+  counters_.drop(LinkDrop::kUnexpected);
+  return 0;
+}
+
+bool Session::from_session(const hcp_frame& in, const protocol::Endpoint& from) const noexcept {
+  return session_.token != 0 && in.header.token == session_.token && from == session_.peer;
+}
+
+std::size_t Session::on_hello(const hcp_frame& in, const protocol::Endpoint& from, TimeNs now,
+                              std::span<std::uint8_t> reply) noexcept {
+  const hcp_hello& hello = in.body.hcp_body_u.hello;
+  const std::uint32_t theirs = in.header.protocol;
+  const std::uint32_t our_major = protocol::version_major(protocol::kVersion);
+  if (protocol::version_major(hello.min_version) > our_major ||
+      protocol::version_major(theirs) < our_major) {
+    counters_.refused_version.fetch_add(1, std::memory_order_relaxed);
+    char text[HCP_TEXT_BYTES];  // NOLINT(*-avoid-c-arrays)
+    std::snprintf(text, sizeof text,
+                  "protocol version mismatch: client %u.%u (oldest %u.%u), controller %u.%u",
+                  protocol::version_major(theirs), protocol::version_minor(theirs),
+                  protocol::version_major(hello.min_version),
+                  protocol::version_minor(hello.min_version), our_major,
+                  protocol::version_minor(protocol::kVersion));
+    return refuse(HCP_REFUSE_VERSION, theirs, 0, text, now, reply);
+  }
+  if (session_.token != 0) {
+    if (from == session_.peer) {  // our WELCOME was lost: the same client asks again
+      last_heard_ = now;
+      return welcome(now, reply);
+    }
+    counters_.refused_busy.fetch_add(1, std::memory_order_relaxed);
+    const TimeNs silent_ms = (now - last_heard_) / 1'000'000;
+    const auto retry = static_cast<std::uint32_t>(
+        std::max<TimeNs>(1, static_cast<TimeNs>(watchdog_ms_) - silent_ms));
+    return refuse(HCP_REFUSE_BUSY, theirs, retry,
+                  "busy: another client session is active on this controller", now, reply);
+  }
+  if (!have_controller_) {
+    return refuse(HCP_REFUSE_NO_CONTROLLER, theirs, 0,
+                  "no controller: hapticctrl-core is not running for this bridge's instance",
+                  now, reply);
+  }
+  open(in, from, now);
+  return welcome(now, reply);
+}
+
+void Session::open(const hcp_frame& hello, const protocol::Endpoint& from, TimeNs now) noexcept {
+  std::uint64_t token = 0;
+  while (token == 0) {
+    token = random_token_();
+  }
+  session_.token = token;
+  session_.peer = from;
+  session_.features = hello.body.hcp_body_u.hello.features & protocol::kAllFeatures;
+  const std::uint32_t asked = hello.body.hcp_body_u.hello.watchdog_ms;
+  watchdog_ms_ = asked != 0 ? asked : settings_.default_watchdog_ms;
+  last_heard_ = now;
+  have_control_seq_ = false;
+  have_param_seq_ = false;
+  control_seq_high_ = 0;
+  control_received_ = 0;
+  control_received_shared_.store(0, std::memory_order_relaxed);
+  vpr_ = fresh_vpr(++session_number_);
+  vpr_.watchdog_timeout_us = watchdog_ms_ * 1000U;
+  publish_vpr(now);
+  publish_view();
+  counters_.sessions_opened.fetch_add(1, std::memory_order_relaxed);
+}
+
+void Session::end_session(TimeNs now) noexcept {
+  session_ = SessionView{};
+  publish_view();
+  vpr_ = fresh_vpr(0);  // session 0: the core renders nothing and ramps any wrench out
+  publish_vpr(now);
+}
+
+void Session::close(TimeNs now) noexcept {
+  if (session_.token != 0) {
+    end_session(now);
+  }
+}
+
+bool Session::check_watchdog(TimeNs now) noexcept {
+  if (session_.token == 0 || now - last_heard_ <= static_cast<TimeNs>(watchdog_ms_) * 1'000'000) {
+    return false;
+  }
+  counters_.watchdog_expiries.fetch_add(1, std::memory_order_relaxed);
+  end_session(now);
+  return true;
+}
+
+void Session::on_control(const hcp_frame& in, TimeNs now) noexcept {
+  const std::uint32_t seq = in.header.sequence;
+  if (have_control_seq_ && !protocol::sequence_newer(seq, last_control_seq_)) {
+    counters_.drop(LinkDrop::kSequence);
+    return;
+  }
+  if (have_control_seq_) {
+    control_seq_high_ += static_cast<std::uint32_t>(seq - last_control_seq_);
+  } else {
+    control_seq_high_ = seq;
+  }
+  have_control_seq_ = true;
+  last_control_seq_ = seq;
+  last_heard_ = now;
+  if (in.body.type == HCP_KEEPALIVE) {
+    return;  // feeds the watchdog only: the core keeps judging the freshness of client data
+  }
+  if (in.body.type == HCP_CONTROL_OBJECT) {
+    copy_array(in.body.hcp_body_u.object.pose, vpr_.object_pose);
+    copy_array(in.body.hcp_body_u.object.twist, vpr_.object_twist);
+  } else {
+    copy_array(in.body.hcp_body_u.wrench.wrench, vpr_.impedance_wrench);
+  }
+  vpr_.client_sequence = control_seq_high_;
+  vpr_.client_time_ns = in.header.sender_time_ns;
+  publish_vpr(now);
+  ++control_received_;
+  control_received_shared_.store(control_received_, std::memory_order_relaxed);
+  counters_.control_accepted.fetch_add(1, std::memory_order_relaxed);
+}
+
+std::size_t Session::on_param(const hcp_frame& in, bool values_ok, TimeNs now,
+                              std::span<std::uint8_t> reply) noexcept {
+  const std::uint32_t seq = in.header.sequence;
+  last_heard_ = now;
+  if (have_param_seq_ && seq == last_ack_.sequence) {  // our ACK was lost: say it again
+    counters_.param_duplicates.fetch_add(1, std::memory_order_relaxed);
+    return ack(now, reply);
+  }
+  if (have_param_seq_ && !protocol::sequence_newer(seq, last_ack_.sequence)) {
+    counters_.drop(LinkDrop::kSequence);
+    return 0;
+  }
+  last_ack_ = LastAck{seq, HCP_ACK_OK};
+  if (!values_ok) {
+    counters_.drop(LinkDrop::kRange);
+    counters_.params_rejected.fetch_add(1, std::memory_order_relaxed);
+    last_ack_.status = HCP_ACK_REJECTED;
+    const auto problem = protocol::check_param(in.body.hcp_body_u.param);
+    protocol::set_text(last_ack_.reason, problem.value_or("value out of range"));
+  } else {
+    last_ack_.status = apply(in.body.hcp_body_u.param, now);
+    if (last_ack_.status == HCP_ACK_RETRY) {
+      // Not applied: a retransmission with this sequence must be applied, not re-acknowledged.
+      have_param_seq_ = false;
+      return ack(now, reply);
+    }
+    counters_.params_applied.fetch_add(1, std::memory_order_relaxed);
+  }
+  have_param_seq_ = true;
+  return ack(now, reply);
+}
+
+hcp_ack_status Session::apply(const hcp_param& param, TimeNs now) noexcept {
+  const auto& u = param.hcp_param_u;
+  shm::CtrlCode ctrl = shm::CtrlCode::kNone;
+  switch (param.id) {
+    case HCP_P_TIME_STEP:
+      vpr_.client_time_step = u.time_step;
+      break;
+    case HCP_P_FORCE_FACTOR:
+      vpr_.force_factor = u.force_factor;
+      break;
+    case HCP_P_SPEED_FACTOR:
+      vpr_.speed_factor = u.speed_factor;
+      break;
+    case HCP_P_BASE_FRAME:
+      copy_array(u.base_frame, vpr_.base_frame);
+      break;
+    case HCP_P_OBSERVATION_FRAME:
+      copy_array(u.observation_frame, vpr_.observation_frame);
+      break;
+    case HCP_P_INDEXING_MODE:
+      vpr_.indexing_mode = u.indexing_mode;
+      break;
+    case HCP_P_COMMAND_TYPE:
+      vpr_.command_type = u.command_type;
+      break;
+    case HCP_P_OBJECT:
+      vpr_.flags = u.object.attached != 0 ? (vpr_.flags | shm::vpr_flags::kObjectAttached)
+                                          : (vpr_.flags & ~shm::vpr_flags::kObjectAttached);
+      vpr_.object_mass = u.object.mass;
+      copy_array(u.object.inertia, vpr_.object_inertia);
+      break;
+    case HCP_P_GAINS:
+      copy_array(u.gains, vpr_.gain_override);
+      break;
+    case HCP_P_FORCE_LIMITS:
+      copy_array(u.force_limits, vpr_.force_limits);
+      break;
+    case HCP_P_WATCHDOG:
+      watchdog_ms_ = u.watchdog_ms;
+      vpr_.watchdog_timeout_us = watchdog_ms_ * 1000U;
+      break;
+    case HCP_P_POWER:
+      ctrl = u.power_on != 0 ? shm::CtrlCode::kPowerOn : shm::CtrlCode::kPowerOff;
+      break;
+    case HCP_P_EMERGENCY_STOP:
+      ctrl = shm::CtrlCode::kEmergencyStop;
+      break;
+    case HCP_P_EMERGENCY_RESET:
+      ctrl = shm::CtrlCode::kEmergencyReset;
+      break;
+  }
+  if (ctrl != shm::CtrlCode::kNone) {
+    if (ports_.ctrl == nullptr || ports_.ctrl->send(ctrl, 0, now) != shm::CtrlSendStatus::kQueued) {
+      return HCP_ACK_RETRY;
+    }
+    return HCP_ACK_OK;
+  }
+  publish_vpr(now);
+  return HCP_ACK_OK;
+}
+
+std::size_t Session::on_bye(const hcp_frame& in, TimeNs now, std::span<std::uint8_t> reply) noexcept {
+  last_ack_ = LastAck{in.header.sequence, HCP_ACK_OK};
+  const std::size_t n = ack(now, reply);  // encoded with the session's token, before it ends
+  counters_.sessions_closed.fetch_add(1, std::memory_order_relaxed);
+  end_session(now);
+  return n;
+}
+
+std::size_t Session::refuse(hcp_refuse_code code, std::uint32_t peer_version,
+                            std::uint32_t retry_ms, std::string_view reason, TimeNs now,
+                            std::span<std::uint8_t> reply) noexcept {
+  hcp_frame out = protocol::make_frame(HCP_REFUSE, 0, ++reply_sequence_, now);
+  hcp_refuse& r = out.body.hcp_body_u.refuse;
+  r.code = code;
+  r.peer_version = peer_version;
+  r.retry_after_ms = retry_ms;
+  protocol::set_text(r.reason, reason);
+  return protocol::encode(out, reply);
+}
+
+std::size_t Session::ack(TimeNs now, std::span<std::uint8_t> reply) noexcept {
+  hcp_frame out = protocol::make_frame(HCP_ACK, session_.token, ++reply_sequence_, now);
+  hcp_ack& a = out.body.hcp_body_u.ack;
+  a.acked_sequence = last_ack_.sequence;
+  a.status = last_ack_.status;
+  std::copy(std::begin(last_ack_.reason), std::end(last_ack_.reason), std::begin(a.reason));
+  return protocol::encode(out, reply);
+}
+
+std::size_t Session::welcome(TimeNs now, std::span<std::uint8_t> reply) noexcept {
+  hcp_frame out = protocol::make_frame(HCP_WELCOME, session_.token, ++reply_sequence_, now);
+  hcp_welcome& w = out.body.hcp_body_u.welcome;
+  w.features = session_.features;
+  w.watchdog_ms = watchdog_ms_;
+  w.period_ns = ports_.period_ns;
+  w.cycle = 0;
+  return protocol::encode(out, reply);
+}
+
+void Session::publish_vpr(TimeNs now) noexcept {
+  if (ports_.vpr != nullptr) {
+    vpr_.received_time_ns = now;
+    ports_.vpr->publish_quietly(vpr_, now);  // the core polls VPr once per cycle
+  }
+}
+
+void Session::publish_view() noexcept { view_.publish_quietly(session_, 0); }
+
+std::size_t Session::answer(const shm::VpPayload& vp, TimeNs now, std::span<std::uint8_t> out,
+                            protocol::Endpoint& to) noexcept {
+  SessionView view;
+  if (!view_.read(view).ok() || view.token == 0) {
+    return 0;
+  }
+  to = view.peer;
+  hcp_frame f = protocol::make_frame(HCP_ANSWER, view.token, ++answer_sequence_, now);
+  hcp_answer& a = f.body.hcp_body_u.answer;
+  a.cycle = vp.cycle;
+  a.echo_sequence = static_cast<std::uint32_t>(vp.echo_client_sequence);
+  a.echo_time_ns = vp.echo_client_time_ns;
+  a.state_word = vp.state_word;
+  a.core_state = vp.core_state;
+  a.stop_reason = vp.stop_reason;
+  a.command_type = vp.command_type;
+  if ((view.features & HCP_FEATURE_LINK_STATS) != 0) {
+    a.control_received = control_received_shared_.load(std::memory_order_relaxed);
+  }
+  copy_out(vp.coupling_wrench, a.coupling_wrench);
+  copy_out(vp.handle_pose, a.handle_pose);
+  copy_out(vp.handle_twist, a.handle_twist);
+  if ((view.features & HCP_FEATURE_JOINT_STATE) != 0) {
+    copy_out(vp.joint_position, a.joint_position);
+    copy_out(vp.joint_velocity, a.joint_velocity);
+  }
+  return protocol::encode(f, out);
+}
+
+void Session::fill_stats(shm::LinkStatsPayload& out) const noexcept {
+  const auto get = [](const std::atomic<std::uint64_t>& c) {
+    return c.load(std::memory_order_relaxed);
+  };
+  out.session_id = session_.token != 0 ? session_number_ : 0;
+  out.peer_ipv4 = session_.token != 0 ? ntohl(session_.peer.address.sin_addr.s_addr) : 0;
+  out.peer_port = session_.token != 0 ? session_.peer.port() : 0;
+  out.watchdog_ms = session_.token != 0 ? watchdog_ms_ : 0;
+  out.features = session_.features;
+  out.frames_in = get(counters_.frames_in);
+  out.frames_out = get(counters_.frames_out);
+  out.control_accepted = get(counters_.control_accepted);
+  out.params_applied = get(counters_.params_applied);
+  out.param_duplicates = get(counters_.param_duplicates);
+  out.params_rejected = get(counters_.params_rejected);
+  out.sessions_opened = get(counters_.sessions_opened);
+  out.sessions_closed = get(counters_.sessions_closed);
+  out.watchdog_expiries = get(counters_.watchdog_expiries);
+  out.refused_busy = get(counters_.refused_busy);
+  out.refused_version = get(counters_.refused_version);
+  out.send_failures = get(counters_.send_failures);
+  for (std::size_t i = 0; i < shm::kLinkDropCount; ++i) {
+    out.dropped[i] = get(counters_.dropped[i]);
+  }
+}
+
+}  // namespace hapticctrl::udp_bridge

@@ -1,0 +1,102 @@
+#pragma once
+/// @file types.hpp
+/// Value types of the hapticctrl client API. SI units; poses {x, y, z, qx, qy, qz, qw} with a
+/// unit quaternion; twists and wrenches {linear xyz, angular xyz}.
+#include <array>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+namespace hapticctrl::client {
+
+using Pose7 = std::array<double, 7>;
+using Vector6 = std::array<double, 6>;
+using Joints6 = std::array<double, 6>;
+
+/// What the client commands (VirtuoseAPI's COMMAND_TYPE subset).
+enum class CommandType : std::uint32_t { kNone = 0, kImpedance = 1, kVirtmech = 2 };
+
+/// VirtuoseAPI indexing modes (values as on the wire).
+enum class IndexingMode : std::uint32_t {
+  kAll = 0,
+  kTranslation = 1,
+  kNone = 2,
+  kAllInhibited = 3,
+  kTranslationInhibited = 4,
+  kNoneInhibited = 5,
+};
+
+/// Controller state bits (as in the answer's state word).
+namespace state_bits {
+inline constexpr std::uint32_t kPowered = 1U << 0;
+inline constexpr std::uint32_t kEmergencyStop = 1U << 1;
+inline constexpr std::uint32_t kFailSafe = 1U << 2;
+inline constexpr std::uint32_t kDegraded = 1U << 3;
+inline constexpr std::uint32_t kCoupled = 1U << 4;
+inline constexpr std::uint32_t kClientStale = 1U << 5;
+inline constexpr std::uint32_t kStopping = 1U << 6;
+}  // namespace state_bits
+
+/// One controller cycle as the client received it: taken atomically, timestamped.
+struct StateSnapshot {
+  bool valid = false;            ///< false until the first answer arrived
+  std::uint64_t cycle = 0;       ///< controller cycle number
+  std::int64_t received_ns = 0;  ///< this process's CLOCK_MONOTONIC at arrival
+  std::uint32_t state_word = 0;  ///< state_bits
+  std::uint32_t core_state = 0;  ///< 0 starting, 1 running, 2 fail-safe, 3 stopping, 4 stopped
+  std::uint32_t stop_reason = 0;
+  CommandType command_type = CommandType::kNone;
+  Vector6 coupling_wrench{};  ///< wrench to apply to the virtual object
+  Pose7 handle_pose{0, 0, 0, 0, 0, 0, 1};
+  Vector6 handle_twist{};
+  Joints6 joint_position{};
+  Joints6 joint_velocity{};
+
+  [[nodiscard]] bool powered() const noexcept { return (state_word & state_bits::kPowered) != 0; }
+  [[nodiscard]] bool emergency_stop() const noexcept {
+    return (state_word & state_bits::kEmergencyStop) != 0;
+  }
+  [[nodiscard]] bool fail_safe() const noexcept { return (state_word & state_bits::kFailSafe) != 0; }
+};
+
+/// Network statistics of the session, as seen by this client.
+struct LinkStatistics {
+  std::uint64_t answers_received = 0;
+  std::uint64_t answers_lost = 0;  ///< gaps in the answer sequence
+  std::uint64_t answers_late = 0;  ///< arrived after a newer one (dropped)
+  std::uint64_t frames_invalid = 0;  ///< datagrams that failed decoding or did not belong
+  std::uint64_t control_sent = 0;
+  std::uint64_t control_received_by_controller = 0;  ///< from the answers (0 if unsupported)
+  std::uint64_t rtt_samples = 0;
+  double rtt_last_us = 0.0;  ///< client send -> controller cycle -> answer back
+  double rtt_mean_us = 0.0;
+  double rtt_max_us = 0.0;
+  double interarrival_mean_us = 0.0;
+  double interarrival_max_us = 0.0;
+  double jitter_us = 0.0;  ///< RFC 3550 smoothed |inter-arrival - period|
+};
+
+/// Why a setup or blocking call failed.
+enum class ErrorCode : std::uint8_t {
+  kInvalidArgument,  ///< a value out of range (nothing was sent)
+  kBusy,             ///< another client holds the controller
+  kVersion,          ///< no common protocol version
+  kNoController,     ///< the bridge answers, but no controller runs behind it
+  kTimeout,          ///< no answer/acknowledgement within the timeout
+  kRejected,         ///< the controller refused the value
+  kClosed,           ///< the session is closed
+  kTransport,        ///< socket or address error
+};
+
+/// The exception of every setup and blocking call; what() says what happened and what to do.
+class ClientError : public std::runtime_error {
+ public:
+  ClientError(ErrorCode code, const std::string& message)
+      : std::runtime_error(message), code_(code) {}
+  [[nodiscard]] ErrorCode code() const noexcept { return code_; }
+
+ private:
+  ErrorCode code_;
+};
+
+}  // namespace hapticctrl::client

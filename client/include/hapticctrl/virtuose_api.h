@@ -1,0 +1,108 @@
+#ifndef HAPTICCTRL_VIRTUOSE_API_H
+#define HAPTICCTRL_VIRTUOSE_API_H
+/**
+ * @file virtuose_api.h
+ * A C API with the VirtuoseAPI calling conventions, so that existing Virtuose applications port
+ * to hapticctrl with little change. Every function returns 0 on success and -1 on error (the
+ * error then has a code, virtGetErrorCode(), and a detailed text, virtGetErrorDetail()).
+ * Poses are float[7] {x, y, z, qx, qy, qz, qw}, speeds and forces float[6] {linear, angular},
+ * SI units, in the environment (observation) frame.
+ *
+ * Real-time contract: virtOpen, virtClose and every virtSet* of a parameter block (a reliable
+ * exchange with the controller, bounded by the timeout); virtGet*, virtSetPosition,
+ * virtSetSpeed, virtSetForce and virtAddForce neither block nor allocate and are safe in the
+ * application's cycle.
+ *
+ * Differences from VirtuoseAPI: control frames carry either the object state (VIRTMECH) or a
+ * wrench (IMPEDANCE), so virtAddForce needs COMMAND_TYPE_IMPEDANCE; the periodic function is
+ * paced by the controller's answer stream (its period rounded to a multiple of the cycle).
+ */
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct VirtContextS* VirtContext;
+
+typedef enum {
+  COMMAND_TYPE_NONE = 0,
+  COMMAND_TYPE_IMPEDANCE = 1,
+  COMMAND_TYPE_VIRTMECH = 2
+} VirtCommandType;
+
+typedef enum {
+  INDEXING_ALL = 0,
+  INDEXING_TRANS = 1,
+  INDEXING_NONE = 2,
+  INDEXING_ALL_FORCE_FEEDBACK_INHIBITION = 3,
+  INDEXING_TRANS_FORCE_FEEDBACK_INHIBITION = 4,
+  INDEXING_NONE_FORCE_FEEDBACK_INHIBITION = 5
+} VirtIndexingType;
+
+/* Error codes (VirtuoseAPI names). */
+#define VIRT_E_NO_ERROR 0
+#define VIRT_E_OUT_OF_MEMORY 1
+#define VIRT_E_COMMUNICATION_FAILURE 2
+#define VIRT_E_INVALID_CONTEXT 3
+#define VIRT_E_WRONG_FORMAT 5
+#define VIRT_E_TIME_OUT 6
+#define VIRT_E_WRONG_MODE 7
+#define VIRT_E_INCORRECT_VALUE 8
+#define VIRT_E_VIRTUOSE_BUSY 10
+#define VIRT_E_INCOMPATIBLE_VERSION 11
+#define VIRT_E_CONTROLLER_REFUSED 12
+
+/** Opens a session: "udpxdr://host:port", "host#port" or "host". NULL on failure. */
+VirtContext virtOpen(const char* name);
+int virtClose(VirtContext vc);
+
+int virtSetTimeStep(VirtContext vc, float step);
+int virtSetIndexingMode(VirtContext vc, VirtIndexingType mode);
+int virtSetForceFactor(VirtContext vc, float factor);
+int virtSetSpeedFactor(VirtContext vc, float factor);
+int virtSetBaseFrame(VirtContext vc, float* pos);
+int virtSetObservationFrame(VirtContext vc, float* pos);
+int virtSetCommandType(VirtContext vc, VirtCommandType type);
+int virtAttachVO(VirtContext vc, float mass, float* mxmymz);
+int virtDetachVO(VirtContext vc);
+int virtSetPowerOn(VirtContext vc, int power);
+int virtSetTimeoutValue(VirtContext vc, float seconds);
+int virtSaturateTorque(VirtContext vc, float force_threshold, float moment_threshold);
+
+/** VIRTMECH: the virtual object's pose; sent at once (with the last speed) unless a loop runs,
+ *  in which case it goes out after the periodic function returns. */
+int virtSetPosition(VirtContext vc, float* pos);
+/** VIRTMECH: the virtual object's speed, sent with the next position. */
+int virtSetSpeed(VirtContext vc, float* speed);
+/** IMPEDANCE: the wrench to render; sent at once unless a loop runs. */
+int virtSetForce(VirtContext vc, float* force);
+/** IMPEDANCE: adds to the wrench of this cycle. */
+int virtAddForce(VirtContext vc, float* force);
+
+int virtGetPosition(VirtContext vc, float* pos);
+int virtGetSpeed(VirtContext vc, float* speed);
+int virtGetForce(VirtContext vc, float* force);
+int virtGetArticularPosition(VirtContext vc, float* pos);
+int virtGetArticularSpeed(VirtContext vc, float* speed);
+int virtGetPowerOn(VirtContext vc, int* power);
+int virtGetEmergencyStop(VirtContext vc, int* emergency_stop);
+/** Microseconds since the last controller answer arrived. */
+int virtGetTimeLastUpdate(VirtContext vc, unsigned int* time);
+
+/** The periodic function runs after each controller answer, every `*period` seconds. */
+int virtSetPeriodicFunction(VirtContext vc, void (*fn)(VirtContext, void*), float* period,
+                            void* arg);
+int virtStartLoop(VirtContext vc);
+/** Not from inside the periodic function. */
+int virtStopLoop(VirtContext vc);
+
+/** The last error of `vc` (or of the calling thread's last virtOpen when vc is NULL). */
+int virtGetErrorCode(VirtContext vc);
+/** A static text for an error code. */
+char* virtGetErrorMessage(int code);
+/** hapticctrl extension: the detailed text of the last error (the controller's reason). */
+const char* virtGetErrorDetail(VirtContext vc);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* HAPTICCTRL_VIRTUOSE_API_H */

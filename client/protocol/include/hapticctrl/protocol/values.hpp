@@ -1,0 +1,48 @@
+#pragma once
+/// @file values.hpp
+/// Range rules for every number a peer can send. One set of rules, used by the client library
+/// (to refuse a bad call with a clear exception before sending) and by the bridge (to drop or
+/// refuse what arrives). Each check returns nothing when the values are acceptable, otherwise a
+/// static text naming the field and its range.
+///
+/// Real-time contract: pure functions, no allocation; safe in a cycle.
+#include <optional>
+#include <string_view>
+
+#include "hapticctrl_protocol.h"
+
+namespace hapticctrl::protocol {
+
+using Problem = std::optional<std::string_view>;
+
+inline constexpr double kMaxPosition = 100.0;        ///< m, any pose coordinate
+inline constexpr double kMaxQuaternionError = 0.02;  ///< allowed | |q|^2 - 1 |
+inline constexpr double kMaxLinearSpeed = 100.0;     ///< m/s per component
+inline constexpr double kMaxAngularSpeed = 1000.0;   ///< rad/s per component
+inline constexpr double kMaxWrench = 1000.0;         ///< N or N.m per component
+inline constexpr double kMinTimeStep = 1e-5;         ///< s
+inline constexpr double kMaxTimeStep = 1.0;          ///< s
+inline constexpr double kMinFactor = 1e-3;
+inline constexpr double kMaxFactor = 1e3;
+inline constexpr unsigned kMaxIndexingMode = 5;  ///< VirtuoseAPI's six indexing modes
+inline constexpr unsigned kMaxCommandType = 2;   ///< NONE, IMPEDANCE, VIRTMECH
+inline constexpr double kMaxMass = 1000.0;       ///< kg
+inline constexpr double kMaxInertia = 1000.0;    ///< kg.m^2
+inline constexpr double kMaxGain = 1e6;
+inline constexpr double kMaxForceLimit = 1e4;
+inline constexpr unsigned kMinWatchdogMs = 10;
+inline constexpr unsigned kMaxWatchdogMs = 60000;
+
+/// A pose {x, y, z, qx, qy, qz, qw}: finite, within kMaxPosition, unit quaternion.
+template <typename T>
+[[nodiscard]] Problem check_pose(const T (&pose)[7]) noexcept;  // NOLINT(*-avoid-c-arrays)
+
+[[nodiscard]] Problem check_control(const hcp_body& body) noexcept;
+[[nodiscard]] Problem check_param(const hcp_param& param) noexcept;
+[[nodiscard]] Problem check_hello(const hcp_hello& hello) noexcept;
+[[nodiscard]] Problem check_answer(const hcp_answer& answer) noexcept;
+
+/// Dispatches on the body's type: the rules above, or none for bodies without numbers.
+[[nodiscard]] Problem check_body(const hcp_body& body) noexcept;
+
+}  // namespace hapticctrl::protocol

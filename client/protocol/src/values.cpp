@@ -1,0 +1,149 @@
+#include "hapticctrl/protocol/values.hpp"
+
+#include <cmath>
+
+namespace hapticctrl::protocol {
+namespace {
+
+template <typename T, std::size_t N>
+bool all_within(const T (&v)[N], double bound) noexcept {  // NOLINT(*-avoid-c-arrays)
+  for (const T x : v) {
+    if (!std::isfinite(x) || std::abs(static_cast<double>(x)) > bound) {
+      return false;
+    }
+  }
+  return true;
+}
+
+bool within(double x, double lo, double hi) noexcept { return std::isfinite(x) && x >= lo && x <= hi; }
+
+}  // namespace
+
+template <typename T>
+Problem check_pose(const T (&pose)[7]) noexcept {  // NOLINT(*-avoid-c-arrays)
+  if (!all_within(pose, kMaxPosition)) {
+    return "pose: every value must be finite and within 100 m";
+  }
+  double norm_sq = 0.0;
+  for (int i = 3; i < 7; ++i) {
+    norm_sq += static_cast<double>(pose[i]) * static_cast<double>(pose[i]);
+  }
+  if (std::abs(norm_sq - 1.0) > kMaxQuaternionError) {
+    return "pose: the quaternion {qx, qy, qz, qw} must have unit norm";
+  }
+  return std::nullopt;
+}
+template Problem check_pose<float>(const float (&)[7]) noexcept;    // NOLINT(*-avoid-c-arrays)
+template Problem check_pose<double>(const double (&)[7]) noexcept;  // NOLINT(*-avoid-c-arrays)
+
+Problem check_control(const hcp_body& body) noexcept {
+  if (body.type == HCP_CONTROL_OBJECT) {
+    const hcp_control_object& o = body.hcp_body_u.object;
+    if (auto p = check_pose(o.pose)) {
+      return p;
+    }
+    const float(&t)[6] = o.twist;  // NOLINT(*-avoid-c-arrays)
+    for (int i = 0; i < 6; ++i) {
+      const double bound = i < 3 ? kMaxLinearSpeed : kMaxAngularSpeed;
+      if (!std::isfinite(t[i]) || std::abs(static_cast<double>(t[i])) > bound) {
+        return "twist: finite, within 100 m/s and 1000 rad/s";
+      }
+    }
+  } else if (body.type == HCP_CONTROL_WRENCH) {
+    if (!all_within(body.hcp_body_u.wrench.wrench, kMaxWrench)) {
+      return "wrench: finite, within 1000 N and 1000 N.m";
+    }
+  }
+  return std::nullopt;
+}
+
+Problem check_param(const hcp_param& param) noexcept {
+  const auto& u = param.hcp_param_u;
+  switch (param.id) {
+    case HCP_P_TIME_STEP:
+      return within(u.time_step, kMinTimeStep, kMaxTimeStep)
+                 ? Problem{}
+                 : Problem{"time step: between 1e-5 and 1 s"};
+    case HCP_P_FORCE_FACTOR:
+      return within(u.force_factor, kMinFactor, kMaxFactor)
+                 ? Problem{}
+                 : Problem{"force factor: between 0.001 and 1000"};
+    case HCP_P_SPEED_FACTOR:
+      return within(u.speed_factor, kMinFactor, kMaxFactor)
+                 ? Problem{}
+                 : Problem{"speed factor: between 0.001 and 1000"};
+    case HCP_P_BASE_FRAME:
+      return check_pose(u.base_frame);
+    case HCP_P_OBSERVATION_FRAME:
+      return check_pose(u.observation_frame);
+    case HCP_P_INDEXING_MODE:
+      return u.indexing_mode <= kMaxIndexingMode ? Problem{}
+                                                 : Problem{"indexing mode: 0 to 5"};
+    case HCP_P_COMMAND_TYPE:
+      return u.command_type <= kMaxCommandType
+                 ? Problem{}
+                 : Problem{"command type: NONE (0), IMPEDANCE (1) or VIRTMECH (2)"};
+    case HCP_P_OBJECT:
+      return within(u.object.mass, 0.0, kMaxMass) && all_within(u.object.inertia, kMaxInertia) &&
+                     u.object.inertia[0] >= 0.0 && u.object.inertia[1] >= 0.0 &&
+                     u.object.inertia[2] >= 0.0
+                 ? Problem{}
+                 : Problem{"object: mass 0 to 1000 kg, inertia 0 to 1000 kg.m^2"};
+    case HCP_P_GAINS:
+      for (const double g : u.gains) {
+        if (!within(g, 0.0, kMaxGain)) {
+          return "gains: each 0 (derived) to 1e6";
+        }
+      }
+      return std::nullopt;
+    case HCP_P_FORCE_LIMITS:
+      return within(u.force_limits[0], 0.0, kMaxForceLimit) &&
+                     within(u.force_limits[1], 0.0, kMaxForceLimit)
+                 ? Problem{}
+                 : Problem{"force limits: 0 (the device's) to 1e4"};
+    case HCP_P_WATCHDOG:
+      return u.watchdog_ms >= kMinWatchdogMs && u.watchdog_ms <= kMaxWatchdogMs
+                 ? Problem{}
+                 : Problem{"watchdog: 10 to 60000 ms"};
+    case HCP_P_POWER:
+    case HCP_P_EMERGENCY_STOP:
+    case HCP_P_EMERGENCY_RESET:
+      return std::nullopt;
+  }
+  return "unknown parameter";
+}
+
+Problem check_hello(const hcp_hello& hello) noexcept {
+  if (hello.watchdog_ms != 0 &&
+      (hello.watchdog_ms < kMinWatchdogMs || hello.watchdog_ms > kMaxWatchdogMs)) {
+    return "watchdog: 0 (default) or 10 to 60000 ms";
+  }
+  return std::nullopt;
+}
+
+Problem check_answer(const hcp_answer& a) noexcept {
+  const bool finite = all_within(a.coupling_wrench, kMaxWrench) &&
+                      all_within(a.handle_pose, kMaxPosition) &&
+                      all_within(a.handle_twist, kMaxAngularSpeed) &&
+                      all_within(a.joint_position, kMaxPosition) &&
+                      all_within(a.joint_velocity, kMaxAngularSpeed);
+  return finite ? Problem{} : Problem{"answer: non-finite or out-of-range state"};
+}
+
+Problem check_body(const hcp_body& body) noexcept {
+  switch (body.type) {
+    case HCP_CONTROL_OBJECT:
+    case HCP_CONTROL_WRENCH:
+      return check_control(body);
+    case HCP_PARAM:
+      return check_param(body.hcp_body_u.param);
+    case HCP_HELLO:
+      return check_hello(body.hcp_body_u.hello);
+    case HCP_ANSWER:
+      return check_answer(body.hcp_body_u.answer);
+    default:
+      return std::nullopt;
+  }
+}
+
+}  // namespace hapticctrl::protocol

@@ -1,0 +1,461 @@
+// The VirtuoseAPI-compatible C API over hapticctrl::client::Connection.
+#include "hapticctrl/virtuose_api.h"
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cmath>
+#include <cstring>
+#include <ctime>
+#include <memory>
+#include <mutex>
+#include <new>
+
+#include "hapticctrl/client/connection.hpp"
+
+namespace {
+
+using hapticctrl::client::ClientError;
+using hapticctrl::client::CommandType;
+using hapticctrl::client::Connection;
+using hapticctrl::client::ErrorCode;
+using hapticctrl::client::Pose7;
+using hapticctrl::client::StateSnapshot;
+using hapticctrl::client::Vector6;
+
+constexpr std::size_t kDetailBytes = 256;
+
+struct ErrorState {
+  int code = VIRT_E_NO_ERROR;
+  std::array<char, kDetailBytes> detail{};
+
+  int set(int c, const char* text) noexcept {
+    code = c;
+    std::snprintf(detail.data(), detail.size(), "%s", text);
+    return -1;
+  }
+};
+
+thread_local ErrorState t_open_error;  // errors of virtOpen and of calls with a NULL context
+
+int code_of(ErrorCode code) noexcept {
+  switch (code) {
+    case ErrorCode::kInvalidArgument:
+      return VIRT_E_INCORRECT_VALUE;
+    case ErrorCode::kBusy:
+      return VIRT_E_VIRTUOSE_BUSY;
+    case ErrorCode::kVersion:
+      return VIRT_E_INCOMPATIBLE_VERSION;
+    case ErrorCode::kTimeout:
+      return VIRT_E_TIME_OUT;
+    case ErrorCode::kRejected:
+      return VIRT_E_CONTROLLER_REFUSED;
+    case ErrorCode::kNoController:
+    case ErrorCode::kClosed:
+    case ErrorCode::kTransport:
+      break;
+  }
+  return VIRT_E_COMMUNICATION_FAILURE;
+}
+
+std::int64_t monotonic_ns() noexcept {
+  timespec ts{};
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
+}
+
+template <std::size_t N>
+std::array<double, N> to_doubles(const float* v) noexcept {
+  std::array<double, N> out{};
+  for (std::size_t i = 0; i < N; ++i) {
+    out[i] = static_cast<double>(v[i]);
+  }
+  return out;
+}
+
+template <std::size_t N>
+void to_floats(const std::array<double, N>& v, float* out) noexcept {
+  for (std::size_t i = 0; i < N; ++i) {
+    out[i] = static_cast<float>(v[i]);
+  }
+}
+
+}  // namespace
+
+struct VirtContextS {
+  std::unique_ptr<Connection> connection;
+  ErrorState error;
+
+  std::mutex pending_mutex;  // the application's thread and the loop's callback both set these
+  CommandType command_type = CommandType::kNone;
+  Pose7 object_pose{0, 0, 0, 0, 0, 0, 1};
+  Vector6 object_speed{};
+  Vector6 wrench{};
+  Vector6 added_wrench{};
+  bool pose_pending = false;
+  bool wrench_pending = false;
+
+  void (*periodic)(VirtContext, void*) = nullptr;
+  void* periodic_arg = nullptr;
+  unsigned decimation = 1;
+  unsigned answers_since_call = 0;
+  std::atomic<bool> loop_running{false};
+
+  /// Runs `call`, mapping a ClientError to -1 with its code and text.
+  template <typename Call>
+  int guarded(Call&& call) noexcept {
+    try {
+      call();
+      return 0;
+    } catch (const ClientError& e) {
+      return error.set(code_of(e.code()), e.what());
+    } catch (const std::bad_alloc&) {
+      return error.set(VIRT_E_OUT_OF_MEMORY, "out of memory");
+    } catch (const std::exception& e) {
+      return error.set(VIRT_E_COMMUNICATION_FAILURE, e.what());
+    }
+  }
+
+  /// Sends the pending control frame (at most one per call). Caller holds pending_mutex.
+  bool flush_locked() noexcept {
+    bool ok = true;
+    if (command_type == CommandType::kVirtmech && pose_pending) {
+      ok = connection->send_object_state(object_pose, object_speed);
+    } else if (command_type == CommandType::kImpedance && wrench_pending) {
+      Vector6 total{};
+      for (std::size_t i = 0; i < 6; ++i) {
+        total[i] = wrench[i] + added_wrench[i];
+      }
+      ok = connection->send_wrench(total);
+      added_wrench = {};
+    }
+    pose_pending = false;
+    wrench_pending = false;
+    return ok;
+  }
+
+  void on_answer() noexcept {
+    if (periodic == nullptr || ++answers_since_call < decimation) {
+      return;
+    }
+    answers_since_call = 0;
+    periodic(this, periodic_arg);
+    const std::lock_guard lock(pending_mutex);
+    flush_locked();
+  }
+};
+
+namespace {
+
+/// The context's error state, or the thread's for a NULL context.
+int fail(VirtContext vc, int code, const char* text) noexcept {
+  return vc != nullptr ? vc->error.set(code, text) : t_open_error.set(code, text);
+}
+
+bool valid(VirtContext vc) noexcept {
+  if (vc == nullptr || !vc->connection) {
+    t_open_error.set(VIRT_E_INVALID_CONTEXT, "invalid context (NULL or closed)");
+    return false;
+  }
+  return true;
+}
+
+StateSnapshot state_of(VirtContext vc) noexcept { return vc->connection->snapshot(); }
+
+}  // namespace
+
+extern "C" {
+
+VirtContext virtOpen(const char* name) {
+  if (name == nullptr) {
+    fail(nullptr, VIRT_E_WRONG_FORMAT, "virtOpen: NULL address");
+    return nullptr;
+  }
+  try {
+    auto vc = std::make_unique<VirtContextS>();
+    vc->connection = std::make_unique<Connection>(hapticctrl::client::Address::parse(name));
+    t_open_error = ErrorState{};
+    return vc.release();
+  } catch (const ClientError& e) {
+    fail(nullptr, e.code() == ErrorCode::kInvalidArgument ? VIRT_E_WRONG_FORMAT : code_of(e.code()),
+         e.what());
+  } catch (const std::exception& e) {
+    fail(nullptr, VIRT_E_COMMUNICATION_FAILURE, e.what());
+  }
+  return nullptr;
+}
+
+int virtClose(VirtContext vc) {
+  if (!valid(vc)) {
+    return -1;
+  }
+  virtStopLoop(vc);
+  const int rc = vc->guarded([&] { vc->connection->close(); });
+  delete vc;  // NOLINT(cppcoreguidelines-owning-memory): the C API hands out raw handles
+  return rc;
+}
+
+int virtSetTimeStep(VirtContext vc, float step) {
+  return valid(vc) ? vc->guarded([&] { vc->connection->set_time_step(step); }) : -1;
+}
+
+int virtSetIndexingMode(VirtContext vc, VirtIndexingType mode) {
+  return valid(vc) ? vc->guarded([&] {
+    vc->connection->set_indexing_mode(static_cast<hapticctrl::client::IndexingMode>(mode));
+  })
+                   : -1;
+}
+
+int virtSetForceFactor(VirtContext vc, float factor) {
+  return valid(vc) ? vc->guarded([&] { vc->connection->set_force_factor(factor); }) : -1;
+}
+
+int virtSetSpeedFactor(VirtContext vc, float factor) {
+  return valid(vc) ? vc->guarded([&] { vc->connection->set_speed_factor(factor); }) : -1;
+}
+
+int virtSetBaseFrame(VirtContext vc, float* pos) {
+  if (!valid(vc) || pos == nullptr) {
+    return fail(vc, VIRT_E_INCORRECT_VALUE, "virtSetBaseFrame: NULL pose");
+  }
+  return vc->guarded([&] { vc->connection->set_base_frame(to_doubles<7>(pos)); });
+}
+
+int virtSetObservationFrame(VirtContext vc, float* pos) {
+  if (!valid(vc) || pos == nullptr) {
+    return fail(vc, VIRT_E_INCORRECT_VALUE, "virtSetObservationFrame: NULL pose");
+  }
+  return vc->guarded([&] { vc->connection->set_observation_frame(to_doubles<7>(pos)); });
+}
+
+int virtSetCommandType(VirtContext vc, VirtCommandType type) {
+  if (!valid(vc)) {
+    return -1;
+  }
+  const auto t = static_cast<CommandType>(type);
+  const int rc = vc->guarded([&] { vc->connection->set_command_type(t); });
+  if (rc == 0) {
+    const std::lock_guard lock(vc->pending_mutex);
+    vc->command_type = t;
+  }
+  return rc;
+}
+
+int virtAttachVO(VirtContext vc, float mass, float* mxmymz) {
+  if (!valid(vc) || mxmymz == nullptr) {
+    return fail(vc, VIRT_E_INCORRECT_VALUE, "virtAttachVO: NULL inertia");
+  }
+  return vc->guarded([&] { vc->connection->attach_object(mass, to_doubles<3>(mxmymz)); });
+}
+
+int virtDetachVO(VirtContext vc) {
+  return valid(vc) ? vc->guarded([&] { vc->connection->detach_object(); }) : -1;
+}
+
+int virtSetPowerOn(VirtContext vc, int power) {
+  return valid(vc) ? vc->guarded([&] { vc->connection->set_power(power != 0); }) : -1;
+}
+
+int virtSetTimeoutValue(VirtContext vc, float seconds) {
+  if (!valid(vc) || !std::isfinite(seconds)) {
+    return fail(vc, VIRT_E_INCORRECT_VALUE, "virtSetTimeoutValue: not a finite number");
+  }
+  const auto ms = std::chrono::milliseconds(std::lround(static_cast<double>(seconds) * 1000.0));
+  return vc->guarded([&] { vc->connection->set_watchdog(ms); });
+}
+
+int virtSaturateTorque(VirtContext vc, float force_threshold, float moment_threshold) {
+  return valid(vc) ? vc->guarded([&] {
+    vc->connection->set_force_limits(force_threshold, moment_threshold);
+  })
+                   : -1;
+}
+
+int virtSetPosition(VirtContext vc, float* pos) {
+  if (!valid(vc) || pos == nullptr) {
+    return fail(vc, VIRT_E_INCORRECT_VALUE, "virtSetPosition: NULL pose");
+  }
+  const std::lock_guard lock(vc->pending_mutex);
+  if (vc->command_type != CommandType::kVirtmech) {
+    return fail(vc, VIRT_E_WRONG_MODE, "virtSetPosition: needs COMMAND_TYPE_VIRTMECH");
+  }
+  vc->object_pose = to_doubles<7>(pos);
+  vc->pose_pending = true;
+  if (!vc->loop_running.load() && !vc->flush_locked()) {
+    return fail(vc, VIRT_E_INCORRECT_VALUE, "virtSetPosition: pose or speed out of range, or "
+                                            "the session is closed");
+  }
+  return 0;
+}
+
+int virtSetSpeed(VirtContext vc, float* speed) {
+  if (!valid(vc) || speed == nullptr) {
+    return fail(vc, VIRT_E_INCORRECT_VALUE, "virtSetSpeed: NULL speed");
+  }
+  const std::lock_guard lock(vc->pending_mutex);
+  vc->object_speed = to_doubles<6>(speed);
+  return 0;
+}
+
+int virtSetForce(VirtContext vc, float* force) {
+  if (!valid(vc) || force == nullptr) {
+    return fail(vc, VIRT_E_INCORRECT_VALUE, "virtSetForce: NULL force");
+  }
+  const std::lock_guard lock(vc->pending_mutex);
+  if (vc->command_type != CommandType::kImpedance) {
+    return fail(vc, VIRT_E_WRONG_MODE, "virtSetForce: needs COMMAND_TYPE_IMPEDANCE");
+  }
+  vc->wrench = to_doubles<6>(force);
+  vc->wrench_pending = true;
+  if (!vc->loop_running.load() && !vc->flush_locked()) {
+    return fail(vc, VIRT_E_INCORRECT_VALUE,
+                "virtSetForce: force out of range, or the session is closed");
+  }
+  return 0;
+}
+
+int virtAddForce(VirtContext vc, float* force) {
+  if (!valid(vc) || force == nullptr) {
+    return fail(vc, VIRT_E_INCORRECT_VALUE, "virtAddForce: NULL force");
+  }
+  const std::lock_guard lock(vc->pending_mutex);
+  if (vc->command_type != CommandType::kImpedance) {
+    return fail(vc, VIRT_E_WRONG_MODE,
+                "virtAddForce: needs COMMAND_TYPE_IMPEDANCE (control frames carry either an "
+                "object state or a wrench)");
+  }
+  const Vector6 f = to_doubles<6>(force);
+  for (std::size_t i = 0; i < 6; ++i) {
+    vc->added_wrench[i] += f[i];
+  }
+  vc->wrench_pending = true;
+  return 0;
+}
+
+int virtGetPosition(VirtContext vc, float* pos) {
+  if (!valid(vc) || pos == nullptr) {
+    return fail(vc, VIRT_E_INCORRECT_VALUE, "virtGetPosition: NULL output");
+  }
+  to_floats(state_of(vc).handle_pose, pos);
+  return 0;
+}
+
+int virtGetSpeed(VirtContext vc, float* speed) {
+  if (!valid(vc) || speed == nullptr) {
+    return fail(vc, VIRT_E_INCORRECT_VALUE, "virtGetSpeed: NULL output");
+  }
+  to_floats(state_of(vc).handle_twist, speed);
+  return 0;
+}
+
+int virtGetForce(VirtContext vc, float* force) {
+  if (!valid(vc) || force == nullptr) {
+    return fail(vc, VIRT_E_INCORRECT_VALUE, "virtGetForce: NULL output");
+  }
+  to_floats(state_of(vc).coupling_wrench, force);
+  return 0;
+}
+
+int virtGetArticularPosition(VirtContext vc, float* pos) {
+  if (!valid(vc) || pos == nullptr) {
+    return fail(vc, VIRT_E_INCORRECT_VALUE, "virtGetArticularPosition: NULL output");
+  }
+  to_floats(state_of(vc).joint_position, pos);
+  return 0;
+}
+
+int virtGetArticularSpeed(VirtContext vc, float* speed) {
+  if (!valid(vc) || speed == nullptr) {
+    return fail(vc, VIRT_E_INCORRECT_VALUE, "virtGetArticularSpeed: NULL output");
+  }
+  to_floats(state_of(vc).joint_velocity, speed);
+  return 0;
+}
+
+int virtGetPowerOn(VirtContext vc, int* power) {
+  if (!valid(vc) || power == nullptr) {
+    return fail(vc, VIRT_E_INCORRECT_VALUE, "virtGetPowerOn: NULL output");
+  }
+  *power = state_of(vc).powered() ? 1 : 0;
+  return 0;
+}
+
+int virtGetEmergencyStop(VirtContext vc, int* emergency_stop) {
+  if (!valid(vc) || emergency_stop == nullptr) {
+    return fail(vc, VIRT_E_INCORRECT_VALUE, "virtGetEmergencyStop: NULL output");
+  }
+  *emergency_stop = state_of(vc).emergency_stop() ? 1 : 0;
+  return 0;
+}
+
+int virtGetTimeLastUpdate(VirtContext vc, unsigned int* time) {
+  if (!valid(vc) || time == nullptr) {
+    return fail(vc, VIRT_E_INCORRECT_VALUE, "virtGetTimeLastUpdate: NULL output");
+  }
+  const StateSnapshot s = state_of(vc);
+  if (!s.valid) {
+    return fail(vc, VIRT_E_TIME_OUT, "virtGetTimeLastUpdate: no answer from the controller yet");
+  }
+  const std::int64_t us = (monotonic_ns() - s.received_ns) / 1000;
+  *time = static_cast<unsigned int>(std::clamp<std::int64_t>(us, 0, 0xFFFFFFFF));
+  return 0;
+}
+
+int virtSetPeriodicFunction(VirtContext vc, void (*fn)(VirtContext, void*), float* period,
+                            void* arg) {
+  if (!valid(vc) || fn == nullptr || period == nullptr || !std::isfinite(*period) ||
+      *period <= 0.0F) {
+    return fail(vc, VIRT_E_INCORRECT_VALUE, "virtSetPeriodicFunction: NULL function or bad period");
+  }
+  if (vc->loop_running.load()) {
+    return fail(vc, VIRT_E_WRONG_MODE, "virtSetPeriodicFunction: stop the loop first");
+  }
+  const double cycle_s = static_cast<double>(vc->connection->controller_period_ns()) / 1e9;
+  vc->decimation = cycle_s > 0.0
+                       ? static_cast<unsigned>(std::max(1L, std::lround(static_cast<double>(*period) / cycle_s)))
+                       : 1U;
+  *period = static_cast<float>(static_cast<double>(vc->decimation) * cycle_s);  // the period actually used
+  vc->periodic = fn;
+  vc->periodic_arg = arg;
+  return 0;
+}
+
+int virtStartLoop(VirtContext vc) {
+  if (!valid(vc)) {
+    return -1;
+  }
+  if (vc->periodic == nullptr) {
+    return fail(vc, VIRT_E_WRONG_MODE, "virtStartLoop: call virtSetPeriodicFunction first");
+  }
+  vc->loop_running.store(true);
+  return vc->guarded([&] {
+    vc->connection->start_loop([vc](const StateSnapshot&) { vc->on_answer(); });
+  });
+}
+
+int virtStopLoop(VirtContext vc) {
+  if (!valid(vc)) {
+    return -1;
+  }
+  vc->connection->stop_loop();
+  vc->loop_running.store(false);
+  return 0;
+}
+
+int virtGetErrorCode(VirtContext vc) { return vc != nullptr ? vc->error.code : t_open_error.code; }
+
+char* virtGetErrorMessage(int code) {
+  static char kTexts[][48] = {  // NOLINT(*-avoid-c-arrays): the C API returns char*
+      "no error",           "out of memory",     "communication failure", "invalid context",
+      "unknown error",      "wrong format",      "time out",              "wrong mode",
+      "incorrect value",    "unknown error",     "controller busy",       "incompatible version",
+      "controller refused"};
+  const int count = static_cast<int>(sizeof kTexts / sizeof kTexts[0]);
+  return kTexts[code >= 0 && code < count ? code : 4];
+}
+
+const char* virtGetErrorDetail(VirtContext vc) {
+  return vc != nullptr ? vc->error.detail.data() : t_open_error.detail.data();
+}
+
+}  // extern "C"

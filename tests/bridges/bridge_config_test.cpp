@@ -1,0 +1,47 @@
+#include "hapticctrl/udp_bridge/bridge_config.hpp"
+
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+
+namespace hapticctrl::udp_bridge {
+namespace {
+
+TEST(BridgeConfig, DefaultsAreLoopbackAndTheStandardPort) {
+  const BridgeConfig c = BridgeConfig::parse({});
+  EXPECT_EQ(c.bind_address, "127.0.0.1");
+  EXPECT_EQ(c.port, 5125);
+  EXPECT_EQ(c.watchdog_ms, 100U);
+}
+
+TEST(BridgeConfig, ParsesEveryOption) {
+  const BridgeConfig c = BridgeConfig::parse({"--instance", "lab", "--port", "0", "--watchdog-ms",
+                                              "250", "--duration", "1.5", "--json"});
+  EXPECT_EQ(c.instance, "lab");
+  EXPECT_EQ(c.port, 0);
+  EXPECT_EQ(c.watchdog_ms, 250U);
+  EXPECT_DOUBLE_EQ(c.duration_s, 1.5);
+  EXPECT_TRUE(c.json);
+}
+
+TEST(BridgeConfig, OtherInterfacesNeedAnExplicitChoice) {
+  EXPECT_THROW(BridgeConfig::parse({"--bind", "0.0.0.0"}), std::invalid_argument);
+  EXPECT_EQ(BridgeConfig::parse({"--bind", "0.0.0.0", "--allow-remote"}).bind_address, "0.0.0.0");
+  EXPECT_NO_THROW(BridgeConfig::parse({"--bind", "127.0.0.2"}));
+}
+
+TEST(BridgeConfig, BadValuesNameTheOption) {
+  try {
+    BridgeConfig::parse({"--watchdog-ms", "5"});
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "--watchdog-ms: expected a number from 10 to 60000, got '5'");
+  }
+  EXPECT_THROW(BridgeConfig::parse({"--port", "70000"}), std::invalid_argument);
+  EXPECT_THROW(BridgeConfig::parse({"--port"}), std::invalid_argument);
+  EXPECT_THROW(BridgeConfig::parse({"--frobnicate"}), std::invalid_argument);
+  EXPECT_THROW(BridgeConfig::parse({"--duration", "x"}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace hapticctrl::udp_bridge

@@ -1,0 +1,436 @@
+// The bridge's session state machine against real in-memory shm cells: handshake, parameters,
+// control frames, the watchdog, and a table of bad inputs that must each be dropped, counted
+// under their own reason, and leave the session unharmed.
+#include "hapticctrl/udp_bridge/session.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "hapticctrl/protocol/codec.hpp"
+
+namespace hapticctrl::udp_bridge {
+namespace {
+
+using protocol::Endpoint;
+using protocol::FrameBuffer;
+using shm::LinkDrop;
+
+constexpr std::int64_t kMs = 1'000'000;
+
+struct Controller {
+  std::unique_ptr<shm::SeqlockCell<shm::VprPayload>> vpr =
+      std::make_unique<shm::SeqlockCell<shm::VprPayload>>();
+  std::unique_ptr<shm::CtrlRegion> ctrl = std::make_unique<shm::CtrlRegion>();
+  std::unique_ptr<shm::CtrlAckRegion> acks = std::make_unique<shm::CtrlAckRegion>();
+  shm::CtrlWriter writer{ctrl->slots[0], acks->slots[0], 0};
+  ControllerPorts ports{vpr.get(), &writer, 1'000'000};
+
+  shm::VprPayload vpr_now() const {
+    shm::VprPayload v;
+    EXPECT_TRUE(vpr->read(v).ok());
+    return v;
+  }
+  std::uint64_t vpr_publishes() const {
+    shm::VprPayload v;
+    return vpr->read(v).sequence;
+  }
+  std::vector<shm::CtrlCode> drain() {
+    std::vector<shm::CtrlCode> codes;
+    shm::CtrlReader(*ctrl, *acks).drain([&](const shm::CtrlCommand& c) {
+      codes.push_back(c.code);
+      return true;
+    });
+    return codes;
+  }
+};
+
+/// A scripted client: builds frames, feeds them to the session, decodes the reply.
+struct Client {
+  Session* session;
+  Endpoint from = Endpoint::resolve("127.0.0.1", 40000);
+  std::uint64_t token = 0;
+  std::uint32_t control_seq = 0;
+  std::uint32_t param_seq = 0;
+  std::int64_t now = 1000 * kMs;
+  hcp_frame reply{};
+  bool replied = false;
+
+  std::vector<std::uint8_t> bytes(hcp_frame f) const {
+    FrameBuffer b{};
+    const std::size_t n = protocol::encode(f, b);
+    return {b.begin(), b.begin() + static_cast<std::ptrdiff_t>(n)};
+  }
+  void feed(const std::vector<std::uint8_t>& data) {
+    FrameBuffer out{};
+    const std::size_t n = session->on_datagram(data, from, now, out);
+    replied = n != 0;
+    if (replied) {
+      ASSERT_EQ(protocol::decode({out.data(), n}, reply), protocol::DecodeStatus::kOk);
+    }
+  }
+  void hello(std::uint32_t version = protocol::kVersion, std::uint32_t features = 3,
+             std::uint32_t min_version = 0) {
+    hcp_frame f = protocol::make_frame(HCP_HELLO, 0, 1, now);
+    f.header.protocol = version;
+    f.body.hcp_body_u.hello.min_version = min_version != 0 ? min_version : version;
+    f.body.hcp_body_u.hello.features = features;
+    feed(bytes(f));
+    if (replied && reply.body.type == HCP_WELCOME) {
+      token = reply.header.token;
+    }
+  }
+  hcp_frame object(float x) {
+    hcp_frame f = protocol::make_frame(HCP_CONTROL_OBJECT, token, ++control_seq, now);
+    f.body.hcp_body_u.object.pose[0] = x;
+    f.body.hcp_body_u.object.pose[6] = 1.0F;
+    return f;
+  }
+  void send_object(float x) { feed(bytes(object(x))); }
+  hcp_frame param(hcp_param_id id) {
+    hcp_frame f = protocol::make_frame(HCP_PARAM, token, ++param_seq, now);
+    f.body.hcp_body_u.param.id = id;
+    return f;
+  }
+};
+
+struct SessionTest : ::testing::Test {
+  Controller controller;
+  std::uint64_t next_token = 0x1111;
+  Session session{{100}, [this] { return next_token++; }};
+  Client client{&session};
+
+  void SetUp() override { session.set_controller(&controller.ports, 0); }
+  std::uint64_t dropped(LinkDrop why) { return session.counters().dropped_for(why); }
+};
+
+TEST_F(SessionTest, HelloOpensASessionWithTheBridgesTokenAndPublishesIt) {
+  client.hello();
+  ASSERT_TRUE(client.replied);
+  ASSERT_EQ(client.reply.body.type, HCP_WELCOME);
+  EXPECT_EQ(client.token, 0x1111U);
+  EXPECT_EQ(client.reply.body.hcp_body_u.welcome.watchdog_ms, 100U);
+  EXPECT_EQ(client.reply.body.hcp_body_u.welcome.period_ns, 1'000'000);
+  EXPECT_EQ(client.reply.body.hcp_body_u.welcome.features, protocol::kAllFeatures);
+  EXPECT_EQ(controller.vpr_now().session_id, 1U);
+  EXPECT_EQ(controller.vpr_now().watchdog_timeout_us, 100'000U);
+}
+
+TEST_F(SessionTest, HelloWithoutAControllerIsRefused) {
+  session.set_controller(nullptr, 0);
+  client.hello();
+  ASSERT_EQ(client.reply.body.type, HCP_REFUSE);
+  EXPECT_EQ(client.reply.body.hcp_body_u.refuse.code, HCP_REFUSE_NO_CONTROLLER);
+}
+
+TEST_F(SessionTest, ASecondClientIsBusyUntilTheFirstFallsSilent) {
+  client.hello();
+  Client other{&session};
+  other.from = Endpoint::resolve("127.0.0.1", 40001);
+  other.now = client.now + 30 * kMs;
+  other.hello();
+  ASSERT_EQ(other.reply.body.type, HCP_REFUSE);
+  EXPECT_EQ(other.reply.body.hcp_body_u.refuse.code, HCP_REFUSE_BUSY);
+  EXPECT_EQ(other.reply.body.hcp_body_u.refuse.retry_after_ms, 70U);
+  EXPECT_EQ(session.counters().refused_busy.load(), 1U);
+  EXPECT_TRUE(session.check_watchdog(client.now + 101 * kMs));
+  other.now = client.now + 102 * kMs;
+  other.hello();
+  EXPECT_EQ(other.reply.body.type, HCP_WELCOME);
+  EXPECT_EQ(controller.vpr_now().session_id, 2U);
+}
+
+TEST_F(SessionTest, ALostWelcomeIsRepeatedToTheSameClient) {
+  client.hello();
+  const std::uint64_t token = client.token;
+  client.hello();
+  ASSERT_EQ(client.reply.body.type, HCP_WELCOME);
+  EXPECT_EQ(client.reply.header.token, token);
+  EXPECT_EQ(session.counters().sessions_opened.load(), 1U);
+}
+
+TEST_F(SessionTest, AnotherMajorVersionIsRefusedWithBothVersions) {
+  client.hello(protocol::make_version(2, 1));
+  ASSERT_EQ(client.reply.body.type, HCP_REFUSE);
+  EXPECT_EQ(client.reply.body.hcp_body_u.refuse.code, HCP_REFUSE_VERSION);
+  EXPECT_EQ(client.reply.body.hcp_body_u.refuse.peer_version, protocol::make_version(2, 1));
+  EXPECT_EQ(std::string(protocol::text_of(client.reply.body.hcp_body_u.refuse.reason)),
+            "protocol version mismatch: client 2.1 (oldest 2.1), controller 1.0");
+  EXPECT_EQ(session.counters().refused_version.load(), 1U);
+}
+
+TEST_F(SessionTest, ANewerClientThatStillSpeaksOursIsAcceptedWithTheCommonFeatures) {
+  client.hello(protocol::make_version(2, 0), 0xFF, protocol::make_version(1, 0));
+  ASSERT_EQ(client.reply.body.type, HCP_WELCOME);
+  EXPECT_EQ(client.reply.header.protocol, protocol::kVersion);
+  EXPECT_EQ(client.reply.body.hcp_body_u.welcome.features, protocol::kAllFeatures);
+  Client older{&session};
+  older.from = Endpoint::resolve("127.0.0.1", 40002);
+  session.close(0);
+  older.hello(protocol::make_version(1, 0), HCP_FEATURE_JOINT_STATE);
+  EXPECT_EQ(older.reply.body.hcp_body_u.welcome.features, HCP_FEATURE_JOINT_STATE);
+}
+
+TEST_F(SessionTest, ControlFramesReachVprAndKeepalivesOnlyFeedTheWatchdog) {
+  client.hello();
+  client.send_object(0.25F);
+  shm::VprPayload v = controller.vpr_now();
+  EXPECT_DOUBLE_EQ(v.object_pose[0], 0.25);
+  EXPECT_EQ(v.client_sequence, 1U);
+  hcp_frame w = protocol::make_frame(HCP_CONTROL_WRENCH, client.token, ++client.control_seq, 5);
+  w.body.hcp_body_u.wrench.wrench[2] = -3.0F;
+  client.feed(client.bytes(w));
+  v = controller.vpr_now();
+  EXPECT_DOUBLE_EQ(v.impedance_wrench[2], -3.0);
+  EXPECT_EQ(v.client_time_ns, 5);
+  const std::uint64_t publishes = controller.vpr_publishes();
+  client.now += 90 * kMs;
+  client.feed(client.bytes(
+      protocol::make_frame(HCP_KEEPALIVE, client.token, ++client.control_seq, client.now)));
+  EXPECT_EQ(controller.vpr_publishes(), publishes);  // the core keeps judging data freshness
+  EXPECT_FALSE(session.check_watchdog(client.now + 90 * kMs));
+  EXPECT_EQ(session.counters().control_accepted.load(), 2U);
+}
+
+TEST_F(SessionTest, BadInputsAreDroppedCountedAndLeaveTheSessionUnharmed) {
+  client.hello();
+  client.send_object(0.1F);
+  struct Case {
+    std::string name;
+    std::vector<std::uint8_t> bytes;
+    LinkDrop reason;
+  };
+  const auto good = client.bytes(client.object(0.2F));  // sequence 2, never delivered
+  std::vector<Case> cases;
+  cases.push_back({"empty", {}, LinkDrop::kSize});
+  cases.push_back({"truncated", {good.begin(), good.begin() + 20}, LinkDrop::kSize});
+  cases.push_back({"odd length", {good.begin(), good.end() - 1}, LinkDrop::kSize});
+  auto crc = good;
+  crc[40] ^= 1;
+  cases.push_back({"bad crc", crc, LinkDrop::kCrc});
+  auto magic = good;
+  magic[1] = 'X';
+  cases.push_back({"bad magic", magic, LinkDrop::kMagic});
+  hcp_frame v2 = client.object(0.2F);
+  v2.header.protocol = protocol::make_version(2, 0);
+  cases.push_back({"wrong version", client.bytes(v2), LinkDrop::kVersion});
+  hcp_frame forged = client.object(0.2F);
+  forged.header.token ^= 0x5A5A;
+  cases.push_back({"wrong token", client.bytes(forged), LinkDrop::kToken});
+  for (const float bad : {std::nanf(""), std::numeric_limits<float>::infinity()}) {
+    hcp_frame f = client.object(0.2F);
+    f.body.hcp_body_u.object.twist[1] = bad;
+    cases.push_back({"non-finite", client.bytes(f), LinkDrop::kRange});
+  }
+  hcp_frame replay = client.object(0.2F);
+  replay.header.sequence = 1;  // already accepted
+  cases.push_back({"replayed", client.bytes(replay), LinkDrop::kSequence});
+  cases.push_back({"unexpected type",
+                   client.bytes(protocol::make_frame(HCP_ANSWER, client.token, 9, 0)),
+                   LinkDrop::kUnexpected});
+
+  const std::uint64_t publishes = controller.vpr_publishes();
+  for (const Case& c : cases) {
+    const std::uint64_t before = dropped(c.reason);
+    client.feed(c.bytes);
+    EXPECT_FALSE(client.replied) << c.name;
+    EXPECT_EQ(dropped(c.reason), before + 1) << c.name;
+  }
+  Client stranger{&session};  // the right token from another address
+  stranger.from = Endpoint::resolve("127.0.0.1", 40009);
+  const std::uint64_t token_drops = dropped(LinkDrop::kToken);
+  stranger.feed(good);
+  EXPECT_EQ(dropped(LinkDrop::kToken), token_drops + 1);
+  session.on_oversized();
+  EXPECT_EQ(controller.vpr_publishes(), publishes);  // nothing bad reached the controller
+
+  client.now += 50 * kMs;
+  client.control_seq = 5;
+  client.send_object(0.3F);  // the session still works
+  EXPECT_FLOAT_EQ(static_cast<float>(controller.vpr_now().object_pose[0]), 0.3F);
+  client.control_seq = 4;
+  client.send_object(0.9F);  // reordered: older than the last accepted
+  EXPECT_FLOAT_EQ(static_cast<float>(controller.vpr_now().object_pose[0]), 0.3F);
+  EXPECT_EQ(dropped(LinkDrop::kSequence), 2U);
+}
+
+TEST_F(SessionTest, EveryParameterReachesVprOrCtrl) {
+  client.hello();
+  const auto apply = [&](hcp_frame f) {
+    client.feed(client.bytes(f));
+    ASSERT_TRUE(client.replied);
+    ASSERT_EQ(client.reply.body.type, HCP_ACK);
+    EXPECT_EQ(client.reply.body.hcp_body_u.ack.acked_sequence, f.header.sequence);
+    EXPECT_EQ(client.reply.body.hcp_body_u.ack.status, HCP_ACK_OK);
+  };
+  hcp_frame f = client.param(HCP_P_TIME_STEP);
+  f.body.hcp_body_u.param.hcp_param_u.time_step = 0.002;
+  apply(f);
+  f = client.param(HCP_P_FORCE_FACTOR);
+  f.body.hcp_body_u.param.hcp_param_u.force_factor = 0.5;
+  apply(f);
+  f = client.param(HCP_P_SPEED_FACTOR);
+  f.body.hcp_body_u.param.hcp_param_u.speed_factor = 2.0;
+  apply(f);
+  f = client.param(HCP_P_BASE_FRAME);
+  f.body.hcp_body_u.param.hcp_param_u.base_frame[2] = 0.1;
+  f.body.hcp_body_u.param.hcp_param_u.base_frame[6] = 1.0;
+  apply(f);
+  f = client.param(HCP_P_OBSERVATION_FRAME);
+  f.body.hcp_body_u.param.hcp_param_u.observation_frame[0] = -0.1;
+  f.body.hcp_body_u.param.hcp_param_u.observation_frame[6] = 1.0;
+  apply(f);
+  f = client.param(HCP_P_INDEXING_MODE);
+  f.body.hcp_body_u.param.hcp_param_u.indexing_mode = 1;
+  apply(f);
+  f = client.param(HCP_P_COMMAND_TYPE);
+  f.body.hcp_body_u.param.hcp_param_u.command_type = 2;
+  apply(f);
+  f = client.param(HCP_P_OBJECT);
+  f.body.hcp_body_u.param.hcp_param_u.object = {1, 0.3, {0.001, 0.002, 0.003}};
+  apply(f);
+  f = client.param(HCP_P_GAINS);
+  f.body.hcp_body_u.param.hcp_param_u.gains[0] = 800.0;
+  apply(f);
+  f = client.param(HCP_P_FORCE_LIMITS);
+  f.body.hcp_body_u.param.hcp_param_u.force_limits[0] = 10.0;
+  apply(f);
+  f = client.param(HCP_P_WATCHDOG);
+  f.body.hcp_body_u.param.hcp_param_u.watchdog_ms = 300;
+  apply(f);
+  const shm::VprPayload v = controller.vpr_now();
+  EXPECT_DOUBLE_EQ(v.client_time_step, 0.002);
+  EXPECT_DOUBLE_EQ(v.force_factor, 0.5);
+  EXPECT_DOUBLE_EQ(v.speed_factor, 2.0);
+  EXPECT_DOUBLE_EQ(v.base_frame[2], 0.1);
+  EXPECT_DOUBLE_EQ(v.observation_frame[0], -0.1);
+  EXPECT_EQ(v.indexing_mode, 1U);
+  EXPECT_EQ(v.command_type, 2U);
+  EXPECT_EQ(v.flags & 1U, 1U);
+  EXPECT_DOUBLE_EQ(v.object_mass, 0.3);
+  EXPECT_DOUBLE_EQ(v.object_inertia[2], 0.003);
+  EXPECT_DOUBLE_EQ(v.gain_override[0], 800.0);
+  EXPECT_DOUBLE_EQ(v.force_limits[0], 10.0);
+  EXPECT_EQ(v.watchdog_timeout_us, 300'000U);
+  EXPECT_FALSE(session.check_watchdog(client.now + 250 * kMs));
+
+  f = client.param(HCP_P_POWER);
+  f.body.hcp_body_u.param.hcp_param_u.power_on = 1;
+  apply(f);
+  apply(client.param(HCP_P_EMERGENCY_STOP));
+  apply(client.param(HCP_P_EMERGENCY_RESET));
+  f = client.param(HCP_P_POWER);
+  apply(f);
+  EXPECT_EQ(controller.drain(),
+            (std::vector<shm::CtrlCode>{shm::CtrlCode::kPowerOn, shm::CtrlCode::kEmergencyStop,
+                                        shm::CtrlCode::kEmergencyReset,
+                                        shm::CtrlCode::kPowerOff}));
+  EXPECT_EQ(session.counters().params_applied.load(), 15U);
+}
+
+TEST_F(SessionTest, ARetransmittedParameterIsAcknowledgedAgainButAppliedOnce) {
+  client.hello();
+  hcp_frame on = client.param(HCP_P_POWER);
+  on.body.hcp_body_u.param.hcp_param_u.power_on = 1;
+  const auto bytes = client.bytes(on);
+  client.feed(bytes);
+  client.feed(bytes);
+  ASSERT_EQ(client.reply.body.type, HCP_ACK);
+  EXPECT_EQ(client.reply.body.hcp_body_u.ack.acked_sequence, on.header.sequence);
+  EXPECT_EQ(controller.drain().size(), 1U);
+  EXPECT_EQ(session.counters().param_duplicates.load(), 1U);
+  hcp_frame older = on;
+  older.header.sequence = 0;
+  client.feed(client.bytes(older));
+  EXPECT_FALSE(client.replied);
+}
+
+TEST_F(SessionTest, AnOutOfRangeParameterIsRejectedWithTheReason) {
+  client.hello();
+  hcp_frame f = client.param(HCP_P_FORCE_FACTOR);
+  f.body.hcp_body_u.param.hcp_param_u.force_factor = -2.0;
+  client.feed(client.bytes(f));
+  ASSERT_EQ(client.reply.body.type, HCP_ACK);
+  EXPECT_EQ(client.reply.body.hcp_body_u.ack.status, HCP_ACK_REJECTED);
+  EXPECT_EQ(protocol::text_of(client.reply.body.hcp_body_u.ack.reason),
+            "force factor: between 0.001 and 1000");
+  EXPECT_DOUBLE_EQ(controller.vpr_now().force_factor, 1.0);
+  EXPECT_EQ(session.counters().params_rejected.load(), 1U);
+}
+
+TEST_F(SessionTest, AFullCtrlQueueAsksForARetryAndTheRetryApplies) {
+  client.hello();
+  for (std::size_t i = 0; i < shm::kCtrlRingSize; ++i) {
+    ASSERT_EQ(controller.writer.send(shm::CtrlCode::kPowerOff, 0, 0), shm::CtrlSendStatus::kQueued);
+  }
+  hcp_frame on = client.param(HCP_P_POWER);
+  on.body.hcp_body_u.param.hcp_param_u.power_on = 1;
+  client.feed(client.bytes(on));
+  EXPECT_EQ(client.reply.body.hcp_body_u.ack.status, HCP_ACK_RETRY);
+  controller.drain();
+  client.feed(client.bytes(on));
+  EXPECT_EQ(client.reply.body.hcp_body_u.ack.status, HCP_ACK_OK);
+  EXPECT_EQ(controller.drain(), std::vector<shm::CtrlCode>{shm::CtrlCode::kPowerOn});
+}
+
+TEST_F(SessionTest, TheWatchdogClosesASilentSessionAndTheCoreSeesNoSession) {
+  client.hello();
+  client.send_object(0.1F);
+  EXPECT_FALSE(session.check_watchdog(client.now + 100 * kMs));
+  EXPECT_TRUE(session.check_watchdog(client.now + 101 * kMs));
+  EXPECT_EQ(controller.vpr_now().session_id, 0U);
+  EXPECT_EQ(session.counters().watchdog_expiries.load(), 1U);
+  client.send_object(0.2F);  // the old token is worthless now
+  EXPECT_EQ(dropped(LinkDrop::kToken), 1U);
+}
+
+TEST_F(SessionTest, ByeIsAcknowledgedAndEndsTheSession) {
+  client.hello();
+  hcp_frame bye = protocol::make_frame(HCP_BYE, client.token, ++client.param_seq, client.now);
+  client.feed(client.bytes(bye));
+  ASSERT_EQ(client.reply.body.type, HCP_ACK);
+  EXPECT_EQ(client.reply.header.token, client.token);
+  EXPECT_EQ(controller.vpr_now().session_id, 0U);
+  EXPECT_EQ(session.counters().sessions_closed.load(), 1U);
+}
+
+TEST_F(SessionTest, AnswersGoToTheSessionWithTheNegotiatedFeatures) {
+  shm::VpPayload vp;
+  vp.cycle = 77;
+  vp.echo_client_sequence = 3;
+  vp.joint_position[0] = 0.5;
+  FrameBuffer out{};
+  Endpoint to;
+  EXPECT_EQ(session.answer(vp, 0, out, to), 0U);  // no session, no answer
+  client.hello(protocol::kVersion, HCP_FEATURE_LINK_STATS);
+  client.send_object(0.1F);
+  const std::size_t n = session.answer(vp, 0, out, to);
+  ASSERT_GT(n, 0U);
+  EXPECT_EQ(to, client.from);
+  hcp_frame a;
+  ASSERT_EQ(protocol::decode({out.data(), n}, a), protocol::DecodeStatus::kOk);
+  EXPECT_EQ(a.header.token, client.token);
+  EXPECT_EQ(a.body.hcp_body_u.answer.cycle, 77U);
+  EXPECT_EQ(a.body.hcp_body_u.answer.echo_sequence, 3U);
+  EXPECT_EQ(a.body.hcp_body_u.answer.control_received, 1U);
+  EXPECT_EQ(a.body.hcp_body_u.answer.joint_position[0], 0.0);  // JOINT_STATE not negotiated
+}
+
+TEST_F(SessionTest, StatsReflectTheSessionAndCounters) {
+  client.hello();
+  client.send_object(0.1F);
+  shm::LinkStatsPayload s;
+  session.fill_stats(s);
+  EXPECT_EQ(s.session_id, 1U);
+  EXPECT_EQ(s.peer_port, 40000U);
+  EXPECT_EQ(s.peer_ipv4, 0x7F000001U);
+  EXPECT_EQ(s.frames_in, 2U);
+  EXPECT_EQ(s.control_accepted, 1U);
+}
+
+}  // namespace
+}  // namespace hapticctrl::udp_bridge

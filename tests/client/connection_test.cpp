@@ -1,0 +1,277 @@
+// The client library against the real hapticctrl-core and hapticctrl-udp on loopback.
+#include "hapticctrl/client/connection.hpp"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+
+#include "support/controller_stack.hpp"
+
+namespace hapticctrl::client {
+namespace {
+
+using namespace std::chrono_literals;
+using test::ControllerStack;
+
+Address address_of(const ControllerStack& stack) { return {"127.0.0.1", stack.port()}; }
+
+/// Streams `send` once per answer for `duration`; returns the last snapshot.
+template <typename Send>
+StateSnapshot stream(Connection& c, std::chrono::milliseconds duration, Send send) {
+  StateSnapshot s = c.snapshot();
+  const auto end = std::chrono::steady_clock::now() + duration;
+  while (std::chrono::steady_clock::now() < end) {
+    if (c.wait_for_answer(s.cycle, 100ms, s)) {
+      send(s);
+    }
+  }
+  return s;
+}
+
+TEST(Connection, HandshakeNegotiatesAndTheAnswerStreamFlows) {
+  ControllerStack stack("handshake");
+  ASSERT_TRUE(stack.ready()) << stack.diagnostics();
+  Connection c(address_of(stack));
+  EXPECT_EQ(c.features(), 3U);
+  EXPECT_EQ(c.controller_period_ns(), 10'000'000);
+  EXPECT_EQ(c.watchdog_ms(), 100U);
+  EXPECT_EQ(c.controller_version(), 0x00010000U);
+  StateSnapshot s;
+  ASSERT_TRUE(c.wait_for_answer(0, 2s, s));
+  EXPECT_TRUE(s.valid);
+  EXPECT_EQ(s.core_state, 1U);
+  EXPECT_FALSE(s.powered());
+  EXPECT_NEAR(std::hypot(std::hypot(s.handle_pose[3], s.handle_pose[4]),
+                         std::hypot(s.handle_pose[5], s.handle_pose[6])),
+              1.0, 1e-6);
+  EXPECT_TRUE(ControllerStack::eventually([&] { return stack.link_stats().sessions_opened == 1U; }, 1s));
+}
+
+TEST(Connection, EveryParameterReachesTheController) {
+  ControllerStack stack("params");
+  ASSERT_TRUE(stack.ready()) << stack.diagnostics();
+  Connection c(address_of(stack));
+  c.set_time_step(0.002);
+  c.set_force_factor(0.5);
+  c.set_speed_factor(2.0);
+  c.set_base_frame({0, 0, 0.1, 0, 0, 0, 1});
+  c.set_observation_frame({-0.1, 0, 0, 0, 0, 0, 1});
+  c.set_indexing_mode(IndexingMode::kTranslation);
+  c.set_command_type(CommandType::kVirtmech);
+  c.attach_object(0.3, {0.001, 0.002, 0.003});
+  c.set_gains(800, 5, 2, 0.05);
+  c.set_force_limits(10, 1);
+  c.set_watchdog(300ms);
+  const shm::VprPayload v = stack.vpr();
+  EXPECT_DOUBLE_EQ(v.client_time_step, 0.002);
+  EXPECT_DOUBLE_EQ(v.force_factor, 0.5);
+  EXPECT_DOUBLE_EQ(v.speed_factor, 2.0);
+  EXPECT_DOUBLE_EQ(v.base_frame[2], 0.1);
+  EXPECT_DOUBLE_EQ(v.observation_frame[0], -0.1);
+  EXPECT_EQ(v.indexing_mode, 1U);
+  EXPECT_EQ(v.command_type, 2U);
+  EXPECT_EQ(v.flags, shm::vpr_flags::kObjectAttached);
+  EXPECT_DOUBLE_EQ(v.object_mass, 0.3);
+  EXPECT_DOUBLE_EQ(v.gain_override[0], 800.0);
+  EXPECT_DOUBLE_EQ(v.force_limits[1], 1.0);
+  EXPECT_EQ(v.watchdog_timeout_us, 300'000U);
+  c.detach_object();
+  EXPECT_EQ(stack.vpr().flags, 0U);
+  EXPECT_EQ(c.watchdog_ms(), 300U);
+
+  try {
+    c.set_force_factor(-1.0);
+    FAIL() << "a negative force factor must be refused";
+  } catch (const ClientError& e) {
+    EXPECT_EQ(e.code(), ErrorCode::kInvalidArgument);
+    EXPECT_STREQ(e.what(), "set_force_factor: force factor: between 0.001 and 1000");
+  }
+  EXPECT_THROW(c.set_base_frame({0, 0, 0, 0, 0, 0, 0}), ClientError);
+  EXPECT_TRUE(ControllerStack::eventually([&] { return stack.link_stats().params_applied == 12U; }, 1s));
+}
+
+TEST(Connection, PowerAndEmergencyStopRoundTrip) {
+  ControllerStack stack("power");
+  ASSERT_TRUE(stack.ready()) << stack.diagnostics();
+  Connection c(address_of(stack));
+  c.set_power(true);
+  EXPECT_TRUE(ControllerStack::eventually([&] { return c.snapshot().powered(); }));
+  c.emergency_stop();
+  EXPECT_TRUE(ControllerStack::eventually(
+      [&] { return c.snapshot().emergency_stop() && !c.snapshot().powered(); }));
+  c.reset_emergency_stop();
+  c.set_power(true);
+  EXPECT_TRUE(ControllerStack::eventually(
+      [&] { return !c.snapshot().emergency_stop() && c.snapshot().powered(); }));
+  c.set_power(false);
+  EXPECT_TRUE(ControllerStack::eventually([&] { return !c.snapshot().powered(); }));
+}
+
+TEST(Connection, ImpedanceWrenchMovesTheHandle) {
+  ControllerStack stack("impedance");
+  ASSERT_TRUE(stack.ready()) << stack.diagnostics();
+  Connection c(address_of(stack));
+  c.set_command_type(CommandType::kImpedance);
+  c.set_power(true);
+  ASSERT_TRUE(ControllerStack::eventually([&] { return c.snapshot().powered(); }));
+  const double x0 = c.snapshot().handle_pose[0];
+  const StateSnapshot s = stream(c, 600ms, [&](const StateSnapshot&) {
+    c.send_wrench({4.0, 0, 0, 0, 0, 0});  // 4 N along +x of the client frame
+  });
+  EXPECT_GT(s.handle_pose[0] - x0, 0.005) << "the handle follows the rendered force";
+}
+
+TEST(Connection, VirtmechCouplesTheObjectAndTheHandleBothWays) {
+  ControllerStack stack("virtmech");
+  ASSERT_TRUE(stack.ready()) << stack.diagnostics();
+  Connection c(address_of(stack));
+  c.set_command_type(CommandType::kVirtmech);
+  c.attach_object(0.5, {0.001, 0.001, 0.001});
+  c.set_power(true);
+  ASSERT_TRUE(ControllerStack::eventually([&] { return c.snapshot().powered(); }));
+  Pose7 object = c.snapshot().handle_pose;
+  const double x0 = object[0];
+  object[0] += 0.03;  // the object held 3 cm away along +x
+  double min_force_on_object = 0.0;
+  const StateSnapshot s = stream(c, 600ms, [&](const StateSnapshot& now) {
+    min_force_on_object = std::min(min_force_on_object, now.coupling_wrench[0]);
+    c.send_object_state(object, {});
+  });
+  EXPECT_LT(min_force_on_object, -0.5) << "the object is pulled back towards the handle";
+  EXPECT_GT(s.handle_pose[0] - x0, 0.005) << "the handle is pulled towards the object";
+  const LinkStatistics st = c.statistics();
+  EXPECT_GT(st.rtt_samples, 10U);
+  EXPECT_GT(st.control_received_by_controller, 10U);
+  EXPECT_GT(st.answers_received, 40U);
+}
+
+TEST(Connection, CallbackLoopIsPacedByTheController) {
+  ControllerStack stack("loop");
+  ASSERT_TRUE(stack.ready()) << stack.diagnostics();
+  Connection c(address_of(stack));
+  std::atomic<int> calls{0};
+  std::atomic<std::uint64_t> last_cycle{0};
+  c.start_loop([&](const StateSnapshot& s) {
+    ++calls;
+    last_cycle = s.cycle;
+    c.send_wrench({});
+  });
+  std::this_thread::sleep_for(500ms);
+  c.stop_loop();
+  const int seen = calls.load();
+  EXPECT_GT(seen, 20);  // 50 cycles of 10 ms
+  EXPECT_LT(seen, 80);
+  std::this_thread::sleep_for(50ms);
+  EXPECT_EQ(calls.load(), seen);
+}
+
+TEST(Connection, ASecondClientIsRefusedAsBusy) {
+  ControllerStack stack("busy");
+  ASSERT_TRUE(stack.ready()) << stack.diagnostics();
+  Connection first(address_of(stack));
+  ConnectOptions quick;
+  quick.connect_timeout = 300ms;
+  try {
+    Connection second(address_of(stack), quick);
+    FAIL() << "a second client must be refused";
+  } catch (const ClientError& e) {
+    EXPECT_EQ(e.code(), ErrorCode::kBusy);
+    EXPECT_NE(std::string(e.what()).find("another client session is active"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_TRUE(first.is_open());
+  EXPECT_TRUE(ControllerStack::eventually([&] { return stack.link_stats().refused_busy >= 1U; }, 1s));
+}
+
+TEST(Connection, VersionMismatchIsExplainedWithBothVersions) {
+  ControllerStack stack("version");
+  ASSERT_TRUE(stack.ready()) << stack.diagnostics();
+  ConnectOptions newer;
+  newer.advertised_version = 0x00020003;
+  try {
+    Connection c(address_of(stack), newer);
+    FAIL() << "a client of another major version must be refused";
+  } catch (const ClientError& e) {
+    EXPECT_EQ(e.code(), ErrorCode::kVersion);
+    const std::string what = e.what();
+    EXPECT_NE(what.find("client 2.3"), std::string::npos) << what;
+    EXPECT_NE(what.find("controller 1.0"), std::string::npos) << what;
+  }
+  EXPECT_TRUE(ControllerStack::eventually([&] { return stack.link_stats().refused_version == 1U; }, 1s));
+}
+
+TEST(Connection, WatchdogFadesTheCouplingWhenTheClientDiesAndARestartedClientReconnects) {
+  ControllerStack stack("watchdog");
+  ASSERT_TRUE(stack.ready()) << stack.diagnostics();
+  test::ReadyPipe streaming;
+  const std::uint16_t port = stack.port();
+  // The client process: couples an object 3 cm from the handle, then is killed mid-stream.
+  test::Child client([&] {
+    Connection c({"127.0.0.1", port});
+    c.set_command_type(CommandType::kVirtmech);
+    c.attach_object(0.5, {0.001, 0.001, 0.001});
+    c.set_power(true);
+    StateSnapshot s;
+    c.wait_for_answer(0, 1s, s);
+    Pose7 object = s.handle_pose;
+    object[0] += 0.03;
+    for (int i = 0; i < 100000; ++i) {
+      if (c.wait_for_answer(s.cycle, 100ms, s)) {
+        c.send_object_state(object, {});
+        if (i == 30) {
+          streaming.signal();
+        }
+      }
+    }
+    return 0;
+  });
+  ASSERT_EQ(streaming.wait(), 'r');
+  const auto coupled = [&] {
+    shm::PositionPayload p;
+    stack.segment().region<shm::RegionId::kPosition>().read(p);
+    return std::abs(p.coupling_wrench[0]);
+  };
+  EXPECT_GT(coupled(), 0.5);
+  client.kill_now();
+  client.wait();
+  EXPECT_TRUE(ControllerStack::eventually([&] { return stack.link_stats().watchdog_expiries == 1; }));
+  EXPECT_EQ(stack.vpr().session_id, 0U);
+  EXPECT_TRUE(ControllerStack::eventually([&] { return coupled() < 1e-9; }, 1s))
+      << "coupling faded out";
+
+  Connection restarted(address_of(stack));  // the client comes back
+  StateSnapshot s;
+  EXPECT_TRUE(restarted.wait_for_answer(0, 1s, s));
+  EXPECT_TRUE(ControllerStack::eventually([&] { return stack.link_stats().sessions_opened == 2U; }, 1s));
+}
+
+TEST(Connection, CloseEndsTheSession) {
+  ControllerStack stack("close");
+  ASSERT_TRUE(stack.ready()) << stack.diagnostics();
+  Connection c(address_of(stack));
+  c.close();
+  EXPECT_FALSE(c.is_open());
+  EXPECT_TRUE(ControllerStack::eventually([&] { return stack.link_stats().sessions_closed == 1U; }, 1s));
+  EXPECT_FALSE(c.send_wrench({}));
+  EXPECT_THROW(c.set_power(true), ClientError);
+}
+
+TEST(Connection, NoControllerAndNoBridgeGiveClearErrors) {
+  ConnectOptions quick;
+  quick.connect_timeout = 200ms;
+  try {
+    Connection c({"127.0.0.1", 9}, quick);  // discard port: nobody answers
+    FAIL();
+  } catch (const ClientError& e) {
+    EXPECT_EQ(e.code(), ErrorCode::kTimeout);
+    EXPECT_NE(std::string(e.what()).find("is hapticctrl-udp running there?"), std::string::npos);
+  }
+  EXPECT_THROW((void)Address::parse("udpxdr://host:99999"), ClientError);
+  EXPECT_EQ(Address::parse("udpxdr://10.0.0.2:6000").port, 6000);
+  EXPECT_EQ(Address::parse("lab-pc#7000").host, "lab-pc");
+  EXPECT_EQ(Address::parse("lab-pc").port, 5125);
+}
+
+}  // namespace
+}  // namespace hapticctrl::client

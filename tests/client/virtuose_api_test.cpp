@@ -1,0 +1,129 @@
+// The VirtuoseAPI-style C API against the real controller and bridge.
+#include "hapticctrl/virtuose_api.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <string>
+
+#include "support/controller_stack.hpp"
+
+namespace hapticctrl {
+namespace {
+
+using namespace std::chrono_literals;
+using test::ControllerStack;
+
+std::string url(const ControllerStack& stack) {
+  return "udpxdr://127.0.0.1:" + std::to_string(stack.port());
+}
+
+TEST(VirtuoseApi, OpenFailuresHaveCodesAndDetails) {
+  EXPECT_EQ(virtOpen(nullptr), nullptr);
+  EXPECT_EQ(virtGetErrorCode(nullptr), VIRT_E_WRONG_FORMAT);
+  EXPECT_EQ(virtOpen("udpxdr://127.0.0.1:0"), nullptr);
+  EXPECT_EQ(virtGetErrorCode(nullptr), VIRT_E_WRONG_FORMAT);
+  EXPECT_NE(std::string(virtGetErrorDetail(nullptr)).find("bad controller address"),
+            std::string::npos);
+  EXPECT_STREQ(virtGetErrorMessage(VIRT_E_TIME_OUT), "time out");
+  EXPECT_STREQ(virtGetErrorMessage(-5), "unknown error");
+  EXPECT_EQ(virtClose(nullptr), -1);
+  EXPECT_EQ(virtGetErrorCode(nullptr), VIRT_E_INVALID_CONTEXT);
+}
+
+TEST(VirtuoseApi, ParametersStateAndModes) {
+  ControllerStack stack("capi");
+  ASSERT_TRUE(stack.ready()) << stack.diagnostics();
+  const std::string name = "127.0.0.1#" + std::to_string(stack.port());
+  VirtContext vc = virtOpen(name.c_str());
+  ASSERT_NE(vc, nullptr) << virtGetErrorDetail(nullptr);
+  float identity[7] = {0, 0, 0, 0, 0, 0, 1};  // NOLINT(*-avoid-c-arrays)
+  float inertia[3] = {0.001F, 0.001F, 0.001F};  // NOLINT(*-avoid-c-arrays)
+  EXPECT_EQ(virtSetTimeStep(vc, 0.002F), 0);
+  EXPECT_EQ(virtSetIndexingMode(vc, INDEXING_ALL), 0);
+  EXPECT_EQ(virtSetForceFactor(vc, 1.0F), 0);
+  EXPECT_EQ(virtSetSpeedFactor(vc, 1.0F), 0);
+  EXPECT_EQ(virtSetBaseFrame(vc, identity), 0);
+  EXPECT_EQ(virtSetObservationFrame(vc, identity), 0);
+  EXPECT_EQ(virtSaturateTorque(vc, 20.0F, 2.0F), 0);
+  EXPECT_EQ(virtSetTimeoutValue(vc, 0.2F), 0);
+  EXPECT_EQ(stack.vpr().watchdog_timeout_us, 200'000U);
+  EXPECT_DOUBLE_EQ(stack.vpr().force_limits[0], 20.0);
+
+  EXPECT_EQ(virtSetForceFactor(vc, -1.0F), -1);
+  EXPECT_EQ(virtGetErrorCode(vc), VIRT_E_INCORRECT_VALUE);
+  EXPECT_NE(std::string(virtGetErrorDetail(vc)).find("force factor"), std::string::npos);
+
+  float force[6] = {1, 0, 0, 0, 0, 0};  // NOLINT(*-avoid-c-arrays)
+  EXPECT_EQ(virtSetCommandType(vc, COMMAND_TYPE_VIRTMECH), 0);
+  EXPECT_EQ(virtAddForce(vc, force), -1);
+  EXPECT_EQ(virtGetErrorCode(vc), VIRT_E_WRONG_MODE);
+  EXPECT_EQ(virtAttachVO(vc, 0.5F, inertia), 0);
+  EXPECT_EQ(stack.vpr().flags, 1U);
+  EXPECT_EQ(virtDetachVO(vc), 0);
+
+  EXPECT_EQ(virtSetPowerOn(vc, 1), 0);
+  int power = 0;
+  EXPECT_TRUE(ControllerStack::eventually([&] {
+    return virtGetPowerOn(vc, &power) == 0 && power == 1;
+  }));
+  int estop = 1;
+  EXPECT_EQ(virtGetEmergencyStop(vc, &estop), 0);
+  EXPECT_EQ(estop, 0);
+  float pose[7] = {};  // NOLINT(*-avoid-c-arrays)
+  float speed[6] = {};  // NOLINT(*-avoid-c-arrays)
+  float joints[6] = {};  // NOLINT(*-avoid-c-arrays)
+  EXPECT_EQ(virtGetPosition(vc, pose), 0);
+  EXPECT_NEAR(std::hypot(std::hypot(pose[3], pose[4]), std::hypot(pose[5], pose[6])), 1.0F, 1e-5F);
+  EXPECT_EQ(virtGetSpeed(vc, speed), 0);
+  EXPECT_EQ(virtGetForce(vc, force), 0);
+  EXPECT_EQ(virtGetArticularPosition(vc, joints), 0);
+  EXPECT_EQ(virtGetArticularSpeed(vc, joints), 0);
+  unsigned int age_us = 0;
+  EXPECT_EQ(virtGetTimeLastUpdate(vc, &age_us), 0);
+  EXPECT_LT(age_us, 1'000'000U);
+  EXPECT_EQ(virtGetPosition(vc, nullptr), -1);
+  EXPECT_EQ(virtClose(vc), 0);
+  EXPECT_TRUE(ControllerStack::eventually([&] { return stack.link_stats().sessions_closed == 1U; }, 1s));
+}
+
+struct LoopState {
+  std::atomic<int> calls{0};
+  float push = 3.0F;
+};
+
+void periodic(VirtContext vc, void* arg) {
+  auto* state = static_cast<LoopState*>(arg);
+  ++state->calls;
+  float force[6] = {state->push, 0, 0, 0, 0, 0};  // NOLINT(*-avoid-c-arrays)
+  float extra[6] = {1, 0, 0, 0, 0, 0};             // NOLINT(*-avoid-c-arrays)
+  virtSetForce(vc, force);
+  virtAddForce(vc, extra);
+}
+
+TEST(VirtuoseApi, PeriodicFunctionRendersImpedanceForces) {
+  ControllerStack stack("capiloop");
+  ASSERT_TRUE(stack.ready()) << stack.diagnostics();
+  VirtContext vc = virtOpen(url(stack).c_str());
+  ASSERT_NE(vc, nullptr) << virtGetErrorDetail(nullptr);
+  EXPECT_EQ(virtStartLoop(vc), -1);  // no periodic function yet
+  LoopState state;
+  float period = 0.02F;  // two controller cycles
+  ASSERT_EQ(virtSetPeriodicFunction(vc, periodic, &period, &state), 0);
+  EXPECT_FLOAT_EQ(period, 0.02F);
+  ASSERT_EQ(virtSetCommandType(vc, COMMAND_TYPE_IMPEDANCE), 0);
+  ASSERT_EQ(virtSetPowerOn(vc, 1), 0);
+  ASSERT_EQ(virtStartLoop(vc), 0);
+  EXPECT_TRUE(ControllerStack::eventually([&] {
+    return std::abs(stack.vpr().impedance_wrench[0] - 4.0) < 1e-6;  // virtSetForce + virtAddForce
+  }));
+  std::this_thread::sleep_for(400ms);
+  EXPECT_EQ(virtStopLoop(vc), 0);
+  EXPECT_GT(state.calls.load(), 10);  // 20 ms period over ~0.5 s
+  EXPECT_LT(state.calls.load(), 45);
+  EXPECT_EQ(virtClose(vc), 0);
+}
+
+}  // namespace
+}  // namespace hapticctrl

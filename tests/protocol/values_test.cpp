@@ -1,0 +1,94 @@
+#include "hapticctrl/protocol/values.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+namespace hapticctrl::protocol {
+namespace {
+
+hcp_param param(hcp_param_id id) {
+  hcp_param p{};
+  p.id = id;
+  return p;
+}
+
+TEST(Values, PosesNeedFiniteBoundedValuesAndAUnitQuaternion) {
+  const double good[7] = {0.1, -0.2, 0.3, 0, 0, 0.7071068, 0.7071068};  // NOLINT
+  EXPECT_FALSE(check_pose(good));
+  double far[7] = {101, 0, 0, 0, 0, 0, 1};  // NOLINT
+  EXPECT_TRUE(check_pose(far));
+  double nan[7] = {0, 0, 0, 0, 0, 0, std::nan("")};  // NOLINT
+  EXPECT_TRUE(check_pose(nan));
+  double zero_q[7] = {0, 0, 0, 0, 0, 0, 0};  // NOLINT
+  EXPECT_TRUE(check_pose(zero_q));
+  const float single[7] = {0, 0, 0, 0, 0, 0, 1.009F};  // NOLINT: within the 2 % slack
+  EXPECT_FALSE(check_pose(single));
+}
+
+TEST(Values, EachParameterHasItsRange) {
+  hcp_param p = param(HCP_P_TIME_STEP);
+  p.hcp_param_u.time_step = 0.001;
+  EXPECT_FALSE(check_param(p));
+  p.hcp_param_u.time_step = 0.0;
+  EXPECT_EQ(check_param(p).value_or(""), "time step: between 1e-5 and 1 s");
+  p = param(HCP_P_FORCE_FACTOR);
+  p.hcp_param_u.force_factor = -1.0;
+  EXPECT_TRUE(check_param(p));
+  p = param(HCP_P_SPEED_FACTOR);
+  p.hcp_param_u.speed_factor = std::numeric_limits<double>::infinity();
+  EXPECT_TRUE(check_param(p));
+  p = param(HCP_P_INDEXING_MODE);
+  p.hcp_param_u.indexing_mode = 5;
+  EXPECT_FALSE(check_param(p));
+  p.hcp_param_u.indexing_mode = 6;
+  EXPECT_TRUE(check_param(p));
+  p = param(HCP_P_COMMAND_TYPE);
+  p.hcp_param_u.command_type = 3;
+  EXPECT_TRUE(check_param(p));
+  p = param(HCP_P_OBJECT);
+  p.hcp_param_u.object = {1, 0.2, {0.001, 0.001, -0.001}};
+  EXPECT_TRUE(check_param(p));
+  p.hcp_param_u.object.inertia[2] = 0.001;
+  EXPECT_FALSE(check_param(p));
+  p = param(HCP_P_GAINS);
+  p.hcp_param_u.gains[3] = -1;
+  EXPECT_TRUE(check_param(p));
+  p = param(HCP_P_FORCE_LIMITS);
+  p.hcp_param_u.force_limits[0] = std::nan("");
+  EXPECT_TRUE(check_param(p));
+  p = param(HCP_P_WATCHDOG);
+  p.hcp_param_u.watchdog_ms = 5;
+  EXPECT_TRUE(check_param(p));
+  p.hcp_param_u.watchdog_ms = 50;
+  EXPECT_FALSE(check_param(p));
+  EXPECT_FALSE(check_param(param(HCP_P_EMERGENCY_STOP)));
+}
+
+TEST(Values, HelloWatchdogIsZeroOrInRange) {
+  hcp_hello h{};
+  EXPECT_FALSE(check_hello(h));
+  h.watchdog_ms = 9;
+  EXPECT_TRUE(check_hello(h));
+  h.watchdog_ms = 60001;
+  EXPECT_TRUE(check_hello(h));
+}
+
+TEST(Values, ControlTwistAndWrenchBounds) {
+  hcp_body b{};
+  b.type = HCP_CONTROL_OBJECT;
+  b.hcp_body_u.object.pose[6] = 1.0F;
+  b.hcp_body_u.object.twist[0] = 99.0F;
+  b.hcp_body_u.object.twist[5] = 999.0F;
+  EXPECT_FALSE(check_control(b));
+  b.hcp_body_u.object.twist[0] = 101.0F;  // linear bound is 100 m/s
+  EXPECT_TRUE(check_control(b));
+  b = hcp_body{};
+  b.type = HCP_CONTROL_WRENCH;
+  b.hcp_body_u.wrench.wrench[0] = -1001.0F;
+  EXPECT_TRUE(check_control(b));
+}
+
+}  // namespace
+}  // namespace hapticctrl::protocol

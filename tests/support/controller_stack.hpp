@@ -1,0 +1,105 @@
+#pragma once
+/// The real processes a client talks to: hapticctrl-core (simulated arm) and hapticctrl-udp on a
+/// free loopback port, for one unique instance; plus a read-only view of the instance's shared
+/// memory to check what reached the controller. Both processes are killed on destruction.
+#include <chrono>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "hapticctrl/shm/segment.hpp"
+#include "support/child_process.hpp"
+#include "support/spawned_process.hpp"
+
+namespace hapticctrl::test {
+
+class ControllerStack {
+ public:
+  /// `period_us` 10 ms by default: behaviour tests run beside others and under sanitizers.
+  explicit ControllerStack(const std::string& tag, int period_us = 10000,
+                           std::vector<std::string> bridge_extra = {})
+      : instance_(unique_instance(tag)),
+        core_(HAPTICCTRL_CORE_BINARY,
+              {"--instance", instance_, "--period-us", std::to_string(period_us), "--rt", "ignore",
+               "--blackbox-dir", "/tmp"}) {
+    using namespace std::chrono_literals;
+    for (int i = 0; i < 1000 && !segment_; ++i) {
+      try {
+        segment_.emplace(shm::Segment::attach(instance_));
+      } catch (const shm::ShmError&) {
+        std::this_thread::sleep_for(5ms);
+      }
+    }
+    std::vector<std::string> args{"--instance", instance_, "--port", "0"};
+    args.insert(args.end(), bridge_extra.begin(), bridge_extra.end());
+    bridge_.emplace(HAPTICCTRL_UDP_BINARY, args);
+    const std::string marker = "listening on 127.0.0.1:";
+    for (int i = 0; i < 1000 && port_ == 0; ++i) {
+      const std::string out = bridge_->out();
+      const auto at = out.find(marker);
+      if (at != std::string::npos && out.find('\n', at) != std::string::npos) {
+        port_ = static_cast<std::uint16_t>(std::stoi(out.substr(at + marker.size())));
+      } else {
+        std::this_thread::sleep_for(5ms);
+      }
+    }
+  }
+
+  ControllerStack(const ControllerStack&) = delete;
+  ControllerStack& operator=(const ControllerStack&) = delete;
+  /// Orderly stops (SIGTERM), so that no shared-memory object is left behind.
+  ~ControllerStack() {
+    segment_.reset();
+    if (bridge_) {
+      bridge_->signal(SIGTERM);
+      bridge_->wait(std::chrono::seconds(5));
+    }
+    core_.signal(SIGTERM);
+    core_.wait(std::chrono::seconds(5));
+  }
+
+  [[nodiscard]] bool ready() const { return segment_.has_value() && port_ != 0; }
+  [[nodiscard]] std::uint16_t port() const { return port_; }
+  [[nodiscard]] const std::string& instance() const { return instance_; }
+  [[nodiscard]] const shm::Segment& segment() const { return *segment_; }
+  SpawnedProcess& core() { return core_; }
+  SpawnedProcess& bridge() { return *bridge_; }
+  [[nodiscard]] std::string diagnostics() const {
+    return "core: " + core_.err() + "\nbridge: " + (bridge_ ? bridge_->err() : "");
+  }
+
+  [[nodiscard]] shm::VprPayload vpr() const {
+    shm::VprPayload v;
+    segment_->region<shm::RegionId::kVpr>().read(v);
+    return v;
+  }
+  [[nodiscard]] shm::LinkStatsPayload link_stats() const {
+    shm::LinkStatsPayload s;
+    segment_->region<shm::RegionId::kLinkStats>().read(s);
+    return s;
+  }
+
+  /// Polls `predicate` every 5 ms for at most `timeout`.
+  template <typename Predicate>
+  static bool eventually(Predicate predicate,
+                         std::chrono::milliseconds timeout = std::chrono::seconds(5)) {
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    while (std::chrono::steady_clock::now() < deadline) {
+      if (predicate()) {
+        return true;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    return predicate();
+  }
+
+ private:
+  std::string instance_;
+  SpawnedProcess core_;
+  std::optional<SpawnedProcess> bridge_;
+  std::optional<shm::Segment> segment_;
+  std::uint16_t port_ = 0;
+};
+
+}  // namespace hapticctrl::test

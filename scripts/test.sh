@@ -35,5 +35,14 @@ if [[ "${CI:-}" == "true" ]]; then
   echo "== ThreadSanitizer"
   configure_build_test build-tsan 'unit|sim|integration' \
     -DHAPTICCTRL_SANITIZER=thread -DHAPTICCTRL_BUILD_BENCH=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo
+  echo "== fuzz the protocol decoder and the bridge session (libFuzzer, ${FUZZ_SECONDS:=60} s)"
+  CC=clang CXX=clang++ cmake -S "$ROOT" -B build-fuzz -G Ninja -DHAPTICCTRL_WERROR=ON \
+    -DHAPTICCTRL_BUILD_FUZZ=ON -DHAPTICCTRL_BUILD_TESTS=OFF -DHAPTICCTRL_BUILD_BENCH=OFF \
+    -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+  cmake --build build-fuzz --target hapticctrl-fuzz-decoder -j "$JOBS"
+  corpus=$(mktemp -d)
+  build-fuzz/tests/fuzz/hapticctrl-fuzz-decoder -max_total_time="$FUZZ_SECONDS" -rss_limit_mb=2048 \
+    -print_final_stats=1 "$corpus" tests/fuzz/seeds 2>&1 | grep -E "^stat::number_of_executed_units|^#.*DONE"
+  rm -rf "$corpus"
 fi
 echo "== all tests passed"

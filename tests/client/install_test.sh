@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Installs the client package from a build tree into a temporary prefix, then builds the
+# example against it twice: with find_package(hapticctrl) and with pkg-config.
+# Usage: install_test.sh <build dir> <source dir>
+set -euo pipefail
+build=$1
+source=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+cmake --install "$build" --prefix "$work/prefix" >/dev/null
+test -f "$work/prefix/lib/cmake/hapticctrl/hapticctrlConfig.cmake"
+test -f "$work/prefix/include/hapticctrl/virtuose_api.h"
+if find "$work/prefix/include" -name 'hapticctrl_protocol.h' | grep -q .; then
+  echo "the XDR types must stay private" >&2
+  exit 1
+fi
+
+cmake -S "$source/client/examples/minimal" -B "$work/example" -G Ninja \
+  -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
+cmake --build "$work/example" >/dev/null
+test -x "$work/example/minimal_cpp"
+test -x "$work/example/minimal_c"
+# With nothing listening the C example must fail cleanly, naming the problem.
+if "$work/example/minimal_c" "127.0.0.1#9" 2>"$work/err"; then
+  echo "minimal_c connected to nothing" >&2
+  exit 1
+fi
+grep -q "time out" "$work/err"
+
+export PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig"
+# shellcheck disable=SC2046
+cc -o "$work/minimal_pc" "$source/client/examples/minimal/minimal.c" $(pkg-config --cflags --libs hapticctrl)
+test -x "$work/minimal_pc"
+echo "install test: find_package and pkg-config builds OK"

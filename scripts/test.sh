@@ -41,8 +41,16 @@ if [[ "${CI:-}" == "true" ]]; then
     -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
   cmake --build build-fuzz --target hapticctrl-fuzz-decoder -j "$JOBS"
   corpus=$(mktemp -d)
-  build-fuzz/tests/fuzz/hapticctrl-fuzz-decoder -max_total_time="$FUZZ_SECONDS" -rss_limit_mb=2048 \
-    -print_final_stats=1 "$corpus" tests/fuzz/seeds 2>&1 | grep -E "^stat::number_of_executed_units|^#.*DONE"
+  log=$(mktemp)
+  if ! build-fuzz/tests/fuzz/hapticctrl-fuzz-decoder -max_total_time="$FUZZ_SECONDS" \
+    -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix=build-fuzz/ "$corpus" tests/fuzz/seeds \
+    >"$log" 2>&1; then
+    tail -n 60 "$log"
+    echo "fuzzing found a crash (reproducer: the crash-* file above)" >&2
+    exit 1
+  fi
+  grep -E "^stat::number_of_executed_units|DONE" "$log"
+  rm -f "$log"
   rm -rf "$corpus"
 fi
 echo "== all tests passed"

@@ -16,7 +16,8 @@ TEST(BridgeConfig, DefaultsAreLoopbackAndTheStandardPort) {
 
 TEST(BridgeConfig, ParsesEveryOption) {
   const BridgeConfig c = BridgeConfig::parse({"--instance", "lab", "--port", "0", "--watchdog-ms",
-                                              "250", "--duration", "1.5", "--json"});
+                                              "250", "--duration", "1.5", "--json", "--priority", "70"});
+  EXPECT_EQ(c.priority, 70);
   EXPECT_EQ(c.instance, "lab");
   EXPECT_EQ(c.port, 0);
   EXPECT_EQ(c.watchdog_ms, 250U);

@@ -34,6 +34,7 @@ const char* BridgeConfig::usage() noexcept {
          "  --port N            UDP port (default: 5125; 0: any free port, printed)\n"
          "  --allow-remote      required to bind an address other than loopback\n"
          "  --watchdog-ms N     default session watchdog, 10..60000 ms (default: 100)\n"
+         "  --priority N        SCHED_FIFO priority 1..98 for both threads (below the core's)\n"
          "  --duration S        exit after S seconds (default: run until SIGINT/SIGTERM)\n"
          "  --json              print the final counters as one JSON line\n";
 }
@@ -58,6 +59,8 @@ BridgeConfig BridgeConfig::parse(const std::vector<std::string>& args) {
       c.allow_remote = true;
     } else if (a == "--watchdog-ms") {
       c.watchdog_ms = number<std::uint32_t>(a, value(), 10, 60000);
+    } else if (a == "--priority") {
+      c.priority = number<int>(a, value(), 1, 98);
     } else if (a == "--duration") {
       c.duration_s = number<double>(a, value(), 0.0, 1e6);
     } else if (a == "--json") {

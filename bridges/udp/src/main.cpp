@@ -3,11 +3,14 @@
 // Threads: this one receives datagrams, runs the session and its watchdog, and publishes the
 // link counters; an answer thread, started per controller attachment, blocks on VP publishes
 // and sends one ANSWER per controller cycle. Exit: 0 on signal or --duration, 64 usage, 1 error.
+#include <pthread.h>
+#include <sched.h>
 #include <sys/random.h>
 
 #include <atomic>
 #include <chrono>
 #include <csignal>
+#include <cstring>
 #include <cstdio>
 #include <ctime>
 #include <exception>
@@ -170,7 +173,23 @@ void print_json(const Session& session) {
   std::printf("}}\n");
 }
 
+/// SCHED_FIFO for this thread and the threads it starts later (they inherit it). Optional: says
+/// once when refused and goes on at normal priority.
+void set_priority(int priority) {
+  if (priority == 0) {
+    return;
+  }
+  sched_param param{};
+  param.sched_priority = priority;
+  const int rc = pthread_setschedparam(pthread_self(), SCHED_FIFO, &param);
+  if (rc != 0) {
+    std::fprintf(stderr, "hapticctrl-udp: SCHED_FIFO %d refused (%s); running at normal priority\n",
+                 priority, std::strerror(rc));
+  }
+}
+
 int run(const BridgeConfig& config) {
+  set_priority(config.priority);
   UdpSocket socket(Endpoint::resolve(config.bind_address, config.port));
   std::printf("hapticctrl-udp: listening on %s for instance '%s'\n",
               socket.local_endpoint().to_string().c_str(), config.instance.c_str());

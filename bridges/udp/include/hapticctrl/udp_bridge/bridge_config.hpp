@@ -14,6 +14,7 @@ struct BridgeConfig {
   std::uint16_t port = 5125;           ///< 0: any free port (printed at start)
   bool allow_remote = false;           ///< required to bind anything but loopback
   std::uint32_t watchdog_ms = 100;     ///< default session watchdog
+  int priority = 0;                    ///< SCHED_FIFO priority of both threads; 0: SCHED_OTHER
   double duration_s = 0.0;             ///< 0: until SIGINT/SIGTERM
   bool json = false;                   ///< final counters as one JSON line on stdout
   bool help = false;

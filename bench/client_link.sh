@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# The client link end to end: hapticctrl-core (simulated arm) + hapticctrl-udp + the client
+# library, measured by hapticctrl-bench-link against a raw UDP ping-pong in the same run; idle,
+# then (unless --no-load) under stress-ng CPU + memory + I/O load on every CPU.
+#
+# usage: bench/client_link.sh [--build DIR] [--seconds N] [--period-us P] [--no-load] [--json]
+set -euo pipefail
+BUILD=build SECONDS_RUN=60 PERIOD=1000 LOAD=1 JSON=()
+while [[ $# -gt 0 ]]; do
+  case $1 in
+    --build) BUILD=$2; shift 2 ;;
+    --seconds) SECONDS_RUN=$2; shift 2 ;;
+    --period-us) PERIOD=$2; shift 2 ;;
+    --no-load) LOAD=0; shift ;;
+    --json) JSON=(--json); shift ;;
+    *) echo "unknown option $1" >&2; exit 64 ;;
+  esac
+done
+TMP=$(mktemp -d)
+INSTANCE="linkbench$$"
+pids=()
+cleanup() {
+  for p in "${pids[@]}"; do kill -TERM "$p" 2>/dev/null || true; done
+  wait 2>/dev/null || true
+  rm -rf "$TMP"
+}
+trap cleanup EXIT
+
+# Core at SCHED_FIFO 80 when allowed (warns otherwise), bridge just below it.
+"$BUILD/rt_core/hapticctrl-core" --instance "$INSTANCE" --period-us "$PERIOD" --rt warn \
+  --priority 80 --blackbox-dir "$TMP" 2>"$TMP/core.err" &
+pids+=($!)
+"$BUILD/bridges/udp/hapticctrl-udp" --instance "$INSTANCE" --port 0 --priority 70 \
+  >"$TMP/udp.out" 2>"$TMP/udp.err" &
+pids+=($!)
+for _ in $(seq 1 200); do
+  grep -q "listening on" "$TMP/udp.out" 2>/dev/null && break
+  sleep 0.05
+done
+PORT=$(sed -n 's/.*listening on 127.0.0.1:\([0-9]*\).*/\1/p' "$TMP/udp.out")
+[[ -n "$PORT" ]] || { cat "$TMP/udp.err" >&2; exit 1; }
+
+# The client too runs at SCHED_FIFO (60) when allowed, like a haptic application's loop; the
+# raw UDP baseline runs in the same process, so both sides of the ratio get the same treatment.
+CLIENT=("$BUILD/bench/hapticctrl-bench-link")
+if chrt -f 60 true 2>/dev/null; then CLIENT=(chrt -f 60 "${CLIENT[@]}"); fi
+
+echo "== idle"
+"${CLIENT[@]}" --port "$PORT" --seconds "$SECONDS_RUN" "${JSON[@]}"
+if [[ $LOAD -eq 1 ]] && command -v stress-ng >/dev/null; then
+  echo "== under stress-ng --cpu $(nproc) --vm 1 --io 1"
+  stress-ng --cpu "$(nproc)" --vm 1 --vm-bytes 256M --io 1 --timeout "$((SECONDS_RUN + 10))s" \
+    >/dev/null 2>&1 &
+  pids+=($!)
+  sleep 1
+  "${CLIENT[@]}" --port "$PORT" --seconds "$SECONDS_RUN" "${JSON[@]}"
+fi
+if ! kill -0 "${pids[0]}" 2>/dev/null; then
+  echo "note: the core stopped during the run:" >&2
+  cat "$TMP/core.err" >&2
+fi

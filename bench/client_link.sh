@@ -3,15 +3,20 @@
 # library, measured by hapticctrl-bench-link against a raw UDP ping-pong in the same run; idle,
 # then (unless --no-load) under stress-ng CPU + memory + I/O load on every CPU.
 #
-# usage: bench/client_link.sh [--build DIR] [--seconds N] [--period-us P] [--no-load] [--json]
+# --load cpu: stress-ng --cpu on every CPU (user-space load; the seeds' "user space heavily
+#             loaded"); --load full: also --vm and --io (kernel-heavy load, which stalls this
+#             non-PREEMPT_RT VM for milliseconds: the core then fails safe, and the run says so).
+#
+# usage: bench/client_link.sh [--build DIR] [--seconds N] [--period-us P] [--load cpu|full|none]
+#                             [--json]
 set -euo pipefail
-BUILD=build SECONDS_RUN=60 PERIOD=1000 LOAD=1 JSON=()
+BUILD=build SECONDS_RUN=60 PERIOD=1000 LOAD=cpu JSON=()
 while [[ $# -gt 0 ]]; do
   case $1 in
     --build) BUILD=$2; shift 2 ;;
     --seconds) SECONDS_RUN=$2; shift 2 ;;
     --period-us) PERIOD=$2; shift 2 ;;
-    --no-load) LOAD=0; shift ;;
+    --load) LOAD=$2; shift 2 ;;
     --json) JSON=(--json); shift ;;
     *) echo "unknown option $1" >&2; exit 64 ;;
   esac
@@ -47,10 +52,11 @@ if chrt -f 60 true 2>/dev/null; then CLIENT=(chrt -f 60 "${CLIENT[@]}"); fi
 
 echo "== idle"
 "${CLIENT[@]}" --port "$PORT" --seconds "$SECONDS_RUN" "${JSON[@]}"
-if [[ $LOAD -eq 1 ]] && command -v stress-ng >/dev/null; then
-  echo "== under stress-ng --cpu $(nproc) --vm 1 --io 1"
-  stress-ng --cpu "$(nproc)" --vm 1 --vm-bytes 256M --io 1 --timeout "$((SECONDS_RUN + 10))s" \
-    >/dev/null 2>&1 &
+if [[ $LOAD != none ]] && command -v stress-ng >/dev/null; then
+  STRESS=(--cpu "$(nproc)")
+  [[ $LOAD == full ]] && STRESS+=(--vm 1 --vm-bytes 256M --io 1)
+  echo "== under stress-ng ${STRESS[*]}"
+  stress-ng "${STRESS[@]}" --timeout "$((SECONDS_RUN + 10))s" >/dev/null 2>&1 &
   pids+=($!)
   sleep 1
   "${CLIENT[@]}" --port "$PORT" --seconds "$SECONDS_RUN" "${JSON[@]}"

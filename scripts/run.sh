@@ -1,14 +1,20 @@
 #!/usr/bin/env bash
-# The README's main command: installs what is missing, builds, and runs the controller.
-# Until the bridges, HMI and demo client land (F4-F6), this runs hapticctrl-core with its
-# simulated arm: until Ctrl-C on a terminal, or for 5 s without one, then prints its figures.
+# The README's main command: installs what is missing, builds, and runs the controller: the core
+# with its simulated arm, and the UDP bridge on 127.0.0.1:5125 (HAPTICCTRL_PORT) that clients
+# (hapticctrl::client, virtOpen("udpxdr://127.0.0.1:5125")) connect to. Runs until Ctrl-C on a
+# terminal, or for 5 s without one, then prints the core's figures. The demo client and the HMI
+# join with F6.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
 cmake -S . -B build -G Ninja >/dev/null
 cmake --build build -j "$(nproc)"
-ARGS=(--instance "${HAPTICCTRL_INSTANCE:-demo}" --json)
+INSTANCE=${HAPTICCTRL_INSTANCE:-demo}
+ARGS=(--instance "$INSTANCE" --json)
 if [[ ! -t 0 ]]; then
   ARGS+=(--duration 5)
 fi
-exec build/rt_core/hapticctrl-core "${ARGS[@]}" "$@"
+build/bridges/udp/hapticctrl-udp --instance "$INSTANCE" --port "${HAPTICCTRL_PORT:-5125}" &
+BRIDGE=$!
+trap 'kill -TERM "$BRIDGE" 2>/dev/null || true; wait "$BRIDGE" 2>/dev/null || true' EXIT
+build/rt_core/hapticctrl-core "${ARGS[@]}" "$@"

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <map>
 #include <random>
 #include <string>
 #include <vector>
@@ -158,6 +159,23 @@ TEST(Codec, EveryFrameTypeRoundTrips) {
     EXPECT_EQ(back.header.token, original.header.token);
     EXPECT_EQ(back.header.sequence, original.header.sequence);
   }
+}
+
+TEST(Codec, FrameSizesAreAsDocumented) {  // docs/protocol.md, "Frames"
+  std::map<hcp_frame_type, std::size_t> largest;
+  for (const hcp_frame& f : one_of_each()) {
+    largest[f.body.type] = std::max(largest[f.body.type], encoded(f).size());
+  }
+  EXPECT_EQ(largest[HCP_HELLO], 80U);
+  EXPECT_EQ(largest[HCP_WELCOME], 60U);
+  EXPECT_EQ(largest[HCP_REFUSE], 144U);
+  EXPECT_EQ(largest[HCP_CONTROL_OBJECT], 88U);
+  EXPECT_EQ(largest[HCP_CONTROL_WRENCH], 60U);
+  EXPECT_EQ(largest[HCP_KEEPALIVE], 36U);
+  EXPECT_EQ(largest[HCP_ANSWER], 324U);
+  EXPECT_EQ(largest[HCP_PARAM], 92U);
+  EXPECT_EQ(largest[HCP_ACK], 140U);
+  EXPECT_EQ(largest[HCP_BYE], 36U);
 }
 
 TEST(Codec, TextFieldsAreTerminatedAndTruncated) {

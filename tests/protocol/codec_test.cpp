@@ -173,7 +173,7 @@ TEST(Codec, FrameSizesAreAsDocumented) {  // docs/protocol.md, "Frames"
   EXPECT_EQ(largest[HCP_CONTROL_WRENCH], 60U);
   EXPECT_EQ(largest[HCP_KEEPALIVE], 36U);
   EXPECT_EQ(largest[HCP_ANSWER], 324U);
-  EXPECT_EQ(largest[HCP_PARAM], 92U);
+  EXPECT_EQ(largest[HCP_PARAM], 96U);
   EXPECT_EQ(largest[HCP_ACK], 140U);
   EXPECT_EQ(largest[HCP_BYE], 36U);
 }

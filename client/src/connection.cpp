@@ -105,6 +105,7 @@ struct Connection::Impl {
   std::uint32_t ack_sequence = 0;
   hcp_ack_status ack_status = HCP_ACK_OK;
   std::string ack_reason;
+  std::string closed_reason;  // set when the bridge ends the session (guarded by ack_mutex)
 
   std::mutex loop_mutex;
   std::function<void(const StateSnapshot&)> on_cycle;
@@ -180,8 +181,7 @@ struct Connection::Impl {
         continue;
       }
       hcp_frame frame;
-      if (protocol::decode({in.data(), r.size}, frame) != protocol::DecodeStatus::kOk &&
-          frame.body.type != HCP_REFUSE) {
+      if (protocol::decode({in.data(), r.size}, frame) != protocol::DecodeStatus::kOk) {
         continue;
       }
       if (frame.body.type == HCP_REFUSE) {
@@ -262,6 +262,13 @@ struct Connection::Impl {
     }
     if (frame.body.type == HCP_ANSWER) {
       handle_answer(frame, now);
+    } else if (frame.body.type == HCP_REFUSE) {  // the bridge ended the session, and says why
+      {
+        const std::lock_guard lock(ack_mutex);
+        closed_reason.assign(protocol::text_of(frame.body.hcp_body_u.refuse.reason));
+      }
+      open.store(false);
+      ack_cv.notify_all();
     } else if (frame.body.type == HCP_ACK) {
       const hcp_ack& a = frame.body.hcp_body_u.ack;
       {
@@ -334,7 +341,7 @@ struct Connection::Impl {
   void exchange(hcp_frame& frame, const std::string& what) {
     const std::lock_guard call_lock(call_mutex);
     if (!open.load()) {
-      throw ClientError(ErrorCode::kClosed, what + ": the session is closed");
+      throw closed_error(what);
     }
     frame.header.token = token;
     frame.header.sequence = reliable_sequence.fetch_add(1) + 1;
@@ -346,9 +353,14 @@ struct Connection::Impl {
       send(frame);
       ++tries;
       std::unique_lock lock(ack_mutex);
-      if (!ack_cv.wait_for(lock, options.retransmit_after,
-                           [&] { return ack_ready && ack_sequence == sequence; })) {
+      if (!ack_cv.wait_for(lock, options.retransmit_after, [&] {
+            return (ack_ready && ack_sequence == sequence) || !open.load();
+          })) {
         continue;
+      }
+      if (!open.load()) {
+        lock.unlock();
+        throw closed_error(what);
       }
       ack_ready = false;
       if (ack_status == HCP_ACK_OK) {
@@ -364,6 +376,12 @@ struct Connection::Impl {
                       what + ": no acknowledgement from the controller at " + peer_text +
                           " after " + std::to_string(tries) + " tries in " +
                           std::to_string(options.call_timeout.count()) + " ms");
+  }
+
+  ClientError closed_error(const std::string& what) {
+    const std::lock_guard lock(ack_mutex);
+    return {ErrorCode::kClosed, what + ": the session is closed" +
+                                    (closed_reason.empty() ? "" : " (" + closed_reason + ")")};
   }
 
   void set_param(hcp_param param, const std::string& what) {

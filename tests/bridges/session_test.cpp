@@ -170,7 +170,9 @@ TEST_F(SessionTest, ANewerClientThatStillSpeaksOursIsAcceptedWithTheCommonFeatur
   EXPECT_EQ(client.reply.body.hcp_body_u.welcome.features, protocol::kAllFeatures);
   Client older{&session};
   older.from = Endpoint::resolve("127.0.0.1", 40002);
-  session.close(0);
+  FrameBuffer notice{};
+  Endpoint to;
+  ASSERT_GT(session.close(0, "test", notice, to), 0U);
   older.hello(protocol::make_version(1, 0), HCP_FEATURE_JOINT_STATE);
   EXPECT_EQ(older.reply.body.hcp_body_u.welcome.features, HCP_FEATURE_JOINT_STATE);
 }
@@ -418,6 +420,23 @@ TEST_F(SessionTest, AnswersGoToTheSessionWithTheNegotiatedFeatures) {
   EXPECT_EQ(a.body.hcp_body_u.answer.echo_sequence, 3U);
   EXPECT_EQ(a.body.hcp_body_u.answer.control_received, 1U);
   EXPECT_EQ(a.body.hcp_body_u.answer.joint_position[0], 0.0);  // JOINT_STATE not negotiated
+}
+
+TEST_F(SessionTest, ClosingTellsTheClientWhyWithItsToken) {
+  FrameBuffer notice{};
+  Endpoint to;
+  EXPECT_EQ(session.close(0, "the controller stopped", notice, to), 0U);  // no session
+  client.hello();
+  const std::size_t n = session.close(client.now, "the controller stopped", notice, to);
+  ASSERT_GT(n, 0U);
+  EXPECT_EQ(to, client.from);
+  hcp_frame f;
+  ASSERT_EQ(protocol::decode({notice.data(), n}, f), protocol::DecodeStatus::kOk);
+  EXPECT_EQ(f.body.type, HCP_REFUSE);
+  EXPECT_EQ(f.header.token, client.token);
+  EXPECT_EQ(f.body.hcp_body_u.refuse.code, HCP_REFUSE_NO_CONTROLLER);
+  EXPECT_EQ(protocol::text_of(f.body.hcp_body_u.refuse.reason), "the controller stopped");
+  EXPECT_EQ(controller.vpr_now().session_id, 0U);
 }
 
 TEST_F(SessionTest, StatsReflectTheSessionAndCounters) {

@@ -257,6 +257,24 @@ TEST(Connection, CloseEndsTheSession) {
   EXPECT_THROW(c.set_power(true), ClientError);
 }
 
+TEST(Connection, AStoppingControllerClosesTheSessionAndTheClientIsTold) {
+  ControllerStack stack("corestop");
+  ASSERT_TRUE(stack.ready()) << stack.diagnostics();
+  Connection c(address_of(stack));
+  StateSnapshot s;
+  ASSERT_TRUE(c.wait_for_answer(0, 2s, s));
+  stack.core().signal(SIGTERM);
+  EXPECT_TRUE(ControllerStack::eventually([&] { return !c.is_open(); }));
+  EXPECT_NE(c.snapshot().core_state, 1U) << "the last answers carried the stop";
+  try {
+    c.set_power(true);
+    FAIL() << "a closed session refuses calls";
+  } catch (const ClientError& e) {
+    EXPECT_EQ(e.code(), ErrorCode::kClosed);
+    EXPECT_NE(std::string(e.what()).find("the controller stopped"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Connection, NoControllerAndNoBridgeGiveClearErrors) {
   ConnectOptions quick;
   quick.connect_timeout = 200ms;

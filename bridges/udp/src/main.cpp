@@ -123,7 +123,16 @@ void run_attached(shm::Segment& segment, UdpSocket& socket, Session& session,
     stats.publish_quietly(s, monotonic_ns());
     return segment.core_alive() && segment.still_current();
   });
-  session.set_controller(nullptr, monotonic_ns());  // ends the session: the core ramps out
+  // Tell the client why its session ends (the core then ramps the coupling out).
+  FrameBuffer notice{};
+  Endpoint to;
+  const std::size_t n = session.close(
+      monotonic_ns(), g_stop.load() ? "the bridge is shutting down" : "the controller stopped",
+      notice, to);
+  if (n != 0) {
+    socket.send_to({notice.data(), n}, to);
+  }
+  session.set_controller(nullptr, monotonic_ns());
   shm::LinkStatsPayload s;
   session.fill_stats(s);
   stats.publish_quietly(s, monotonic_ns());

@@ -197,10 +197,16 @@ void Session::end_session(TimeNs now) noexcept {
   publish_vpr(now);
 }
 
-void Session::close(TimeNs now) noexcept {
-  if (session_.token != 0) {
-    end_session(now);
+std::size_t Session::close(TimeNs now, std::string_view why, std::span<std::uint8_t> notice,
+                           protocol::Endpoint& to) noexcept {
+  if (session_.token == 0) {
+    return 0;
   }
+  to = session_.peer;
+  const std::size_t n =
+      refuse(HCP_REFUSE_NO_CONTROLLER, protocol::kVersion, 0, why, now, notice, session_.token);
+  end_session(now);
+  return n;
 }
 
 bool Session::check_watchdog(TimeNs now) noexcept {
@@ -249,30 +255,29 @@ std::size_t Session::on_param(const hcp_frame& in, bool values_ok, TimeNs now,
   last_heard_ = now;
   if (have_param_seq_ && seq == last_ack_.sequence) {  // our ACK was lost: say it again
     counters_.param_duplicates.fetch_add(1, std::memory_order_relaxed);
-    return ack(now, reply);
+    return ack(last_ack_, now, reply);
   }
   if (have_param_seq_ && !protocol::sequence_newer(seq, last_ack_.sequence)) {
     counters_.drop(LinkDrop::kSequence);
     return 0;
   }
-  last_ack_ = LastAck{seq, HCP_ACK_OK};
+  LastAck result{seq, HCP_ACK_OK};
   if (!values_ok) {
     counters_.drop(LinkDrop::kRange);
     counters_.params_rejected.fetch_add(1, std::memory_order_relaxed);
-    last_ack_.status = HCP_ACK_REJECTED;
+    result.status = HCP_ACK_REJECTED;
     const auto problem = protocol::check_param(in.body.hcp_body_u.param);
-    protocol::set_text(last_ack_.reason, problem.value_or("value out of range"));
+    protocol::set_text(result.reason, problem.value_or("value out of range"));
   } else {
-    last_ack_.status = apply(in.body.hcp_body_u.param, now);
-    if (last_ack_.status == HCP_ACK_RETRY) {
-      // Not applied: a retransmission with this sequence must be applied, not re-acknowledged.
-      have_param_seq_ = false;
-      return ack(now, reply);
+    result.status = apply(in.body.hcp_body_u.param, now);
+    if (result.status == HCP_ACK_RETRY) {
+      return ack(result, now, reply);  // not applied, not recorded: the retransmission applies
     }
     counters_.params_applied.fetch_add(1, std::memory_order_relaxed);
   }
+  last_ack_ = result;
   have_param_seq_ = true;
-  return ack(now, reply);
+  return ack(last_ack_, now, reply);
 }
 
 hcp_ack_status Session::apply(const hcp_param& param, TimeNs now) noexcept {
@@ -337,8 +342,7 @@ hcp_ack_status Session::apply(const hcp_param& param, TimeNs now) noexcept {
 }
 
 std::size_t Session::on_bye(const hcp_frame& in, TimeNs now, std::span<std::uint8_t> reply) noexcept {
-  last_ack_ = LastAck{in.header.sequence, HCP_ACK_OK};
-  const std::size_t n = ack(now, reply);  // encoded with the session's token, before it ends
+  const std::size_t n = ack(LastAck{in.header.sequence, HCP_ACK_OK}, now, reply);  // session token
   counters_.sessions_closed.fetch_add(1, std::memory_order_relaxed);
   end_session(now);
   return n;
@@ -346,8 +350,8 @@ std::size_t Session::on_bye(const hcp_frame& in, TimeNs now, std::span<std::uint
 
 std::size_t Session::refuse(hcp_refuse_code code, std::uint32_t peer_version,
                             std::uint32_t retry_ms, std::string_view reason, TimeNs now,
-                            std::span<std::uint8_t> reply) noexcept {
-  hcp_frame out = protocol::make_frame(HCP_REFUSE, 0, ++reply_sequence_, now);
+                            std::span<std::uint8_t> reply, std::uint64_t token) noexcept {
+  hcp_frame out = protocol::make_frame(HCP_REFUSE, token, ++reply_sequence_, now);
   hcp_refuse& r = out.body.hcp_body_u.refuse;
   r.code = code;
   r.peer_version = peer_version;
@@ -356,12 +360,13 @@ std::size_t Session::refuse(hcp_refuse_code code, std::uint32_t peer_version,
   return protocol::encode(out, reply);
 }
 
-std::size_t Session::ack(TimeNs now, std::span<std::uint8_t> reply) noexcept {
+std::size_t Session::ack(const LastAck& result, TimeNs now,
+                         std::span<std::uint8_t> reply) noexcept {
   hcp_frame out = protocol::make_frame(HCP_ACK, session_.token, ++reply_sequence_, now);
   hcp_ack& a = out.body.hcp_body_u.ack;
-  a.acked_sequence = last_ack_.sequence;
-  a.status = last_ack_.status;
-  std::copy(std::begin(last_ack_.reason), std::end(last_ack_.reason), std::begin(a.reason));
+  a.acked_sequence = result.sequence;
+  a.status = result.status;
+  std::copy(std::begin(result.reason), std::end(result.reason), std::begin(a.reason));
   return protocol::encode(out, reply);
 }
 

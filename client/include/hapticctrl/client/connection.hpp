@@ -90,7 +90,8 @@ class Connection {
   bool wait_for_answer(std::uint64_t after_cycle, std::chrono::nanoseconds timeout,
                        StateSnapshot& out) const noexcept;
   [[nodiscard]] LinkStatistics statistics() const noexcept;
-  /// False once the session is closed (BYE, or the controller said it is gone).
+  /// False once the session is closed (BYE, or the bridge ended it: controller stopped or
+  /// bridge shutting down; parameter calls then throw kClosed with the bridge's reason).
   [[nodiscard]] bool is_open() const noexcept;
 
   // --- callback style ---------------------------------------------------------------------------

@@ -91,8 +91,11 @@ class Session {
   /// Returns true if it did.
   bool check_watchdog(TimeNs now) noexcept;
 
-  /// Closes the session (bridge shutdown or controller gone); the core then ramps out.
-  void close(TimeNs now) noexcept;
+  /// Closes the session (bridge shutdown or controller gone); the core then ramps out. When
+  /// there was one, writes a REFUSE telling its client why into `notice` (returns its length)
+  /// and its address into `to`.
+  std::size_t close(TimeNs now, std::string_view why, std::span<std::uint8_t> notice,
+                    protocol::Endpoint& to) noexcept;
 
   /// Answer side: encodes the answer frame for one VP sample into `out`; returns its length
   /// and the destination, or 0 when there is no session.
@@ -119,8 +122,9 @@ class Session {
   [[nodiscard]] bool from_session(const hcp_frame& in, const protocol::Endpoint& from) const noexcept;
   hcp_ack_status apply(const hcp_param& param, TimeNs now) noexcept;
   std::size_t refuse(hcp_refuse_code code, std::uint32_t peer_version, std::uint32_t retry_ms,
-                     std::string_view reason, TimeNs now, std::span<std::uint8_t> reply) noexcept;
-  std::size_t ack(TimeNs now, std::span<std::uint8_t> reply) noexcept;
+                     std::string_view reason, TimeNs now, std::span<std::uint8_t> reply,
+                     std::uint64_t token = 0) noexcept;
+  std::size_t ack(const LastAck& a, TimeNs now, std::span<std::uint8_t> reply) noexcept;
   std::size_t welcome(TimeNs now, std::span<std::uint8_t> reply) noexcept;
   void open(const hcp_frame& hello, const protocol::Endpoint& from, TimeNs now) noexcept;
   void end_session(TimeNs now) noexcept;

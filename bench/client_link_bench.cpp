@@ -144,8 +144,8 @@ StreamResult client_loop(std::uint16_t port, double seconds) {
 }
 
 void print_row(const char* name, const Percentiles& p) {
-  std::printf("  %-34s n=%-7zu p50 %8.1f  p99 %8.1f  p99.9 %8.1f  max %8.1f us\n", name, p.n,
-              p.p50, p.p99, p.p999, p.max);
+  std::printf("  %-34s n=%-7zu p50 %8.1f  p99 %8.1f  p99.9 %8.1f  max %8.1f us\n", name, p.n, p.p50,
+              p.p99, p.p999, p.max);
 }
 
 }  // namespace
@@ -185,9 +185,8 @@ int main(int argc, char** argv) {
     const double received = static_cast<double>(r.stats.answers_received);
     const double loss = static_cast<double>(r.stats.answers_lost) /
                         std::max(1.0, received + static_cast<double>(r.stats.answers_lost));
-    const double uplink_loss =
-        1.0 - static_cast<double>(r.stats.control_received_by_controller) /
-                  std::max(1.0, static_cast<double>(r.stats.control_sent));
+    const double uplink_loss = 1.0 - static_cast<double>(r.stats.control_received_by_controller) /
+                                         std::max(1.0, static_cast<double>(r.stats.control_sent));
     if (json) {
       std::printf(
           "{\"period_us\":%.1f,\"seconds\":%.2f,\"raw_udp_rtt_p50_us\":%.1f,"
@@ -213,19 +212,21 @@ int main(int argc, char** argv) {
     print_row("answer inter-arrival (application)", gap);
     std::printf("  receive thread: inter-arrival mean %.1f us, max %.1f us\n",
                 r.stats.interarrival_mean_us, r.stats.interarrival_max_us);
-    std::printf("  answers %.0f of %.0f expected, lost %llu (%.4f %%), late %llu, "
-                "RFC 3550 jitter %.1f us, uplink loss %.4f %%\n",
-                received, expected, static_cast<unsigned long long>(r.stats.answers_lost),
-                100.0 * loss, static_cast<unsigned long long>(r.stats.answers_late),
-                r.stats.jitter_us, 100.0 * uplink_loss);
+    std::printf(
+        "  answers %.0f of %.0f expected, lost %llu (%.4f %%), late %llu, "
+        "RFC 3550 jitter %.1f us, uplink loss %.4f %%\n",
+        received, expected, static_cast<unsigned long long>(r.stats.answers_lost), 100.0 * loss,
+        static_cast<unsigned long long>(r.stats.answers_late), r.stats.jitter_us,
+        100.0 * uplink_loss);
     std::printf("  gaps over 3 ms: %zu of %zu; mean rate %.1f Hz\n", r.gaps_over_3ms,
                 r.interarrival_us.size(), rate_hz);
     std::printf("  seed requirement (>= 1 sample / 3 ms on average, < 1 in 10 lost): %s\n",
                 rate_hz >= 1000.0 / 3.0 && loss < 0.1 ? "met" : "NOT met");
     if (r.controller_stopped) {
-      std::printf("  the controller left the cycle after %.1f s (stop reason %u): figures up to "
-                  "then\n",
-                  r.seconds, r.stop_reason);
+      std::printf(
+          "  the controller left the cycle after %.1f s (stop reason %u): figures up to "
+          "then\n",
+          r.seconds, r.stop_reason);
     }
     return 0;
   } catch (const std::exception& e) {

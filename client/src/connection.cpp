@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <charconv>
-#include <limits>
 #include <condition_variable>
 #include <cstring>
 #include <ctime>
+#include <limits>
 #include <mutex>
 #include <thread>
 
@@ -214,10 +214,10 @@ struct Connection::Impl {
       return;
     }
     if (last_refusal.empty()) {
-      throw ClientError(ErrorCode::kTimeout,
-                        "no answer from a hapticctrl controller at " + peer_text + " within " +
-                            std::to_string(options.connect_timeout.count()) +
-                            " ms: is hapticctrl-udp running there?");
+      throw ClientError(ErrorCode::kTimeout, "no answer from a hapticctrl controller at " +
+                                                 peer_text + " within " +
+                                                 std::to_string(options.connect_timeout.count()) +
+                                                 " ms: is hapticctrl-udp running there?");
     }
     throw ClientError(last_code, "controller at " + peer_text + " refused the connection for " +
                                      std::to_string(options.connect_timeout.count()) +
@@ -473,7 +473,9 @@ void Connection::attach_object(double mass, const std::array<double, 3>& inertia
   copy_to(inertia, p.hcp_param_u.object.inertia);
   impl_->set_param(p, "attach_object");
 }
-void Connection::detach_object() { impl_->set_param(param_of(HCP_P_OBJECT), "detach_object"); }
+void Connection::detach_object() {
+  impl_->set_param(param_of(HCP_P_OBJECT), "detach_object");
+}
 void Connection::set_gains(double k_lin, double b_lin, double k_ang, double b_ang) {
   hcp_param p = param_of(HCP_P_GAINS);
   copy_to(std::array<double, 4>{k_lin, b_lin, k_ang, b_ang}, p.hcp_param_u.gains);
@@ -538,7 +540,9 @@ LinkStatistics Connection::statistics() const noexcept {
   return impl_->monitor.statistics(impl_->control_sent.load(std::memory_order_relaxed));
 }
 
-bool Connection::is_open() const noexcept { return impl_->open.load(); }
+bool Connection::is_open() const noexcept {
+  return impl_->open.load();
+}
 
 void Connection::start_loop(std::function<void(const StateSnapshot&)> on_cycle) {
   const std::lock_guard lock(impl_->loop_mutex);
@@ -550,9 +554,17 @@ void Connection::stop_loop() {
   impl_->on_cycle = nullptr;
 }
 
-std::uint32_t Connection::features() const noexcept { return impl_->features; }
-std::uint32_t Connection::watchdog_ms() const noexcept { return impl_->watchdog.load(); }
-std::int64_t Connection::controller_period_ns() const noexcept { return impl_->period_ns; }
-std::uint32_t Connection::controller_version() const noexcept { return impl_->controller_version; }
+std::uint32_t Connection::features() const noexcept {
+  return impl_->features;
+}
+std::uint32_t Connection::watchdog_ms() const noexcept {
+  return impl_->watchdog.load();
+}
+std::int64_t Connection::controller_period_ns() const noexcept {
+  return impl_->period_ns;
+}
+std::uint32_t Connection::controller_version() const noexcept {
+  return impl_->controller_version;
+}
 
 }  // namespace hapticctrl::client

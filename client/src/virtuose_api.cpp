@@ -160,11 +160,14 @@ bool valid(VirtContext vc) noexcept {
   return true;
 }
 
-StateSnapshot state_of(VirtContext vc) noexcept { return vc->connection->snapshot(); }
+StateSnapshot state_of(VirtContext vc) noexcept {
+  return vc->connection->snapshot();
+}
 
 }  // namespace
 
 extern "C" {
+// NOLINTBEGIN(readability-identifier-naming): VirtuoseAPI's names
 
 VirtContext virtOpen(const char* name) {
   if (name == nullptr) {
@@ -196,7 +199,8 @@ int virtClose(VirtContext vc) {
 }
 
 int virtSetTimeStep(VirtContext vc, float step) {
-  return valid(vc) ? vc->guarded([&] { vc->connection->set_time_step(step); }) : -1;
+  return valid(vc) ? vc->guarded([&] { vc->connection->set_time_step(static_cast<double>(step)); })
+                   : -1;
 }
 
 int virtSetIndexingMode(VirtContext vc, VirtIndexingType mode) {
@@ -207,11 +211,15 @@ int virtSetIndexingMode(VirtContext vc, VirtIndexingType mode) {
 }
 
 int virtSetForceFactor(VirtContext vc, float factor) {
-  return valid(vc) ? vc->guarded([&] { vc->connection->set_force_factor(factor); }) : -1;
+  return valid(vc)
+             ? vc->guarded([&] { vc->connection->set_force_factor(static_cast<double>(factor)); })
+             : -1;
 }
 
 int virtSetSpeedFactor(VirtContext vc, float factor) {
-  return valid(vc) ? vc->guarded([&] { vc->connection->set_speed_factor(factor); }) : -1;
+  return valid(vc)
+             ? vc->guarded([&] { vc->connection->set_speed_factor(static_cast<double>(factor)); })
+             : -1;
 }
 
 int virtSetBaseFrame(VirtContext vc, float* pos) {
@@ -245,7 +253,8 @@ int virtAttachVO(VirtContext vc, float mass, float* mxmymz) {
   if (!valid(vc) || mxmymz == nullptr) {
     return fail(vc, VIRT_E_INCORRECT_VALUE, "virtAttachVO: NULL inertia");
   }
-  return vc->guarded([&] { vc->connection->attach_object(mass, to_doubles<3>(mxmymz)); });
+  return vc->guarded(
+      [&] { vc->connection->attach_object(static_cast<double>(mass), to_doubles<3>(mxmymz)); });
 }
 
 int virtDetachVO(VirtContext vc) {
@@ -266,7 +275,8 @@ int virtSetTimeoutValue(VirtContext vc, float seconds) {
 
 int virtSaturateTorque(VirtContext vc, float force_threshold, float moment_threshold) {
   return valid(vc) ? vc->guarded([&] {
-    vc->connection->set_force_limits(force_threshold, moment_threshold);
+    vc->connection->set_force_limits(static_cast<double>(force_threshold),
+                                     static_cast<double>(moment_threshold));
   })
                    : -1;
 }
@@ -282,8 +292,9 @@ int virtSetPosition(VirtContext vc, float* pos) {
   vc->object_pose = to_doubles<7>(pos);
   vc->pose_pending = true;
   if (!vc->loop_running.load() && !vc->flush_locked()) {
-    return fail(vc, VIRT_E_INCORRECT_VALUE, "virtSetPosition: pose or speed out of range, or "
-                                            "the session is closed");
+    return fail(vc, VIRT_E_INCORRECT_VALUE,
+                "virtSetPosition: pose or speed out of range, or "
+                "the session is closed");
   }
   return 0;
 }
@@ -411,10 +422,12 @@ int virtSetPeriodicFunction(VirtContext vc, void (*fn)(VirtContext, void*), floa
     return fail(vc, VIRT_E_WRONG_MODE, "virtSetPeriodicFunction: stop the loop first");
   }
   const double cycle_s = static_cast<double>(vc->connection->controller_period_ns()) / 1e9;
-  vc->decimation = cycle_s > 0.0
-                       ? static_cast<unsigned>(std::max(1L, std::lround(static_cast<double>(*period) / cycle_s)))
-                       : 1U;
-  *period = static_cast<float>(static_cast<double>(vc->decimation) * cycle_s);  // the period actually used
+  vc->decimation =
+      cycle_s > 0.0
+          ? static_cast<unsigned>(std::max(1L, std::lround(static_cast<double>(*period) / cycle_s)))
+          : 1U;
+  *period = static_cast<float>(static_cast<double>(vc->decimation) *
+                               cycle_s);  // the period actually used
   vc->periodic = fn;
   vc->periodic_arg = arg;
   return 0;
@@ -428,9 +441,8 @@ int virtStartLoop(VirtContext vc) {
     return fail(vc, VIRT_E_WRONG_MODE, "virtStartLoop: call virtSetPeriodicFunction first");
   }
   vc->loop_running.store(true);
-  return vc->guarded([&] {
-    vc->connection->start_loop([vc](const StateSnapshot&) { vc->on_answer(); });
-  });
+  return vc->guarded(
+      [&] { vc->connection->start_loop([vc](const StateSnapshot&) { vc->on_answer(); }); });
 }
 
 int virtStopLoop(VirtContext vc) {
@@ -442,14 +454,17 @@ int virtStopLoop(VirtContext vc) {
   return 0;
 }
 
-int virtGetErrorCode(VirtContext vc) { return vc != nullptr ? vc->error.code : t_open_error.code; }
+int virtGetErrorCode(VirtContext vc) {
+  return vc != nullptr ? vc->error.code : t_open_error.code;
+}
 
 char* virtGetErrorMessage(int code) {
-  static char kTexts[][48] = {  // NOLINT(*-avoid-c-arrays): the C API returns char*
-      "no error",           "out of memory",     "communication failure", "invalid context",
-      "unknown error",      "wrong format",      "time out",              "wrong mode",
-      "incorrect value",    "unknown error",     "controller busy",       "incompatible version",
-      "controller refused"};
+  static char kTexts[][48] = {// NOLINT(*-avoid-c-arrays): the C API returns char*
+                              "no error",          "out of memory",   "communication failure",
+                              "invalid context",   "unknown error",   "wrong format",
+                              "time out",          "wrong mode",      "incorrect value",
+                              "unknown error",     "controller busy", "incompatible version",
+                              "controller refused"};
   const int count = static_cast<int>(sizeof kTexts / sizeof kTexts[0]);
   return kTexts[code >= 0 && code < count ? code : 4];
 }
@@ -458,4 +473,5 @@ const char* virtGetErrorDetail(VirtContext vc) {
   return vc != nullptr ? vc->error.detail.data() : t_open_error.detail.data();
 }
 
+// NOLINTEND(readability-identifier-naming)
 }  // extern "C"

@@ -15,8 +15,9 @@ TEST(BridgeConfig, DefaultsAreLoopbackAndTheStandardPort) {
 }
 
 TEST(BridgeConfig, ParsesEveryOption) {
-  const BridgeConfig c = BridgeConfig::parse({"--instance", "lab", "--port", "0", "--watchdog-ms",
-                                              "250", "--duration", "1.5", "--json", "--priority", "70"});
+  const BridgeConfig c =
+      BridgeConfig::parse({"--instance", "lab", "--port", "0", "--watchdog-ms", "250", "--duration",
+                           "1.5", "--json", "--priority", "70"});
   EXPECT_EQ(c.priority, 70);
   EXPECT_EQ(c.instance, "lab");
   EXPECT_EQ(c.port, 0);

@@ -51,7 +51,7 @@ struct Controller {
 
 /// A scripted client: builds frames, feeds them to the session, decodes the reply.
 struct Client {
-  Session* session;
+  Session* session = nullptr;
   Endpoint from = Endpoint::resolve("127.0.0.1", 40000);
   std::uint64_t token = 0;
   std::uint32_t control_seq = 0;
@@ -329,8 +329,7 @@ TEST_F(SessionTest, EveryParameterReachesVprOrCtrl) {
   apply(f);
   EXPECT_EQ(controller.drain(),
             (std::vector<shm::CtrlCode>{shm::CtrlCode::kPowerOn, shm::CtrlCode::kEmergencyStop,
-                                        shm::CtrlCode::kEmergencyReset,
-                                        shm::CtrlCode::kPowerOff}));
+                                        shm::CtrlCode::kEmergencyReset, shm::CtrlCode::kPowerOff}));
   EXPECT_EQ(session.counters().params_applied.load(), 15U);
 }
 

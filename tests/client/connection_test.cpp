@@ -14,7 +14,9 @@ namespace {
 using namespace std::chrono_literals;
 using test::ControllerStack;
 
-Address address_of(const ControllerStack& stack) { return {"127.0.0.1", stack.port()}; }
+Address address_of(const ControllerStack& stack) {
+  return {"127.0.0.1", stack.port()};
+}
 
 /// Streams `send` once per answer for `duration`; returns the last snapshot.
 template <typename Send>
@@ -45,7 +47,8 @@ TEST(Connection, HandshakeNegotiatesAndTheAnswerStreamFlows) {
   EXPECT_NEAR(std::hypot(std::hypot(s.handle_pose[3], s.handle_pose[4]),
                          std::hypot(s.handle_pose[5], s.handle_pose[6])),
               1.0, 1e-6);
-  EXPECT_TRUE(ControllerStack::eventually([&] { return stack.link_stats().sessions_opened == 1U; }, 1s));
+  EXPECT_TRUE(
+      ControllerStack::eventually([&] { return stack.link_stats().sessions_opened == 1U; }, 1s));
 }
 
 TEST(Connection, EveryParameterReachesTheController) {
@@ -88,7 +91,8 @@ TEST(Connection, EveryParameterReachesTheController) {
     EXPECT_STREQ(e.what(), "set_force_factor: force factor: between 0.001 and 1000");
   }
   EXPECT_THROW(c.set_base_frame({0, 0, 0, 0, 0, 0, 0}), ClientError);
-  EXPECT_TRUE(ControllerStack::eventually([&] { return stack.link_stats().params_applied == 12U; }, 1s));
+  EXPECT_TRUE(
+      ControllerStack::eventually([&] { return stack.link_stats().params_applied == 12U; }, 1s));
 }
 
 TEST(Connection, PowerAndEmergencyStopRoundTrip) {
@@ -181,7 +185,8 @@ TEST(Connection, ASecondClientIsRefusedAsBusy) {
         << e.what();
   }
   EXPECT_TRUE(first.is_open());
-  EXPECT_TRUE(ControllerStack::eventually([&] { return stack.link_stats().refused_busy >= 1U; }, 1s));
+  EXPECT_TRUE(
+      ControllerStack::eventually([&] { return stack.link_stats().refused_busy >= 1U; }, 1s));
 }
 
 TEST(Connection, VersionMismatchIsExplainedWithBothVersions) {
@@ -198,7 +203,8 @@ TEST(Connection, VersionMismatchIsExplainedWithBothVersions) {
     EXPECT_NE(what.find("client 2.3"), std::string::npos) << what;
     EXPECT_NE(what.find("controller 1.0"), std::string::npos) << what;
   }
-  EXPECT_TRUE(ControllerStack::eventually([&] { return stack.link_stats().refused_version == 1U; }, 1s));
+  EXPECT_TRUE(
+      ControllerStack::eventually([&] { return stack.link_stats().refused_version == 1U; }, 1s));
 }
 
 TEST(Connection, WatchdogFadesTheCouplingWhenTheClientDiesAndARestartedClientReconnects) {
@@ -235,7 +241,8 @@ TEST(Connection, WatchdogFadesTheCouplingWhenTheClientDiesAndARestartedClientRec
   EXPECT_GT(coupled(), 0.5);
   client.kill_now();
   client.wait();
-  EXPECT_TRUE(ControllerStack::eventually([&] { return stack.link_stats().watchdog_expiries == 1; }));
+  EXPECT_TRUE(
+      ControllerStack::eventually([&] { return stack.link_stats().watchdog_expiries == 1; }));
   EXPECT_EQ(stack.vpr().session_id, 0U);
   EXPECT_TRUE(ControllerStack::eventually([&] { return coupled() < 1e-9; }, 1s))
       << "coupling faded out";
@@ -243,7 +250,8 @@ TEST(Connection, WatchdogFadesTheCouplingWhenTheClientDiesAndARestartedClientRec
   Connection restarted(address_of(stack));  // the client comes back
   StateSnapshot s;
   EXPECT_TRUE(restarted.wait_for_answer(0, 1s, s));
-  EXPECT_TRUE(ControllerStack::eventually([&] { return stack.link_stats().sessions_opened == 2U; }, 1s));
+  EXPECT_TRUE(
+      ControllerStack::eventually([&] { return stack.link_stats().sessions_opened == 2U; }, 1s));
 }
 
 TEST(Connection, CloseEndsTheSession) {
@@ -252,7 +260,8 @@ TEST(Connection, CloseEndsTheSession) {
   Connection c(address_of(stack));
   c.close();
   EXPECT_FALSE(c.is_open());
-  EXPECT_TRUE(ControllerStack::eventually([&] { return stack.link_stats().sessions_closed == 1U; }, 1s));
+  EXPECT_TRUE(
+      ControllerStack::eventually([&] { return stack.link_stats().sessions_closed == 1U; }, 1s));
   EXPECT_FALSE(c.send_wrench({}));
   EXPECT_THROW(c.set_power(true), ClientError);
 }

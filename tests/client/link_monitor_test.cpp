@@ -12,7 +12,7 @@ TEST(LinkMonitor, CountsLossFromSequenceGapsAndDropsLateAnswers) {
   m.set_period(kMs);
   EXPECT_TRUE(m.on_answer(1, 1 * kMs, 0, 0, 0));
   EXPECT_TRUE(m.on_answer(2, 2 * kMs, 0, 0, 0));
-  EXPECT_TRUE(m.on_answer(5, 5 * kMs, 0, 0, 0));  // 3 and 4 lost
+  EXPECT_TRUE(m.on_answer(5, 5 * kMs, 0, 0, 0));   // 3 and 4 lost
   EXPECT_FALSE(m.on_answer(4, 5 * kMs, 0, 0, 0));  // arrives late: dropped
   const LinkStatistics s = m.statistics(7);
   EXPECT_EQ(s.answers_received, 3U);

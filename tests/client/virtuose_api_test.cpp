@@ -38,7 +38,7 @@ TEST(VirtuoseApi, ParametersStateAndModes) {
   const std::string name = "127.0.0.1#" + std::to_string(stack.port());
   VirtContext vc = virtOpen(name.c_str());
   ASSERT_NE(vc, nullptr) << virtGetErrorDetail(nullptr);
-  float identity[7] = {0, 0, 0, 0, 0, 0, 1};  // NOLINT(*-avoid-c-arrays)
+  float identity[7] = {0, 0, 0, 0, 0, 0, 1};    // NOLINT(*-avoid-c-arrays)
   float inertia[3] = {0.001F, 0.001F, 0.001F};  // NOLINT(*-avoid-c-arrays)
   EXPECT_EQ(virtSetTimeStep(vc, 0.002F), 0);
   EXPECT_EQ(virtSetIndexingMode(vc, INDEXING_ALL), 0);
@@ -65,14 +65,13 @@ TEST(VirtuoseApi, ParametersStateAndModes) {
 
   EXPECT_EQ(virtSetPowerOn(vc, 1), 0);
   int power = 0;
-  EXPECT_TRUE(ControllerStack::eventually([&] {
-    return virtGetPowerOn(vc, &power) == 0 && power == 1;
-  }));
+  EXPECT_TRUE(
+      ControllerStack::eventually([&] { return virtGetPowerOn(vc, &power) == 0 && power == 1; }));
   int estop = 1;
   EXPECT_EQ(virtGetEmergencyStop(vc, &estop), 0);
   EXPECT_EQ(estop, 0);
-  float pose[7] = {};  // NOLINT(*-avoid-c-arrays)
-  float speed[6] = {};  // NOLINT(*-avoid-c-arrays)
+  float pose[7] = {};    // NOLINT(*-avoid-c-arrays)
+  float speed[6] = {};   // NOLINT(*-avoid-c-arrays)
   float joints[6] = {};  // NOLINT(*-avoid-c-arrays)
   EXPECT_EQ(virtGetPosition(vc, pose), 0);
   EXPECT_NEAR(std::hypot(std::hypot(pose[3], pose[4]), std::hypot(pose[5], pose[6])), 1.0F, 1e-5F);
@@ -85,7 +84,8 @@ TEST(VirtuoseApi, ParametersStateAndModes) {
   EXPECT_LT(age_us, 1'000'000U);
   EXPECT_EQ(virtGetPosition(vc, nullptr), -1);
   EXPECT_EQ(virtClose(vc), 0);
-  EXPECT_TRUE(ControllerStack::eventually([&] { return stack.link_stats().sessions_closed == 1U; }, 1s));
+  EXPECT_TRUE(
+      ControllerStack::eventually([&] { return stack.link_stats().sessions_closed == 1U; }, 1s));
 }
 
 struct LoopState {
@@ -97,7 +97,7 @@ void periodic(VirtContext vc, void* arg) {
   auto* state = static_cast<LoopState*>(arg);
   ++state->calls;
   float force[6] = {state->push, 0, 0, 0, 0, 0};  // NOLINT(*-avoid-c-arrays)
-  float extra[6] = {1, 0, 0, 0, 0, 0};             // NOLINT(*-avoid-c-arrays)
+  float extra[6] = {1, 0, 0, 0, 0, 0};            // NOLINT(*-avoid-c-arrays)
   virtSetForce(vc, force);
   virtAddForce(vc, extra);
 }

@@ -45,8 +45,7 @@ hcp_frame object_frame() {
 
 TEST(Codec, KeepaliveGoldenBytes) {
   const auto bytes = encoded(make_frame(HCP_KEEPALIVE, kToken, 42, 1'000'000'000));
-  EXPECT_EQ(hex(bytes),
-            "484354500001000001020304050607080000002a000000003b9aca0000000006216467ba");
+  EXPECT_EQ(hex(bytes), "484354500001000001020304050607080000002a000000003b9aca0000000006216467ba");
 }
 
 TEST(Codec, ControlObjectGoldenBytesAndSize) {
@@ -218,7 +217,9 @@ TEST(Codec, RejectsBadMagicAndCrc) {
 }
 
 /// Re-encodes after editing, so that the CRC is right and only the edited field is wrong.
-std::vector<std::uint8_t> with_valid_crc(hcp_frame f) { return encoded(f); }
+std::vector<std::uint8_t> with_valid_crc(hcp_frame f) {
+  return encoded(f);
+}
 
 TEST(Codec, RejectsAnotherMajorVersionExceptForHelloAndRefuse) {
   hcp_frame f = object_frame();
@@ -265,8 +266,8 @@ TEST(Codec, RejectsUnknownFrameTypesParamIdsAndTrailingBytes) {
 
 TEST(Codec, RejectsNonFiniteAndOutOfRangeValues) {
   hcp_frame out;
-  for (const float bad : {std::numeric_limits<float>::quiet_NaN(),
-                          std::numeric_limits<float>::infinity(), 1e9F}) {
+  for (const float bad :
+       {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(), 1e9F}) {
     hcp_frame f = object_frame();
     f.body.hcp_body_u.object.pose[1] = bad;
     EXPECT_EQ(decode(with_valid_crc(f), out), DecodeStatus::kOutOfRange) << bad;

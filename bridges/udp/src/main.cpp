@@ -10,8 +10,8 @@
 #include <atomic>
 #include <chrono>
 #include <csignal>
-#include <cstring>
 #include <cstdio>
+#include <cstring>
 #include <ctime>
 #include <exception>
 #include <optional>
@@ -36,7 +36,9 @@ namespace shm = hapticctrl::shm;
 
 std::atomic<bool> g_stop{false};
 
-void on_signal(int /*sig*/) { g_stop.store(true); }
+void on_signal(int /*sig*/) {
+  g_stop.store(true);
+}
 
 std::int64_t monotonic_ns() {
   timespec ts{};
@@ -86,11 +88,9 @@ void serve(UdpSocket& socket, Session& session, std::int64_t end_ns, Periodic pe
 }
 
 /// Serves one controller until it goes away (or the bridge stops).
-void run_attached(shm::Segment& segment, UdpSocket& socket, Session& session,
-                  std::int64_t end_ns) {
-  hapticctrl::udp_bridge::ControllerPorts ports{
-      &segment.writable<shm::RegionId::kVpr>(), &segment.ctrl_writer(),
-      segment.header().period_ns};
+void run_attached(shm::Segment& segment, UdpSocket& socket, Session& session, std::int64_t end_ns) {
+  hapticctrl::udp_bridge::ControllerPorts ports{&segment.writable<shm::RegionId::kVpr>(),
+                                                &segment.ctrl_writer(), segment.header().period_ns};
   auto& stats = segment.writable<shm::RegionId::kLinkStats>();
   session.set_controller(&ports, monotonic_ns());
 
@@ -205,9 +205,8 @@ int run(const BridgeConfig& config) {
   std::fflush(stdout);
   Session session({config.watchdog_ms}, random_token);
   const std::int64_t end_ns =
-      config.duration_s > 0.0
-          ? monotonic_ns() + static_cast<std::int64_t>(config.duration_s * 1e9)
-          : 0;
+      config.duration_s > 0.0 ? monotonic_ns() + static_cast<std::int64_t>(config.duration_s * 1e9)
+                              : 0;
   bool said_waiting = false;
   while (!g_stop.load()) {
     std::optional<shm::Segment> segment = try_attach(config.instance);

@@ -160,8 +160,8 @@ std::size_t Session::on_hello(const hcp_frame& in, const protocol::Endpoint& fro
   }
   if (!have_controller_) {
     return refuse(HCP_REFUSE_NO_CONTROLLER, theirs, 0,
-                  "no controller: hapticctrl-core is not running for this bridge's instance",
-                  now, reply);
+                  "no controller: hapticctrl-core is not running for this bridge's instance", now,
+                  reply);
   }
   open(in, from, now);
   return welcome(now, reply);
@@ -341,7 +341,8 @@ hcp_ack_status Session::apply(const hcp_param& param, TimeNs now) noexcept {
   return HCP_ACK_OK;
 }
 
-std::size_t Session::on_bye(const hcp_frame& in, TimeNs now, std::span<std::uint8_t> reply) noexcept {
+std::size_t Session::on_bye(const hcp_frame& in, TimeNs now,
+                            std::span<std::uint8_t> reply) noexcept {
   const std::size_t n = ack(LastAck{in.header.sequence, HCP_ACK_OK}, now, reply);  // session token
   counters_.sessions_closed.fetch_add(1, std::memory_order_relaxed);
   end_session(now);
@@ -387,7 +388,9 @@ void Session::publish_vpr(TimeNs now) noexcept {
   }
 }
 
-void Session::publish_view() noexcept { view_.publish_quietly(session_, 0); }
+void Session::publish_view() noexcept {
+  view_.publish_quietly(session_, 0);
+}
 
 std::size_t Session::answer(const shm::VpPayload& vp, TimeNs now, std::span<std::uint8_t> out,
                             protocol::Endpoint& to) noexcept {

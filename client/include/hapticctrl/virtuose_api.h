@@ -21,6 +21,8 @@
 extern "C" {
 #endif
 
+/* The names are VirtuoseAPI's, kept for source compatibility. */
+/* NOLINTBEGIN(readability-identifier-naming) */
 typedef struct VirtContextS* VirtContext;
 
 typedef enum {
@@ -101,6 +103,7 @@ int virtGetErrorCode(VirtContext vc);
 char* virtGetErrorMessage(int code);
 /** hapticctrl extension: the detailed text of the last error (the controller's reason). */
 const char* virtGetErrorDetail(VirtContext vc);
+/* NOLINTEND(readability-identifier-naming) */
 
 #ifdef __cplusplus
 }

@@ -16,8 +16,8 @@ std::uint32_t crc_of(const std::uint8_t* data, std::size_t length) noexcept {
 }
 
 std::uint32_t read_be32(const std::uint8_t* p) noexcept {
-  return (std::uint32_t{p[0]} << 24U) | (std::uint32_t{p[1]} << 16U) |
-         (std::uint32_t{p[2]} << 8U) | std::uint32_t{p[3]};
+  return (std::uint32_t{p[0]} << 24U) | (std::uint32_t{p[1]} << 16U) | (std::uint32_t{p[2]} << 8U) |
+         std::uint32_t{p[3]};
 }
 
 void write_be32(std::uint8_t* p, std::uint32_t v) noexcept {

@@ -35,8 +35,8 @@ Endpoint Endpoint::resolve(std::string_view host, std::uint16_t port) {
   addrinfo* found = nullptr;
   const int rc = ::getaddrinfo(name.c_str(), nullptr, &hints, &found);
   if (rc != 0 || found == nullptr) {
-    throw std::invalid_argument("cannot resolve host '" + name + "' to an IPv4 address: " +
-                                ::gai_strerror(rc));
+    throw std::invalid_argument("cannot resolve host '" + name +
+                                "' to an IPv4 address: " + ::gai_strerror(rc));
   }
   e.address.sin_addr = reinterpret_cast<const sockaddr_in*>(found->ai_addr)->sin_addr;
   ::freeaddrinfo(found);
@@ -49,7 +49,9 @@ std::string Endpoint::to_string() const {
   return std::string(text) + ":" + std::to_string(port());
 }
 
-std::uint16_t Endpoint::port() const noexcept { return ntohs(address.sin_port); }
+std::uint16_t Endpoint::port() const noexcept {
+  return ntohs(address.sin_port);
+}
 
 bool Endpoint::is_loopback() const noexcept {
   return (ntohl(address.sin_addr.s_addr) >> 24U) == 127U;
@@ -69,8 +71,7 @@ UdpSocket::UdpSocket(const Endpoint& local) {
     const int err = errno;
     ::close(fd_);
     fd_ = -1;
-    throw std::system_error(err, std::generic_category(),
-                            "cannot bind UDP " + local.to_string());
+    throw std::system_error(err, std::generic_category(), "cannot bind UDP " + local.to_string());
   }
 }
 
@@ -93,8 +94,8 @@ UdpSocket::~UdpSocket() {
 }
 
 bool UdpSocket::send_to(std::span<const std::uint8_t> bytes, const Endpoint& to) noexcept {
-  const ssize_t n = ::sendto(fd_, bytes.data(), bytes.size(), MSG_DONTWAIT,
-                             as_sockaddr(to.address), sizeof to.address);
+  const ssize_t n = ::sendto(fd_, bytes.data(), bytes.size(), MSG_DONTWAIT, as_sockaddr(to.address),
+                             sizeof to.address);
   return n == static_cast<ssize_t>(bytes.size());
 }
 

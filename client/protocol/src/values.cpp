@@ -15,7 +15,9 @@ bool all_within(const T (&v)[N], double bound) noexcept {  // NOLINT(*-avoid-c-a
   return true;
 }
 
-bool within(double x, double lo, double hi) noexcept { return std::isfinite(x) && x >= lo && x <= hi; }
+bool within(double x, double lo, double hi) noexcept {
+  return std::isfinite(x) && x >= lo && x <= hi;
+}
 
 }  // namespace
 
@@ -77,8 +79,7 @@ Problem check_param(const hcp_param& param) noexcept {
     case HCP_P_OBSERVATION_FRAME:
       return check_pose(u.observation_frame);
     case HCP_P_INDEXING_MODE:
-      return u.indexing_mode <= kMaxIndexingMode ? Problem{}
-                                                 : Problem{"indexing mode: 0 to 5"};
+      return u.indexing_mode <= kMaxIndexingMode ? Problem{} : Problem{"indexing mode: 0 to 5"};
     case HCP_P_COMMAND_TYPE:
       return u.command_type <= kMaxCommandType
                  ? Problem{}
@@ -122,11 +123,10 @@ Problem check_hello(const hcp_hello& hello) noexcept {
 }
 
 Problem check_answer(const hcp_answer& a) noexcept {
-  const bool finite = all_within(a.coupling_wrench, kMaxWrench) &&
-                      all_within(a.handle_pose, kMaxPosition) &&
-                      all_within(a.handle_twist, kMaxAngularSpeed) &&
-                      all_within(a.joint_position, kMaxPosition) &&
-                      all_within(a.joint_velocity, kMaxAngularSpeed);
+  const bool finite =
+      all_within(a.coupling_wrench, kMaxWrench) && all_within(a.handle_pose, kMaxPosition) &&
+      all_within(a.handle_twist, kMaxAngularSpeed) && all_within(a.joint_position, kMaxPosition) &&
+      all_within(a.joint_velocity, kMaxAngularSpeed);
   return finite ? Problem{} : Problem{"answer: non-finite or out-of-range state"};
 }
 

@@ -56,14 +56,16 @@ struct StateSnapshot {
   [[nodiscard]] bool emergency_stop() const noexcept {
     return (state_word & state_bits::kEmergencyStop) != 0;
   }
-  [[nodiscard]] bool fail_safe() const noexcept { return (state_word & state_bits::kFailSafe) != 0; }
+  [[nodiscard]] bool fail_safe() const noexcept {
+    return (state_word & state_bits::kFailSafe) != 0;
+  }
 };
 
 /// Network statistics of the session, as seen by this client.
 struct LinkStatistics {
   std::uint64_t answers_received = 0;
-  std::uint64_t answers_lost = 0;  ///< gaps in the answer sequence
-  std::uint64_t answers_late = 0;  ///< arrived after a newer one (dropped)
+  std::uint64_t answers_lost = 0;    ///< gaps in the answer sequence
+  std::uint64_t answers_late = 0;    ///< arrived after a newer one (dropped)
   std::uint64_t frames_invalid = 0;  ///< datagrams that failed decoding or did not belong
   std::uint64_t control_sent = 0;
   std::uint64_t control_received_by_controller = 0;  ///< from the answers (0 if unsupported)

@@ -129,9 +129,9 @@ constexpr std::size_t round_to_pages(std::size_t n) noexcept {
 }
 
 inline constexpr std::array<std::size_t, kRegionCount> kRegionSizes{
-    sizeof(RegionType<RegionId::kVpr>),      sizeof(RegionType<RegionId::kVp>),
-    sizeof(RegionType<RegionId::kForce>),    sizeof(RegionType<RegionId::kPosition>),
-    sizeof(RegionType<RegionId::kCtrl>),     sizeof(RegionType<RegionId::kCtrlAck>),
+    sizeof(RegionType<RegionId::kVpr>),       sizeof(RegionType<RegionId::kVp>),
+    sizeof(RegionType<RegionId::kForce>),     sizeof(RegionType<RegionId::kPosition>),
+    sizeof(RegionType<RegionId::kCtrl>),      sizeof(RegionType<RegionId::kCtrlAck>),
     sizeof(RegionType<RegionId::kTelemetry>), sizeof(RegionType<RegionId::kLinkStats>)};
 
 inline constexpr std::size_t kClaimsOffset = round_to_pages(sizeof(SegmentHeader));

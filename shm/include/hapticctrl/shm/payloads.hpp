@@ -163,15 +163,15 @@ struct TelemetryPayload {
 
 /// Why the UDP bridge dropped an incoming datagram (index into LinkStatsPayload::dropped).
 enum class LinkDrop : std::uint32_t {
-  kSize = 0,   ///< truncated, oversized, or not a multiple of 4 bytes
-  kMagic,      ///< not a hapticctrl frame
-  kVersion,    ///< another major protocol version
-  kCrc,        ///< CRC-32 mismatch
-  kMalformed,  ///< XDR decoding failed or unknown frame type
-  kToken,      ///< no session, wrong session token, or another source address
-  kSequence,   ///< replayed or reordered (not newer than the last accepted)
-  kRange,      ///< non-finite or out-of-range value
-  kUnexpected, ///< a frame type the bridge never accepts (WELCOME, ANSWER, ...)
+  kSize = 0,    ///< truncated, oversized, or not a multiple of 4 bytes
+  kMagic,       ///< not a hapticctrl frame
+  kVersion,     ///< another major protocol version
+  kCrc,         ///< CRC-32 mismatch
+  kMalformed,   ///< XDR decoding failed or unknown frame type
+  kToken,       ///< no session, wrong session token, or another source address
+  kSequence,    ///< replayed or reordered (not newer than the last accepted)
+  kRange,       ///< non-finite or out-of-range value
+  kUnexpected,  ///< a frame type the bridge never accepts (WELCOME, ANSWER, ...)
   kCount,
 };
 inline constexpr std::size_t kLinkDropCount = static_cast<std::size_t>(LinkDrop::kCount);
@@ -185,16 +185,16 @@ struct LinkStatsPayload {
   std::uint32_t peer_ipv4 = 0;   ///< client address (host byte order), 0 without a session
   std::uint32_t peer_port = 0;
   std::uint32_t watchdog_ms = 0;
-  std::uint32_t features = 0;        ///< protocol features in use
-  std::uint64_t frames_in = 0;       ///< datagrams received
-  std::uint64_t frames_out = 0;      ///< datagrams sent
+  std::uint32_t features = 0;    ///< protocol features in use
+  std::uint64_t frames_in = 0;   ///< datagrams received
+  std::uint64_t frames_out = 0;  ///< datagrams sent
   std::uint64_t control_accepted = 0;
   std::uint64_t params_applied = 0;  ///< PARAM frames applied (duplicates re-acknowledged only)
   std::uint64_t param_duplicates = 0;
   std::uint64_t params_rejected = 0;
   std::uint64_t sessions_opened = 0;
-  std::uint64_t sessions_closed = 0;     ///< by BYE
-  std::uint64_t watchdog_expiries = 0;   ///< sessions closed because the client fell silent
+  std::uint64_t sessions_closed = 0;    ///< by BYE
+  std::uint64_t watchdog_expiries = 0;  ///< sessions closed because the client fell silent
   std::uint64_t refused_busy = 0;
   std::uint64_t refused_version = 0;
   std::uint64_t send_failures = 0;

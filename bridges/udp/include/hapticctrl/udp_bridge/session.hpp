@@ -119,7 +119,8 @@ class Session {
                        std::span<std::uint8_t> reply) noexcept;
   std::size_t on_bye(const hcp_frame& in, TimeNs now, std::span<std::uint8_t> reply) noexcept;
   void on_control(const hcp_frame& in, TimeNs now) noexcept;
-  [[nodiscard]] bool from_session(const hcp_frame& in, const protocol::Endpoint& from) const noexcept;
+  [[nodiscard]] bool from_session(const hcp_frame& in,
+                                  const protocol::Endpoint& from) const noexcept;
   hcp_ack_status apply(const hcp_param& param, TimeNs now) noexcept;
   std::size_t refuse(hcp_refuse_code code, std::uint32_t peer_version, std::uint32_t retry_ms,
                      std::string_view reason, TimeNs now, std::span<std::uint8_t> reply,

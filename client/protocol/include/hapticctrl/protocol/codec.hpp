@@ -26,8 +26,12 @@ using FrameBuffer = std::array<std::uint8_t, kMaxFrameBytes>;
 [[nodiscard]] constexpr std::uint32_t make_version(std::uint32_t major, std::uint32_t minor) {
   return (major << 16U) | (minor & 0xFFFFU);
 }
-[[nodiscard]] constexpr std::uint32_t version_major(std::uint32_t v) { return v >> 16U; }
-[[nodiscard]] constexpr std::uint32_t version_minor(std::uint32_t v) { return v & 0xFFFFU; }
+[[nodiscard]] constexpr std::uint32_t version_major(std::uint32_t v) {
+  return v >> 16U;
+}
+[[nodiscard]] constexpr std::uint32_t version_minor(std::uint32_t v) {
+  return v & 0xFFFFU;
+}
 inline constexpr std::uint32_t kVersion = make_version(HCP_VERSION_MAJOR, HCP_VERSION_MINOR);
 /// Every optional feature this build knows.
 inline constexpr std::uint32_t kAllFeatures = HCP_FEATURE_JOINT_STATE | HCP_FEATURE_LINK_STATS;
@@ -35,7 +39,7 @@ inline constexpr std::uint32_t kAllFeatures = HCP_FEATURE_JOINT_STATE | HCP_FEAT
 /// Why a datagram is not a usable frame; each value is a separate drop counter in the bridge.
 enum class DecodeStatus : std::uint8_t {
   kOk,
-  kBadSize,     ///< shorter than a header + CRC, or longer than kMaxFrameBytes
+  kBadSize,  ///< shorter than a header + CRC, or longer than kMaxFrameBytes
   kBadMagic,
   kBadCrc,
   kBadVersion,  ///< another major version (only HELLO and REFUSE decode across versions)
@@ -72,7 +76,8 @@ void set_text(char (&field)[N], std::string_view text) noexcept {  // NOLINT(*-a
 
 /// The text of a NUL-padded opaque field (stops at the first NUL or the field's end).
 template <std::size_t N>
-[[nodiscard]] std::string_view text_of(const char (&field)[N]) noexcept {  // NOLINT(*-avoid-c-arrays)
+[[nodiscard]] std::string_view text_of(
+    const char (&field)[N]) noexcept {  // NOLINT(*-avoid-c-arrays)
   std::size_t n = 0;
   while (n < N && field[n] != '\0') {
     ++n;

@@ -103,7 +103,15 @@ RtReport rt_preflight(RtPolicy policy, int fifo_priority) {
   report.rtprio_limit = soft_limit(RLIMIT_RTPRIO, 1);
   report.memlock_limit_kib = soft_limit(RLIMIT_MEMLOCK, 1024);
   report.fifo_granted = probe_fifo(fifo_priority);
+#ifdef HAPTICCTRL_SANITIZED
+  // A sanitizer's shadow is terabytes of reserved address space: locking it cannot work.
+  report.memory_locked = false;
+  constexpr const char* kNotLocked = "sanitizer build: memory not locked (shadow memory)";
+#else
   report.memory_locked = mlockall(MCL_CURRENT | MCL_FUTURE) == 0;
+  constexpr const char* kNotLocked =
+      "mlockall refused: raise RLIMIT_MEMLOCK; page faults may hit the cycle";
+#endif
 
   if (!report.fifo_granted) {
     report.problems.push_back(
@@ -111,8 +119,7 @@ RtReport rt_preflight(RtPolicy policy, int fifo_priority) {
         " refused: run as root or raise RLIMIT_RTPRIO; timing is best effort");
   }
   if (!report.memory_locked) {
-    report.problems.push_back(
-        "mlockall refused: raise RLIMIT_MEMLOCK; page faults may hit the cycle");
+    report.problems.push_back(kNotLocked);
   }
   if (!report.preempt_rt) {
     report.problems.push_back("kernel is not PREEMPT_RT: expect millisecond outliers under load");

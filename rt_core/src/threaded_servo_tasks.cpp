@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cstring>
+#include <thread>
 
 #include "hapticctrl/shm/futex.hpp"
 
@@ -54,6 +55,12 @@ ThreadedServoTasks::ThreadedServoTasks(Clock& clock, ServoTask& main_task, Servo
   degraded_.thread = std::thread([this] { worker_loop(degraded_); });
   pthread_setname_np(main_.thread.native_handle(), "hc-servo");
   pthread_setname_np(degraded_.thread.native_handle(), "hc-degraded");
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  while (!(main_.ready.load(std::memory_order_acquire) &&
+           degraded_.ready.load(std::memory_order_acquire)) &&
+         std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
 }
 
 ThreadedServoTasks::~ThreadedServoTasks() {
@@ -62,6 +69,7 @@ ThreadedServoTasks::~ThreadedServoTasks() {
 
 void ThreadedServoTasks::worker_loop(Worker& w) noexcept {
   w.placement_ok.store(place_current_thread(w.placement), std::memory_order_release);
+  w.ready.store(true, std::memory_order_release);
   // Start from the word's initial value, not its current one: a release that happened before
   // this thread got to run must still be seen.
   std::uint32_t seen = 0;

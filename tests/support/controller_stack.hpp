@@ -16,12 +16,14 @@ namespace hapticctrl::test {
 
 class ControllerStack {
  public:
-  /// `period_us` 10 ms by default: behaviour tests run beside others and under sanitizers.
+  /// `period_us` 10 ms by default: behaviour tests run beside others and under sanitizers. The
+  /// core takes SCHED_FIFO when allowed (`--rt warn`): with SCHED_OTHER, a sanitizer build under
+  /// parallel test load starved it into 5 consecutive misses (2026-11-24).
   explicit ControllerStack(const std::string& tag, int period_us = 10000,
                            std::vector<std::string> bridge_extra = {})
       : instance_(unique_instance(tag)),
         core_(HAPTICCTRL_CORE_BINARY,
-              {"--instance", instance_, "--period-us", std::to_string(period_us), "--rt", "ignore",
+              {"--instance", instance_, "--period-us", std::to_string(period_us), "--rt", "warn",
                "--blackbox-dir", "/tmp"}) {
     using namespace std::chrono_literals;
     for (int i = 0; i < 1000 && !segment_; ++i) {

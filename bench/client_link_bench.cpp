@@ -15,12 +15,12 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
-#include <ctime>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "hapticctrl/client/connection.hpp"
+#include "hapticctrl/protocol/monotonic_clock.hpp"
 #include "hapticctrl/protocol/udp_socket.hpp"
 
 namespace {
@@ -28,12 +28,6 @@ namespace {
 using namespace std::chrono_literals;
 namespace hc = hapticctrl::client;
 namespace proto = hapticctrl::protocol;
-
-std::int64_t now_ns() {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
-}
 
 struct Percentiles {
   double p50 = 0, p99 = 0, p999 = 0, max = 0;
@@ -78,11 +72,11 @@ std::vector<double> raw_udp_pingpong(int pings) {
   std::array<std::uint8_t, 90> ping{};
   std::array<std::uint8_t, 512> pong{};
   for (int i = 0; i < pings; ++i) {
-    const std::int64_t t0 = now_ns();
+    const std::int64_t t0 = proto::monotonic_ns();
     client.send_to(ping, echo_at);
     proto::Endpoint from;
     if (client.receive(pong, from, 100ms).status == proto::Received::Status::kDatagram) {
-      rtt.push_back(static_cast<double>(now_ns() - t0) / 1e3);
+      rtt.push_back(static_cast<double>(proto::monotonic_ns() - t0) / 1e3);
     }
   }
   running.store(false);
@@ -114,9 +108,9 @@ StreamResult client_loop(std::uint16_t port, double seconds) {
   link.wait_for_answer(0, 1s, s);
   std::uint64_t rtt_samples = link.statistics().rtt_samples;
   std::int64_t last_arrival = 0;
-  const std::int64_t t0 = now_ns();
+  const std::int64_t t0 = proto::monotonic_ns();
   const auto end = t0 + static_cast<std::int64_t>(seconds * 1e9);
-  while (now_ns() < end) {
+  while (proto::monotonic_ns() < end) {
     if (!link.wait_for_answer(s.cycle, 100ms, s)) {
       continue;
     }
@@ -136,7 +130,7 @@ StreamResult client_loop(std::uint16_t port, double seconds) {
     }
     link.send_wrench({});
   }
-  r.seconds = static_cast<double>(now_ns() - t0) / 1e9;
+  r.seconds = static_cast<double>(proto::monotonic_ns() - t0) / 1e9;
   r.stats = link.statistics();
   r.gaps_over_3ms = static_cast<std::size_t>(std::count_if(
       r.interarrival_us.begin(), r.interarrival_us.end(), [](double g) { return g > 3000.0; }));

@@ -1,10 +1,10 @@
 #include "hapticctrl/client/connection.hpp"
+#include "hapticctrl/protocol/monotonic_clock.hpp"
 
 #include <algorithm>
 #include <charconv>
 #include <condition_variable>
 #include <cstring>
-#include <ctime>
 #include <limits>
 #include <mutex>
 #include <thread>
@@ -19,13 +19,8 @@ namespace {
 
 using protocol::Endpoint;
 using protocol::FrameBuffer;
+using protocol::monotonic_ns;
 using protocol::Received;
-
-std::int64_t monotonic_ns() noexcept {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
-}
 
 std::string version_text(std::uint32_t v) {
   return std::to_string(protocol::version_major(v)) + "." +

@@ -6,12 +6,12 @@
 #include <atomic>
 #include <cmath>
 #include <cstring>
-#include <ctime>
 #include <memory>
 #include <mutex>
 #include <new>
 
 #include "hapticctrl/client/connection.hpp"
+#include "hapticctrl/protocol/monotonic_clock.hpp"
 
 namespace {
 
@@ -22,6 +22,7 @@ using hapticctrl::client::ErrorCode;
 using hapticctrl::client::Pose7;
 using hapticctrl::client::StateSnapshot;
 using hapticctrl::client::Vector6;
+using hapticctrl::protocol::monotonic_ns;
 
 constexpr std::size_t kDetailBytes = 256;
 
@@ -56,12 +57,6 @@ int code_of(ErrorCode code) noexcept {
       break;
   }
   return VIRT_E_COMMUNICATION_FAILURE;
-}
-
-std::int64_t monotonic_ns() noexcept {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
 }
 
 template <std::size_t N>

@@ -12,6 +12,8 @@
 #include <vector>
 
 #include "hapticctrl/protocol/codec.hpp"
+#include "support/in_memory_controller.hpp"
+#include "support/reference_parameters.hpp"
 
 namespace hapticctrl::udp_bridge {
 namespace {
@@ -22,32 +24,7 @@ using shm::LinkDrop;
 
 constexpr std::int64_t kMs = 1'000'000;
 
-struct Controller {
-  std::unique_ptr<shm::SeqlockCell<shm::VprPayload>> vpr =
-      std::make_unique<shm::SeqlockCell<shm::VprPayload>>();
-  std::unique_ptr<shm::CtrlRegion> ctrl = std::make_unique<shm::CtrlRegion>();
-  std::unique_ptr<shm::CtrlAckRegion> acks = std::make_unique<shm::CtrlAckRegion>();
-  shm::CtrlWriter writer{ctrl->slots[0], acks->slots[0], 0};
-  ControllerPorts ports{vpr.get(), &writer, 1'000'000};
-
-  shm::VprPayload vpr_now() const {
-    shm::VprPayload v;
-    EXPECT_TRUE(vpr->read(v).ok());
-    return v;
-  }
-  std::uint64_t vpr_publishes() const {
-    shm::VprPayload v;
-    return vpr->read(v).sequence;
-  }
-  std::vector<shm::CtrlCode> drain() {
-    std::vector<shm::CtrlCode> codes;
-    shm::CtrlReader(*ctrl, *acks).drain([&](const shm::CtrlCommand& c) {
-      codes.push_back(c.code);
-      return true;
-    });
-    return codes;
-  }
-};
+using Controller = test::InMemoryController;
 
 /// A scripted client: builds frames, feeds them to the session, decodes the reply.
 struct Client {
@@ -304,20 +281,7 @@ TEST_F(SessionTest, EveryParameterReachesVprOrCtrl) {
   f = client.param(HCP_P_WATCHDOG);
   f.body.hcp_body_u.param.hcp_param_u.watchdog_ms = 300;
   apply(f);
-  const shm::VprPayload v = controller.vpr_now();
-  EXPECT_DOUBLE_EQ(v.client_time_step, 0.002);
-  EXPECT_DOUBLE_EQ(v.force_factor, 0.5);
-  EXPECT_DOUBLE_EQ(v.speed_factor, 2.0);
-  EXPECT_DOUBLE_EQ(v.base_frame[2], 0.1);
-  EXPECT_DOUBLE_EQ(v.observation_frame[0], -0.1);
-  EXPECT_EQ(v.indexing_mode, 1U);
-  EXPECT_EQ(v.command_type, 2U);
-  EXPECT_EQ(v.flags & 1U, 1U);
-  EXPECT_DOUBLE_EQ(v.object_mass, 0.3);
-  EXPECT_DOUBLE_EQ(v.object_inertia[2], 0.003);
-  EXPECT_DOUBLE_EQ(v.gain_override[0], 800.0);
-  EXPECT_DOUBLE_EQ(v.force_limits[0], 10.0);
-  EXPECT_EQ(v.watchdog_timeout_us, 300'000U);
+  test::expect_reference_parameters(controller.vpr_now());
   EXPECT_FALSE(session.check_watchdog(client.now + 250 * kMs));
 
   f = client.param(HCP_P_POWER);

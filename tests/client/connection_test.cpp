@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "support/controller_stack.hpp"
+#include "support/reference_parameters.hpp"
 
 namespace hapticctrl::client {
 namespace {
@@ -66,19 +67,7 @@ TEST(Connection, EveryParameterReachesTheController) {
   c.set_gains(800, 5, 2, 0.05);
   c.set_force_limits(10, 1);
   c.set_watchdog(300ms);
-  const shm::VprPayload v = stack.vpr();
-  EXPECT_DOUBLE_EQ(v.client_time_step, 0.002);
-  EXPECT_DOUBLE_EQ(v.force_factor, 0.5);
-  EXPECT_DOUBLE_EQ(v.speed_factor, 2.0);
-  EXPECT_DOUBLE_EQ(v.base_frame[2], 0.1);
-  EXPECT_DOUBLE_EQ(v.observation_frame[0], -0.1);
-  EXPECT_EQ(v.indexing_mode, 1U);
-  EXPECT_EQ(v.command_type, 2U);
-  EXPECT_EQ(v.flags, shm::vpr_flags::kObjectAttached);
-  EXPECT_DOUBLE_EQ(v.object_mass, 0.3);
-  EXPECT_DOUBLE_EQ(v.gain_override[0], 800.0);
-  EXPECT_DOUBLE_EQ(v.force_limits[1], 1.0);
-  EXPECT_EQ(v.watchdog_timeout_us, 300'000U);
+  test::expect_reference_parameters(stack.vpr());
   c.detach_object();
   EXPECT_EQ(stack.vpr().flags, 0U);
   EXPECT_EQ(c.watchdog_ms(), 300U);

@@ -9,31 +9,8 @@
 #include <new>
 
 #include "hapticctrl/client/connection.hpp"
+#include "support/allocation_counter.hpp"
 #include "support/controller_stack.hpp"
-
-namespace {
-std::atomic<bool> g_counting{false};
-std::atomic<std::uint64_t> g_allocations{0};
-}  // namespace
-
-// GCC pairs our malloc-backed new with free() and warns; the pairing is exactly what we want.
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-
-void* operator new(std::size_t size) {
-  if (g_counting.load(std::memory_order_relaxed)) {
-    g_allocations.fetch_add(1, std::memory_order_relaxed);
-  }
-  if (void* p = std::malloc(size == 0 ? 1 : size)) {
-    return p;
-  }
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::size_t /*size*/) noexcept {
-  std::free(p);
-}
 
 namespace hapticctrl::client {
 namespace {
@@ -41,11 +18,11 @@ namespace {
 using namespace std::chrono_literals;
 
 TEST(ClientNoAllocation, CounterSeesAllocations) {
-  g_allocations = 0;
-  g_counting = true;
+  test::allocations = 0;
+  test::counting = true;
   auto probe = std::make_unique<int>(3);
-  g_counting = false;
-  EXPECT_EQ(g_allocations.load(), 1U) << "the counter works, so a zero below means something";
+  test::counting = false;
+  EXPECT_EQ(test::allocations.load(), 1U) << "the counter works, so a zero below means something";
 }
 
 TEST(ClientNoAllocation, PerCycleCallsAllocateNothing) {
@@ -57,8 +34,8 @@ TEST(ClientNoAllocation, PerCycleCallsAllocateNothing) {
   StateSnapshot s;
   ASSERT_TRUE(c.wait_for_answer(0, 2s, s));
   int answered = 0;
-  g_allocations = 0;
-  g_counting = true;
+  test::allocations = 0;
+  test::counting = true;
   for (int i = 0; i < 1000 && answered < 200; ++i) {
     if (c.wait_for_answer(s.cycle, 100ms, s)) {
       ++answered;
@@ -68,9 +45,9 @@ TEST(ClientNoAllocation, PerCycleCallsAllocateNothing) {
       c.send_wrench({static_cast<double>(st.answers_lost), 0, 0, 0, 0, 0});
     }
   }
-  g_counting = false;
+  test::counting = false;
   EXPECT_EQ(answered, 200);
-  EXPECT_EQ(g_allocations.load(), 0U);
+  EXPECT_EQ(test::allocations.load(), 0U);
 }
 
 }  // namespace

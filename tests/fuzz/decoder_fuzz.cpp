@@ -6,11 +6,11 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <memory>
 #include <vector>
 
 #include "hapticctrl/protocol/codec.hpp"
 #include "hapticctrl/udp_bridge/session.hpp"
+#include "support/in_memory_controller.hpp"
 
 namespace {
 
@@ -19,18 +19,13 @@ using hapticctrl::protocol::FrameBuffer;
 namespace shm = hapticctrl::shm;
 
 struct Harness {
-  std::unique_ptr<shm::SeqlockCell<shm::VprPayload>> vpr =
-      std::make_unique<shm::SeqlockCell<shm::VprPayload>>();
-  std::unique_ptr<shm::CtrlRegion> ctrl = std::make_unique<shm::CtrlRegion>();
-  std::unique_ptr<shm::CtrlAckRegion> acks = std::make_unique<shm::CtrlAckRegion>();
-  shm::CtrlWriter writer{ctrl->slots[0], acks->slots[0], 0};
-  hapticctrl::udp_bridge::ControllerPorts ports{vpr.get(), &writer, 1'000'000};
+  hapticctrl::test::InMemoryController controller;
   // The golden tests' token, so that seeds and mutations can carry a valid one.
   hapticctrl::udp_bridge::Session session{{100}, [] { return 0x0102030405060708ULL; }};
   Endpoint peer = Endpoint::resolve("127.0.0.1", 40000);
   std::int64_t now = 0;
 
-  Harness() { session.set_controller(&ports, 0); }
+  Harness() { session.set_controller(&controller.ports, 0); }
 };
 
 }  // namespace
@@ -50,6 +45,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   h.now += 1'000'000;
   (void)h.session.on_datagram(bytes, h.peer, h.now, reply);
   h.session.check_watchdog(h.now);
-  shm::CtrlReader(*h.ctrl, *h.acks).drain([](const shm::CtrlCommand&) { return true; });
+  h.controller.drain();
   return 0;
 }

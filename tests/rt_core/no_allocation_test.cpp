@@ -9,43 +9,20 @@
 
 #include "hapticctrl/rt_core/arm_simulator.hpp"
 #include "hapticctrl/rt_core/executive.hpp"
+#include "support/allocation_counter.hpp"
 #include "support/default_dynamics.hpp"
 #include "support/in_memory_regions.hpp"
 #include "support/scripted_servo_tasks.hpp"
-
-namespace {
-std::atomic<bool> g_counting{false};
-std::atomic<std::uint64_t> g_allocations{0};
-}  // namespace
-
-// GCC pairs our malloc-backed new with free() and warns; the pairing is exactly what we want.
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-
-void* operator new(std::size_t size) {
-  if (g_counting.load(std::memory_order_relaxed)) {
-    g_allocations.fetch_add(1, std::memory_order_relaxed);
-  }
-  if (void* p = std::malloc(size == 0 ? 1 : size)) {
-    return p;
-  }
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::size_t /*size*/) noexcept {
-  std::free(p);
-}
 
 namespace hapticctrl::rt_core {
 namespace {
 
 TEST(NoAllocation, CounterSeesAllocations) {
-  g_allocations = 0;
-  g_counting = true;
+  test::allocations = 0;
+  test::counting = true;
   auto probe = std::make_unique<int>(3);
-  g_counting = false;
-  EXPECT_EQ(g_allocations.load(), 1U) << "the counter works, so a zero below means something";
+  test::counting = false;
+  EXPECT_EQ(test::allocations.load(), 1U) << "the counter works, so a zero below means something";
 }
 
 TEST(NoAllocation, ArmedCyclesAllocateNothing) {
@@ -83,16 +60,16 @@ TEST(NoAllocation, ArmedCyclesAllocateNothing) {
                       box);
   regions.ctrl_writer().send(shm::CtrlCode::kPowerOn, 0, 0);
 
-  g_allocations = 0;
-  g_counting = true;
+  test::allocations = 0;
+  test::counting = true;
   const ExecutiveResult result = executive.run();
-  g_counting = false;
+  test::counting = false;
 
   EXPECT_EQ(result.reason, shm::StopReason::kDurationElapsed);
   EXPECT_GT(executive.cycles(), 1900U);
   EXPECT_GT(executive.telemetry().degraded_cycles, 0U);
   EXPECT_GT(executive.telemetry().late_servo_discarded, 0U);
-  EXPECT_EQ(g_allocations.load(), 0U);
+  EXPECT_EQ(test::allocations.load(), 0U);
 }
 
 }  // namespace

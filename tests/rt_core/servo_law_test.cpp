@@ -137,6 +137,22 @@ TEST(ServoLaw, VirtmechPullsTheHandleTowardTheObjectAndReturnsTheOpposite) {
   EXPECT_NEAR(out.coupling_wrench(0), -4.0, 1e-6);
 }
 
+TEST(ServoLaw, VirtmechWithoutAnAttachedObjectRendersNothing) {
+  ServoLaw law(default_dynamics());
+  ServoInputs in = powered_at(kReady);
+  const ChainState s = chain_at(kReady);
+  in.client = virtmech_client(
+      {s.handle_position.x() + 0.002, s.handle_position.y(), s.handle_position.z(), 0, 0, 0, 1});
+  in.client.flags = 0;  // virtDetachVO
+  in.client_valid = true;
+  ServoOutputs out;
+  for (int k = 0; k < 50; ++k) {
+    law.compute(in, false, out);
+  }
+  EXPECT_TRUE(out.handle_wrench.isZero());
+  EXPECT_TRUE(out.coupling_wrench.isZero());
+}
+
 TEST(ServoLaw, StaleClientFadesOnTheRampWithoutSteps) {
   ServoLaw law(default_dynamics());
   ServoInputs in = powered_at(kReady);

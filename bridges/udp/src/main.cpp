@@ -12,7 +12,6 @@
 #include <csignal>
 #include <cstdio>
 #include <cstring>
-#include <ctime>
 #include <exception>
 #include <optional>
 #include <string>
@@ -20,6 +19,7 @@
 #include <utility>
 #include <vector>
 
+#include "hapticctrl/protocol/monotonic_clock.hpp"
 #include "hapticctrl/shm/segment.hpp"
 #include "hapticctrl/udp_bridge/bridge_config.hpp"
 #include "hapticctrl/udp_bridge/session.hpp"
@@ -28,6 +28,7 @@ namespace {
 
 using hapticctrl::protocol::Endpoint;
 using hapticctrl::protocol::FrameBuffer;
+using hapticctrl::protocol::monotonic_ns;
 using hapticctrl::protocol::Received;
 using hapticctrl::protocol::UdpSocket;
 using hapticctrl::udp_bridge::BridgeConfig;
@@ -38,12 +39,6 @@ std::atomic<bool> g_stop{false};
 
 void on_signal(int /*sig*/) {
   g_stop.store(true);
-}
-
-std::int64_t monotonic_ns() {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
 }
 
 std::uint64_t random_token() {

@@ -1,5 +1,7 @@
 #include "hapticctrl/rt_core/executive.hpp"
 
+#include <array>
+
 namespace hapticctrl::rt_core {
 namespace {
 
@@ -33,6 +35,7 @@ ExecutiveResult Executive::run(const std::atomic<bool>* external_stop) noexcept 
     outputs_.header->core_state.store(static_cast<std::uint32_t>(shm::CoreState::kRunning),
                                       std::memory_order_release);
   }
+  emit(shm::EventKind::kCoreState, static_cast<std::uint32_t>(shm::CoreState::kRunning), 0, start);
   std::uint64_t slot = 0;
   for (;;) {
     const TimeNs scheduled = first_slot + static_cast<TimeNs>(slot) * period;
@@ -122,6 +125,7 @@ shm::StopReason Executive::run_slot(TimeNs scheduled, TimeNs woke) noexcept {
   }
   record(times, miss, pending_skipped_);
   pending_skipped_ = 0;
+  report_state_changes(times.checked);
   if (cycle_ % config_.telemetry_every == 0) {
     publish_telemetry(times.checked);
   }
@@ -203,7 +207,42 @@ shm::TelemetryPayload Executive::telemetry() const noexcept {
   t.vpr_stale = shared_->counters.vpr_stale.load(std::memory_order_relaxed);
   t.ctrl_accepted = shared_->counters.ctrl_accepted.load(std::memory_order_relaxed);
   t.ctrl_rejected = shared_->counters.ctrl_rejected.load(std::memory_order_relaxed);
+  wake_latency_.coarse(t.wake_histogram);
   return t;
+}
+
+void Executive::emit(shm::EventKind kind, std::uint32_t code, std::uint64_t value,
+                     TimeNs now) noexcept {
+  if (outputs_.events != nullptr) {
+    shm::push_event(*outputs_.events, cycle_, now, kind, code, value);
+  }
+}
+
+void Executive::report_state_changes(TimeNs now) noexcept {
+  struct BitEvent {
+    std::uint32_t bit;
+    shm::EventKind kind;
+  };
+  static constexpr std::array<BitEvent, 5> kBitEvents{{
+      {shm::state_bits::kPowered, shm::EventKind::kPower},
+      {shm::state_bits::kEmergencyStop, shm::EventKind::kEmergencyStop},
+      {shm::state_bits::kDegraded, shm::EventKind::kDegraded},
+      {shm::state_bits::kClientStale, shm::EventKind::kClientStale},
+      {shm::state_bits::kCoupled, shm::EventKind::kCoupling},
+  }};
+  const std::uint32_t word = shared_->committed_state_word.load(std::memory_order_relaxed);
+  const std::uint32_t changed = word ^ reported_state_word_;
+  for (const BitEvent& b : kBitEvents) {
+    if ((changed & b.bit) != 0) {
+      emit(b.kind, (word & b.bit) != 0 ? 1U : 0U, 0, now);
+    }
+  }
+  reported_state_word_ = word;
+  const std::uint64_t session = shared_->committed_session.load(std::memory_order_relaxed);
+  if (session != reported_session_) {
+    emit(shm::EventKind::kClientSession, 0, session, now);
+    reported_session_ = session;
+  }
 }
 
 void Executive::publish_telemetry(TimeNs now) noexcept {
@@ -273,6 +312,8 @@ ExecutiveResult Executive::stop_sequence(shm::StopReason reason, bool fail_safe)
     shared_->regions.vp->publish(vp, clock_->now());
     result.protocol_closed_in_vp = true;
   }
+  emit(shm::EventKind::kCoreState, static_cast<std::uint32_t>(core_state_),
+       static_cast<std::uint64_t>(reason), clock_->now());
   step(StopStep::kCloseProtocol);
 
   // 4. Stop the tasks.

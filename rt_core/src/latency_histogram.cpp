@@ -75,4 +75,18 @@ void LatencyHistogram::write_cyclictest_format(std::ostream& out) const {
   out << "# Histogram Overflows: " << overflows_ << "\n";
 }
 
+void LatencyHistogram::coarse(std::array<std::uint64_t, shm::kLatencyBuckets>& out) const noexcept {
+  out.fill(0);
+  std::size_t bucket = 0;
+  for (std::size_t us = 0; us < kBins; ++us) {
+    // Bin `us` holds [us, us+1) µs: it belongs to the first bucket whose edge is above it.
+    while (bucket < shm::kLatencyBucketEdgesUs.size() &&
+           static_cast<std::int64_t>(us) >= shm::kLatencyBucketEdgesUs[bucket]) {
+      ++bucket;
+    }
+    out[bucket] += bins_[us];
+  }
+  out[shm::kLatencyBuckets - 1] += overflows_;  // 10 ms and beyond: the last bucket exactly
+}
+
 }  // namespace hapticctrl::rt_core

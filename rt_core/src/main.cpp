@@ -97,7 +97,8 @@ int run_core(const CoreConfig& config) {
   Executive executive(exec_config, clock, tasks, shared, arm,
                       ExecutiveOutputs{&segment.header_for_writing(),
                                        &segment.writable<shm::RegionId::kTelemetry>(),
-                                       &segment.region<shm::RegionId::kPosition>()},
+                                       &segment.region<shm::RegionId::kPosition>(),
+                                       &segment.writable<shm::RegionId::kEvents>()},
                       black_box);
   std::cerr << "hapticctrl-core: instance '" << config.instance << "' running, period "
             << config.period / kNsPerUs << " us, rt mode " << rt_mode_text(rt.mode()) << ", cpu "

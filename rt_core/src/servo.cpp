@@ -150,6 +150,9 @@ void ServoTask::commit(std::uint64_t cycle, TimeNs now) noexcept {
     state_word |= shm::state_bits::kClientStale;
     s.counters.vpr_stale.fetch_add(1, std::memory_order_relaxed);
   }
+  s.committed_state_word.store(state_word, std::memory_order_relaxed);
+  s.committed_session.store(s.client_valid ? s.last_client.session_id : 0,
+                            std::memory_order_relaxed);
   const auto core_state = s.core_state.load(std::memory_order_relaxed);
   const auto stop_reason = s.stop_reason.load(std::memory_order_relaxed);
 

@@ -20,6 +20,8 @@ std::string_view region_name(RegionId id) noexcept {
       return "telemetry";
     case RegionId::kLinkStats:
       return "link_stats";
+    case RegionId::kEvents:
+      return "events";
     case RegionId::kCount:
       break;
   }

@@ -228,6 +228,7 @@ Segment Segment::create(const CreateOptions& options) {
     new (base + region_offset(RegionId::kCtrlAck)) RegionType<RegionId::kCtrlAck>();
     new (base + region_offset(RegionId::kTelemetry)) RegionType<RegionId::kTelemetry>();
     new (base + region_offset(RegionId::kLinkStats)) RegionType<RegionId::kLinkStats>();
+    new (base + region_offset(RegionId::kEvents)) RegionType<RegionId::kEvents>();
     const ProcessIdentity me = ProcessIdentity::self();
     header->abi_version = kAbiVersion;
     header->header_size = sizeof(SegmentHeader);
@@ -251,7 +252,7 @@ Segment Segment::create(const CreateOptions& options) {
       Part{map_part(seg.fd_, kClaimsOffset, kFirstRegionOffset - kClaimsOffset, true, "claims"),
            kFirstRegionOffset - kClaimsOffset, true};
   const std::vector<RegionId> core_writes{RegionId::kVp, RegionId::kPosition, RegionId::kCtrlAck,
-                                          RegionId::kTelemetry};
+                                          RegionId::kTelemetry, RegionId::kEvents};
   seg.my_claim_ = pack_identity(ProcessIdentity::self());
   seg.claim_regions(core_writes);
   seg.map_regions(core_writes);

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <vector>
+
 #include <memory>
 
 #include "support/default_dynamics.hpp"
@@ -25,7 +27,7 @@ struct Rig {
   explicit Rig(ScriptedServoTasks::Duration main_duration, ExecutiveConfig config = {})
       : tasks(clock, main_task, degraded_task, shared, kPeriod, std::move(main_duration)),
         executive(with_defaults(config), clock, tasks, shared, arm,
-                  ExecutiveOutputs{nullptr, telemetry.get(), position.get()}, box) {}
+                  ExecutiveOutputs{nullptr, telemetry.get(), position.get(), events.get()}, box) {}
 
   static ExecutiveConfig with_defaults(ExecutiveConfig c) {
     c.period = kPeriod;
@@ -49,6 +51,7 @@ struct Rig {
   ServoShared shared{arm, regions.ctrl_reader(), regions.servo_regions(), true};
   ServoTask main_task{shared, ServoRole::kMain, ServoLaw(test::default_dynamics())};
   ServoTask degraded_task{shared, ServoRole::kDegraded, ServoLaw(test::default_dynamics())};
+  std::unique_ptr<shm::EventRing> events = std::make_unique<shm::EventRing>();
   BlackBox box{4000};
   ScriptedServoTasks tasks;
   Executive executive;
@@ -119,6 +122,51 @@ TEST(Executive, FailSafeRunsItsStepsInOrderAndLeavesTheArmSafe) {
   EXPECT_EQ(t.core_state, static_cast<std::uint32_t>(shm::CoreState::kFailSafe));
 }
 
+TEST(Executive, StateTransitionsAndTheFailSafeAreEvents) {
+  Rig rig(slow_for(10, 14, kPeriod * 9 / 10));
+  shm::EventReader reader(*rig.events);
+  rig.ctrl_writer().send(shm::CtrlCode::kPowerOn, 0, 0);
+  (void)rig.executive.run();
+  std::vector<shm::Event> seen;
+  reader.poll([&](const shm::Event& e) { seen.push_back(e); });
+  EXPECT_EQ(reader.lost(), 0U);
+  const auto first = [&](shm::EventKind kind, std::uint32_t code) -> const shm::Event* {
+    for (const shm::Event& e : seen) {
+      if (e.kind == kind && e.code == code) {
+        return &e;
+      }
+    }
+    return nullptr;
+  };
+  ASSERT_FALSE(seen.empty());
+  EXPECT_EQ(seen.front().kind, shm::EventKind::kCoreState);
+  EXPECT_EQ(seen.front().code, static_cast<std::uint32_t>(shm::CoreState::kRunning));
+  const shm::Event* powered = first(shm::EventKind::kPower, 1);
+  ASSERT_NE(powered, nullptr);
+  EXPECT_LE(powered->cycle, 2U);
+  const shm::Event& last = seen.back();
+  EXPECT_EQ(last.kind, shm::EventKind::kCoreState);
+  EXPECT_EQ(last.code, static_cast<std::uint32_t>(shm::CoreState::kFailSafe));
+  EXPECT_EQ(last.value, static_cast<std::uint64_t>(shm::StopReason::kConsecutiveMisses));
+  EXPECT_EQ(last.cycle, 14U);
+  for (std::size_t i = 1; i < seen.size(); ++i) {
+    EXPECT_EQ(seen[i].index, seen[i - 1].index + 1) << "in order, none skipped";
+  }
+}
+
+TEST(Executive, TelemetryCarriesTheCoarseWakeHistogram) {
+  Rig rig([](std::uint64_t) { return 50 * kNsPerUs; });
+  (void)rig.executive.run();
+  shm::TelemetryPayload t;
+  ASSERT_TRUE(rig.telemetry->read(t).ok());
+  std::uint64_t total = 0;
+  for (const std::uint64_t c : t.wake_histogram) {
+    total += c;
+  }
+  EXPECT_EQ(total, t.wake_latency.samples);
+  EXPECT_GT(total, 0U);
+}
+
 TEST(Executive, ChronicOneInThreeIsReportedButDoesNotTripByDefault) {
   ExecutiveConfig config;
   config.duration = 3 * kNsPerS;
@@ -150,6 +198,13 @@ TEST(Executive, ServoOverrunOf2Point7PeriodsMissesThreeSlotsRunsTwoDegraded) {
   EXPECT_EQ(t.misses_total, 3U);
   EXPECT_EQ(t.degraded_cycles, 2U);
   EXPECT_EQ(t.late_servo_discarded, 1U);
+  std::vector<std::uint32_t> degraded_edges;  // entering, then leaving the degraded SERVO
+  shm::EventReader(*rig.events, true).poll([&](const shm::Event& e) {
+    if (e.kind == shm::EventKind::kDegraded) {
+      degraded_edges.push_back(e.code);
+    }
+  });
+  EXPECT_EQ(degraded_edges, (std::vector<std::uint32_t>{1, 0}));
 }
 
 TEST(Executive, ClockWakingLateBy2Point7PeriodsSkipsThreeSlots) {

@@ -24,6 +24,7 @@
 #include "hapticctrl/rt_core/latency_histogram.hpp"
 #include "hapticctrl/rt_core/servo.hpp"
 #include "hapticctrl/shm/layout.hpp"
+#include "hapticctrl/shm/events.hpp"
 #include "hapticctrl/shm/payloads.hpp"
 
 namespace hapticctrl::rt_core {
@@ -63,6 +64,7 @@ struct ExecutiveOutputs {
   shm::SegmentHeader* header = nullptr;
   shm::SeqlockCell<shm::TelemetryPayload>* telemetry = nullptr;
   const shm::SeqlockCell<shm::PositionPayload>* position = nullptr;  ///< for the black box
+  shm::EventRing* events = nullptr;  ///< state transitions and faults, for monitors
 };
 
 struct ExecutiveResult {
@@ -95,6 +97,9 @@ class Executive {
   void release_servo(TimeNs now) noexcept;
   void record(const CycleTimes& times, bool miss, std::uint32_t skipped) noexcept;
   void publish_telemetry(TimeNs now) noexcept;
+  void emit(shm::EventKind kind, std::uint32_t code, std::uint64_t value, TimeNs now) noexcept;
+  /// Turns changes of the committed state word and client session into events.
+  void report_state_changes(TimeNs now) noexcept;
   ExecutiveResult stop_sequence(shm::StopReason reason, bool fail_safe) noexcept;
   static bool is_fault(shm::StopReason reason) noexcept;
 
@@ -119,6 +124,8 @@ class Executive {
   bool degraded_this_cycle_ = false;
   shm::StopReason stop_reason_ = shm::StopReason::kNone;
   shm::CoreState core_state_ = shm::CoreState::kRunning;
+  std::uint32_t reported_state_word_ = 0;
+  std::uint64_t reported_session_ = 0;
 };
 
 }  // namespace hapticctrl::rt_core

@@ -25,6 +25,10 @@ class LatencyHistogram {
   /// Real-time contract: bounded (one pass over kBins); call at telemetry rate, not per cycle.
   [[nodiscard]] shm::LatencySummary summary() const noexcept;
 
+  /// Sums the 1 µs bins (and the overflows) into the coarse telemetry bins.
+  /// Real-time contract: bounded (one pass over kBins); at telemetry rate.
+  void coarse(std::array<std::uint64_t, shm::kLatencyBuckets>& out) const noexcept;
+
   /// The value under which `fraction` of the samples lie (upper edge of its bin), ns.
   [[nodiscard]] TimeNs percentile(double fraction) const noexcept;
 

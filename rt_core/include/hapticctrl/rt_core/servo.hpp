@@ -73,6 +73,10 @@ struct ServoShared {
   std::atomic<std::uint32_t> clock_state_bits{0};
   std::atomic<std::uint32_t> core_state{static_cast<std::uint32_t>(shm::CoreState::kRunning)};
   std::atomic<std::uint32_t> stop_reason{0};
+  /// What the last commit published (VP state word, client session): the CLOCK turns changes
+  /// into events.
+  std::atomic<std::uint32_t> committed_state_word{0};
+  std::atomic<std::uint64_t> committed_session{0};
   /// Mirror of logical.stop_requested for the CLOCK.
   std::atomic<bool> stop_requested{false};
   /// Command-line fault injection: at this cycle, request an overrun of inject_cycles.

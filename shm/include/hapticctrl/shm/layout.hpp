@@ -27,12 +27,13 @@
 
 #include "hapticctrl/shm/ctrl.hpp"
 #include "hapticctrl/shm/payloads.hpp"
+#include "hapticctrl/shm/events.hpp"
 #include "hapticctrl/shm/seqlock.hpp"
 
 namespace hapticctrl::shm {
 
 /// Bumped on any change to payloads.hpp, ctrl.hpp or this file.
-inline constexpr std::uint32_t kAbiVersion = 2;  // 2: link_stats region (F4)
+inline constexpr std::uint32_t kAbiVersion = 3;  // 2: link_stats (F4); 3: events, histogram (F5)
 /// "HAPTICC1" as a little-endian word; stored last when the segment is ready, cleared at exit.
 inline constexpr std::uint64_t kSegmentMagic = 0x3143434954504148ULL;
 inline constexpr std::size_t kPageSize = 4096;
@@ -47,6 +48,7 @@ enum class RegionId : std::uint32_t {
   kCtrlAck,
   kTelemetry,
   kLinkStats,
+  kEvents,
   kCount,
 };
 inline constexpr std::size_t kRegionCount = static_cast<std::size_t>(RegionId::kCount);
@@ -88,6 +90,10 @@ struct RegionTraits<RegionId::kTelemetry> {
 template <>
 struct RegionTraits<RegionId::kLinkStats> {
   using Type = SeqlockCell<LinkStatsPayload>;
+};
+template <>
+struct RegionTraits<RegionId::kEvents> {
+  using Type = EventRing;
 };
 template <RegionId Id>
 using RegionType = typename RegionTraits<Id>::Type;
@@ -132,7 +138,8 @@ inline constexpr std::array<std::size_t, kRegionCount> kRegionSizes{
     sizeof(RegionType<RegionId::kVpr>),       sizeof(RegionType<RegionId::kVp>),
     sizeof(RegionType<RegionId::kForce>),     sizeof(RegionType<RegionId::kPosition>),
     sizeof(RegionType<RegionId::kCtrl>),      sizeof(RegionType<RegionId::kCtrlAck>),
-    sizeof(RegionType<RegionId::kTelemetry>), sizeof(RegionType<RegionId::kLinkStats>)};
+    sizeof(RegionType<RegionId::kTelemetry>), sizeof(RegionType<RegionId::kLinkStats>),
+    sizeof(RegionType<RegionId::kEvents>)};
 
 inline constexpr std::size_t kClaimsOffset = round_to_pages(sizeof(SegmentHeader));
 inline constexpr std::size_t kFirstRegionOffset =

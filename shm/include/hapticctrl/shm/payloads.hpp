@@ -136,6 +136,12 @@ struct LatencySummary {
   std::uint64_t overflows = 0;  ///< samples beyond the histogram's last bin
 };
 
+/// Upper bin edges [µs] of the coarse wake-latency histogram in telemetry; the last bin counts
+/// everything from the last edge on (the core's 1 µs histogram overflows there too).
+inline constexpr std::array<std::int64_t, 12> kLatencyBucketEdgesUs{2,   5,    10,   20,   50,  100,
+                                                                    200, 500, 1000, 2000, 5000, 10000};
+inline constexpr std::size_t kLatencyBuckets = kLatencyBucketEdgesUs.size() + 1;
+
 /// telemetry: cycle health, published by the core at a few tens of Hz.
 struct TelemetryPayload {
   std::uint64_t cycle = 0;
@@ -159,6 +165,8 @@ struct TelemetryPayload {
   std::uint64_t force_rejected = 0;    ///< force samples rejected (non-finite, out of range)
   std::uint64_t ctrl_accepted = 0;
   std::uint64_t ctrl_rejected = 0;
+  /// CLOCK wake latency since start, in the kLatencyBucketEdgesUs bins (offline histograms).
+  std::array<std::uint64_t, kLatencyBuckets> wake_histogram{};
 };
 
 /// Why the UDP bridge dropped an incoming datagram (index into LinkStatsPayload::dropped).
@@ -207,7 +215,7 @@ static_assert(sizeof(VpPayload) == 288);
 static_assert(sizeof(ForcePayload) == 48);
 static_assert(sizeof(PositionPayload) == 360);
 static_assert(sizeof(LatencySummary) == 64);
-static_assert(sizeof(TelemetryPayload) == 368);
+static_assert(sizeof(TelemetryPayload) == 472);
 static_assert(sizeof(LinkStatsPayload) == 192);
 
 }  // namespace hapticctrl::shm

@@ -7,7 +7,7 @@ PACKAGES=(
   # toolchain
   g++ cmake ninja-build pkg-config clang clang-format clang-tidy libclang-rt-14-dev
   # design-card libraries
-  libeigen3-dev liblcm-dev liblcm-bin liblcm-java libtirpc-dev rpcsvc-proto zlib1g-dev
+  libeigen3-dev liblcm-dev liblcm-bin liblcm-java libglib2.0-dev libtirpc-dev rpcsvc-proto zlib1g-dev
   libbenchmark-dev libgtest-dev libgmock-dev libncurses-dev
   # monitoring, analysis and benchmarks
   default-jdk-headless libjchart2d-java gnuplot-nox rt-tests stress-ng procps util-linux

@@ -1,0 +1,39 @@
+#pragma once
+/// @file messages.hpp
+/// Shared-memory payloads to LCM messages (lcmtypes/), and the instance's channel names.
+/// Pure conversions: no I/O. Not for a hard-RT cycle (event texts are std::string).
+#include <string>
+
+#include "hapticctrl/shm/events.hpp"
+#include "hapticctrl/shm/payloads.hpp"
+#include "hapticctrl_lcm/arm_state_t.hpp"
+#include "hapticctrl_lcm/bridge_stats_t.hpp"
+#include "hapticctrl_lcm/coupling_t.hpp"
+#include "hapticctrl_lcm/cycle_stats_t.hpp"
+#include "hapticctrl_lcm/event_t.hpp"
+
+namespace hapticctrl::lcm_bridge {
+
+/// Channel names: "hapticctrl.<instance>.<topic>", so several controllers share one network.
+struct Channels {
+  std::string arm_state, coupling, cycle_stats, bridge_stats, events, hmi_command, hmi_force;
+  static Channels of(const std::string& instance);
+};
+
+[[nodiscard]] hapticctrl_lcm::arm_state_t to_arm_state(const shm::PositionPayload& p,
+                                                       std::int64_t utime);
+/// `now_ns` dates the client sample's age (VPr.received_time_ns is the bridge's receive time).
+[[nodiscard]] hapticctrl_lcm::coupling_t to_coupling(const shm::VpPayload& vp,
+                                                     const shm::VprPayload& vpr,
+                                                     const shm::TelemetryPayload& t,
+                                                     std::int64_t now_ns, std::int64_t utime);
+[[nodiscard]] hapticctrl_lcm::cycle_stats_t to_cycle_stats(const shm::TelemetryPayload& t,
+                                                           std::int64_t utime);
+[[nodiscard]] hapticctrl_lcm::bridge_stats_t to_bridge_stats(const shm::LinkStatsPayload& s,
+                                                             std::int64_t utime);
+[[nodiscard]] hapticctrl_lcm::event_t to_event(const shm::Event& e, std::uint64_t lost_before,
+                                               std::int64_t utime);
+/// "power on", "fail-safe: 5 consecutive deadline misses", ...
+[[nodiscard]] std::string describe(const shm::Event& e);
+
+}  // namespace hapticctrl::lcm_bridge

@@ -1,0 +1,113 @@
+#include "hapticctrl/lcm_bridge/hmi_input.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "hapticctrl_lcm/hmi_command_t.hpp"
+#include "hapticctrl_lcm/hmi_force_t.hpp"
+
+namespace hapticctrl::lcm_bridge {
+namespace {
+
+using Command = hapticctrl_lcm::hmi_command_t;
+
+shm::CtrlCode ctrl_code_of(std::int32_t command) noexcept {
+  switch (command) {
+    case Command::POWER_ON:
+      return shm::CtrlCode::kPowerOn;
+    case Command::POWER_OFF:
+      return shm::CtrlCode::kPowerOff;
+    case Command::EMERGENCY_STOP:
+      return shm::CtrlCode::kEmergencyStop;
+    case Command::EMERGENCY_RESET:
+      return shm::CtrlCode::kEmergencyReset;
+    case Command::STOP:
+      return shm::CtrlCode::kStop;
+    default:
+      return shm::CtrlCode::kNone;
+  }
+}
+
+}  // namespace
+
+HmiInput::HmiInput(const HmiSettings& settings, shm::CtrlWriter* ctrl,
+                   shm::SeqlockCell<shm::ForcePayload>* force) noexcept
+    : settings_(settings), ctrl_(ctrl), force_(force) {}
+
+void HmiInput::on_command(const void* data, std::size_t size, std::int64_t now_ns) noexcept {
+  Command m;
+  try {
+    if (m.decode(data, 0, static_cast<int>(size)) < 0) {
+      counters_.malformed.fetch_add(1, std::memory_order_relaxed);
+      return;
+    }
+  } catch (...) {  // LCM's string decoding may throw bad_alloc on absurd lengths
+    counters_.malformed.fetch_add(1, std::memory_order_relaxed);
+    return;
+  }
+  const shm::CtrlCode code = ctrl_code_of(m.command);
+  if (code == shm::CtrlCode::kNone) {
+    counters_.commands_invalid.fetch_add(1, std::memory_order_relaxed);
+    return;
+  }
+  if (code != shm::CtrlCode::kEmergencyStop && !settings_.allow_remote_commands) {
+    counters_.commands_refused.fetch_add(1, std::memory_order_relaxed);
+    return;
+  }
+  if (ctrl_ == nullptr || ctrl_->send(code, 0, now_ns) != shm::CtrlSendStatus::kQueued) {
+    counters_.commands_queue_full.fetch_add(1, std::memory_order_relaxed);
+    return;
+  }
+  counters_.commands_applied.fetch_add(1, std::memory_order_relaxed);
+}
+
+void HmiInput::on_force(const void* data, std::size_t size, std::int64_t now_ns) noexcept {
+  hapticctrl_lcm::hmi_force_t m;
+  try {
+    if (m.decode(data, 0, static_cast<int>(size)) < 0) {
+      counters_.malformed.fetch_add(1, std::memory_order_relaxed);
+      return;
+    }
+  } catch (...) {
+    counters_.malformed.fetch_add(1, std::memory_order_relaxed);
+    return;
+  }
+  if (!settings_.allow_remote_commands) {
+    counters_.forces_refused.fetch_add(1, std::memory_order_relaxed);
+    return;
+  }
+  for (int i = 0; i < 6; ++i) {
+    const double limit = i < 3 ? settings_.max_force : settings_.max_torque;
+    if (!std::isfinite(m.wrench[i]) || std::abs(m.wrench[i]) > limit) {
+      counters_.forces_invalid.fetch_add(1, std::memory_order_relaxed);
+      return;
+    }
+  }
+  std::copy_n(m.wrench, 6, requested_.begin());
+  last_force_ns_ = now_ns;
+  force_active_ = true;
+  counters_.forces_accepted.fetch_add(1, std::memory_order_relaxed);
+}
+
+void HmiInput::tick(std::int64_t now_ns) noexcept {
+  const double dt =
+      last_tick_ns_ == 0 ? 0.0 : static_cast<double>(now_ns - last_tick_ns_) / 1e9;
+  last_tick_ns_ = now_ns;
+  if (force_active_ && now_ns - last_force_ns_ > settings_.force_timeout_ns) {
+    requested_ = {};  // the HMI went quiet: let go, at the same bounded rate
+    force_active_ = false;
+    counters_.force_timeouts.fetch_add(1, std::memory_order_relaxed);
+  }
+  bool changed = false;
+  for (std::size_t i = 0; i < 6; ++i) {
+    const double step = (i < 3 ? settings_.force_rate : settings_.torque_rate) * dt;
+    const double next = applied_[i] + std::clamp(requested_[i] - applied_[i], -step, step);
+    changed = changed || next != applied_[i];
+    applied_[i] = next;
+  }
+  if (changed && force_ != nullptr) {
+    force_->publish_quietly(shm::ForcePayload{applied_}, now_ns);
+  }
+}
+
+}  // namespace hapticctrl::lcm_bridge

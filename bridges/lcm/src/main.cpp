@@ -1,0 +1,235 @@
+// hapticctrl-lcm: telemetry out (arm state, coupling, cycle and bridge statistics, events) and
+// HMI traffic in (commands, operator force) between a running hapticctrl-core and LCM.
+//
+// Threads: a publisher thread blocks on VP publishes (one per controller cycle), reads the
+// regions it needs into local copies and publishes what is due; this thread runs LCM's receive
+// loop and the HMI force ramp. The core never waits for either. Exit: 0 on signal or --duration,
+// 64 usage, 1 error.
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <exception>
+#include <lcm/lcm-cpp.hpp>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "hapticctrl/lcm_bridge/hmi_input.hpp"
+#include "hapticctrl/lcm_bridge/lcm_bridge_config.hpp"
+#include "hapticctrl/lcm_bridge/messages.hpp"
+#include "hapticctrl/protocol/monotonic_clock.hpp"
+#include "hapticctrl/shm/segment.hpp"
+
+namespace {
+
+using hapticctrl::lcm_bridge::Channels;
+using hapticctrl::lcm_bridge::HmiInput;
+using hapticctrl::lcm_bridge::LcmBridgeConfig;
+using hapticctrl::protocol::monotonic_ns;
+namespace shm = hapticctrl::shm;
+namespace lb = hapticctrl::lcm_bridge;
+
+std::atomic<bool> g_stop{false};
+void on_signal(int /*sig*/) { g_stop.store(true); }
+
+std::int64_t utime_of(std::int64_t ns) { return ns / 1000; }
+
+struct PublishCounters {
+  std::atomic<std::uint64_t> arm_state{0};
+  std::atomic<std::uint64_t> cycle_stats{0};
+  std::atomic<std::uint64_t> events{0};
+  std::atomic<std::uint64_t> events_lost{0};
+};
+
+/// Publishes what is due after each controller cycle, until `running` clears.
+void publish_loop(const shm::Segment& seg, lcm::LCM& lcm, const Channels& ch,
+                  const LcmBridgeConfig& config, const std::atomic<bool>& running,
+                  PublishCounters& counters) {
+  const auto& vp_cell = seg.region<shm::RegionId::kVp>();
+  shm::EventReader events(seg.region<shm::RegionId::kEvents>(), true);
+  const auto arm_every_ns =
+      config.arm_rate_hz > 0.0 ? static_cast<std::int64_t>(1e9 / config.arm_rate_hz) : 0;
+  const auto stats_every_ns = static_cast<std::int64_t>(1e9 / config.stats_rate_hz);
+  std::int64_t next_arm = 0;
+  std::int64_t next_stats = 0;
+  std::uint64_t lost_reported = 0;
+  while (running.load(std::memory_order_relaxed)) {
+    const std::uint32_t seen = vp_cell.sequence_word();
+    vp_cell.wait_for_publish(seen, std::chrono::milliseconds(50));
+    const std::int64_t now = monotonic_ns();
+    shm::TelemetryPayload telemetry;
+    (void)seg.region<shm::RegionId::kTelemetry>().read(telemetry);
+    if (now >= next_arm) {
+      next_arm = arm_every_ns == 0 ? 0 : std::max(next_arm + arm_every_ns, now - arm_every_ns);
+      shm::PositionPayload position;
+      shm::VpPayload vp;
+      shm::VprPayload vpr;
+      if (seg.region<shm::RegionId::kPosition>().read(position).ok() && vp_cell.read(vp).ok()) {
+        (void)seg.region<shm::RegionId::kVpr>().read(vpr);
+        auto arm = lb::to_arm_state(position, utime_of(now));
+        lcm.publish(ch.arm_state, &arm);
+        auto coupling = lb::to_coupling(vp, vpr, telemetry, now, utime_of(now));
+        lcm.publish(ch.coupling, &coupling);
+        counters.arm_state.fetch_add(1, std::memory_order_relaxed);
+      }
+    }
+    if (now >= next_stats) {
+      next_stats = now + stats_every_ns;
+      auto stats = lb::to_cycle_stats(telemetry, utime_of(now));
+      lcm.publish(ch.cycle_stats, &stats);
+      counters.cycle_stats.fetch_add(1, std::memory_order_relaxed);
+      shm::LinkStatsPayload link;
+      if (seg.region<shm::RegionId::kLinkStats>().read(link).ok()) {
+        auto bridge = lb::to_bridge_stats(link, utime_of(now));
+        lcm.publish(ch.bridge_stats, &bridge);
+      }
+    }
+    events.poll([&](const shm::Event& e) {
+      auto m = lb::to_event(e, events.lost() - lost_reported, utime_of(now));
+      lost_reported = events.lost();
+      lcm.publish(ch.events, &m);
+      counters.events.fetch_add(1, std::memory_order_relaxed);
+    });
+    counters.events_lost.store(events.lost(), std::memory_order_relaxed);
+  }
+}
+
+std::optional<shm::Segment> try_attach(const std::string& instance) {
+  try {
+    return shm::Segment::attach(instance,
+                                shm::AttachOptions{{shm::RegionId::kForce}, /*ctrl_writer=*/true});
+  } catch (const shm::ShmError& e) {
+    if (e.code() == shm::ShmErrc::kNoController) {
+      return std::nullopt;
+    }
+    throw;
+  }
+}
+
+/// Serves one controller until it goes away, the bridge is told to stop, or `end_ns` passes.
+void run_attached(shm::Segment& seg, lcm::LCM& lcm, const Channels& ch,
+                  const LcmBridgeConfig& config, std::int64_t end_ns, PublishCounters& counters,
+                  lb::HmiSettings& settings, std::string& hmi_json) {
+  HmiInput hmi(settings, &seg.ctrl_writer(), &seg.writable<shm::RegionId::kForce>());
+  auto command_sub = lcm.subscribeFunction(
+      ch.hmi_command,
+      +[](const lcm::ReceiveBuffer* rbuf, const std::string& /*channel*/, HmiInput* input) {
+        input->on_command(rbuf->data, rbuf->data_size, monotonic_ns());
+      },
+      &hmi);
+  auto force_sub = lcm.subscribeFunction(
+      ch.hmi_force,
+      +[](const lcm::ReceiveBuffer* rbuf, const std::string& /*channel*/, HmiInput* input) {
+        input->on_force(rbuf->data, rbuf->data_size, monotonic_ns());
+      },
+      &hmi);
+  std::atomic<bool> publishing{true};
+  std::thread publisher(
+      [&] { publish_loop(seg, lcm, ch, config, publishing, counters); });
+  std::int64_t next_liveness = 0;
+  while (!g_stop.load()) {
+    lcm.handleTimeout(2);
+    const std::int64_t now = monotonic_ns();
+    hmi.tick(now);
+    if (end_ns != 0 && now >= end_ns) {
+      g_stop.store(true);
+    }
+    if (now >= next_liveness) {
+      next_liveness = now + 100'000'000;
+      if (!seg.core_alive() || !seg.still_current()) {
+        std::fprintf(stderr, "hapticctrl-lcm: controller '%s' went away; waiting for it\n",
+                     seg.instance().c_str());
+        break;
+      }
+    }
+  }
+  publishing.store(false);
+  publisher.join();
+  lcm.unsubscribe(command_sub);
+  lcm.unsubscribe(force_sub);
+  const auto& c = hmi.counters();
+  const auto get = [](const std::atomic<std::uint64_t>& v) {
+    return static_cast<unsigned long long>(v.load());
+  };
+  char text[512];  // NOLINT(*-avoid-c-arrays)
+  std::snprintf(text, sizeof text,
+                "\"commands_applied\":%llu,\"commands_refused\":%llu,\"commands_invalid\":%llu,"
+                "\"commands_queue_full\":%llu,\"forces_accepted\":%llu,\"forces_refused\":%llu,"
+                "\"forces_invalid\":%llu,\"force_timeouts\":%llu,\"malformed\":%llu",
+                get(c.commands_applied), get(c.commands_refused), get(c.commands_invalid),
+                get(c.commands_queue_full), get(c.forces_accepted), get(c.forces_refused),
+                get(c.forces_invalid), get(c.force_timeouts), get(c.malformed));
+  hmi_json = text;
+}
+
+int run(const LcmBridgeConfig& config) {
+  lcm::LCM lcm(config.lcm_url);
+  if (!lcm.good()) {
+    throw std::runtime_error("cannot open LCM at '" + config.lcm_url + "'");
+  }
+  const Channels ch = Channels::of(config.instance);
+  lb::HmiSettings settings;
+  settings.allow_remote_commands = config.allow_remote_commands;
+  PublishCounters counters;
+  std::string hmi_json = "\"commands_applied\":0";
+  const std::int64_t end_ns =
+      config.duration_s > 0.0
+          ? monotonic_ns() + static_cast<std::int64_t>(config.duration_s * 1e9)
+          : 0;
+  std::fprintf(stderr, "hapticctrl-lcm: instance '%s' on %s, channels %s.*, remote commands %s\n",
+               config.instance.c_str(), config.lcm_url.c_str(),
+               ("hapticctrl." + config.instance).c_str(),
+               config.allow_remote_commands ? "enabled" : "disabled (emergency stop only)");
+  bool said_waiting = false;
+  while (!g_stop.load()) {
+    std::optional<shm::Segment> seg = try_attach(config.instance);
+    if (seg) {
+      said_waiting = false;
+      run_attached(*seg, lcm, ch, config, end_ns, counters, settings, hmi_json);
+      continue;
+    }
+    if (!said_waiting) {
+      std::fprintf(stderr, "hapticctrl-lcm: no controller for instance '%s' yet; waiting\n",
+                   config.instance.c_str());
+      said_waiting = true;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    if (end_ns != 0 && monotonic_ns() >= end_ns) {
+      g_stop.store(true);
+    }
+  }
+  if (config.json) {
+    std::printf("{\"arm_state\":%llu,\"cycle_stats\":%llu,\"events\":%llu,\"events_lost\":%llu,%s}\n",
+                static_cast<unsigned long long>(counters.arm_state.load()),
+                static_cast<unsigned long long>(counters.cycle_stats.load()),
+                static_cast<unsigned long long>(counters.events.load()),
+                static_cast<unsigned long long>(counters.events_lost.load()), hmi_json.c_str());
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  LcmBridgeConfig config;
+  try {
+    config = LcmBridgeConfig::parse(std::vector<std::string>(argv + 1, argv + argc));
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "hapticctrl-lcm: %s\n%s", e.what(), LcmBridgeConfig::usage());
+    return 64;
+  }
+  if (config.help) {
+    std::printf("%s", LcmBridgeConfig::usage());
+    return 0;
+  }
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+  try {
+    return run(config);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "hapticctrl-lcm: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,136 @@
+#include "hapticctrl/lcm_bridge/hmi_input.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "hapticctrl_lcm/hmi_command_t.hpp"
+#include "hapticctrl_lcm/hmi_force_t.hpp"
+#include "support/in_memory_controller.hpp"
+
+namespace hapticctrl::lcm_bridge {
+namespace {
+
+constexpr std::int64_t kMs = 1'000'000;
+using Command = hapticctrl_lcm::hmi_command_t;
+
+template <typename M>
+std::vector<std::uint8_t> encoded(const M& m) {
+  std::vector<std::uint8_t> b(static_cast<std::size_t>(m.getEncodedSize()));
+  m.encode(b.data(), 0, static_cast<int>(b.size()));
+  return b;
+}
+
+std::vector<std::uint8_t> command(std::int32_t code) {
+  Command m{};
+  m.command = code;
+  m.origin = "test";
+  return encoded(m);
+}
+
+std::vector<std::uint8_t> force(double fx, double tz = 0.0) {
+  hapticctrl_lcm::hmi_force_t m{};
+  m.wrench[0] = fx;
+  m.wrench[5] = tz;
+  m.origin = "test";
+  return encoded(m);
+}
+
+struct HmiTest : ::testing::Test {
+  test::InMemoryController controller;
+  std::unique_ptr<shm::SeqlockCell<shm::ForcePayload>> force_cell =
+      std::make_unique<shm::SeqlockCell<shm::ForcePayload>>();
+
+  HmiInput make(bool remote) {
+    HmiSettings s;
+    s.allow_remote_commands = remote;
+    return HmiInput(s, &controller.writer, force_cell.get());
+  }
+  shm::Vector6 applied_force() const {
+    shm::ForcePayload f;
+    force_cell->read(f);
+    return f.wrench;
+  }
+};
+
+TEST_F(HmiTest, WithoutRemoteCommandsOnlyTheEmergencyStopActs) {
+  HmiInput hmi = make(false);
+  for (const std::int32_t c : {Command::POWER_ON, Command::POWER_OFF, Command::EMERGENCY_RESET,
+                               Command::STOP, Command::EMERGENCY_STOP}) {
+    const auto b = command(c);
+    hmi.on_command(b.data(), b.size(), 0);
+  }
+  EXPECT_EQ(controller.drain(), std::vector<shm::CtrlCode>{shm::CtrlCode::kEmergencyStop});
+  EXPECT_EQ(hmi.counters().commands_refused.load(), 4U);
+  EXPECT_EQ(hmi.counters().commands_applied.load(), 1U);
+  const auto f = force(5.0);
+  hmi.on_force(f.data(), f.size(), 0);
+  EXPECT_EQ(hmi.counters().forces_refused.load(), 1U);
+}
+
+TEST_F(HmiTest, RemoteCommandsReachCtrlInOrder) {
+  HmiInput hmi = make(true);
+  for (const std::int32_t c : {Command::POWER_ON, Command::EMERGENCY_STOP,
+                               Command::EMERGENCY_RESET, Command::POWER_OFF, Command::STOP}) {
+    const auto b = command(c);
+    hmi.on_command(b.data(), b.size(), 0);
+  }
+  EXPECT_EQ(controller.drain(),
+            (std::vector<shm::CtrlCode>{shm::CtrlCode::kPowerOn, shm::CtrlCode::kEmergencyStop,
+                                        shm::CtrlCode::kEmergencyReset, shm::CtrlCode::kPowerOff,
+                                        shm::CtrlCode::kStop}));
+}
+
+TEST_F(HmiTest, MalformedAndUnknownMessagesAreCountedAndIgnored) {
+  HmiInput hmi = make(true);
+  const std::vector<std::uint8_t> junk{1, 2, 3, 4, 5, 6, 7, 8, 9};
+  hmi.on_command(junk.data(), junk.size(), 0);
+  hmi.on_force(junk.data(), junk.size(), 0);
+  auto truncated = command(Command::POWER_ON);
+  truncated.resize(truncated.size() - 2);
+  hmi.on_command(truncated.data(), truncated.size(), 0);
+  const auto unknown = command(42);
+  hmi.on_command(unknown.data(), unknown.size(), 0);
+  EXPECT_EQ(hmi.counters().malformed.load(), 3U);
+  EXPECT_EQ(hmi.counters().commands_invalid.load(), 1U);
+  EXPECT_TRUE(controller.drain().empty());
+}
+
+TEST_F(HmiTest, OutOfRangeOrNonFiniteForcesAreRefused) {
+  HmiInput hmi = make(true);
+  for (const double bad : {std::numeric_limits<double>::quiet_NaN(),
+                           std::numeric_limits<double>::infinity(), 100.5}) {
+    const auto f = force(bad);
+    hmi.on_force(f.data(), f.size(), 0);
+  }
+  const auto torque = force(1.0, 10.5);
+  hmi.on_force(torque.data(), torque.size(), 0);
+  EXPECT_EQ(hmi.counters().forces_invalid.load(), 4U);
+  hmi.tick(1 * kMs);
+  hmi.tick(100 * kMs);
+  EXPECT_EQ(applied_force(), shm::Vector6{});
+}
+
+TEST_F(HmiTest, ForceIsRateLimitedAndDecaysWhenMessagesStop) {
+  HmiInput hmi = make(true);
+  const auto f = force(20.0);
+  hmi.tick(0);
+  hmi.on_force(f.data(), f.size(), 0);
+  hmi.tick(10 * kMs);  // 500 N/s: at most 5 N after 10 ms
+  EXPECT_NEAR(applied_force()[0], 5.0, 1e-9);
+  for (std::int64_t t = 20; t <= 100; t += 10) {
+    hmi.on_force(f.data(), f.size(), t * kMs);
+    hmi.tick(t * kMs);
+  }
+  EXPECT_NEAR(applied_force()[0], 20.0, 1e-9);
+  hmi.tick(301 * kMs);  // silent for more than 200 ms: let go at the same rate
+  EXPECT_EQ(hmi.counters().force_timeouts.load(), 1U);
+  EXPECT_GE(applied_force()[0], 0.0);
+  hmi.tick(400 * kMs);
+  EXPECT_EQ(applied_force()[0], 0.0);
+}
+
+}  // namespace
+}  // namespace hapticctrl::lcm_bridge

@@ -1,0 +1,95 @@
+// The offline analysis path: a recorded LCM log to CSV per channel, and the PNG plots.
+#include "hapticctrl/lcm_bridge/log_csv.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "support/sample_log.hpp"
+
+namespace hapticctrl::lcm_bridge {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct TempDir {
+  fs::path path = fs::temp_directory_path() / ("hapticctrl-csv-" + std::to_string(getpid()));
+  TempDir() { fs::create_directories(path); }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  ~TempDir() { fs::remove_all(path); }
+};
+
+std::vector<std::string> lines_of(const fs::path& file) {
+  std::ifstream in(file);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) {
+    lines.push_back(line);
+  }
+  return lines;
+}
+
+TEST(LogCsv, EveryChannelGetsItsCsvWithTheExpectedColumns) {
+  TempDir dir;
+  const std::string log = (dir.path / "run.lcmlog").string();
+  test::write_sample_log(log);
+  const CsvReport report = log_to_csv(log, dir.path.string());
+  EXPECT_EQ(report.skipped, 1U) << "the other application's channel";
+  EXPECT_EQ(report.undecodable, 1U) << "the corrupted arm state";
+  EXPECT_EQ(report.rows.at("hapticctrl.lab.arm_state.csv"), 5U);
+
+  const auto arm = lines_of(dir.path / "hapticctrl.lab.arm_state.csv");
+  ASSERT_EQ(arm.size(), 6U);
+  EXPECT_EQ(arm[0].rfind("utime,cycle,state_word,core_state,q1,", 0), 0U) << arm[0];
+  EXPECT_NE(arm[0].find(",handle_x,handle_y,handle_z,handle_qx,"), std::string::npos);
+  EXPECT_NE(arm[0].find(",operator_x,"), std::string::npos);
+  EXPECT_NE(arm[0].find(",coupling_rz"), std::string::npos);
+  EXPECT_EQ(std::count(arm[0].begin(), arm[0].end(), ','), 4 + 6 * 3 + 7 + 6 * 3 - 1);
+  EXPECT_EQ(std::count(arm[3].begin(), arm[3].end(), ','),
+            std::count(arm[0].begin(), arm[0].end(), ','));
+
+  const auto stats = lines_of(dir.path / "hapticctrl.lab.cycle_stats.csv");
+  ASSERT_EQ(stats.size(), 3U);
+  EXPECT_NE(stats[0].find(",wake_p99_ns,"), std::string::npos);
+  EXPECT_NE(stats[0].find(",wake_0_2us,"), std::string::npos);
+  EXPECT_NE(stats[0].find(",wake_10000us_plus"), std::string::npos);
+
+  const auto events = lines_of(dir.path / "hapticctrl.lab.events.csv");
+  ASSERT_EQ(events.size(), 3U);
+  EXPECT_EQ(events[0], "utime,index,cycle,time_ns,kind,code,value,text,lost_before");
+  EXPECT_NE(events[2].find("\"fail-safe: 5 consecutive deadline misses, \"\"black box\"\" "
+                           "written\""),
+            std::string::npos)
+      << "text is quoted CSV";
+}
+
+TEST(LogCsv, AMissingLogIsAClearError) {
+  EXPECT_THROW(log_to_csv("/nonexistent/run.lcmlog", "/tmp"), std::runtime_error);
+}
+
+TEST(LogCsv, ThePlotScriptWritesThePngs) {
+  if (std::system("command -v gnuplot >/dev/null") != 0) {
+    GTEST_SKIP() << "gnuplot not installed (scripts/setup.sh installs gnuplot-nox)";
+  }
+  TempDir dir;
+  const std::string log = (dir.path / "run.lcmlog").string();
+  test::write_sample_log(log);
+  const std::string out = (dir.path / "out").string();
+  const std::string cmd = std::string(HAPTICCTRL_SOURCE_DIR) + "/scripts/plot_log.sh " + log +
+                          " " + out + " --build " + HAPTICCTRL_BINARY_DIR + " >/dev/null";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  for (const char* png : {"hapticctrl.lab.handle_trajectory.png", "hapticctrl.lab.forces.png",
+                          "hapticctrl.lab.latency_histogram.png"}) {
+    const fs::path p = fs::path(out) / png;
+    ASSERT_TRUE(fs::exists(p)) << p;
+    EXPECT_GT(fs::file_size(p), 1000U) << p;
+  }
+}
+
+}  // namespace
+}  // namespace hapticctrl::lcm_bridge

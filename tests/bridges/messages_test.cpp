@@ -1,0 +1,104 @@
+#include "hapticctrl/lcm_bridge/messages.hpp"
+
+#include <gtest/gtest.h>
+
+namespace hapticctrl::lcm_bridge {
+namespace {
+
+TEST(Messages, ChannelsCarryTheInstance) {
+  const Channels c = Channels::of("lab2");
+  EXPECT_EQ(c.arm_state, "hapticctrl.lab2.arm_state");
+  EXPECT_EQ(c.events, "hapticctrl.lab2.events");
+  EXPECT_EQ(c.hmi_command, "hapticctrl.lab2.hmi_command");
+}
+
+TEST(Messages, ArmStateCopiesEveryField) {
+  shm::PositionPayload p;
+  p.cycle = 7;
+  p.state_word = shm::state_bits::kPowered;
+  p.joint_position[2] = 0.5;
+  p.joint_torque[5] = -1.0;
+  p.handle_pose = {0.1, 0.2, 0.3, 0, 0, 0, 1};
+  p.operator_wrench[1] = 3.0;
+  p.coupling_wrench[0] = -2.0;
+  const auto m = to_arm_state(p, 99);
+  EXPECT_EQ(m.utime, 99);
+  EXPECT_EQ(m.cycle, 7);
+  EXPECT_EQ(m.state_word, 1);
+  EXPECT_EQ(m.joint_position[2], 0.5);
+  EXPECT_EQ(m.joint_torque[5], -1.0);
+  EXPECT_EQ(m.handle_pose[1], 0.2);
+  EXPECT_EQ(m.operator_wrench[1], 3.0);
+  EXPECT_EQ(m.coupling_wrench[0], -2.0);
+}
+
+TEST(Messages, CouplingCarriesLinkQuality) {
+  shm::VpPayload vp;
+  vp.cycle = 10;
+  vp.state_word = shm::state_bits::kClientStale;
+  vp.echo_client_sequence = 55;
+  vp.coupling_wrench[0] = 1.5;
+  shm::VprPayload vpr;
+  vpr.session_id = 3;
+  vpr.flags = shm::vpr_flags::kObjectAttached;
+  vpr.received_time_ns = 1'000'000;
+  shm::TelemetryPayload t;
+  t.vpr_stale = 12;
+  const auto m = to_coupling(vp, vpr, t, 3'500'000, 0);
+  EXPECT_EQ(m.session_id, 3);
+  EXPECT_TRUE(m.object_attached);
+  EXPECT_TRUE(m.client_stale);
+  EXPECT_DOUBLE_EQ(m.client_age_ms, 2.5);
+  EXPECT_EQ(m.client_sequence, 55);
+  EXPECT_EQ(m.vpr_stale_cycles, 12);
+  EXPECT_EQ(m.coupling_wrench[0], 1.5);
+}
+
+TEST(Messages, CycleStatsCarryLatenciesAndTheHistogram) {
+  shm::TelemetryPayload t;
+  t.cycle = 1000;
+  t.misses_total = 4;
+  t.wake_latency.p99_ns = 90'000;
+  t.wake_histogram[5] = 17;
+  const auto m = to_cycle_stats(t, 0);
+  EXPECT_EQ(m.cycle, 1000);
+  EXPECT_EQ(m.misses_total, 4);
+  EXPECT_EQ(m.wake_latency.p99_ns, 90'000);
+  EXPECT_EQ(m.wake_histogram[5], 17);
+  EXPECT_EQ(m.histogram_edges_us[11], 10000);
+}
+
+TEST(Messages, BridgeStatsNameEveryDropReason) {
+  shm::LinkStatsPayload s;
+  s.session_id = 2;
+  s.peer_ipv4 = 0x7F000001;
+  s.peer_port = 40000;
+  s.dropped[static_cast<std::size_t>(shm::LinkDrop::kCrc)] = 5;
+  const auto m = to_bridge_stats(s, 0);
+  EXPECT_EQ(m.peer, "127.0.0.1:40000");
+  ASSERT_EQ(m.drop_reasons, static_cast<std::int32_t>(shm::kLinkDropCount));
+  EXPECT_EQ(m.drop_names[3], "crc");
+  EXPECT_EQ(m.dropped[3], 5);
+}
+
+TEST(Messages, EventsAreDescribed) {
+  shm::Event e;
+  e.index = 4;
+  e.cycle = 9;
+  e.kind = shm::EventKind::kCoreState;
+  e.code = static_cast<std::uint32_t>(shm::CoreState::kFailSafe);
+  e.value = static_cast<std::uint64_t>(shm::StopReason::kConsecutiveMisses);
+  const auto m = to_event(e, 2, 0);
+  EXPECT_EQ(m.kind, "core_state");
+  EXPECT_EQ(m.text, "fail-safe: 5 consecutive deadline misses");
+  EXPECT_EQ(m.lost_before, 2);
+  e.kind = shm::EventKind::kPower;
+  e.code = 1;
+  EXPECT_EQ(describe(e), "power on");
+  e.kind = shm::EventKind::kClientSession;
+  e.value = 0;
+  EXPECT_EQ(describe(e), "no client session");
+}
+
+}  // namespace
+}  // namespace hapticctrl::lcm_bridge

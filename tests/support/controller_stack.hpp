@@ -16,11 +16,10 @@ namespace hapticctrl::test {
 
 class ControllerStack {
  public:
-  /// The default period is 10 ms (the core's longest): behaviour tests run beside others. Outside
-  /// sanitizer builds the core takes SCHED_FIFO when allowed (`--rt warn`): with SCHED_OTHER an
-  /// ASan build under parallel test load starved it into 5 consecutive misses. Sanitizer builds
-  /// stay at SCHED_OTHER: under TSan, SCHED_FIFO threads spinning on the runtime's internal locks
-  /// starved its SCHED_OTHER holders (both seen 2026-11-24).
+  /// Behaviour tests run a slow cycle (10 ms, the core's longest) beside other tests. Outside
+  /// sanitizer builds the core takes SCHED_FIFO when allowed (`--rt warn`); sanitizer builds
+  /// stay at SCHED_OTHER (under TSan, SCHED_FIFO threads spinning on the runtime's locks starved
+  /// its other threads, 2026-11-24).
   static constexpr int kDefaultPeriodUs = 10000;
 #ifdef HAPTICCTRL_SANITIZED
   static constexpr const char* kRtMode = "ignore";

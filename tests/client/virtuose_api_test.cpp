@@ -109,19 +109,22 @@ TEST(VirtuoseApi, PeriodicFunctionRendersImpedanceForces) {
   ASSERT_NE(vc, nullptr) << virtGetErrorDetail(nullptr);
   EXPECT_EQ(virtStartLoop(vc), -1);  // no periodic function yet
   LoopState state;
-  float period = 0.02F;  // two controller cycles
+  const float cycle_s = static_cast<float>(stack.period_us()) * 1e-6F;
+  float period = 2.2F * cycle_s;  // rounded to two controller cycles, and written back
   ASSERT_EQ(virtSetPeriodicFunction(vc, periodic, &period, &state), 0);
-  EXPECT_FLOAT_EQ(period, 0.02F);
+  EXPECT_FLOAT_EQ(period, 2.0F * cycle_s);
   ASSERT_EQ(virtSetCommandType(vc, COMMAND_TYPE_IMPEDANCE), 0);
   ASSERT_EQ(virtSetPowerOn(vc, 1), 0);
   ASSERT_EQ(virtStartLoop(vc), 0);
   EXPECT_TRUE(ControllerStack::eventually([&] {
     return std::abs(stack.vpr().impedance_wrench[0] - 4.0) < 1e-6;  // virtSetForce + virtAddForce
   }));
-  std::this_thread::sleep_for(400ms);
+  state.calls = 0;
+  std::this_thread::sleep_for(800ms);
   EXPECT_EQ(virtStopLoop(vc), 0);
-  EXPECT_GT(state.calls.load(), 10);  // 20 ms period over ~0.5 s
-  EXPECT_LT(state.calls.load(), 45);
+  const int expected = 800'000 / (2 * stack.period_us());  // one call every two cycles
+  EXPECT_GT(state.calls.load(), expected / 2);
+  EXPECT_LT(state.calls.load(), expected * 3 / 2 + 2);
   EXPECT_EQ(virtClose(vc), 0);
 }
 

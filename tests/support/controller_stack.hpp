@@ -16,16 +16,25 @@ namespace hapticctrl::test {
 
 class ControllerStack {
  public:
-  /// `period_us` 10 ms by default: behaviour tests run beside others and under sanitizers. The
-  /// core takes SCHED_FIFO when allowed (`--rt warn`): with SCHED_OTHER, a sanitizer build under
-  /// parallel test load starved it into 5 consecutive misses (2026-11-24).
-  explicit ControllerStack(const std::string& tag, int period_us = 10000,
+  /// Behaviour tests run a slow cycle (10 ms, the core's longest) beside other tests. Outside
+  /// sanitizer builds the core takes SCHED_FIFO when allowed (`--rt warn`); sanitizer builds
+  /// stay at SCHED_OTHER (under TSan, SCHED_FIFO threads spinning on the runtime's locks starved
+  /// its other threads, 2026-11-24).
+  static constexpr int kDefaultPeriodUs = 10000;
+#ifdef HAPTICCTRL_SANITIZED
+  static constexpr const char* kRtMode = "ignore";
+#else
+  static constexpr const char* kRtMode = "warn";
+#endif
+
+  explicit ControllerStack(const std::string& tag, int period_us = kDefaultPeriodUs,
                            std::vector<std::string> bridge_extra = {})
       : instance_(unique_instance(tag)),
         core_(HAPTICCTRL_CORE_BINARY,
-              {"--instance", instance_, "--period-us", std::to_string(period_us), "--rt", "warn",
+              {"--instance", instance_, "--period-us", std::to_string(period_us), "--rt", kRtMode,
                "--blackbox-dir", "/tmp"}) {
     using namespace std::chrono_literals;
+    period_us_ = period_us;
     for (int i = 0; i < 1000 && !segment_; ++i) {
       try {
         segment_.emplace(shm::Segment::attach(instance_));
@@ -61,12 +70,27 @@ class ControllerStack {
     core_.wait(std::chrono::seconds(5));
   }
 
-  [[nodiscard]] bool ready() const { return segment_.has_value() && port_ != 0; }
-  [[nodiscard]] std::uint16_t port() const { return port_; }
-  [[nodiscard]] const std::string& instance() const { return instance_; }
-  [[nodiscard]] const shm::Segment& segment() const { return *segment_; }
-  SpawnedProcess& core() { return core_; }
-  SpawnedProcess& bridge() { return *bridge_; }
+  [[nodiscard]] bool ready() const {
+    return segment_.has_value() && port_ != 0;
+  }
+  [[nodiscard]] std::uint16_t port() const {
+    return port_;
+  }
+  [[nodiscard]] int period_us() const {
+    return period_us_;
+  }
+  [[nodiscard]] const std::string& instance() const {
+    return instance_;
+  }
+  [[nodiscard]] const shm::Segment& segment() const {
+    return *segment_;
+  }
+  SpawnedProcess& core() {
+    return core_;
+  }
+  SpawnedProcess& bridge() {
+    return *bridge_;
+  }
   [[nodiscard]] std::string diagnostics() const {
     return "core: " + core_.err() + "\nbridge: " + (bridge_ ? bridge_->err() : "");
   }
@@ -102,6 +126,7 @@ class ControllerStack {
   std::optional<SpawnedProcess> bridge_;
   std::optional<shm::Segment> segment_;
   std::uint16_t port_ = 0;
+  int period_us_ = 0;
 };
 
 }  // namespace hapticctrl::test

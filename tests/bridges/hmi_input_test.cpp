@@ -57,8 +57,9 @@ struct HmiTest : ::testing::Test {
 
 TEST_F(HmiTest, WithoutRemoteCommandsOnlyTheEmergencyStopActs) {
   HmiInput hmi = make(false);
-  for (const std::int32_t c : {Command::POWER_ON, Command::POWER_OFF, Command::EMERGENCY_RESET,
-                               Command::STOP, Command::EMERGENCY_STOP}) {
+  for (const std::int32_t c : std::initializer_list<std::int32_t>{
+           Command::POWER_ON, Command::POWER_OFF, Command::EMERGENCY_RESET, Command::STOP,
+           Command::EMERGENCY_STOP}) {
     const auto b = command(c);
     hmi.on_command(b.data(), b.size(), 0);
   }
@@ -72,8 +73,9 @@ TEST_F(HmiTest, WithoutRemoteCommandsOnlyTheEmergencyStopActs) {
 
 TEST_F(HmiTest, RemoteCommandsReachCtrlInOrder) {
   HmiInput hmi = make(true);
-  for (const std::int32_t c : {Command::POWER_ON, Command::EMERGENCY_STOP,
-                               Command::EMERGENCY_RESET, Command::POWER_OFF, Command::STOP}) {
+  for (const std::int32_t c : std::initializer_list<std::int32_t>{
+           Command::POWER_ON, Command::EMERGENCY_STOP, Command::EMERGENCY_RESET, Command::POWER_OFF,
+           Command::STOP}) {
     const auto b = command(c);
     hmi.on_command(b.data(), b.size(), 0);
   }
@@ -100,8 +102,8 @@ TEST_F(HmiTest, MalformedAndUnknownMessagesAreCountedAndIgnored) {
 
 TEST_F(HmiTest, OutOfRangeOrNonFiniteForcesAreRefused) {
   HmiInput hmi = make(true);
-  for (const double bad : {std::numeric_limits<double>::quiet_NaN(),
-                           std::numeric_limits<double>::infinity(), 100.5}) {
+  for (const double bad :
+       {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(), 100.5}) {
     const auto f = force(bad);
     hmi.on_force(f.data(), f.size(), 0);
   }

@@ -98,7 +98,9 @@ struct LcmStack {
   Monitor monitor;
 
   LcmStack(const std::string& tag, std::vector<std::string> extra)
-      : controller(tag), bridge(HAPTICCTRL_LCM_BINARY, args(extra)), monitor(url, controller.instance()) {}
+      : controller(tag),
+        bridge(HAPTICCTRL_LCM_BINARY, args(extra)),
+        monitor(url, controller.instance()) {}
   std::vector<std::string> args(std::vector<std::string> extra) const {
     std::vector<std::string> a{"--instance", controller.instance(), "--lcm-url", url, "--json"};
     a.insert(a.end(), extra.begin(), extra.end());

@@ -80,8 +80,8 @@ TEST(LogCsv, ThePlotScriptWritesThePngs) {
   const std::string log = (dir.path / "run.lcmlog").string();
   test::write_sample_log(log);
   const std::string out = (dir.path / "out").string();
-  const std::string cmd = std::string(HAPTICCTRL_SOURCE_DIR) + "/scripts/plot_log.sh " + log +
-                          " " + out + " --build " + HAPTICCTRL_BINARY_DIR + " >/dev/null";
+  const std::string cmd = std::string(HAPTICCTRL_SOURCE_DIR) + "/scripts/plot_log.sh " + log + " " +
+                          out + " --build " + HAPTICCTRL_BINARY_DIR + " >/dev/null";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
   for (const char* png : {"hapticctrl.lab.handle_trajectory.png", "hapticctrl.lab.forces.png",
                           "hapticctrl.lab.latency_histogram.png"}) {

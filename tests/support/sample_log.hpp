@@ -1,6 +1,8 @@
 #pragma once
 /// A small, known LCM log as hapticctrl-lcm would record it (instance "lab"): the input of the
 /// CSV conversion test and of the Java decoding test.
+#include <algorithm>
+#include <iterator>
 #include <lcm/lcm-cpp.hpp>
 #include <stdexcept>
 #include <string>
@@ -53,10 +55,8 @@ inline void write_sample_log(const std::string& path) {
     s.cycle = 100 * i;
     s.period_ns = 1'000'000;
     s.wake_latency.p99_ns = 90'000;
-    for (int b = 0; b < 12; ++b) {
-      s.histogram_edges_us[b] = std::vector<std::int64_t>{2,   5,   10,   20,   50,   100,
-                                                          200, 500, 1000, 2000, 5000, 10000}[b];
-    }
+    const std::int64_t edges[12] = {2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000, 5000, 10000};
+    std::copy(std::begin(edges), std::end(edges), s.histogram_edges_us);  // NOLINT(*-c-arrays)
     s.wake_histogram[5] = 60 * i;
     s.wake_histogram[6] = 30 * i;
     s.wake_histogram[12] = i;

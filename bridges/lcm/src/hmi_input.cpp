@@ -35,7 +35,7 @@ HmiInput::HmiInput(const HmiSettings& settings, shm::CtrlWriter* ctrl,
     : settings_(settings), ctrl_(ctrl), force_(force) {}
 
 void HmiInput::on_command(const void* data, std::size_t size, std::int64_t now_ns) noexcept {
-  Command m;
+  Command m{};
   try {
     if (m.decode(data, 0, static_cast<int>(size)) < 0) {
       counters_.malformed.fetch_add(1, std::memory_order_relaxed);
@@ -62,7 +62,7 @@ void HmiInput::on_command(const void* data, std::size_t size, std::int64_t now_n
 }
 
 void HmiInput::on_force(const void* data, std::size_t size, std::int64_t now_ns) noexcept {
-  hapticctrl_lcm::hmi_force_t m;
+  hapticctrl_lcm::hmi_force_t m{};
   try {
     if (m.decode(data, 0, static_cast<int>(size)) < 0) {
       counters_.malformed.fetch_add(1, std::memory_order_relaxed);
@@ -90,9 +90,9 @@ void HmiInput::on_force(const void* data, std::size_t size, std::int64_t now_ns)
 }
 
 void HmiInput::tick(std::int64_t now_ns) noexcept {
-  const double dt =
-      last_tick_ns_ == 0 ? 0.0 : static_cast<double>(now_ns - last_tick_ns_) / 1e9;
+  const double dt = ticked_ ? static_cast<double>(now_ns - last_tick_ns_) / 1e9 : 0.0;
   last_tick_ns_ = now_ns;
+  ticked_ = true;
   if (force_active_ && now_ns - last_force_ns_ > settings_.force_timeout_ns) {
     requested_ = {};  // the HMI went quiet: let go, at the same bounded rate
     force_active_ = false;

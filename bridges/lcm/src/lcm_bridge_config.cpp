@@ -10,8 +10,8 @@ double number(const std::string& option, const std::string& text, double lo, dou
   double value = 0.0;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (ec != std::errc{} || end != text.data() + text.size() || !(value >= lo && value <= hi)) {
-    throw std::invalid_argument(option + ": expected a number from " + std::to_string(lo) +
-                                " to " + std::to_string(hi) + ", got '" + text + "'");
+    throw std::invalid_argument(option + ": expected a number from " + std::to_string(lo) + " to " +
+                                std::to_string(hi) + ", got '" + text + "'");
   }
   return value;
 }

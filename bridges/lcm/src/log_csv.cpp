@@ -42,12 +42,12 @@ void put(Row& r, const T (&values)[N]) {  // NOLINT(*-avoid-c-arrays): lcm-gen's
 }
 
 std::string latency_columns(const std::string& p) {
-  return columns(p, {"_min_ns", "_avg_ns", "_max_ns", "_p50_ns", "_p99_ns", "_p999_ns",
-                     "_samples", "_overflows"});
+  return columns(p, {"_min_ns", "_avg_ns", "_max_ns", "_p50_ns", "_p99_ns", "_p999_ns", "_samples",
+                     "_overflows"});
 }
 void put(Row& r, const hapticctrl_lcm::latency_t& l) {
-  r << ',' << l.min_ns << ',' << l.avg_ns << ',' << l.max_ns << ',' << l.p50_ns << ','
-    << l.p99_ns << ',' << l.p999_ns << ',' << l.samples << ',' << l.overflows;
+  r << ',' << l.min_ns << ',' << l.avg_ns << ',' << l.max_ns << ',' << l.p50_ns << ',' << l.p99_ns
+    << ',' << l.p999_ns << ',' << l.samples << ',' << l.overflows;
 }
 
 /// CSV text field: quoted, quotes doubled.
@@ -75,45 +75,44 @@ bool decode(const void* data, int size, M& m) {
 
 std::map<std::string, Topic> topics() {
   std::map<std::string, Topic> t;
-  t["arm_state"] = {
-      "utime,cycle,state_word,core_state" + columns("q", kJoints) + columns("qd", kJoints) +
-          columns("tau", kJoints) + columns("handle_", kPose) + columns("twist_", kVec6) +
-          columns("operator_", kVec6) + columns("coupling_", kVec6),
-      [](const void* d, int n, Row& r) {
-        hapticctrl_lcm::arm_state_t m;
-        if (!decode(d, n, m)) {
-          return false;
-        }
-        r << m.utime << ',' << m.cycle << ',' << m.state_word << ',' << m.core_state;
-        put(r, m.joint_position);
-        put(r, m.joint_velocity);
-        put(r, m.joint_torque);
-        put(r, m.handle_pose);
-        put(r, m.handle_twist);
-        put(r, m.operator_wrench);
-        put(r, m.coupling_wrench);
-        return true;
-      }};
-  t["coupling"] = {
-      "utime,cycle,session_id,command_type,object_attached" + columns("object_", kPose) +
-          columns("object_twist_", kVec6) + columns("wrench_", kVec6) +
-          columns("handle_", kPose) +
-          ",client_sequence,client_age_ms,client_stale,vpr_stale_cycles",
-      [](const void* d, int n, Row& r) {
-        hapticctrl_lcm::coupling_t m;
-        if (!decode(d, n, m)) {
-          return false;
-        }
-        r << m.utime << ',' << m.cycle << ',' << m.session_id << ',' << m.command_type << ','
-          << (m.object_attached ? 1 : 0);
-        put(r, m.object_pose);
-        put(r, m.object_twist);
-        put(r, m.coupling_wrench);
-        put(r, m.handle_pose);
-        r << ',' << m.client_sequence << ',' << m.client_age_ms << ',' << (m.client_stale ? 1 : 0)
-          << ',' << m.vpr_stale_cycles;
-        return true;
-      }};
+  t["arm_state"] = {"utime,cycle,state_word,core_state" + columns("q", kJoints) +
+                        columns("qd", kJoints) + columns("tau", kJoints) +
+                        columns("handle_", kPose) + columns("twist_", kVec6) +
+                        columns("operator_", kVec6) + columns("coupling_", kVec6),
+                    [](const void* d, int n, Row& r) {
+                      hapticctrl_lcm::arm_state_t m{};
+                      if (!decode(d, n, m)) {
+                        return false;
+                      }
+                      r << m.utime << ',' << m.cycle << ',' << m.state_word << ',' << m.core_state;
+                      put(r, m.joint_position);
+                      put(r, m.joint_velocity);
+                      put(r, m.joint_torque);
+                      put(r, m.handle_pose);
+                      put(r, m.handle_twist);
+                      put(r, m.operator_wrench);
+                      put(r, m.coupling_wrench);
+                      return true;
+                    }};
+  t["coupling"] = {"utime,cycle,session_id,command_type,object_attached" +
+                       columns("object_", kPose) + columns("object_twist_", kVec6) +
+                       columns("wrench_", kVec6) + columns("handle_", kPose) +
+                       ",client_sequence,client_age_ms,client_stale,vpr_stale_cycles",
+                   [](const void* d, int n, Row& r) {
+                     hapticctrl_lcm::coupling_t m{};
+                     if (!decode(d, n, m)) {
+                       return false;
+                     }
+                     r << m.utime << ',' << m.cycle << ',' << m.session_id << ',' << m.command_type
+                       << ',' << (m.object_attached ? 1 : 0);
+                     put(r, m.object_pose);
+                     put(r, m.object_twist);
+                     put(r, m.coupling_wrench);
+                     put(r, m.handle_pose);
+                     r << ',' << m.client_sequence << ',' << m.client_age_ms << ','
+                       << (m.client_stale ? 1 : 0) << ',' << m.vpr_stale_cycles;
+                     return true;
+                   }};
   std::string histogram;
   std::int64_t lower = 0;
   for (const std::int64_t edge : shm::kLatencyBucketEdgesUs) {
@@ -124,11 +123,11 @@ std::map<std::string, Topic> topics() {
   t["cycle_stats"] = {
       "utime,cycle,period_ns,rt_mode,core_state,stop_reason,consecutive_misses,misses_total,"
       "degraded_cycles,skipped_slots,late_servo_discarded,window_miss_ppm,leaky_bucket_score" +
-          latency_columns("wake") + latency_columns("start_delay") +
-          latency_columns("execution") + latency_columns("period") +
+          latency_columns("wake") + latency_columns("start_delay") + latency_columns("execution") +
+          latency_columns("period") +
           ",vpr_torn,vpr_stale,force_rejected,ctrl_accepted,ctrl_rejected" + histogram,
       [](const void* d, int n, Row& r) {
-        hapticctrl_lcm::cycle_stats_t m;
+        hapticctrl_lcm::cycle_stats_t m{};
         if (!decode(d, n, m)) {
           return false;
         }
@@ -155,16 +154,15 @@ std::map<std::string, Topic> topics() {
       "watchdog_expiries,refused_busy,refused_version,send_failures" +
           drops,
       [](const void* d, int n, Row& r) {
-        hapticctrl_lcm::bridge_stats_t m;
+        hapticctrl_lcm::bridge_stats_t m{};
         if (!decode(d, n, m)) {
           return false;
         }
-        r << m.utime << ',' << m.session_id << ',' << quoted(m.peer) << ',' << m.watchdog_ms
-          << ',' << m.features << ',' << m.frames_in << ',' << m.frames_out << ','
-          << m.control_accepted << ',' << m.params_applied << ',' << m.param_duplicates << ','
-          << m.params_rejected << ',' << m.sessions_opened << ',' << m.sessions_closed << ','
-          << m.watchdog_expiries << ',' << m.refused_busy << ',' << m.refused_version << ','
-          << m.send_failures;
+        r << m.utime << ',' << m.session_id << ',' << quoted(m.peer) << ',' << m.watchdog_ms << ','
+          << m.features << ',' << m.frames_in << ',' << m.frames_out << ',' << m.control_accepted
+          << ',' << m.params_applied << ',' << m.param_duplicates << ',' << m.params_rejected << ','
+          << m.sessions_opened << ',' << m.sessions_closed << ',' << m.watchdog_expiries << ','
+          << m.refused_busy << ',' << m.refused_version << ',' << m.send_failures;
         for (std::size_t i = 0; i < shm::kLinkDropCount; ++i) {
           r << ',' << (i < m.dropped.size() ? m.dropped[i] : 0);
         }
@@ -172,7 +170,7 @@ std::map<std::string, Topic> topics() {
       }};
   t["events"] = {"utime,index,cycle,time_ns,kind,code,value,text,lost_before",
                  [](const void* d, int n, Row& r) {
-                   hapticctrl_lcm::event_t m;
+                   hapticctrl_lcm::event_t m{};
                    if (!decode(d, n, m)) {
                      return false;
                    }
@@ -182,7 +180,7 @@ std::map<std::string, Topic> topics() {
                    return true;
                  }};
   t["hmi_command"] = {"utime,command,origin", [](const void* d, int n, Row& r) {
-                        hapticctrl_lcm::hmi_command_t m;
+                        hapticctrl_lcm::hmi_command_t m{};
                         if (!decode(d, n, m)) {
                           return false;
                         }
@@ -191,7 +189,7 @@ std::map<std::string, Topic> topics() {
                       }};
   t["hmi_force"] = {"utime" + columns("wrench_", kVec6) + ",origin",
                     [](const void* d, int n, Row& r) {
-                      hapticctrl_lcm::hmi_force_t m;
+                      hapticctrl_lcm::hmi_force_t m{};
                       if (!decode(d, n, m)) {
                         return false;
                       }

@@ -32,9 +32,13 @@ namespace shm = hapticctrl::shm;
 namespace lb = hapticctrl::lcm_bridge;
 
 std::atomic<bool> g_stop{false};
-void on_signal(int /*sig*/) { g_stop.store(true); }
+void on_signal(int /*sig*/) {
+  g_stop.store(true);
+}
 
-std::int64_t utime_of(std::int64_t ns) { return ns / 1000; }
+std::int64_t utime_of(std::int64_t ns) {
+  return ns / 1000;
+}
 
 struct PublishCounters {
   std::atomic<std::uint64_t> arm_state{0};
@@ -126,8 +130,7 @@ void run_attached(shm::Segment& seg, lcm::LCM& lcm, const Channels& ch,
       },
       &hmi);
   std::atomic<bool> publishing{true};
-  std::thread publisher(
-      [&] { publish_loop(seg, lcm, ch, config, publishing, counters); });
+  std::thread publisher([&] { publish_loop(seg, lcm, ch, config, publishing, counters); });
   std::int64_t next_liveness = 0;
   while (!g_stop.load()) {
     lcm.handleTimeout(2);
@@ -175,9 +178,8 @@ int run(const LcmBridgeConfig& config) {
   PublishCounters counters;
   std::string hmi_json = "\"commands_applied\":0";
   const std::int64_t end_ns =
-      config.duration_s > 0.0
-          ? monotonic_ns() + static_cast<std::int64_t>(config.duration_s * 1e9)
-          : 0;
+      config.duration_s > 0.0 ? monotonic_ns() + static_cast<std::int64_t>(config.duration_s * 1e9)
+                              : 0;
   std::fprintf(stderr, "hapticctrl-lcm: instance '%s' on %s, channels %s.*, remote commands %s\n",
                config.instance.c_str(), config.lcm_url.c_str(),
                ("hapticctrl." + config.instance).c_str(),
@@ -201,11 +203,12 @@ int run(const LcmBridgeConfig& config) {
     }
   }
   if (config.json) {
-    std::printf("{\"arm_state\":%llu,\"cycle_stats\":%llu,\"events\":%llu,\"events_lost\":%llu,%s}\n",
-                static_cast<unsigned long long>(counters.arm_state.load()),
-                static_cast<unsigned long long>(counters.cycle_stats.load()),
-                static_cast<unsigned long long>(counters.events.load()),
-                static_cast<unsigned long long>(counters.events_lost.load()), hmi_json.c_str());
+    std::printf(
+        "{\"arm_state\":%llu,\"cycle_stats\":%llu,\"events\":%llu,\"events_lost\":%llu,%s}\n",
+        static_cast<unsigned long long>(counters.arm_state.load()),
+        static_cast<unsigned long long>(counters.cycle_stats.load()),
+        static_cast<unsigned long long>(counters.events.load()),
+        static_cast<unsigned long long>(counters.events_lost.load()), hmi_json.c_str());
   }
   return 0;
 }

@@ -13,7 +13,7 @@ void copy(const From& from, To (&to)[N]) {  // NOLINT(*-avoid-c-arrays): lcm-gen
 }
 
 hapticctrl_lcm::latency_t to_latency(const shm::LatencySummary& s) {
-  hapticctrl_lcm::latency_t l;
+  hapticctrl_lcm::latency_t l{};
   l.min_ns = s.min_ns;
   l.avg_ns = s.avg_ns;
   l.max_ns = s.max_ns;
@@ -68,12 +68,12 @@ const char* stop_reason_text(std::uint64_t reason) {
 
 Channels Channels::of(const std::string& instance) {
   const std::string p = "hapticctrl." + instance + ".";
-  return {p + "arm_state",    p + "coupling",    p + "cycle_stats", p + "bridge_stats",
-          p + "events",       p + "hmi_command", p + "hmi_force"};
+  return {p + "arm_state", p + "coupling",    p + "cycle_stats", p + "bridge_stats",
+          p + "events",    p + "hmi_command", p + "hmi_force"};
 }
 
 hapticctrl_lcm::arm_state_t to_arm_state(const shm::PositionPayload& p, std::int64_t utime) {
-  hapticctrl_lcm::arm_state_t m;
+  hapticctrl_lcm::arm_state_t m{};
   m.utime = utime;
   m.cycle = static_cast<std::int64_t>(p.cycle);
   m.state_word = static_cast<std::int32_t>(p.state_word);
@@ -91,7 +91,7 @@ hapticctrl_lcm::arm_state_t to_arm_state(const shm::PositionPayload& p, std::int
 hapticctrl_lcm::coupling_t to_coupling(const shm::VpPayload& vp, const shm::VprPayload& vpr,
                                        const shm::TelemetryPayload& t, std::int64_t now_ns,
                                        std::int64_t utime) {
-  hapticctrl_lcm::coupling_t m;
+  hapticctrl_lcm::coupling_t m{};
   m.utime = utime;
   m.cycle = static_cast<std::int64_t>(vp.cycle);
   m.session_id = static_cast<std::int64_t>(vpr.session_id);
@@ -110,7 +110,7 @@ hapticctrl_lcm::coupling_t to_coupling(const shm::VpPayload& vp, const shm::VprP
 }
 
 hapticctrl_lcm::cycle_stats_t to_cycle_stats(const shm::TelemetryPayload& t, std::int64_t utime) {
-  hapticctrl_lcm::cycle_stats_t m;
+  hapticctrl_lcm::cycle_stats_t m{};
   m.utime = utime;
   m.cycle = static_cast<std::int64_t>(t.cycle);
   m.period_ns = t.period_ns;
@@ -140,9 +140,8 @@ hapticctrl_lcm::cycle_stats_t to_cycle_stats(const shm::TelemetryPayload& t, std
   return m;
 }
 
-hapticctrl_lcm::bridge_stats_t to_bridge_stats(const shm::LinkStatsPayload& s,
-                                               std::int64_t utime) {
-  hapticctrl_lcm::bridge_stats_t m;
+hapticctrl_lcm::bridge_stats_t to_bridge_stats(const shm::LinkStatsPayload& s, std::int64_t utime) {
+  hapticctrl_lcm::bridge_stats_t m{};
   m.utime = utime;
   m.session_id = static_cast<std::int64_t>(s.session_id);
   if (s.session_id != 0) {
@@ -202,7 +201,7 @@ std::string describe(const shm::Event& e) {
 
 hapticctrl_lcm::event_t to_event(const shm::Event& e, std::uint64_t lost_before,
                                  std::int64_t utime) {
-  hapticctrl_lcm::event_t m;
+  hapticctrl_lcm::event_t m{};
   m.utime = utime;
   m.index = static_cast<std::int64_t>(e.index);
   m.cycle = static_cast<std::int64_t>(e.cycle);

@@ -23,8 +23,8 @@
 #include "hapticctrl/rt_core/deadline_monitor.hpp"
 #include "hapticctrl/rt_core/latency_histogram.hpp"
 #include "hapticctrl/rt_core/servo.hpp"
-#include "hapticctrl/shm/layout.hpp"
 #include "hapticctrl/shm/events.hpp"
+#include "hapticctrl/shm/layout.hpp"
 #include "hapticctrl/shm/payloads.hpp"
 
 namespace hapticctrl::rt_core {

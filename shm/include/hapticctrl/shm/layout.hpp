@@ -26,8 +26,8 @@
 #include <string_view>
 
 #include "hapticctrl/shm/ctrl.hpp"
-#include "hapticctrl/shm/payloads.hpp"
 #include "hapticctrl/shm/events.hpp"
+#include "hapticctrl/shm/payloads.hpp"
 #include "hapticctrl/shm/seqlock.hpp"
 
 namespace hapticctrl::shm {

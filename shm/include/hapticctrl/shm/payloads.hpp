@@ -138,8 +138,8 @@ struct LatencySummary {
 
 /// Upper bin edges [µs] of the coarse wake-latency histogram in telemetry; the last bin counts
 /// everything from the last edge on (the core's 1 µs histogram overflows there too).
-inline constexpr std::array<std::int64_t, 12> kLatencyBucketEdgesUs{2,   5,    10,   20,   50,  100,
-                                                                    200, 500, 1000, 2000, 5000, 10000};
+inline constexpr std::array<std::int64_t, 12> kLatencyBucketEdgesUs{
+    2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000, 5000, 10000};
 inline constexpr std::size_t kLatencyBuckets = kLatencyBucketEdgesUs.size() + 1;
 
 /// telemetry: cycle health, published by the core at a few tens of Hz.

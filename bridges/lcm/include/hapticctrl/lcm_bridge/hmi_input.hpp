@@ -24,10 +24,10 @@ namespace hapticctrl::lcm_bridge {
 
 struct HmiSettings {
   bool allow_remote_commands = false;
-  double max_force = 100.0;                   ///< N per axis, as the core accepts
-  double max_torque = 10.0;                   ///< N.m per axis
-  double force_rate = 500.0;                  ///< N/s: how fast the applied force may change
-  double torque_rate = 50.0;                  ///< N.m/s
+  double max_force = 100.0;                     ///< N per axis, as the core accepts
+  double max_torque = 10.0;                     ///< N.m per axis
+  double force_rate = 500.0;                    ///< N/s: how fast the applied force may change
+  double torque_rate = 50.0;                    ///< N.m/s
   std::int64_t force_timeout_ns = 200'000'000;  ///< no message for that long: decay to zero
 };
 
@@ -66,6 +66,7 @@ class HmiInput {
   shm::Vector6 applied_{};
   std::int64_t last_force_ns_ = 0;
   std::int64_t last_tick_ns_ = 0;
+  bool ticked_ = false;
   bool force_active_ = false;
   HmiCounters counters_;
 };

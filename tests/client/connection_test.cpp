@@ -201,36 +201,18 @@ TEST(Connection, VersionMismatchIsExplainedWithBothVersions) {
 TEST(Connection, WatchdogFadesTheCouplingWhenTheClientDiesAndARestartedClientReconnects) {
   ControllerStack stack("watchdog");
   ASSERT_TRUE(stack.ready()) << stack.diagnostics();
-  test::ReadyPipe streaming;
-  const std::uint16_t port = stack.port();
   // The client process: couples an object 3 cm from the handle, then is killed mid-stream.
-  test::Child client([&] {
-    Connection c({"127.0.0.1", port});
-    c.set_command_type(CommandType::kVirtmech);
-    c.attach_object(0.5, {0.001, 0.001, 0.001});
-    c.set_power(true);
-    StateSnapshot s;
-    c.wait_for_answer(0, 1s, s);
-    Pose7 object = s.handle_pose;
-    object[0] += 0.03;
-    for (int i = 0; i < 100000; ++i) {
-      if (c.wait_for_answer(s.cycle, 100ms, s)) {
-        c.send_object_state(object, {});
-        if (i == 30) {
-          streaming.signal();
-        }
-      }
-    }
-    return 0;
-  });
-  ASSERT_EQ(streaming.wait(), 'r');
+  test::SpawnedProcess client(HAPTICCTRL_STREAMING_CLIENT, {std::to_string(stack.port())});
+  ASSERT_TRUE(ControllerStack::eventually(
+      [&] { return client.out().find("streaming") != std::string::npos; }, 10s))
+      << client.err();
   const auto coupled = [&] {
     shm::PositionPayload p;
     stack.segment().region<shm::RegionId::kPosition>().read(p);
     return std::abs(p.coupling_wrench[0]);
   };
   EXPECT_GT(coupled(), 0.5);
-  client.kill_now();
+  client.signal(SIGKILL);
   client.wait();
   EXPECT_TRUE(
       ControllerStack::eventually([&] { return stack.link_stats().watchdog_expiries == 1; }));

@@ -8,6 +8,7 @@
 #include <lcm/lcm-cpp.hpp>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "hapticctrl_lcm/arm_state_t.hpp"
@@ -97,11 +98,11 @@ struct LcmStack {
   SpawnedProcess bridge;
   Monitor monitor;
 
-  LcmStack(const std::string& tag, std::vector<std::string> extra)
+  LcmStack(const std::string& tag, const std::vector<std::string>& extra)
       : controller(tag),
         bridge(HAPTICCTRL_LCM_BINARY, args(extra)),
         monitor(url, controller.instance()) {}
-  std::vector<std::string> args(std::vector<std::string> extra) const {
+  std::vector<std::string> args(const std::vector<std::string>& extra) const {
     std::vector<std::string> a{"--instance", controller.instance(), "--lcm-url", url, "--json"};
     a.insert(a.end(), extra.begin(), extra.end());
     return a;

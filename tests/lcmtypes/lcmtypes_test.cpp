@@ -52,14 +52,14 @@ T round_trip(lcm::LCM& lcm, const T& sent) {
 
 /// One message of every type with distinctive values.
 struct Samples {
-  hapticctrl_lcm::latency_t latency;
-  hapticctrl_lcm::cycle_stats_t stats;
-  hapticctrl_lcm::arm_state_t arm;
-  hapticctrl_lcm::coupling_t coupling;
-  hapticctrl_lcm::bridge_stats_t bridge;
-  hapticctrl_lcm::event_t event;
-  hapticctrl_lcm::hmi_command_t command;
-  hapticctrl_lcm::hmi_force_t force;
+  hapticctrl_lcm::latency_t latency{};
+  hapticctrl_lcm::cycle_stats_t stats{};
+  hapticctrl_lcm::arm_state_t arm{};
+  hapticctrl_lcm::coupling_t coupling{};
+  hapticctrl_lcm::bridge_stats_t bridge{};
+  hapticctrl_lcm::event_t event{};
+  hapticctrl_lcm::hmi_command_t command{};
+  hapticctrl_lcm::hmi_force_t force{};
 
   Samples() {
     latency = {1, 2, 3, 4, 5, 6, 7, 8};

@@ -52,13 +52,13 @@ inline void write_sample_log(const std::string& path) {
   for (int i = 1; i <= 2; ++i) {
     hapticctrl_lcm::cycle_stats_t s{};
     s.utime = t;
-    s.cycle = 100 * i;
+    s.cycle = std::int64_t{100} * i;
     s.period_ns = 1'000'000;
     s.wake_latency.p99_ns = 90'000;
     const std::int64_t edges[12] = {2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000, 5000, 10000};
     std::copy(std::begin(edges), std::end(edges), s.histogram_edges_us);  // NOLINT(*-c-arrays)
-    s.wake_histogram[5] = 60 * i;
-    s.wake_histogram[6] = 30 * i;
+    s.wake_histogram[5] = std::int64_t{60} * i;
+    s.wake_histogram[6] = std::int64_t{30} * i;
     s.wake_histogram[12] = i;
     log_message(log, "hapticctrl.lab.cycle_stats", s, t);
     t += 100'000;

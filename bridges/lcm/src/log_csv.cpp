@@ -229,7 +229,10 @@ CsvReport log_to_csv(const std::string& log_path, const std::string& out_dir) {
     }
     auto& file = files[ch];
     if (!file) {
-      const std::string path = out_dir + "/" + ch + ".csv";
+      std::string path = out_dir;
+      path += "/";
+      path += ch;
+      path += ".csv";
       file = std::make_unique<std::ofstream>(path);
       if (!*file) {
         throw std::runtime_error("cannot write '" + path + "'");

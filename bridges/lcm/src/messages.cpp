@@ -96,7 +96,7 @@ hapticctrl_lcm::coupling_t to_coupling(const shm::VpPayload& vp, const shm::VprP
   m.cycle = static_cast<std::int64_t>(vp.cycle);
   m.session_id = static_cast<std::int64_t>(vpr.session_id);
   m.command_type = static_cast<std::int32_t>(vp.command_type);
-  m.object_attached = (vpr.flags & shm::vpr_flags::kObjectAttached) != 0;
+  m.object_attached = (vpr.flags & shm::vpr_flags::kObjectAttached) != 0 ? 1 : 0;
   copy(vpr.object_pose, m.object_pose);
   copy(vpr.object_twist, m.object_twist);
   copy(vp.coupling_wrench, m.coupling_wrench);
@@ -104,7 +104,7 @@ hapticctrl_lcm::coupling_t to_coupling(const shm::VpPayload& vp, const shm::VprP
   m.client_sequence = static_cast<std::int64_t>(vp.echo_client_sequence);
   m.client_age_ms =
       vpr.session_id != 0 ? static_cast<double>(now_ns - vpr.received_time_ns) / 1e6 : 0.0;
-  m.client_stale = (vp.state_word & shm::state_bits::kClientStale) != 0;
+  m.client_stale = (vp.state_word & shm::state_bits::kClientStale) != 0 ? 1 : 0;
   m.vpr_stale_cycles = static_cast<std::int64_t>(t.vpr_stale);
   return m;
 }

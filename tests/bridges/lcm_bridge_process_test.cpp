@@ -44,9 +44,22 @@ struct Monitor {
 
   Monitor(const std::string& url, const std::string& instance)
       : lcm(url), prefix("hapticctrl." + instance + ".") {
-    lcm.subscribe(prefix + "arm_state", &Monitor::on_arm, this);
-    lcm.subscribe(prefix + "cycle_stats", &Monitor::on_stats, this);
-    lcm.subscribe(prefix + "events", &Monitor::on_event, this);
+    // Raw subscriptions decoded here: Debian LCM 1.3.1's typed member-function subscription
+    // trips UBSan inside its own header.
+    lcm.subscribeFunction(prefix + "arm_state",
+                          &Monitor::raw<hapticctrl_lcm::arm_state_t, &Monitor::on_arm>, this);
+    lcm.subscribeFunction(prefix + "cycle_stats",
+                          &Monitor::raw<hapticctrl_lcm::cycle_stats_t, &Monitor::on_stats>, this);
+    lcm.subscribeFunction(prefix + "events",
+                          &Monitor::raw<hapticctrl_lcm::event_t, &Monitor::on_event>, this);
+  }
+  template <typename M,
+            void (Monitor::*Handler)(const lcm::ReceiveBuffer*, const std::string&, const M*)>
+  static void raw(const lcm::ReceiveBuffer* rbuf, const std::string& channel, Monitor* self) {
+    M m{};
+    if (m.decode(rbuf->data, 0, static_cast<int>(rbuf->data_size)) >= 0) {
+      (self->*Handler)(rbuf, channel, &m);
+    }
   }
   void on_arm(const lcm::ReceiveBuffer*, const std::string&, const hapticctrl_lcm::arm_state_t* m) {
     ++arm_states;

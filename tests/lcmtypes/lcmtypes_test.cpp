@@ -35,12 +35,15 @@ T round_trip(lcm::LCM& lcm, const T& sent) {
   struct Sink {
     T* out;
     bool* flag;
-    void on(const lcm::ReceiveBuffer* /*rbuf*/, const std::string& /*ch*/, const T* m) {
-      *out = *m;
-      *flag = true;
-    }
   } sink{&got, &received};
-  lcm::Subscription* sub = lcm.subscribe(channel, &Sink::on, &sink);
+  // The raw subscription (decoded here), as hapticctrl-lcm uses: Debian LCM 1.3.1's typed
+  // member-function subscription trips UBSan inside its own header.
+  lcm::Subscription* sub = lcm.subscribeFunction(
+      channel,
+      +[](const lcm::ReceiveBuffer* rbuf, const std::string& /*ch*/, Sink* s) {
+        *s->flag = s->out->decode(rbuf->data, 0, static_cast<int>(rbuf->data_size)) >= 0;
+      },
+      &sink);
   lcm.publish(channel, &sent);
   for (int i = 0; i < 100 && !received; ++i) {
     lcm.handleTimeout(20);

@@ -28,13 +28,14 @@ void push_event(EventRing& ring, std::uint64_t cycle, std::int64_t time_ns, Even
                 std::uint32_t code, std::uint64_t value) noexcept {
   const std::uint64_t index = ring.head.load(std::memory_order_relaxed);
   EventEntry& e = ring.entries[index % kEventRingSize];
+  // As in SeqlockCell, no fences (TSan does not model them): the fields are stored with release,
+  // so a reader that sees any new field value also sees the stamp cleared before it.
   e.stamp.store(0, std::memory_order_relaxed);  // readers treat 0 as "being rewritten"
-  std::atomic_thread_fence(std::memory_order_release);
-  e.cycle.store(cycle, std::memory_order_relaxed);
-  e.time_ns.store(time_ns, std::memory_order_relaxed);
-  e.kind.store(static_cast<std::uint32_t>(kind), std::memory_order_relaxed);
-  e.code.store(code, std::memory_order_relaxed);
-  e.value.store(value, std::memory_order_relaxed);
+  e.cycle.store(cycle, std::memory_order_release);
+  e.time_ns.store(time_ns, std::memory_order_release);
+  e.kind.store(static_cast<std::uint32_t>(kind), std::memory_order_release);
+  e.code.store(code, std::memory_order_release);
+  e.value.store(value, std::memory_order_release);
   e.stamp.store(index + 1, std::memory_order_release);
   ring.head.store(index + 1, std::memory_order_release);
 }
@@ -62,12 +63,11 @@ bool EventReader::next(Event& out) noexcept {
       continue;
     }
     out.index = want;
-    out.cycle = e.cycle.load(std::memory_order_relaxed);
-    out.time_ns = e.time_ns.load(std::memory_order_relaxed);
-    out.kind = static_cast<EventKind>(e.kind.load(std::memory_order_relaxed));
-    out.code = e.code.load(std::memory_order_relaxed);
-    out.value = e.value.load(std::memory_order_relaxed);
-    std::atomic_thread_fence(std::memory_order_acquire);
+    out.cycle = e.cycle.load(std::memory_order_acquire);
+    out.time_ns = e.time_ns.load(std::memory_order_acquire);
+    out.kind = static_cast<EventKind>(e.kind.load(std::memory_order_acquire));
+    out.code = e.code.load(std::memory_order_acquire);
+    out.value = e.value.load(std::memory_order_acquire);
     ++position_;
     if (e.stamp.load(std::memory_order_relaxed) != want) {
       ++lost_;  // rewritten while we copied: the copy is not trusted

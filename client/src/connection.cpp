@@ -27,20 +27,6 @@ std::string version_text(std::uint32_t v) {
          std::to_string(protocol::version_minor(v));
 }
 
-template <typename From, std::size_t N, typename To>
-void copy_to(const From& from, To (&to)[N]) noexcept {  // NOLINT(*-avoid-c-arrays)
-  for (std::size_t i = 0; i < N; ++i) {
-    to[i] = static_cast<To>(from[i]);
-  }
-}
-
-template <typename From, std::size_t N, typename To>
-void copy_from(const From (&from)[N], To& to) noexcept {  // NOLINT(*-avoid-c-arrays)
-  for (std::size_t i = 0; i < N; ++i) {
-    to[i] = static_cast<typename To::value_type>(from[i]);
-  }
-}
-
 }  // namespace
 
 Address Address::parse(std::string_view text) {
@@ -293,11 +279,11 @@ struct Connection::Impl {
       s.core_state = a.core_state;
       s.stop_reason = a.stop_reason;
       s.command_type = static_cast<CommandType>(a.command_type);
-      copy_from(a.coupling_wrench, s.coupling_wrench);
-      copy_from(a.handle_pose, s.handle_pose);
-      copy_from(a.handle_twist, s.handle_twist);
-      copy_from(a.joint_position, s.joint_position);
-      copy_from(a.joint_velocity, s.joint_velocity);
+      protocol::from_wire(a.coupling_wrench, s.coupling_wrench);
+      protocol::from_wire(a.handle_pose, s.handle_pose);
+      protocol::from_wire(a.handle_twist, s.handle_twist);
+      protocol::from_wire(a.joint_position, s.joint_position);
+      protocol::from_wire(a.joint_velocity, s.joint_velocity);
       latest = s;
     }
     answer_cv.notify_all();
@@ -443,12 +429,12 @@ void Connection::set_speed_factor(double factor) {
 }
 void Connection::set_base_frame(const Pose7& frame) {
   hcp_param p = param_of(HCP_P_BASE_FRAME);
-  copy_to(frame, p.hcp_param_u.base_frame);
+  protocol::to_wire(frame, p.hcp_param_u.base_frame);
   impl_->set_param(p, "set_base_frame");
 }
 void Connection::set_observation_frame(const Pose7& frame) {
   hcp_param p = param_of(HCP_P_OBSERVATION_FRAME);
-  copy_to(frame, p.hcp_param_u.observation_frame);
+  protocol::to_wire(frame, p.hcp_param_u.observation_frame);
   impl_->set_param(p, "set_observation_frame");
 }
 void Connection::set_indexing_mode(IndexingMode mode) {
@@ -465,7 +451,7 @@ void Connection::attach_object(double mass, const std::array<double, 3>& inertia
   hcp_param p = param_of(HCP_P_OBJECT);
   p.hcp_param_u.object.attached = 1;
   p.hcp_param_u.object.mass = mass;
-  copy_to(inertia, p.hcp_param_u.object.inertia);
+  protocol::to_wire(inertia, p.hcp_param_u.object.inertia);
   impl_->set_param(p, "attach_object");
 }
 void Connection::detach_object() {
@@ -473,12 +459,12 @@ void Connection::detach_object() {
 }
 void Connection::set_gains(double k_lin, double b_lin, double k_ang, double b_ang) {
   hcp_param p = param_of(HCP_P_GAINS);
-  copy_to(std::array<double, 4>{k_lin, b_lin, k_ang, b_ang}, p.hcp_param_u.gains);
+  protocol::to_wire(std::array<double, 4>{k_lin, b_lin, k_ang, b_ang}, p.hcp_param_u.gains);
   impl_->set_param(p, "set_gains");
 }
 void Connection::set_force_limits(double force, double torque) {
   hcp_param p = param_of(HCP_P_FORCE_LIMITS);
-  copy_to(std::array<double, 2>{force, torque}, p.hcp_param_u.force_limits);
+  protocol::to_wire(std::array<double, 2>{force, torque}, p.hcp_param_u.force_limits);
   impl_->set_param(p, "set_force_limits");
 }
 void Connection::set_watchdog(std::chrono::milliseconds timeout) {
@@ -503,8 +489,8 @@ bool Connection::send_object_state(const Pose7& pose, const Vector6& twist) noex
   const std::int64_t now = monotonic_ns();
   hcp_frame f =
       protocol::make_frame(HCP_CONTROL_OBJECT, impl_->token, impl_->next_control_sequence(), now);
-  copy_to(pose, f.body.hcp_body_u.object.pose);
-  copy_to(twist, f.body.hcp_body_u.object.twist);
+  protocol::to_wire(pose, f.body.hcp_body_u.object.pose);
+  protocol::to_wire(twist, f.body.hcp_body_u.object.twist);
   return impl_->send_control(f);
 }
 
@@ -512,7 +498,7 @@ bool Connection::send_wrench(const Vector6& wrench) noexcept {
   const std::int64_t now = monotonic_ns();
   hcp_frame f =
       protocol::make_frame(HCP_CONTROL_WRENCH, impl_->token, impl_->next_control_sequence(), now);
-  copy_to(wrench, f.body.hcp_body_u.wrench.wrench);
+  protocol::to_wire(wrench, f.body.hcp_body_u.wrench.wrench);
   return impl_->send_control(f);
 }
 

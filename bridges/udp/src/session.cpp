@@ -14,20 +14,6 @@ namespace {
 using protocol::DecodeStatus;
 using shm::LinkDrop;
 
-template <typename From, std::size_t N, typename To>
-void copy_array(const From (&from)[N], To& to) noexcept {  // NOLINT(*-avoid-c-arrays)
-  for (std::size_t i = 0; i < N; ++i) {
-    to[i] = static_cast<typename To::value_type>(from[i]);
-  }
-}
-
-template <typename From, typename To, std::size_t N>
-void copy_out(const From& from, To (&to)[N]) noexcept {  // NOLINT(*-avoid-c-arrays)
-  for (std::size_t i = 0; i < N; ++i) {
-    to[i] = static_cast<To>(from[i]);
-  }
-}
-
 shm::VprPayload fresh_vpr(std::uint64_t session_number) noexcept {
   shm::VprPayload v;
   v.session_id = session_number;
@@ -236,10 +222,10 @@ void Session::on_control(const hcp_frame& in, TimeNs now) noexcept {
     return;  // feeds the watchdog only: the core keeps judging the freshness of client data
   }
   if (in.body.type == HCP_CONTROL_OBJECT) {
-    copy_array(in.body.hcp_body_u.object.pose, vpr_.object_pose);
-    copy_array(in.body.hcp_body_u.object.twist, vpr_.object_twist);
+    protocol::from_wire(in.body.hcp_body_u.object.pose, vpr_.object_pose);
+    protocol::from_wire(in.body.hcp_body_u.object.twist, vpr_.object_twist);
   } else {
-    copy_array(in.body.hcp_body_u.wrench.wrench, vpr_.impedance_wrench);
+    protocol::from_wire(in.body.hcp_body_u.wrench.wrench, vpr_.impedance_wrench);
   }
   vpr_.client_sequence = control_seq_high_;
   vpr_.client_time_ns = in.header.sender_time_ns;
@@ -294,10 +280,10 @@ hcp_ack_status Session::apply(const hcp_param& param, TimeNs now) noexcept {
       vpr_.speed_factor = u.speed_factor;
       break;
     case HCP_P_BASE_FRAME:
-      copy_array(u.base_frame, vpr_.base_frame);
+      protocol::from_wire(u.base_frame, vpr_.base_frame);
       break;
     case HCP_P_OBSERVATION_FRAME:
-      copy_array(u.observation_frame, vpr_.observation_frame);
+      protocol::from_wire(u.observation_frame, vpr_.observation_frame);
       break;
     case HCP_P_INDEXING_MODE:
       vpr_.indexing_mode = u.indexing_mode;
@@ -309,13 +295,13 @@ hcp_ack_status Session::apply(const hcp_param& param, TimeNs now) noexcept {
       vpr_.flags = u.object.attached != 0 ? (vpr_.flags | shm::vpr_flags::kObjectAttached)
                                           : (vpr_.flags & ~shm::vpr_flags::kObjectAttached);
       vpr_.object_mass = u.object.mass;
-      copy_array(u.object.inertia, vpr_.object_inertia);
+      protocol::from_wire(u.object.inertia, vpr_.object_inertia);
       break;
     case HCP_P_GAINS:
-      copy_array(u.gains, vpr_.gain_override);
+      protocol::from_wire(u.gains, vpr_.gain_override);
       break;
     case HCP_P_FORCE_LIMITS:
-      copy_array(u.force_limits, vpr_.force_limits);
+      protocol::from_wire(u.force_limits, vpr_.force_limits);
       break;
     case HCP_P_WATCHDOG:
       watchdog_ms_ = u.watchdog_ms;
@@ -411,12 +397,12 @@ std::size_t Session::answer(const shm::VpPayload& vp, TimeNs now, std::span<std:
   if ((view.features & HCP_FEATURE_LINK_STATS) != 0) {
     a.control_received = control_received_shared_.load(std::memory_order_relaxed);
   }
-  copy_out(vp.coupling_wrench, a.coupling_wrench);
-  copy_out(vp.handle_pose, a.handle_pose);
-  copy_out(vp.handle_twist, a.handle_twist);
+  protocol::to_wire(vp.coupling_wrench, a.coupling_wrench);
+  protocol::to_wire(vp.handle_pose, a.handle_pose);
+  protocol::to_wire(vp.handle_twist, a.handle_twist);
   if ((view.features & HCP_FEATURE_JOINT_STATE) != 0) {
-    copy_out(vp.joint_position, a.joint_position);
-    copy_out(vp.joint_velocity, a.joint_velocity);
+    protocol::to_wire(vp.joint_position, a.joint_position);
+    protocol::to_wire(vp.joint_velocity, a.joint_velocity);
   }
   return protocol::encode(f, out);
 }

@@ -85,6 +85,23 @@ template <std::size_t N>
   return {static_cast<const char*>(field), n};
 }
 
+/// Copies a std::array (or any indexable) into a fixed XDR array field, converting each element
+/// (double to float for control frames). Real-time contract: no allocation.
+template <typename From, typename To, std::size_t N>
+void to_wire(const From& from, To (&to)[N]) noexcept {  // NOLINT(*-avoid-c-arrays): XDR's shape
+  for (std::size_t i = 0; i < N; ++i) {
+    to[i] = static_cast<To>(from[i]);
+  }
+}
+
+/// Copies a fixed XDR array field into a std::array, converting each element.
+template <typename From, std::size_t N, typename To>
+void from_wire(const From (&from)[N], To& to) noexcept {  // NOLINT(*-avoid-c-arrays)
+  for (std::size_t i = 0; i < N; ++i) {
+    to[i] = static_cast<typename To::value_type>(from[i]);
+  }
+}
+
 /// RFC 1982 serial-number order for 32-bit sequences: true if `a` is newer than `b`.
 [[nodiscard]] constexpr bool sequence_newer(std::uint32_t a, std::uint32_t b) noexcept {
   return a != b && static_cast<std::uint32_t>(a - b) < 0x80000000U;

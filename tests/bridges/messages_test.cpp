@@ -92,12 +92,6 @@ TEST(Messages, EventsAreDescribed) {
   EXPECT_EQ(m.kind, "core_state");
   EXPECT_EQ(m.text, "fail-safe: 5 consecutive deadline misses");
   EXPECT_EQ(m.lost_before, 2);
-  e.kind = shm::EventKind::kPower;
-  e.code = 1;
-  EXPECT_EQ(describe(e), "power on");
-  e.kind = shm::EventKind::kClientSession;
-  e.value = 0;
-  EXPECT_EQ(describe(e), "no client session");
 }
 
 }  // namespace

@@ -1,7 +1,6 @@
 #include "hapticctrl/lcm_bridge/hmi_input.hpp"
 
 #include <algorithm>
-#include <cmath>
 
 #include "hapticctrl_lcm/hmi_command_t.hpp"
 #include "hapticctrl_lcm/hmi_force_t.hpp"
@@ -32,7 +31,7 @@ shm::CtrlCode ctrl_code_of(std::int32_t command) noexcept {
 
 HmiInput::HmiInput(const HmiSettings& settings, shm::CtrlWriter* ctrl,
                    shm::SeqlockCell<shm::ForcePayload>* force) noexcept
-    : settings_(settings), ctrl_(ctrl), force_(force) {}
+    : settings_(settings), ctrl_(ctrl), force_(force), slew_(settings.force_limits) {}
 
 void HmiInput::on_command(const void* data, std::size_t size, std::int64_t now_ns) noexcept {
   Command m{};
@@ -76,14 +75,12 @@ void HmiInput::on_force(const void* data, std::size_t size, std::int64_t now_ns)
     counters_.forces_refused.fetch_add(1, std::memory_order_relaxed);
     return;
   }
-  for (int i = 0; i < 6; ++i) {
-    const double limit = i < 3 ? settings_.max_force : settings_.max_torque;
-    if (!std::isfinite(m.wrench[i]) || std::abs(m.wrench[i]) > limit) {
-      counters_.forces_invalid.fetch_add(1, std::memory_order_relaxed);
-      return;
-    }
+  shm::Vector6 requested{};
+  std::copy_n(m.wrench, 6, requested.begin());
+  if (!slew_.set_target(requested)) {
+    counters_.forces_invalid.fetch_add(1, std::memory_order_relaxed);
+    return;
   }
-  std::copy_n(m.wrench, 6, requested_.begin());
   last_force_ns_ = now_ns;
   force_active_ = true;
   counters_.forces_accepted.fetch_add(1, std::memory_order_relaxed);
@@ -94,19 +91,12 @@ void HmiInput::tick(std::int64_t now_ns) noexcept {
   last_tick_ns_ = now_ns;
   ticked_ = true;
   if (force_active_ && now_ns - last_force_ns_ > settings_.force_timeout_ns) {
-    requested_ = {};  // the HMI went quiet: let go, at the same bounded rate
+    slew_.set_target({});  // the HMI went quiet: let go, at the same bounded rate
     force_active_ = false;
     counters_.force_timeouts.fetch_add(1, std::memory_order_relaxed);
   }
-  bool changed = false;
-  for (std::size_t i = 0; i < 6; ++i) {
-    const double step = (i < 3 ? settings_.force_rate : settings_.torque_rate) * dt;
-    const double next = applied_[i] + std::clamp(requested_[i] - applied_[i], -step, step);
-    changed = changed || next != applied_[i];
-    applied_[i] = next;
-  }
-  if (changed && force_ != nullptr) {
-    force_->publish_quietly(shm::ForcePayload{applied_}, now_ns);
+  if (slew_.step(dt) && force_ != nullptr) {
+    force_->publish_quietly(shm::ForcePayload{slew_.applied()}, now_ns);
   }
 }
 

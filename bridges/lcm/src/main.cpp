@@ -100,10 +100,15 @@ void publish_loop(const shm::Segment& seg, lcm::LCM& lcm, const Channels& ch,
   }
 }
 
-std::optional<shm::Segment> try_attach(const std::string& instance) {
+/// The bridge writes `force` only when remote commands are enabled (it would refuse remote forces
+/// anyway): by default the local HMI (hapticctrl-hmi) is the force region's writer.
+std::optional<shm::Segment> try_attach(const std::string& instance, bool remote_force) {
+  std::vector<shm::RegionId> writes;
+  if (remote_force) {
+    writes.push_back(shm::RegionId::kForce);
+  }
   try {
-    return shm::Segment::attach(instance,
-                                shm::AttachOptions{{shm::RegionId::kForce}, /*ctrl_writer=*/true});
+    return shm::Segment::attach(instance, shm::AttachOptions{writes, /*ctrl_writer=*/true});
   } catch (const shm::ShmError& e) {
     if (e.code() == shm::ShmErrc::kNoController) {
       return std::nullopt;
@@ -116,7 +121,8 @@ std::optional<shm::Segment> try_attach(const std::string& instance) {
 void run_attached(shm::Segment& seg, lcm::LCM& lcm, const Channels& ch,
                   const LcmBridgeConfig& config, std::int64_t end_ns, PublishCounters& counters,
                   lb::HmiSettings& settings, std::string& hmi_json) {
-  HmiInput hmi(settings, &seg.ctrl_writer(), &seg.writable<shm::RegionId::kForce>());
+  HmiInput hmi(settings, &seg.ctrl_writer(),
+               settings.allow_remote_commands ? &seg.writable<shm::RegionId::kForce>() : nullptr);
   auto command_sub = lcm.subscribeFunction(
       ch.hmi_command,
       +[](const lcm::ReceiveBuffer* rbuf, const std::string& /*channel*/, HmiInput* input) {
@@ -186,7 +192,7 @@ int run(const LcmBridgeConfig& config) {
                config.allow_remote_commands ? "enabled" : "disabled (emergency stop only)");
   bool said_waiting = false;
   while (!g_stop.load()) {
-    std::optional<shm::Segment> seg = try_attach(config.instance);
+    std::optional<shm::Segment> seg = try_attach(config.instance, config.allow_remote_commands);
     if (seg) {
       said_waiting = false;
       run_attached(*seg, lcm, ch, config, end_ns, counters, settings, hmi_json);

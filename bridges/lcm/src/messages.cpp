@@ -4,6 +4,8 @@
 
 #include <algorithm>
 
+#include "hapticctrl/shm/names.hpp"
+
 namespace hapticctrl::lcm_bridge {
 namespace {
 
@@ -23,45 +25,6 @@ hapticctrl_lcm::latency_t to_latency(const shm::LatencySummary& s) {
   l.samples = static_cast<std::int64_t>(s.samples);
   l.overflows = static_cast<std::int64_t>(s.overflows);
   return l;
-}
-
-const char* core_state_name(std::uint64_t state) {
-  switch (state) {
-    case 0:
-      return "starting";
-    case 1:
-      return "running";
-    case 2:
-      return "fail-safe";
-    case 3:
-      return "stopping";
-    case 4:
-      return "stopped";
-    default:
-      return "unknown state";
-  }
-}
-
-const char* stop_reason_text(std::uint64_t reason) {
-  switch (static_cast<shm::StopReason>(reason)) {
-    case shm::StopReason::kNone:
-      return "";
-    case shm::StopReason::kConsecutiveMisses:
-      return "5 consecutive deadline misses";
-    case shm::StopReason::kStopRequested:
-      return "stop requested";
-    case shm::StopReason::kSignal:
-      return "signal";
-    case shm::StopReason::kChronicMisses:
-      return "chronic deadline misses";
-    case shm::StopReason::kArmFault:
-      return "arm fault";
-    case shm::StopReason::kDurationElapsed:
-      return "duration elapsed";
-    case shm::StopReason::kVelocityLimit:
-      return "velocity limit";
-  }
-  return "unknown reason";
 }
 
 }  // namespace
@@ -172,32 +135,6 @@ hapticctrl_lcm::bridge_stats_t to_bridge_stats(const shm::LinkStatsPayload& s, s
   return m;
 }
 
-std::string describe(const shm::Event& e) {
-  const bool on = e.code != 0;
-  switch (e.kind) {
-    case shm::EventKind::kCoreState: {
-      std::string text = core_state_name(e.code);
-      const std::string why = stop_reason_text(e.value);
-      return why.empty() ? text : text + ": " + why;
-    }
-    case shm::EventKind::kPower:
-      return on ? "power on" : "power off";
-    case shm::EventKind::kEmergencyStop:
-      return on ? "emergency stop latched" : "emergency stop reset";
-    case shm::EventKind::kDegraded:
-      return on ? "degraded SERVO ran (main SERVO late)" : "main SERVO back";
-    case shm::EventKind::kClientSession:
-      return e.value != 0 ? "client session " + std::to_string(e.value) + " started"
-                          : "no client session";
-    case shm::EventKind::kClientStale:
-      return on ? "client data stale (extrapolating, fading)" : "client data fresh";
-    case shm::EventKind::kCoupling:
-      return on ? "coupling active" : "coupling inactive";
-    case shm::EventKind::kNone:
-      break;
-  }
-  return "unknown event";
-}
 
 hapticctrl_lcm::event_t to_event(const shm::Event& e, std::uint64_t lost_before,
                                  std::int64_t utime) {
@@ -209,7 +146,7 @@ hapticctrl_lcm::event_t to_event(const shm::Event& e, std::uint64_t lost_before,
   m.kind = shm::event_kind_name(e.kind);
   m.code = static_cast<std::int32_t>(e.code);
   m.value = static_cast<std::int64_t>(e.value);
-  m.text = describe(e);
+  m.text = shm::describe_event(e);
   m.lost_before = static_cast<std::int64_t>(lost_before);
   return m;
 }

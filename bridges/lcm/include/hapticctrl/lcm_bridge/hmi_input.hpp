@@ -17,6 +17,7 @@
 #include <cstdint>
 
 #include "hapticctrl/shm/ctrl.hpp"
+#include "hapticctrl/shm/force_slew.hpp"
 #include "hapticctrl/shm/payloads.hpp"
 #include "hapticctrl/shm/seqlock.hpp"
 
@@ -24,10 +25,7 @@ namespace hapticctrl::lcm_bridge {
 
 struct HmiSettings {
   bool allow_remote_commands = false;
-  double max_force = 100.0;                     ///< N per axis, as the core accepts
-  double max_torque = 10.0;                     ///< N.m per axis
-  double force_rate = 500.0;                    ///< N/s: how fast the applied force may change
-  double torque_rate = 50.0;                    ///< N.m/s
+  shm::ForceLimits force_limits;                ///< magnitude and rate of the applied wrench
   std::int64_t force_timeout_ns = 200'000'000;  ///< no message for that long: decay to zero
 };
 
@@ -56,14 +54,13 @@ class HmiInput {
   void tick(std::int64_t now_ns) noexcept;
 
   [[nodiscard]] const HmiCounters& counters() const noexcept { return counters_; }
-  [[nodiscard]] const shm::Vector6& applied() const noexcept { return applied_; }
+  [[nodiscard]] const shm::Vector6& applied() const noexcept { return slew_.applied(); }
 
  private:
   HmiSettings settings_;
   shm::CtrlWriter* ctrl_;
   shm::SeqlockCell<shm::ForcePayload>* force_;
-  shm::Vector6 requested_{};
-  shm::Vector6 applied_{};
+  shm::ForceSlew slew_;
   std::int64_t last_force_ns_ = 0;
   std::int64_t last_tick_ns_ = 0;
   bool ticked_ = false;

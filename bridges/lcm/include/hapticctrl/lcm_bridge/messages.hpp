@@ -33,7 +33,5 @@ struct Channels {
                                                              std::int64_t utime);
 [[nodiscard]] hapticctrl_lcm::event_t to_event(const shm::Event& e, std::uint64_t lost_before,
                                                std::int64_t utime);
-/// "power on", "fail-safe: 5 consecutive deadline misses", ...
-[[nodiscard]] std::string describe(const shm::Event& e);
 
 }  // namespace hapticctrl::lcm_bridge

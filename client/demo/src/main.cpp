@@ -1,0 +1,280 @@
+// hapticctrl-demo: the seeds' test client. A mobile sphere, coupled to the arm through the
+// client library in VIRTMECH mode, next to a fixed sphere; the client integrates both at its
+// time step (one step per controller answer) and sends the mobile sphere's state back.
+// Exit: 0 done, 1 error, 2 the controller ended the session by failing safe, 64 usage.
+#include <fcntl.h>
+#include <termios.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <exception>
+#include <fstream>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "hapticctrl/client/connection.hpp"
+#include "hapticctrl/demo/demo_input.hpp"
+#include "hapticctrl/demo/demo_options.hpp"
+#include "hapticctrl/demo/sphere_scene.hpp"
+
+namespace {
+
+namespace client = hapticctrl::client;
+namespace demo = hapticctrl::demo;
+using Clock = std::chrono::steady_clock;
+
+std::atomic<bool> g_stop{false};
+void on_signal(int /*sig*/) {
+  g_stop.store(true);
+}
+
+/// Raw, non-blocking keyboard for the session's lifetime; restores the terminal on exit.
+class RawKeyboard {
+ public:
+  RawKeyboard() {
+    if (tcgetattr(STDIN_FILENO, &saved_) != 0) {
+      return;
+    }
+    termios raw = saved_;
+    raw.c_lflag &= ~static_cast<tcflag_t>(ICANON | ECHO);
+    raw.c_cc[VMIN] = 0;
+    raw.c_cc[VTIME] = 0;
+    active_ = tcsetattr(STDIN_FILENO, TCSANOW, &raw) == 0;
+  }
+  ~RawKeyboard() {
+    if (active_) {
+      tcsetattr(STDIN_FILENO, TCSANOW, &saved_);
+    }
+  }
+  RawKeyboard(const RawKeyboard&) = delete;
+  RawKeyboard& operator=(const RawKeyboard&) = delete;
+  /// The next key pressed, or -1.
+  [[nodiscard]] int poll() const {
+    unsigned char c = 0;
+    return active_ && read(STDIN_FILENO, &c, 1) == 1 ? c : -1;
+  }
+
+ private:
+  termios saved_{};
+  bool active_ = false;
+};
+
+/// The seeds' initialisation: references and frames, units and factors, time step, command
+/// type, object attach, power-on.
+void initialise(client::Connection& c, const demo::DemoOptions& o, double time_step) {
+  const client::Pose7 identity{0, 0, 0, 0, 0, 0, 1};
+  c.set_base_frame(identity);
+  c.set_observation_frame(identity);
+  c.set_force_factor(1.0);
+  c.set_speed_factor(1.0);
+  c.set_time_step(time_step);
+  c.set_command_type(client::CommandType::kVirtmech);
+  const double inertia = o.scene.inertia();
+  c.attach_object(o.scene.mass, {inertia, inertia, inertia});
+  if (o.power_on) {
+    c.set_power(true);
+  }
+}
+
+/// The scene starts with the mobile sphere on the handle and the fixed one `gap` away along +x.
+demo::SphereScene scene_at(const client::StateSnapshot& s, const demo::DemoOptions& o) {
+  demo::SceneConfig config = o.scene;
+  demo::SphereState start;
+  start.position = {s.handle_pose[0], s.handle_pose[1], s.handle_pose[2]};
+  start.orientation =
+      Eigen::Quaterniond(s.handle_pose[6], s.handle_pose[3], s.handle_pose[4], s.handle_pose[5])
+          .normalized();
+  config.fixed_center =
+      start.position +
+      Eigen::Vector3d::UnitX() * (config.fixed_radius + config.mobile_radius + o.gap);
+  return {config, start};
+}
+
+void log_header(std::ofstream& log) {
+  log << "t_s,cycle,state_word,x,y,z,qx,qy,qz,qw,vx,vy,vz,contact_fx,contact_fy,contact_fz,"
+         "cpl_fx,cpl_fy,cpl_fz,cpl_tx,cpl_ty,cpl_tz,app_fx,app_fy,app_fz,app_tx,app_ty,app_tz,"
+         "handle_x,handle_y,handle_z\n";
+}
+
+void log_row(std::ofstream& log, double t, const client::StateSnapshot& s,
+             const demo::SphereScene& scene, const demo::AppliedWrench& applied) {
+  log << t << ',' << s.cycle << ',' << s.state_word;
+  for (const double v : scene.pose()) {
+    log << ',' << v;
+  }
+  const auto& st = scene.state();
+  const Eigen::Vector3d contact = scene.contact_force();
+  log << ',' << st.velocity.x() << ',' << st.velocity.y() << ',' << st.velocity.z() << ','
+      << contact.x() << ',' << contact.y() << ',' << contact.z();
+  for (const double v : s.coupling_wrench) {
+    log << ',' << v;
+  }
+  for (const double v : applied.wrench) {
+    log << ',' << v;
+  }
+  log << ',' << s.handle_pose[0] << ',' << s.handle_pose[1] << ',' << s.handle_pose[2] << '\n';
+}
+
+void print_status(FILE* out, double t, const client::StateSnapshot& s,
+                  const demo::SphereScene& scene, const char* end) {
+  const auto& p = scene.state().position;
+  const Eigen::Vector3d contact = scene.contact_force();
+  std::fprintf(out,
+               "t %6.2f s  %s  sphere (%+.4f %+.4f %+.4f) m  contact %+6.2f %+6.2f %+6.2f N  "
+               "coupling %+6.2f %+6.2f %+6.2f N%s",
+               t, s.powered() ? "powered  " : "unpowered", p.x(), p.y(), p.z(), contact.x(),
+               contact.y(), contact.z(), s.coupling_wrench[0], s.coupling_wrench[1],
+               s.coupling_wrench[2], end);
+  std::fflush(out);
+}
+
+void print_json(const client::StateSnapshot& s, const demo::SphereScene& scene,
+                const client::LinkStatistics& st, std::uint64_t steps, const char* ended) {
+  const auto& p = scene.state().position;
+  const auto& v = scene.state().velocity;
+  const Eigen::Vector3d contact = scene.contact_force();
+  std::printf(
+      "{\"steps\":%llu,\"ended\":\"%s\",\"powered\":%s,\"sphere_position\":[%.9g,%.9g,%.9g],"
+      "\"sphere_velocity\":[%.9g,%.9g,%.9g],\"contact_force\":[%.9g,%.9g,%.9g],"
+      "\"penetration\":%.9g,\"coupling_wrench\":[%.9g,%.9g,%.9g,%.9g,%.9g,%.9g],"
+      "\"handle_position\":[%.9g,%.9g,%.9g],\"fixed_center\":[%.9g,%.9g,%.9g],"
+      "\"answers_received\":%llu,\"answers_lost\":%llu,\"rtt_mean_us\":%.1f}\n",
+      static_cast<unsigned long long>(steps), ended, s.powered() ? "true" : "false", p.x(), p.y(),
+      p.z(), v.x(), v.y(), v.z(), contact.x(), contact.y(), contact.z(), scene.penetration(),
+      s.coupling_wrench[0], s.coupling_wrench[1], s.coupling_wrench[2], s.coupling_wrench[3],
+      s.coupling_wrench[4], s.coupling_wrench[5], s.handle_pose[0], s.handle_pose[1],
+      s.handle_pose[2], scene.config().fixed_center.x(), scene.config().fixed_center.y(),
+      scene.config().fixed_center.z(), static_cast<unsigned long long>(st.answers_received),
+      static_cast<unsigned long long>(st.answers_lost), st.rtt_mean_us);
+}
+
+int run(const demo::DemoOptions& o) {
+  o.scene.validate();
+  std::optional<demo::DemoScript> script;
+  if (!o.script_path.empty()) {
+    script.emplace(demo::DemoScript::load(o.script_path));
+  }
+  std::ofstream log;
+  if (!o.log_path.empty()) {
+    log.open(o.log_path);
+    if (!log) {
+      throw std::runtime_error("cannot write the log '" + o.log_path + "'");
+    }
+    log_header(log);
+  }
+  client::ConnectOptions connect;
+  connect.client_name = "hapticctrl-demo";
+  client::Connection c(client::Address::parse(o.server), connect);
+  const double dt = static_cast<double>(c.controller_period_ns()) / 1e9;
+  initialise(c, o, dt);
+  client::StateSnapshot s;
+  if (!c.wait_for_answer(0, std::chrono::seconds(2), s)) {
+    throw std::runtime_error("no answer from the controller within 2 s");
+  }
+  demo::SphereScene scene = scene_at(s, o);
+  std::fprintf(stderr,
+               "hapticctrl-demo: ready: VIRTMECH, %.3f kg sphere, time step %.3f ms, %s; fixed "
+               "sphere at (%.4f %.4f %.4f)\n",
+               o.scene.mass, dt * 1e3, o.power_on ? "power on requested" : "power left to the HMI",
+               scene.config().fixed_center.x(), scene.config().fixed_center.y(),
+               scene.config().fixed_center.z());
+  const bool keyboard_wanted = !o.headless && isatty(STDIN_FILENO) != 0;
+  std::optional<RawKeyboard> keyboard;
+  if (keyboard_wanted) {
+    keyboard.emplace();
+  }
+  demo::AppliedWrench applied;
+  const auto start = Clock::now();
+  auto next_status = start;
+  std::uint64_t steps = 0;
+  const char* ended = "duration";
+  bool quit = false;
+  while (!quit) {
+    const double t = std::chrono::duration<double>(Clock::now() - start).count();
+    if (g_stop.load()) {
+      ended = "signal";
+      break;
+    }
+    if (o.duration_s > 0.0 && t >= o.duration_s) {
+      break;
+    }
+    if (!c.wait_for_answer(s.cycle, std::chrono::milliseconds(100), s)) {
+      if (!c.is_open()) {
+        ended = "session closed";
+        break;
+      }
+      continue;
+    }
+    if (!c.is_open() || s.fail_safe() || s.core_state >= 2) {
+      ended = s.fail_safe() ? "controller failed safe" : "controller stopped";
+      break;
+    }
+    if (script && script->advance(t, applied) == demo::InputResult::kQuit) {
+      ended = "script";
+      quit = true;
+    }
+    for (int key = keyboard ? keyboard->poll() : -1; key >= 0; key = keyboard->poll()) {
+      if (demo::apply_demo_key(key, applied) == demo::InputResult::kQuit) {
+        ended = "quit";
+        quit = true;
+      }
+    }
+    scene.step(s.coupling_wrench, applied.wrench, dt);
+    (void)c.send_object_state(scene.pose(), scene.twist());
+    ++steps;
+    if (log.is_open()) {
+      log_row(log, t, s, scene, applied);
+    }
+    if (o.status_ms > 0 && Clock::now() >= next_status) {
+      next_status += std::chrono::milliseconds(o.status_ms);
+      print_status(stderr, t, s, scene, keyboard ? "\r" : "\n");
+    }
+  }
+  if (keyboard) {
+    std::fprintf(stderr, "\n");
+  }
+  const bool failed_safe = s.fail_safe();
+  if (c.is_open()) {
+    try {
+      c.close();
+    } catch (const client::ClientError&) {
+      // The controller may be gone already: the session ends either way.
+    }
+  }
+  print_status(stderr, std::chrono::duration<double>(Clock::now() - start).count(), s, scene,
+               "\n");
+  std::fprintf(stderr, "hapticctrl-demo: ended (%s) after %llu steps\n", ended,
+               static_cast<unsigned long long>(steps));
+  if (o.json) {
+    print_json(s, scene, c.statistics(), steps, ended);
+  }
+  return failed_safe ? 2 : 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  demo::DemoOptions options;
+  try {
+    options = demo::DemoOptions::parse(std::vector<std::string>(argv + 1, argv + argc));
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "hapticctrl-demo: %s\n%s", e.what(), demo::DemoOptions::usage());
+    return 64;
+  }
+  if (options.help) {
+    std::printf("%s", demo::DemoOptions::usage());
+    return 0;
+  }
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+  try {
+    return run(options);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "hapticctrl-demo: %s\n", e.what());
+    return 1;
+  }
+}

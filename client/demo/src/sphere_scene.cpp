@@ -1,0 +1,165 @@
+#include "hapticctrl/demo/sphere_scene.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace hapticctrl::demo {
+namespace {
+
+void require_positive(double value, const char* name) {
+  if (!(value > 0.0) || !std::isfinite(value)) {
+    throw std::invalid_argument(std::string(name) + " must be a positive finite number");
+  }
+}
+
+}  // namespace
+
+void SceneConfig::validate() const {
+  require_positive(fixed_radius, "fixed sphere radius");
+  require_positive(mobile_radius, "mobile sphere radius");
+  require_positive(mass, "mass");
+  require_positive(contact_stiffness, "contact stiffness");
+  if (!(contact_damping >= 0.0) || !std::isfinite(contact_damping)) {
+    throw std::invalid_argument("contact damping must be finite and >= 0");
+  }
+  if (!(friction >= 0.0) || !std::isfinite(friction) || !(rolling_resistance >= 0.0) ||
+      !std::isfinite(rolling_resistance)) {
+    throw std::invalid_argument("friction and rolling resistance must be finite and >= 0");
+  }
+  if (!fixed_center.allFinite() || !gravity_vector.allFinite()) {
+    throw std::invalid_argument("the fixed sphere's centre and gravity must be finite");
+  }
+}
+
+SphereScene::SphereScene(const SceneConfig& config, const SphereState& start) noexcept
+    : config_(config), state_(start) {}
+
+double SphereScene::penetration() const noexcept {
+  return std::max(0.0, contact().depth);
+}
+
+SphereScene::Contact SphereScene::contact() const noexcept {
+  Contact c;
+  const Eigen::Vector3d offset = state_.position - config_.fixed_center;
+  const double distance = offset.norm();
+  if (distance <= 0.0) {
+    return c;  // concentric: no direction to push along; treated as apart
+  }
+  c.normal = offset / distance;
+  c.depth = config_.fixed_radius + config_.mobile_radius - distance;
+  const Eigen::Vector3d lever = -config_.mobile_radius * c.normal;  // centre -> contact point
+  const Eigen::Vector3d velocity = state_.velocity + state_.angular_velocity.cross(lever);
+  c.slip_velocity = velocity - velocity.dot(c.normal) * c.normal;
+  return c;
+}
+
+double SphereScene::normal_push(const Contact& c) const noexcept {
+  if (c.depth <= 0.0) {
+    return 0.0;
+  }
+  const double depth_rate = -state_.velocity.dot(c.normal);
+  return std::max(0.0, config_.contact_stiffness * c.depth + config_.contact_damping * depth_rate);
+}
+
+Eigen::Vector3d SphereScene::contact_force() const noexcept {
+  const Contact c = contact();
+  const double push = normal_push(c);
+  if (push <= 0.0) {
+    return Eigen::Vector3d::Zero();
+  }
+  Eigen::Vector3d friction = -config_.contact_stiffness * stretch_ -
+                             config_.contact_damping * c.slip_velocity;
+  const double limit = config_.friction * push;
+  if (friction.norm() > limit) {
+    friction *= limit / friction.norm();
+  }
+  return push * c.normal + friction;
+}
+
+Eigen::Vector3d SphereScene::rolling_torque(double push) const noexcept {
+  const double r2 = config_.mobile_radius * config_.mobile_radius;
+  Eigen::Vector3d torque = -config_.contact_stiffness * r2 * twist_ -
+                           config_.contact_damping * r2 * state_.angular_velocity;
+  const double limit = config_.rolling_resistance * push * config_.mobile_radius;
+  if (torque.norm() > limit) {
+    torque *= limit / torque.norm();
+  }
+  return torque;
+}
+
+void SphereScene::update_stretch(const Contact& c, double dt) noexcept {
+  const double push = normal_push(c);
+  if (push <= 0.0) {
+    stretch_.setZero();  // apart: the next touch anchors afresh
+    twist_.setZero();
+    return;
+  }
+  twist_ += state_.angular_velocity * dt;
+  const double twist_limit = config_.rolling_resistance * push /
+                             (config_.contact_stiffness * config_.mobile_radius);
+  if (twist_.norm() > twist_limit) {
+    twist_ *= twist_limit / twist_.norm();  // rolling: the patch moves on
+  }
+  stretch_ += c.slip_velocity * dt;
+  stretch_ -= stretch_.dot(c.normal) * c.normal;  // stay in the tangent plane
+  const double limit = config_.friction * push / config_.contact_stiffness;
+  if (stretch_.norm() > limit) {
+    stretch_ *= limit / stretch_.norm();  // sliding: the anchor follows
+  }
+}
+
+void SphereScene::step(const client::Vector6& coupling, const client::Vector6& applied,
+                       double dt) noexcept {
+  if (!(dt > 0.0) || !std::isfinite(dt)) {
+    return;
+  }
+  const Contact touching = contact();
+  update_stretch(touching, dt);
+  const Eigen::Vector3d contact_push = contact_force();
+  Eigen::Vector3d force = contact_push;
+  // Friction acts at the contact point, so it also turns the sphere; the patch resists that.
+  Eigen::Vector3d torque = (-config_.mobile_radius * touching.normal).cross(contact_push) +
+                           rolling_torque(normal_push(touching));
+  for (int i = 0; i < 3; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    force(i) += coupling[k] + applied[k];
+    torque(i) += coupling[k + 3] + applied[k + 3];
+  }
+  if (!force.allFinite() || !torque.allFinite()) {
+    return;  // a corrupt input must not poison the scene
+  }
+  if (config_.gravity) {
+    force += config_.mass * config_.gravity_vector;
+  }
+  // Semi-implicit Euler: velocities first, then positions from the new velocities. An isotropic
+  // inertia has no gyroscopic term.
+  state_.velocity += force / config_.mass * dt;
+  state_.position += state_.velocity * dt;
+  state_.angular_velocity += torque / config_.inertia() * dt;
+  const Eigen::Vector3d rotation = state_.angular_velocity * dt;
+  const double angle = rotation.norm();
+  if (angle > 0.0) {
+    state_.orientation =
+        (Eigen::Quaterniond(Eigen::AngleAxisd(angle, rotation / angle)) * state_.orientation)
+            .normalized();
+  }
+}
+
+client::Pose7 SphereScene::pose() const noexcept {
+  const Eigen::Quaterniond& q = state_.orientation;
+  return {state_.position.x(), state_.position.y(), state_.position.z(), q.x(), q.y(), q.z(),
+          q.w()};
+}
+
+client::Vector6 SphereScene::twist() const noexcept {
+  return {state_.velocity.x(),         state_.velocity.y(),         state_.velocity.z(),
+          state_.angular_velocity.x(), state_.angular_velocity.y(), state_.angular_velocity.z()};
+}
+
+double SphereScene::kinetic_energy() const noexcept {
+  return 0.5 * config_.mass * state_.velocity.squaredNorm() +
+         0.5 * config_.inertia() * state_.angular_velocity.squaredNorm();
+}
+
+}  // namespace hapticctrl::demo

@@ -1,0 +1,40 @@
+#pragma once
+/// @file hmi_options.hpp
+/// Command line of hapticctrl-hmi. Not for the cycle; parse() throws std::invalid_argument.
+#include <chrono>
+#include <string>
+#include <vector>
+
+#include "hapticctrl/shm/payloads.hpp"
+
+namespace hapticctrl::hmi {
+
+enum class HmiCommand {
+  kPanel,  ///< no command: the full-screen panel
+  kStatus,
+  kPowerOn,
+  kPowerOff,
+  kEmergencyStop,
+  kEmergencyReset,
+  kStop,
+  kForce,
+  kZeroForce,
+  kPlay,
+};
+
+struct HmiOptions {
+  std::string instance = "default";
+  HmiCommand command = HmiCommand::kPanel;
+  shm::Vector6 wrench{};      ///< kForce
+  std::string sequence_path;  ///< kPlay
+  std::string log_path;       ///< kPlay: CSV log ("-": stdout; empty: hapticctrl-sequence.csv)
+  bool json = false;          ///< kStatus
+  bool power_on = false;      ///< kPlay: power on first
+  std::chrono::milliseconds timeout{2000};  ///< how long a command waits for its effect
+  bool help = false;
+
+  static HmiOptions parse(const std::vector<std::string>& args);
+  static const char* usage() noexcept;
+};
+
+}  // namespace hapticctrl::hmi

@@ -1,0 +1,28 @@
+#pragma once
+/// @file sequence_player.hpp
+/// Plays a WrenchSequence as the operator force on the simulated handle and logs the arm's
+/// response, one CSV row per controller cycle (paced by the `position` region's publishes).
+#include <cstdint>
+#include <ostream>
+
+#include "hapticctrl/hmi/operator.hpp"
+#include "hapticctrl/hmi/wrench_sequence.hpp"
+
+namespace hapticctrl::hmi {
+
+struct PlayResult {
+  std::uint64_t rows = 0;         ///< CSV rows written (controller cycles seen)
+  double played_s = 0.0;          ///< how long the sequence ran
+  bool controller_stopped = false;  ///< the controller stopped or failed safe during playback
+};
+
+/// CSV header of the log (t_s, cycle, state_word, the requested and applied operator wrench,
+/// the handle pose, the joint angles and the coupling wrench).
+[[nodiscard]] const char* sequence_log_header() noexcept;
+
+/// Plays `sequence` through `op` (which must hold the force region), then ramps the force back
+/// to zero. Writes the header and one row per controller cycle to `log`. Throws HmiError if the
+/// operator has no force region. Bounded: the sequence's duration plus the final ramp.
+PlayResult play_sequence(Operator& op, const WrenchSequence& sequence, std::ostream& log);
+
+}  // namespace hapticctrl::hmi

@@ -1,0 +1,117 @@
+#include "hapticctrl/hmi/hmi_options.hpp"
+
+#include <cmath>
+#include <map>
+#include <stdexcept>
+
+namespace hapticctrl::hmi {
+namespace {
+
+double number_of(const std::string& text, const std::string& what) {
+  std::size_t used = 0;
+  double value = 0.0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || text.empty() || !std::isfinite(value)) {
+    throw std::invalid_argument(what + " must be a finite number (got '" + text + "')");
+  }
+  return value;
+}
+
+const std::map<std::string, HmiCommand>& commands() {
+  static const std::map<std::string, HmiCommand> table{
+      {"status", HmiCommand::kStatus},         {"power-on", HmiCommand::kPowerOn},
+      {"power-off", HmiCommand::kPowerOff},    {"estop", HmiCommand::kEmergencyStop},
+      {"reset", HmiCommand::kEmergencyReset},  {"stop", HmiCommand::kStop},
+      {"force", HmiCommand::kForce},           {"zero-force", HmiCommand::kZeroForce},
+      {"play", HmiCommand::kPlay},
+  };
+  return table;
+}
+
+}  // namespace
+
+const char* HmiOptions::usage() noexcept {
+  return "usage: hapticctrl-hmi [--instance NAME] [--timeout-ms MS] [COMMAND]\n"
+         "  (no command)            full-screen operator panel (needs a terminal)\n"
+         "  status [--json]         one reading of the controller's state\n"
+         "  power-on | power-off    switch the motor supply\n"
+         "  estop | reset           latch / reset the emergency stop\n"
+         "  stop                    stop the controller (fail-safe order) and wait for it\n"
+         "  force FX FY FZ TX TY TZ operator wrench on the handle [N, N.m], base frame, ramped\n"
+         "  zero-force              release the handle\n"
+         "  play FILE [--log CSV|-] [--power-on]\n"
+         "                          play a force sequence (t fx fy fz tx ty tz per line) and log\n"
+         "                          the arm's response per cycle (default hapticctrl-sequence.csv)\n"
+         "Exit status: 0 done, 1 error or no effect within the timeout, 64 usage.\n";
+}
+
+HmiOptions HmiOptions::parse(const std::vector<std::string>& args) {
+  HmiOptions o;
+  bool have_command = false;
+  std::vector<std::string> positional;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    auto value = [&]() -> const std::string& {
+      if (i + 1 >= args.size()) {
+        throw std::invalid_argument(a + " needs a value");
+      }
+      return args[++i];
+    };
+    if (a == "--help" || a == "-h") {
+      o.help = true;
+    } else if (a == "--instance") {
+      o.instance = value();
+    } else if (a == "--timeout-ms") {
+      const double ms = number_of(value(), "--timeout-ms");
+      if (ms < 1 || ms > 600'000) {
+        throw std::invalid_argument("--timeout-ms must be within 1..600000");
+      }
+      o.timeout = std::chrono::milliseconds(static_cast<long>(ms));
+    } else if (a == "--json") {
+      o.json = true;
+    } else if (a == "--log") {
+      o.log_path = value();
+    } else if (a == "--power-on") {
+      o.power_on = true;
+    } else if (!a.empty() && a[0] == '-' && !(have_command && o.command == HmiCommand::kForce)) {
+      throw std::invalid_argument("unknown option '" + a + "'");
+    } else if (!have_command) {
+      const auto found = commands().find(a);
+      if (found == commands().end()) {
+        throw std::invalid_argument("unknown command '" + a + "'");
+      }
+      o.command = found->second;
+      have_command = true;
+    } else {
+      positional.push_back(a);
+    }
+  }
+  if (o.command == HmiCommand::kForce) {
+    if (positional.size() != 6) {
+      throw std::invalid_argument("force needs 6 numbers: FX FY FZ TX TY TZ");
+    }
+    for (std::size_t k = 0; k < 6; ++k) {
+      o.wrench[k] = number_of(positional[k], "force component " + std::to_string(k + 1));
+    }
+  } else if (o.command == HmiCommand::kPlay) {
+    if (positional.size() != 1) {
+      throw std::invalid_argument("play needs one sequence file");
+    }
+    o.sequence_path = positional[0];
+    if (o.log_path.empty()) {
+      o.log_path = "hapticctrl-sequence.csv";
+    }
+  } else if (!positional.empty()) {
+    throw std::invalid_argument("unexpected argument '" + positional[0] + "'");
+  }
+  if (o.json && o.command != HmiCommand::kStatus) {
+    throw std::invalid_argument("--json goes with the status command");
+  }
+  return o;
+}
+
+}  // namespace hapticctrl::hmi

@@ -1,0 +1,164 @@
+#include "hapticctrl/hmi/operator.hpp"
+
+#include <dirent.h>
+
+#include <algorithm>
+#include <ctime>
+#include <thread>
+
+namespace hapticctrl::hmi {
+namespace {
+
+using namespace std::chrono_literals;
+
+/// How often settle_force() and send_and_wait() look again.
+constexpr auto kPoll = 2ms;
+/// Longest time step one tick() applies to the force ramp (s).
+constexpr double kMaxTickStep = 0.02;
+
+std::string no_controller_message(const std::string& instance, const std::string& detail) {
+  std::string text = detail;
+  const std::vector<std::string> running = listed_instances();
+  if (running.empty()) {
+    text += "; no controller runs on this machine (start one: hapticctrl-core --instance " +
+            instance + ")";
+  } else {
+    text += "; instances found:";
+    for (const auto& name : running) {
+      text += " " + name;
+    }
+    text += " (choose one with --instance NAME)";
+  }
+  return text;
+}
+
+shm::Segment attach_segment(const std::string& instance, bool with_force) {
+  shm::AttachOptions options;
+  options.ctrl_writer = true;
+  if (with_force) {
+    options.write.push_back(shm::RegionId::kForce);
+  }
+  return shm::Segment::attach(instance, options);
+}
+
+}  // namespace
+
+std::int64_t monotonic_now_ns() noexcept {
+  timespec ts{};
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
+}
+
+std::vector<std::string> listed_instances() {
+  std::vector<std::string> names;
+  DIR* dir = opendir("/dev/shm");
+  if (dir == nullptr) {
+    return names;
+  }
+  const std::string prefix = "hapticctrl.";
+  const std::string lock_suffix = ".lock";
+  while (const dirent* entry = readdir(dir)) {
+    const std::string name = entry->d_name;
+    if (name.rfind(prefix, 0) == 0 &&
+        !(name.size() > lock_suffix.size() &&
+          name.compare(name.size() - lock_suffix.size(), lock_suffix.size(), lock_suffix) == 0)) {
+      names.push_back(name.substr(prefix.size()));
+    }
+  }
+  closedir(dir);
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+Operator::Operator(const std::string& instance, bool want_force) {
+  try {
+    try {
+      segment_.emplace(attach_segment(instance, want_force));
+    } catch (const shm::ShmError& e) {
+      if (!want_force || e.code() != shm::ShmErrc::kWriterConflict ||
+          std::string(e.what()).find("region force") == std::string::npos) {
+        throw;
+      }
+      force_unavailable_ = e.what();
+      segment_.emplace(attach_segment(instance, false));
+    }
+  } catch (const shm::ShmError& e) {
+    if (e.code() == shm::ShmErrc::kNoController || e.code() == shm::ShmErrc::kBadInstanceName) {
+      throw HmiError(no_controller_message(instance, e.what()));
+    }
+    throw HmiError(e.what());
+  }
+  if (!want_force) {
+    force_unavailable_ = "this command does not write the operator force";
+  }
+  if (force_available()) {
+    // Start from what the handle feels now: a new panel must not make the force jump.
+    shm::ForcePayload current;
+    if (segment_->region<shm::RegionId::kForce>().read(current).ok() &&
+        slew_.acceptable(current.wrench)) {
+      slew_ = shm::ForceSlew(shm::ForceLimits{}, current.wrench);
+    }
+  }
+}
+
+void Operator::send(shm::CtrlCode code) {
+  const auto deadline = std::chrono::steady_clock::now() + 100ms;
+  while (segment_->ctrl_writer().send(code, 0, monotonic_now_ns()) !=
+         shm::CtrlSendStatus::kQueued) {
+    if (std::chrono::steady_clock::now() >= deadline) {
+      throw HmiError("the controller's command queue stays full: is hapticctrl-core stalled?");
+    }
+    std::this_thread::sleep_for(kPoll);
+  }
+}
+
+bool Operator::send_and_wait(shm::CtrlCode code,
+                             const std::function<bool(const ControllerStatus&)>& done,
+                             std::chrono::milliseconds timeout) {
+  send(code);
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (done(status())) {
+      return true;
+    }
+    std::this_thread::sleep_for(kPoll);
+  }
+  return done(status());
+}
+
+bool Operator::request_force(const shm::Vector6& wrench) {
+  return force_available() && slew_.set_target(wrench);
+}
+
+void Operator::tick(std::int64_t now_ns) {
+  // A caller that paused (a stalled terminal) resumes with one bounded step, not a jump.
+  const double dt =
+      last_tick_ns_ == 0 ? 0.0
+                         : std::min(static_cast<double>(now_ns - last_tick_ns_) / 1e9, kMaxTickStep);
+  last_tick_ns_ = now_ns;
+  if (force_available() && slew_.step(dt)) {
+    segment_->writable<shm::RegionId::kForce>().publish_quietly(
+        shm::ForcePayload{slew_.applied()}, now_ns);
+  }
+}
+
+void Operator::settle_force() {
+  // Bounded: the rate limit sets the time; 2 s more covers any scheduling delay.
+  const auto deadline = std::chrono::steady_clock::now() +
+                        std::chrono::duration<double>(slew_.time_to_settle()) + 2s;
+  tick(monotonic_now_ns());
+  while (!slew_.settled() && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(kPoll);
+    tick(monotonic_now_ns());
+  }
+}
+
+ControllerStatus Operator::status() const {
+  return read_status(*segment_, monotonic_now_ns());
+}
+
+bool Operator::controller_alive() const {
+  return segment_->core_alive() && segment_->still_current();
+}
+
+}  // namespace hapticctrl::hmi

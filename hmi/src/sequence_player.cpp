@@ -1,0 +1,75 @@
+#include "hapticctrl/hmi/sequence_player.hpp"
+
+#include <chrono>
+
+namespace hapticctrl::hmi {
+namespace {
+
+template <std::size_t N>
+void csv(std::ostream& out, const std::array<double, N>& values) {
+  for (const double v : values) {
+    out << ',' << v;
+  }
+}
+
+void write_row(std::ostream& log, double t, const shm::Vector6& requested,
+               const ControllerStatus& s) {
+  log << t << ',' << s.position.cycle << ',' << s.position.state_word;
+  csv(log, requested);
+  csv(log, s.position.operator_wrench);
+  csv(log, s.position.handle_pose);
+  csv(log, s.position.joint_position);
+  csv(log, s.vp.coupling_wrench);
+  log << '\n';
+}
+
+bool still_running(const ControllerStatus& s) {
+  return s.vp_ok && s.vp.core_state == static_cast<std::uint32_t>(shm::CoreState::kRunning);
+}
+
+}  // namespace
+
+const char* sequence_log_header() noexcept {
+  return "t_s,cycle,state_word,req_fx,req_fy,req_fz,req_tx,req_ty,req_tz,"
+         "op_fx,op_fy,op_fz,op_tx,op_ty,op_tz,x,y,z,qx,qy,qz,qw,"
+         "q1,q2,q3,q4,q5,q6,cpl_fx,cpl_fy,cpl_fz,cpl_tx,cpl_ty,cpl_tz";
+}
+
+PlayResult play_sequence(Operator& op, const WrenchSequence& sequence, std::ostream& log) {
+  if (!op.force_available()) {
+    throw HmiError("cannot play a sequence: " + op.force_unavailable());
+  }
+  log << sequence_log_header() << '\n';
+  PlayResult result;
+  const auto& position = op.segment().region<shm::RegionId::kPosition>();
+  const std::int64_t start = monotonic_now_ns();
+  const std::int64_t end = start + static_cast<std::int64_t>(sequence.duration() * 1e9);
+  std::uint64_t last_cycle = 0;
+  for (std::int64_t now = start; now <= end; now = monotonic_now_ns()) {
+    (void)position.wait_for_publish(position.sequence_word(), std::chrono::milliseconds(20));
+    now = monotonic_now_ns();
+    const double t = static_cast<double>(now - start) / 1e9;
+    const shm::Vector6 requested = sequence.at(t);
+    (void)op.request_force(requested);  // validated at load: cannot be refused
+    op.tick(now);
+    const ControllerStatus s = op.status();
+    if (!still_running(s)) {
+      result.controller_stopped = true;
+      break;
+    }
+    if (s.position_ok && s.position.cycle != last_cycle) {
+      last_cycle = s.position.cycle;
+      write_row(log, t, requested, s);
+      ++result.rows;
+    }
+    result.played_s = t;
+  }
+  if (!result.controller_stopped) {
+    (void)op.request_force({});
+    op.settle_force();
+  }
+  log.flush();
+  return result;
+}
+
+}  // namespace hapticctrl::hmi

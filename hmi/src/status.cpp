@@ -1,0 +1,115 @@
+#include "hapticctrl/hmi/status.hpp"
+
+#include <arpa/inet.h>
+
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+#include "hapticctrl/shm/names.hpp"
+
+namespace hapticctrl::hmi {
+namespace {
+
+template <std::size_t N>
+void json_array(std::ostringstream& out, const char* name, const std::array<double, N>& values) {
+  out << "\"" << name << "\":[";
+  for (std::size_t i = 0; i < N; ++i) {
+    out << (i == 0 ? "" : ",") << (std::isfinite(values[i]) ? values[i] : 0.0);
+  }
+  out << "]";
+}
+
+std::string ipv4_text(std::uint32_t host_order) {
+  in_addr a{};
+  a.s_addr = htonl(host_order);
+  char text[INET_ADDRSTRLEN] = {};  // NOLINT(*-avoid-c-arrays)
+  inet_ntop(AF_INET, &a, text, sizeof text);
+  return text;
+}
+
+}  // namespace
+
+double ControllerStatus::client_age_ms() const noexcept {
+  if (!client_connected() || !vpr_ok || vpr.session_id == 0) {
+    return -1.0;
+  }
+  return static_cast<double>(read_ns - vpr.received_time_ns) / 1e6;
+}
+
+ControllerStatus read_status(const shm::Segment& segment, std::int64_t now_ns) {
+  ControllerStatus s;
+  s.instance = segment.instance();
+  s.read_ns = now_ns;
+  s.position_ok = segment.region<shm::RegionId::kPosition>().read(s.position).ok();
+  s.vp_ok = segment.region<shm::RegionId::kVp>().read(s.vp).ok();
+  s.telemetry_ok = segment.region<shm::RegionId::kTelemetry>().read(s.telemetry).ok();
+  s.link_ok = segment.region<shm::RegionId::kLinkStats>().read(s.link).ok();
+  s.vpr_ok = segment.region<shm::RegionId::kVpr>().read(s.vpr).ok();
+  shm::ForcePayload force;
+  if (segment.region<shm::RegionId::kForce>().read(force).ok()) {
+    s.requested_force = force.wrench;
+  }
+  return s;
+}
+
+double control_frames_per_cycle(const ControllerStatus& before,
+                                const ControllerStatus& after) noexcept {
+  if (!before.client_connected() || !after.client_connected() ||
+      before.link.session_id != after.link.session_id || !before.vp_ok || !after.vp_ok ||
+      after.vp.cycle <= before.vp.cycle) {
+    return -1.0;
+  }
+  const auto frames = after.link.control_accepted - before.link.control_accepted;
+  return static_cast<double>(frames) / static_cast<double>(after.vp.cycle - before.vp.cycle);
+}
+
+std::string status_json(const ControllerStatus& s) {
+  std::ostringstream out;
+  out << std::setprecision(9);
+  const shm::TelemetryPayload& t = s.telemetry;
+  out << "{\"instance\":\"" << s.instance << "\",\"cycle\":" << s.vp.cycle
+      << ",\"core_state\":\"" << shm::core_state_name(s.vp.core_state) << "\",\"stop_reason\":\""
+      << shm::stop_reason_name(s.vp.stop_reason) << "\",\"powered\":" << std::boolalpha
+      << s.powered() << ",\"emergency_stop\":" << s.emergency_stop()
+      << ",\"fail_safe\":" << s.has_state_bit(shm::state_bits::kFailSafe)
+      << ",\"degraded\":" << s.has_state_bit(shm::state_bits::kDegraded)
+      << ",\"coupled\":" << s.has_state_bit(shm::state_bits::kCoupled)
+      << ",\"command_type\":" << s.vp.command_type << ",";
+  json_array(out, "handle_pose", s.position.handle_pose);
+  out << ",";
+  json_array(out, "handle_twist", s.position.handle_twist);
+  out << ",";
+  json_array(out, "joint_position", s.position.joint_position);
+  out << ",";
+  json_array(out, "joint_torque", s.position.joint_torque);
+  out << ",";
+  json_array(out, "operator_wrench", s.position.operator_wrench);
+  out << ",";
+  json_array(out, "requested_force", s.requested_force);
+  out << ",";
+  json_array(out, "coupling_wrench", s.vp.coupling_wrench);
+  out << ",\"cycle_health\":{\"period_ns\":" << t.period_ns << ",\"rt_mode\":\""
+      << shm::rt_mode_name(t.rt_mode) << "\",\"wake_p99_ns\":" << t.wake_latency.p99_ns
+      << ",\"wake_max_ns\":" << t.wake_latency.max_ns
+      << ",\"servo_execution_p99_ns\":" << t.servo_execution.p99_ns
+      << ",\"misses_total\":" << t.misses_total
+      << ",\"consecutive_misses\":" << t.consecutive_misses
+      << ",\"degraded_cycles\":" << t.degraded_cycles << "},\"client\":{\"connected\":"
+      << s.client_connected();
+  if (s.client_connected()) {
+    out << ",\"peer\":\"" << ipv4_text(s.link.peer_ipv4) << ":" << s.link.peer_port
+        << "\",\"session_id\":" << s.link.session_id << ",\"sample_age_ms\":" << s.client_age_ms()
+        << ",\"control_accepted\":" << s.link.control_accepted
+        << ",\"stale\":" << s.has_state_bit(shm::state_bits::kClientStale);
+  }
+  std::uint64_t dropped = 0;
+  for (const auto d : s.link.dropped) {
+    dropped += d;
+  }
+  out << ",\"frames_dropped\":" << dropped << ",\"watchdog_expiries\":" << s.link.watchdog_expiries
+      << "}}";
+  return out.str();
+}
+
+}  // namespace hapticctrl::hmi

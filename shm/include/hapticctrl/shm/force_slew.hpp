@@ -1,0 +1,50 @@
+#pragma once
+/// @file force_slew.hpp
+/// The operator wrench a writer of the `force` region applies, moved towards a requested wrench
+/// at a bounded rate: whatever a panel, a script or a remote HMI asks for, the simulated hand
+/// never jumps. Both writers of `force` (hapticctrl-hmi, hapticctrl-lcm) use it.
+#include "hapticctrl/shm/payloads.hpp"
+
+namespace hapticctrl::shm {
+
+/// Bounds of the operator wrench. The magnitudes are the core's own acceptance limits.
+struct ForceLimits {
+  double max_force = 100.0;   ///< N per axis
+  double max_torque = 10.0;   ///< N.m per axis
+  double force_rate = 500.0;  ///< N/s: how fast the applied force may change
+  double torque_rate = 50.0;  ///< N.m/s
+};
+
+/// Rate-limited operator wrench. Real-time contract: every member is noexcept, allocation-free
+/// and constant-time; safe anywhere.
+class ForceSlew {
+ public:
+  explicit ForceSlew(const ForceLimits& limits = {}, const Vector6& start = {}) noexcept
+      : limits_(limits), target_(start), applied_(start) {}
+
+  /// Whether every component is finite and within the magnitude limits.
+  [[nodiscard]] bool acceptable(const Vector6& wrench) const noexcept;
+  /// Sets the wrench to move towards. Refuses (false, target unchanged) what is not acceptable.
+  bool set_target(const Vector6& wrench) noexcept;
+  /// Advances the applied wrench by `dt` seconds (negative or non-finite: no move). Returns
+  /// whether it changed.
+  bool step(double dt) noexcept;
+
+  [[nodiscard]] const Vector6& target() const noexcept { return target_; }
+  [[nodiscard]] const Vector6& applied() const noexcept { return applied_; }
+  [[nodiscard]] bool settled() const noexcept { return applied_ == target_; }
+  /// Seconds the applied wrench still needs to reach the target.
+  [[nodiscard]] double time_to_settle() const noexcept;
+  [[nodiscard]] const ForceLimits& limits() const noexcept { return limits_; }
+
+ private:
+  [[nodiscard]] double rate_of(std::size_t axis) const noexcept {
+    return axis < 3 ? limits_.force_rate : limits_.torque_rate;
+  }
+
+  ForceLimits limits_;
+  Vector6 target_{};
+  Vector6 applied_{};
+};
+
+}  // namespace hapticctrl::shm

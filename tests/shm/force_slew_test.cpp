@@ -1,0 +1,46 @@
+#include "hapticctrl/shm/force_slew.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+namespace hapticctrl::shm {
+namespace {
+
+TEST(ForceSlew, RefusesNonFiniteAndOutOfRangeWrenches) {
+  ForceSlew slew;
+  EXPECT_TRUE(slew.set_target({100, -100, 0, 10, -10, 0}));
+  EXPECT_FALSE(slew.set_target({100.1, 0, 0, 0, 0, 0}));
+  EXPECT_FALSE(slew.set_target({0, 0, 0, 0, 0, 10.5}));
+  EXPECT_FALSE(slew.set_target({std::nan(""), 0, 0, 0, 0, 0}));
+  EXPECT_FALSE(slew.set_target({0, std::numeric_limits<double>::infinity(), 0, 0, 0, 0}));
+  EXPECT_EQ(slew.target(), (Vector6{100, -100, 0, 10, -10, 0})) << "refusals leave the target";
+}
+
+TEST(ForceSlew, MovesAtTheBoundedRatePerAxisAndSettlesExactly) {
+  ForceSlew slew(ForceLimits{100, 10, 500, 50});
+  ASSERT_TRUE(slew.set_target({10, -5, 0, 1, 0, 0}));
+  EXPECT_DOUBLE_EQ(slew.time_to_settle(), 0.02);  // 10 N at 500 N/s; 1 N.m at 50 N.m/s
+  EXPECT_TRUE(slew.step(0.01));
+  EXPECT_DOUBLE_EQ(slew.applied()[0], 5.0);
+  EXPECT_DOUBLE_EQ(slew.applied()[1], -5.0);
+  EXPECT_DOUBLE_EQ(slew.applied()[3], 0.5);
+  EXPECT_FALSE(slew.settled());
+  EXPECT_TRUE(slew.step(0.05));
+  EXPECT_TRUE(slew.settled());
+  EXPECT_EQ(slew.applied(), slew.target());
+  EXPECT_FALSE(slew.step(0.01)) << "nothing left to move";
+}
+
+TEST(ForceSlew, IgnoresNegativeAndNonFiniteTimeSteps) {
+  ForceSlew slew;
+  ASSERT_TRUE(slew.set_target({50, 0, 0, 0, 0, 0}));
+  EXPECT_FALSE(slew.step(-1.0));
+  EXPECT_FALSE(slew.step(std::nan("")));
+  EXPECT_FALSE(slew.step(std::numeric_limits<double>::infinity()));
+  EXPECT_EQ(slew.applied(), Vector6{});
+}
+
+}  // namespace
+}  // namespace hapticctrl::shm

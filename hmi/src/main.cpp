@@ -108,6 +108,8 @@ int play(hmi::Operator& op, const hmi::HmiOptions& o) {
     }
   }
   std::ostream& log = o.log_path == "-" ? std::cout : file;
+  std::fprintf(stderr, "hapticctrl-hmi: playing %zu samples over %.3f s\n",
+               sequence.samples().size(), sequence.duration());
   const hmi::PlayResult r = hmi::play_sequence(op, sequence, log);
   std::fprintf(stderr, "hapticctrl-hmi: played %.3f s of %zu samples, %llu cycles logged to %s%s\n",
                r.played_s, sequence.samples().size(), static_cast<unsigned long long>(r.rows),

@@ -41,12 +41,14 @@ PlayResult play_sequence(Operator& op, const WrenchSequence& sequence, std::ostr
   }
   log << sequence_log_header() << '\n';
   PlayResult result;
-  const auto& position = op.segment().region<shm::RegionId::kPosition>();
+  // Paced by VP, which the core publishes with a wake-up every cycle (position is published
+  // quietly, without one), right after position.
+  const auto& vp = op.segment().region<shm::RegionId::kVp>();
   const std::int64_t start = monotonic_now_ns();
   const std::int64_t end = start + static_cast<std::int64_t>(sequence.duration() * 1e9);
   std::uint64_t last_cycle = 0;
   for (std::int64_t now = start; now <= end; now = monotonic_now_ns()) {
-    (void)position.wait_for_publish(position.sequence_word(), std::chrono::milliseconds(20));
+    (void)vp.wait_for_publish(vp.sequence_word(), std::chrono::milliseconds(20));
     now = monotonic_now_ns();
     const double t = static_cast<double>(now - start) / 1e9;
     const shm::Vector6 requested = sequence.at(t);

@@ -54,11 +54,19 @@ class SpawnedProcess {
   }
 
   [[nodiscard]] pid_t pid() const { return pid_; }
-  void signal(int sig) const { kill(pid_, sig); }
+  /// Signals the process unless it has been reaped (its pid may belong to another by then).
+  void signal(int sig) const {
+    if (!reaped_) {
+      kill(pid_, sig);
+    }
+  }
 
-  /// Exit status, 128+signal if killed, -1 on timeout.
+  /// Exit status, 128+signal if killed, -1 on timeout. Once reaped, the same status again.
   int wait(std::chrono::milliseconds timeout = std::chrono::seconds(30)) {
-    return wait_for_exit(pid_, timeout, reaped_);
+    if (!reaped_) {
+      status_ = wait_for_exit(pid_, timeout, reaped_);
+    }
+    return status_;
   }
 
   [[nodiscard]] std::string out() const { return slurp(out_path_); }
@@ -74,6 +82,7 @@ class SpawnedProcess {
 
   pid_t pid_ = -1;
   bool reaped_ = false;
+  int status_ = -1;
   std::string out_path_;
   std::string err_path_;
 };

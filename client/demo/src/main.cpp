@@ -63,6 +63,17 @@ class RawKeyboard {
   bool active_ = false;
 };
 
+/// StateSnapshot::core_state from which the controller is going away (fail-safe, stopping).
+constexpr std::uint32_t kCoreFailSafe = 2;
+
+/// Why the session ended, from the last cycle the controller sent.
+const char* ending_of(const client::StateSnapshot& s) {
+  if (s.fail_safe()) {
+    return "controller failed safe";
+  }
+  return s.core_state > kCoreFailSafe ? "controller stopped" : "session closed";
+}
+
 /// The seeds' initialisation: references and frames, units and factors, time step, command
 /// type, object attach, power-on.
 void initialise(client::Connection& c, const demo::DemoOptions& o, double time_step) {
@@ -202,16 +213,13 @@ int run(const demo::DemoOptions& o) {
     if (o.duration_s > 0.0 && t >= o.duration_s) {
       break;
     }
-    if (!c.wait_for_answer(s.cycle, std::chrono::milliseconds(100), s)) {
-      if (!c.is_open()) {
-        ended = "session closed";
-        break;
-      }
-      continue;
-    }
-    if (!c.is_open() || s.fail_safe() || s.core_state >= 2) {
-      ended = s.fail_safe() ? "controller failed safe" : "controller stopped";
+    const bool answered = c.wait_for_answer(s.cycle, std::chrono::milliseconds(100), s);
+    if (!c.is_open() || s.fail_safe() || s.core_state >= kCoreFailSafe) {
+      ended = ending_of(s);
       break;
+    }
+    if (!answered) {
+      continue;
     }
     if (script && script->advance(t, applied) == demo::InputResult::kQuit) {
       ended = "script";

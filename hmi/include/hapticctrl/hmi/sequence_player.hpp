@@ -1,7 +1,7 @@
 #pragma once
 /// @file sequence_player.hpp
 /// Plays a WrenchSequence as the operator force on the simulated handle and logs the arm's
-/// response, one CSV row per controller cycle (paced by the `position` region's publishes).
+/// response, one CSV row per controller cycle (paced by the core's VP publishes).
 #include <cstdint>
 #include <ostream>
 

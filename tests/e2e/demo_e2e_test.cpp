@@ -1,0 +1,210 @@
+// End to end: hapticctrl-core (simulated arm), hapticctrl-udp, the demo client (two spheres,
+// VIRTMECH) and hapticctrl-hmi, all real processes on loopback.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "hapticctrl/shm/payloads.hpp"
+#include "support/controller_stack.hpp"
+#include "support/spawned_process.hpp"
+
+namespace hapticctrl::test {
+namespace {
+
+using namespace std::chrono_literals;
+
+/// 2 ms: the demo's physics steps at the controller period, and a coarser one blurs contact.
+constexpr int kPeriodUs = 2000;
+constexpr double kGap = 0.01;  // the demo's default gap between the spheres
+
+/// Numbers of `"key":[...]` (or `"key":n`) in a flat JSON object.
+std::vector<double> json_numbers(const std::string& json, const std::string& key) {
+  const auto at = json.find("\"" + key + "\":");
+  if (at == std::string::npos) {
+    return {};
+  }
+  std::string text = json.substr(at + key.size() + 3);
+  text = text[0] == '[' ? text.substr(1, text.find(']') - 1) : text.substr(0, text.find_first_of(",}"));
+  std::vector<double> values;
+  std::istringstream in(text);
+  for (std::string v; std::getline(in, v, ',');) {
+    values.push_back(std::stod(v));
+  }
+  return values;
+}
+
+int run_hmi(const ControllerStack& stack, std::vector<std::string> args) {
+  args.insert(args.begin(), {"--instance", stack.instance()});
+  SpawnedProcess hmi(HAPTICCTRL_HMI_BINARY, args);
+  return hmi.wait(20s);
+}
+
+shm::PositionPayload position_of(const ControllerStack& stack) {
+  shm::PositionPayload p;
+  (void)stack.segment().region<shm::RegionId::kPosition>().read(p);
+  return p;
+}
+
+shm::VpPayload vp_of(const ControllerStack& stack) {
+  shm::VpPayload vp;
+  (void)stack.segment().region<shm::RegionId::kVp>().read(vp);
+  return vp;
+}
+
+double distance(const shm::Pose7& a, const shm::Pose7& b) {
+  return std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+}
+
+/// The demo client against a fresh controller.
+class Demo {
+ public:
+  Demo(const ControllerStack& stack, std::vector<std::string> extra)
+      : process_(HAPTICCTRL_DEMO_BINARY, args_for(stack, std::move(extra))) {}
+  [[nodiscard]] bool ready() const {
+    return ControllerStack::eventually(
+        [&] { return process_.err().find("ready:") != std::string::npos; }, 10s);
+  }
+  /// SIGTERM, then the JSON summary it prints on the way out.
+  std::string finish() {
+    process_.signal(SIGTERM);
+    status_ = process_.wait(10s);
+    return process_.out();
+  }
+  SpawnedProcess& process() { return process_; }
+  [[nodiscard]] int status() const { return status_; }
+  [[nodiscard]] std::string err() const { return process_.err(); }
+
+ private:
+  static std::vector<std::string> args_for(const ControllerStack& stack,
+                                           std::vector<std::string> extra) {
+    std::vector<std::string> args{"--server", "127.0.0.1:" + std::to_string(stack.port()),
+                                  "--headless", "--json"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return args;
+  }
+  SpawnedProcess process_;
+  int status_ = -1;
+};
+
+TEST(DemoEndToEnd, BeforePowerOnAnOperatorForceMovesNothingAndNothingIsCoupled) {
+  ControllerStack stack("e2e-off", kPeriodUs);
+  ASSERT_TRUE(stack.ready()) << stack.diagnostics();
+  Demo demo(stack, {"--no-power"});
+  ASSERT_TRUE(demo.ready()) << demo.err();
+  const shm::Pose7 before = position_of(stack).handle_pose;
+  ASSERT_EQ(run_hmi(stack, {"force", "8", "0", "0", "0", "0", "0"}), 0);
+  std::this_thread::sleep_for(700ms);
+  const shm::PositionPayload p = position_of(stack);
+  EXPECT_EQ(p.operator_wrench[0], 8.0) << "the core does see the operator's push";
+  EXPECT_LT(distance(p.handle_pose, before), 1e-9) << "but the unpowered arm stays on its brakes";
+  EXPECT_EQ(vp_of(stack).coupling_wrench, shm::Vector6{});
+  EXPECT_EQ(vp_of(stack).state_word & shm::state_bits::kPowered, 0U);
+  const std::string json = demo.finish();
+  EXPECT_EQ(json_numbers(json, "coupling_wrench"), std::vector<double>(6, 0.0)) << json;
+  EXPECT_LT(std::abs(json_numbers(json, "sphere_velocity")[0]), 1e-12) << json;
+}
+
+TEST(DemoEndToEnd, PushingTheHandleBringsTheSphereToRestAgainstTheFixedOne) {
+  ControllerStack stack("e2e-push", kPeriodUs);
+  ASSERT_TRUE(stack.ready()) << stack.diagnostics();
+  Demo demo(stack, {});
+  ASSERT_TRUE(demo.ready()) << demo.err();
+  ASSERT_TRUE(ControllerStack::eventually(
+      [&] { return (vp_of(stack).state_word & shm::state_bits::kCoupled) != 0; }))
+      << "the demo powers on and couples";
+  const double x0 = position_of(stack).handle_pose[0];
+  constexpr double kPush = 5.0;
+  ASSERT_EQ(run_hmi(stack, {"force", "5", "0", "0", "0", "0", "0"}), 0);
+  std::this_thread::sleep_for(4s);  // reach, touch, settle (about 1.5 s on this machine)
+  const shm::PositionPayload p = position_of(stack);
+  const std::string json = demo.finish();
+  ASSERT_FALSE(json.empty()) << demo.err();
+  const auto contact = json_numbers(json, "contact_force");
+  const auto sphere = json_numbers(json, "sphere_position");
+  const auto velocity = json_numbers(json, "sphere_velocity");
+  ASSERT_EQ(contact.size(), 3U) << json;
+  EXPECT_NEAR(-contact[0], kPush, 0.05 * kPush) << "at rest the contact holds the operator's push";
+  EXPECT_LT(std::hypot(velocity[0], velocity[1], velocity[2]), 0.005) << "the sphere is at rest";
+  EXPECT_LT(std::hypot(p.handle_twist[0], p.handle_twist[1], p.handle_twist[2]), 0.005)
+      << "the handle is at rest";
+  EXPECT_GT(sphere[0] - x0, kGap) << "the sphere travelled the gap (and pressed in)";
+  EXPECT_GT(p.handle_pose[0] - x0, kGap) << "the handle came along";
+  // Handle and sphere are apart by the coupling spring's deflection under the push, no more.
+  const auto coupling = json_numbers(json, "coupling_wrench");
+  EXPECT_NEAR(coupling[0], kPush, 0.05 * kPush);
+  EXPECT_LT(std::abs(p.handle_pose[0] - sphere[0]), 0.005) << json;
+  EXPECT_EQ(demo.status(), 0) << demo.err();
+}
+
+TEST(DemoEndToEnd, AForceOnTheSphereInTheClientMovesTheArmHandle) {
+  ControllerStack stack("e2e-client", kPeriodUs);
+  ASSERT_TRUE(stack.ready()) << stack.diagnostics();
+  const std::string script = "/tmp/hapticctrl-e2e-" + std::to_string(getpid()) + ".script";
+  std::ofstream(script) << "0.3 push 0 4 0\n1.3 release\n";
+  Demo demo(stack, {"--script", script});
+  ASSERT_TRUE(demo.ready()) << demo.err();
+  const shm::Pose7 before = position_of(stack).handle_pose;
+  EXPECT_TRUE(ControllerStack::eventually(
+      [&] { return position_of(stack).handle_pose[1] - before[1] > 0.01; }, 3s))
+      << "handle y moved by " << position_of(stack).handle_pose[1] - before[1];
+  EXPECT_LT(std::abs(position_of(stack).operator_wrench[1]), 1e-12) << "nobody pushed the handle";
+  demo.finish();
+  std::remove(script.c_str());
+}
+
+TEST(DemoEndToEnd, KillingTheClientFadesTheCouplingAndTheArmStaysPut) {
+  ControllerStack stack("e2e-kill", kPeriodUs);
+  ASSERT_TRUE(stack.ready()) << stack.diagnostics();
+  Demo demo(stack, {});
+  ASSERT_TRUE(demo.ready()) << demo.err();
+  ASSERT_TRUE(ControllerStack::eventually(
+      [&] { return (vp_of(stack).state_word & shm::state_bits::kCoupled) != 0; }));
+  std::this_thread::sleep_for(300ms);
+  auto force_norm = [](const shm::VpPayload& vp) {
+    return std::hypot(vp.coupling_wrench[0], vp.coupling_wrench[1], vp.coupling_wrench[2]);
+  };
+  const double before = force_norm(vp_of(stack));
+  demo.process().signal(SIGKILL);
+  double largest = 0.0;
+  EXPECT_TRUE(ControllerStack::eventually([&] {
+    const shm::VpPayload vp = vp_of(stack);
+    largest = std::max(largest, force_norm(vp));
+    return (vp.state_word & shm::state_bits::kCoupled) == 0 && vp.coupling_wrench == shm::Vector6{};
+  }, 3s)) << "the coupling fades to zero once the client falls silent";
+  EXPECT_LE(largest, before + 0.05) << "fading, never a spike";
+  const shm::Pose7 after_fade = position_of(stack).handle_pose;
+  std::this_thread::sleep_for(1s);
+  const shm::PositionPayload p = position_of(stack);
+  EXPECT_LT(distance(p.handle_pose, after_fade), 0.001) << "gravity compensation holds the arm";
+  EXPECT_NE(p.state_word & shm::state_bits::kPowered, 0U) << "still powered";
+  EXPECT_EQ(vp_of(stack).core_state, static_cast<std::uint32_t>(shm::CoreState::kRunning));
+}
+
+TEST(DemoEndToEnd, StopFromTheHmiShutsTheControllerDownInTheFailSafeOrder) {
+  ControllerStack stack("e2e-stop", kPeriodUs);
+  ASSERT_TRUE(stack.ready()) << stack.diagnostics();
+  Demo demo(stack, {});
+  ASSERT_TRUE(demo.ready()) << demo.err();
+  ASSERT_TRUE(ControllerStack::eventually(
+      [&] { return (vp_of(stack).state_word & shm::state_bits::kPowered) != 0; }));
+  SpawnedProcess hmi(HAPTICCTRL_HMI_BINARY, {"--instance", stack.instance(), "stop"});
+  EXPECT_EQ(hmi.wait(20s), 0) << hmi.err();
+  EXPECT_NE(hmi.out().find("stopped (stopping, stop requested)"), std::string::npos) << hmi.out();
+  EXPECT_EQ(stack.core().wait(10s), 0) << stack.core().err();
+  // The closing VP (step 3, "client told") is already unpowered with a zero wrench: steps 1 and
+  // 2 came first. The demo saw it and left on its own.
+  const shm::VpPayload closing = vp_of(stack);
+  EXPECT_EQ(closing.core_state, static_cast<std::uint32_t>(shm::CoreState::kStopping));
+  EXPECT_EQ(closing.state_word & shm::state_bits::kPowered, 0U);
+  EXPECT_EQ(closing.coupling_wrench, shm::Vector6{});
+  EXPECT_EQ(demo.process().wait(10s), 0) << demo.err();
+  EXPECT_NE(demo.err().find("ended (controller stopped)"), std::string::npos) << demo.err();
+  EXPECT_NE(demo.process().out().find("\"powered\":false"), std::string::npos);
+  EXPECT_NE(stack.core().err().find("stop requested"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace hapticctrl::test

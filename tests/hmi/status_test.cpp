@@ -1,0 +1,62 @@
+#include "hapticctrl/hmi/status.hpp"
+
+#include <gtest/gtest.h>
+
+namespace hapticctrl::hmi {
+namespace {
+
+ControllerStatus connected(std::uint64_t cycle, std::uint64_t control_frames) {
+  ControllerStatus s;
+  s.instance = "lab";
+  s.vp_ok = true;
+  s.link_ok = true;
+  s.vpr_ok = true;
+  s.vp.cycle = cycle;
+  s.link.session_id = 7;
+  s.link.peer_ipv4 = 0x7f000001;
+  s.link.peer_port = 40000;
+  s.link.control_accepted = control_frames;
+  s.vpr.session_id = 7;
+  s.read_ns = 5'000'000;
+  s.vpr.received_time_ns = 4'000'000;
+  return s;
+}
+
+TEST(Status, FramesPerCycleIsTheControllersViewOfTheClientStream) {
+  EXPECT_DOUBLE_EQ(control_frames_per_cycle(connected(1000, 990), connected(2000, 1980)), 0.99);
+  ControllerStatus other = connected(2000, 1980);
+  other.link.session_id = 8;
+  EXPECT_LT(control_frames_per_cycle(connected(1000, 990), other), 0.0) << "another session";
+  EXPECT_LT(control_frames_per_cycle(connected(1000, 990), connected(1000, 990)), 0.0);
+  EXPECT_LT(control_frames_per_cycle(ControllerStatus{}, connected(10, 1)), 0.0);
+}
+
+TEST(Status, ClientSampleAgeNeedsASession) {
+  EXPECT_DOUBLE_EQ(connected(1, 1).client_age_ms(), 1.0);
+  EXPECT_LT(ControllerStatus{}.client_age_ms(), 0.0);
+}
+
+TEST(Status, JsonCarriesStateWrenchesHealthAndLink) {
+  ControllerStatus s = connected(42, 40);
+  s.vp.state_word = shm::state_bits::kPowered | shm::state_bits::kCoupled;
+  s.vp.core_state = static_cast<std::uint32_t>(shm::CoreState::kRunning);
+  s.position.operator_wrench = {5, 0, 0, 0, 0, 0};
+  s.telemetry.rt_mode = static_cast<std::uint32_t>(shm::RtMode::kFifoLocked);
+  s.telemetry.wake_latency.p99_ns = 12'000;
+  s.link.dropped[0] = 2;
+  s.link.dropped[3] = 1;
+  const std::string json = status_json(s);
+  EXPECT_EQ(json.front(), '{');
+  EXPECT_EQ(json.back(), '}');
+  for (const char* part :
+       {"\"instance\":\"lab\"", "\"cycle\":42", "\"core_state\":\"running\"", "\"powered\":true",
+        "\"emergency_stop\":false", "\"coupled\":true", "\"operator_wrench\":[5,0,0,0,0,0]",
+        "\"rt_mode\":\"SCHED_FIFO+mlockall\"", "\"wake_p99_ns\":12000", "\"connected\":true",
+        "\"peer\":\"127.0.0.1:40000\"", "\"sample_age_ms\":1", "\"frames_dropped\":3"}) {
+    EXPECT_NE(json.find(part), std::string::npos) << part << " in " << json;
+  }
+  EXPECT_NE(status_json(ControllerStatus{}).find("\"connected\":false"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace hapticctrl::hmi

@@ -1,23 +1,93 @@
 #!/usr/bin/env bash
-# The README's main command: installs what is missing, builds, and runs the controller: the core
-# with its simulated arm, the UDP bridge on 127.0.0.1:5125 (HAPTICCTRL_PORT) that clients
-# (hapticctrl::client, virtOpen("udpxdr://127.0.0.1:5125")) connect to, and the LCM bridge
-# (telemetry on hapticctrl.<instance>.*, host-local; watch with scripts/spy.sh). Runs until
-# Ctrl-C on a terminal, or for 5 s without one, then prints the core's figures. The demo client
-# and the HMI join with F6.
+# The README's main command: installs what is missing, builds if needed, then runs the whole
+# product on this machine:
+#   hapticctrl-core  the controller and its simulated arm (instance $HAPTICCTRL_INSTANCE, "demo")
+#   hapticctrl-udp   the client protocol on 127.0.0.1:$HAPTICCTRL_PORT (5125)
+#   hapticctrl-lcm   telemetry on LCM, host-local (watch it with scripts/spy.sh)
+#   hapticctrl-demo  the test client: a sphere coupled to the arm, next to a fixed sphere
+#   hapticctrl-hmi   the operator panel, in this terminal
+# Quitting the panel (q), or Ctrl-C, stops everything: the controller in its fail-safe order,
+# then the others; no process and no /dev/shm segment is left. Without a terminal it plays a
+# short scenario instead (power on, push the handle into the fixed sphere, read the contact
+# force) and prints the outcome.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
-cmake -S . -B build -G Ninja >/dev/null
-cmake --build build -j "$(nproc)"
-INSTANCE=${HAPTICCTRL_INSTANCE:-demo}
-ARGS=(--instance "$INSTANCE" --json)
-if [[ ! -t 0 ]]; then
-  ARGS+=(--duration 5)
+if [[ ! -f build/build.ninja ]]; then
+  cmake -S . -B build -G Ninja >/dev/null
 fi
-build/bridges/udp/hapticctrl-udp --instance "$INSTANCE" --port "${HAPTICCTRL_PORT:-5125}" &
-BRIDGES=($!)
-build/bridges/lcm/hapticctrl-lcm --instance "$INSTANCE" &
-BRIDGES+=($!)
-trap 'kill -TERM "${BRIDGES[@]}" 2>/dev/null || true; wait "${BRIDGES[@]}" 2>/dev/null || true' EXIT
-build/rt_core/hapticctrl-core "${ARGS[@]}" "$@"
+cmake --build build -j "$(nproc)" >/dev/null
+
+INSTANCE=${HAPTICCTRL_INSTANCE:-demo}
+PORT=${HAPTICCTRL_PORT:-5125}
+RUN_DIR=build/run
+mkdir -p "$RUN_DIR"
+HMI=(build/hmi/hapticctrl-hmi --instance "$INSTANCE")
+PIDS=()
+
+stop_all() {
+  trap - EXIT INT TERM
+  # The controller first, by the operator's stop (fail-safe order: motors inhibited, supply off,
+  # client told, tasks stopped); then the processes that served it.
+  if [[ -n "${CORE_PID:-}" ]] && kill -0 "$CORE_PID" 2>/dev/null; then
+    "${HMI[@]}" stop >/dev/null 2>&1 || kill -TERM "$CORE_PID" 2>/dev/null || true
+  fi
+  for pid in "${PIDS[@]}"; do
+    kill -TERM "$pid" 2>/dev/null || true
+  done
+  for pid in "${PIDS[@]}" ${CORE_PID:-}; do
+    wait "$pid" 2>/dev/null || true
+  done
+  if [[ -e /dev/shm/hapticctrl.$INSTANCE ]]; then
+    echo "run: warning: /dev/shm/hapticctrl.$INSTANCE is still there" >&2
+  fi
+}
+trap stop_all EXIT
+trap 'exit 130' INT TERM
+
+build/rt_core/hapticctrl-core --instance "$INSTANCE" --json "$@" >"$RUN_DIR/core.json" \
+  2>"$RUN_DIR/core.log" &
+CORE_PID=$!
+for _ in $(seq 100); do
+  "${HMI[@]}" status >/dev/null 2>&1 && break
+  kill -0 "$CORE_PID" 2>/dev/null || { echo "run: hapticctrl-core did not start" >&2; exit 1; }
+  sleep 0.05
+done
+build/bridges/udp/hapticctrl-udp --instance "$INSTANCE" --port "$PORT" 2>"$RUN_DIR/udp.log" &
+PIDS+=($!)
+build/bridges/lcm/hapticctrl-lcm --instance "$INSTANCE" 2>"$RUN_DIR/lcm.log" &
+PIDS+=($!)
+build/client/demo/hapticctrl-demo --server "127.0.0.1:$PORT" --headless --json \
+  --log "$RUN_DIR/demo.csv" >"$RUN_DIR/demo.json" 2>"$RUN_DIR/demo.log" &
+DEMO_PID=$!
+PIDS+=("$DEMO_PID")
+for _ in $(seq 100); do
+  grep -q "ready:" "$RUN_DIR/demo.log" 2>/dev/null && break
+  sleep 0.05
+done
+
+if [[ -t 0 && -t 1 ]]; then
+  "${HMI[@]}" || true
+  exit 0  # stop_all (EXIT) stops the controller and the rest
+fi
+
+# No terminal: a short scenario. The demo has powered the arm and coupled its sphere; the
+# operator pushes the handle along +x until the sphere rests against the fixed sphere.
+echo "== scripted scenario (no terminal): push the handle 5 N along +x"
+"${HMI[@]}" status
+"${HMI[@]}" force 5 0 0 0 0 0
+sleep 3
+"${HMI[@]}" status
+kill -TERM "$DEMO_PID" && wait "$DEMO_PID" || true
+"${HMI[@]}" zero-force >/dev/null
+tail -n 2 "$RUN_DIR/demo.log"
+awk -v operator=5 'match($0, /"contact_force":\[[^]]*\]/) {
+    split(substr($0, RSTART + 17, RLENGTH - 18), f, ",")
+    printf "outcome: contact force %.3f N for an operator force of %.1f N (%.1f %%)\n",
+           -f[1], operator, 100 * -f[1] / operator
+  }' "$RUN_DIR/demo.json"
+"${HMI[@]}" stop
+wait "$CORE_PID" || true
+cat "$RUN_DIR/core.log"
+echo "core figures: $(cat "$RUN_DIR/core.json")"
+echo "logs in $RUN_DIR/ (demo.csv: the scene per step)"

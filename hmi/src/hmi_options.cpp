@@ -23,10 +23,14 @@ double number_of(const std::string& text, const std::string& what) {
 
 const std::map<std::string, HmiCommand>& commands() {
   static const std::map<std::string, HmiCommand> table{
-      {"status", HmiCommand::kStatus},         {"power-on", HmiCommand::kPowerOn},
-      {"power-off", HmiCommand::kPowerOff},    {"estop", HmiCommand::kEmergencyStop},
-      {"reset", HmiCommand::kEmergencyReset},  {"stop", HmiCommand::kStop},
-      {"force", HmiCommand::kForce},           {"zero-force", HmiCommand::kZeroForce},
+      {"status", HmiCommand::kStatus},
+      {"power-on", HmiCommand::kPowerOn},
+      {"power-off", HmiCommand::kPowerOff},
+      {"estop", HmiCommand::kEmergencyStop},
+      {"reset", HmiCommand::kEmergencyReset},
+      {"stop", HmiCommand::kStop},
+      {"force", HmiCommand::kForce},
+      {"zero-force", HmiCommand::kZeroForce},
       {"play", HmiCommand::kPlay},
   };
   return table;
@@ -45,7 +49,8 @@ const char* HmiOptions::usage() noexcept {
          "  zero-force              release the handle\n"
          "  play FILE [--log CSV|-] [--power-on]\n"
          "                          play a force sequence (t fx fy fz tx ty tz per line) and log\n"
-         "                          the arm's response per cycle (default hapticctrl-sequence.csv)\n"
+         "                          the arm's response per cycle (default "
+         "hapticctrl-sequence.csv)\n"
          "Exit status: 0 done, 1 error or no effect within the timeout, 64 usage.\n";
 }
 

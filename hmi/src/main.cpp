@@ -1,8 +1,8 @@
 // hapticctrl-hmi: the operator panel of a running hapticctrl-core (maps its shared memory).
 // Without a command: the full-screen panel. With one: do it, wait for its effect, report.
 // Exit: 0 done, 1 error or no effect within the timeout, 64 usage.
-#include <cstdio>
 #include <chrono>
+#include <cstdio>
 #include <exception>
 #include <fstream>
 #include <iostream>
@@ -38,8 +38,7 @@ void print_status(const ControllerStatus& s, bool json) {
   const auto& p = s.position.handle_pose;
   std::printf("instance '%s': %s, %s%s, cycle %llu, handle at (%.4f, %.4f, %.4f) m, client %s\n",
               s.instance.c_str(), shm::core_state_name(s.vp.core_state),
-              s.powered() ? "powered" : "unpowered",
-              s.emergency_stop() ? ", EMERGENCY STOP" : "",
+              s.powered() ? "powered" : "unpowered", s.emergency_stop() ? ", EMERGENCY STOP" : "",
               static_cast<unsigned long long>(s.vp.cycle), p[0], p[1], p[2],
               s.client_connected() ? "connected" : "not connected");
 }
@@ -66,7 +65,8 @@ int stop_controller(hmi::Operator& op, const hmi::HmiOptions& o) {
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   if (op.controller_alive()) {
-    std::fprintf(stderr, "hapticctrl-hmi: the controller is still running after the stop request\n");
+    std::fprintf(stderr,
+                 "hapticctrl-hmi: the controller is still running after the stop request\n");
     return 1;
   }
   // The mapping outlives the removed segment: its last VP says how the controller ended.
@@ -89,15 +89,16 @@ int set_force(hmi::Operator& op, const shm::Vector6& wrench) {
   }
   op.settle_force();
   const auto& w = op.force().applied();
-  std::printf("operator wrench %.3f %.3f %.3f N %.3f %.3f %.3f N.m\n", w[0], w[1], w[2], w[3],
-              w[4], w[5]);
+  std::printf("operator wrench %.3f %.3f %.3f N %.3f %.3f %.3f N.m\n", w[0], w[1], w[2], w[3], w[4],
+              w[5]);
   return 0;
 }
 
 int play(hmi::Operator& op, const hmi::HmiOptions& o) {
   const hmi::WrenchSequence sequence = hmi::WrenchSequence::load(o.sequence_path);
-  if (o.power_on && command(op, shm::CtrlCode::kPowerOn, "power on", "powered on",
-                            [](const ControllerStatus& s) { return s.powered(); }, o) != 0) {
+  if (o.power_on && command(
+                        op, shm::CtrlCode::kPowerOn, "power on", "powered on",
+                        [](const ControllerStatus& s) { return s.powered(); }, o) != 0) {
     return 1;
   }
   std::ofstream file;
@@ -127,19 +128,21 @@ int run(const hmi::HmiOptions& o) {
       print_status(op.status(), o.json);
       return 0;
     case HmiCommand::kPowerOn:
-      return command(op, shm::CtrlCode::kPowerOn, "power on", "powered on",
-                     [](const ControllerStatus& s) { return s.powered(); }, o);
+      return command(
+          op, shm::CtrlCode::kPowerOn, "power on", "powered on",
+          [](const ControllerStatus& s) { return s.powered(); }, o);
     case HmiCommand::kPowerOff:
-      return command(op, shm::CtrlCode::kPowerOff, "power off", "powered off",
-                     [](const ControllerStatus& s) { return !s.powered(); }, o);
+      return command(
+          op, shm::CtrlCode::kPowerOff, "power off", "powered off",
+          [](const ControllerStatus& s) { return !s.powered(); }, o);
     case HmiCommand::kEmergencyStop:
-      return command(op, shm::CtrlCode::kEmergencyStop, "latch the emergency stop",
-                     "emergency stop latched",
-                     [](const ControllerStatus& s) { return s.emergency_stop(); }, o);
+      return command(
+          op, shm::CtrlCode::kEmergencyStop, "latch the emergency stop", "emergency stop latched",
+          [](const ControllerStatus& s) { return s.emergency_stop(); }, o);
     case HmiCommand::kEmergencyReset:
-      return command(op, shm::CtrlCode::kEmergencyReset, "reset the emergency stop",
-                     "emergency stop reset",
-                     [](const ControllerStatus& s) { return !s.emergency_stop(); }, o);
+      return command(
+          op, shm::CtrlCode::kEmergencyReset, "reset the emergency stop", "emergency stop reset",
+          [](const ControllerStatus& s) { return !s.emergency_stop(); }, o);
     case HmiCommand::kStop:
       return stop_controller(op, o);
     case HmiCommand::kForce:

@@ -132,20 +132,20 @@ bool Operator::request_force(const shm::Vector6& wrench) {
 
 void Operator::tick(std::int64_t now_ns) {
   // A caller that paused (a stalled terminal) resumes with one bounded step, not a jump.
-  const double dt =
-      last_tick_ns_ == 0 ? 0.0
-                         : std::min(static_cast<double>(now_ns - last_tick_ns_) / 1e9, kMaxTickStep);
+  const double dt = last_tick_ns_ == 0
+                        ? 0.0
+                        : std::min(static_cast<double>(now_ns - last_tick_ns_) / 1e9, kMaxTickStep);
   last_tick_ns_ = now_ns;
   if (force_available() && slew_.step(dt)) {
-    segment_->writable<shm::RegionId::kForce>().publish_quietly(
-        shm::ForcePayload{slew_.applied()}, now_ns);
+    segment_->writable<shm::RegionId::kForce>().publish_quietly(shm::ForcePayload{slew_.applied()},
+                                                                now_ns);
   }
 }
 
 void Operator::settle_force() {
   // Bounded: the rate limit sets the time; 2 s more covers any scheduling delay.
-  const auto deadline = std::chrono::steady_clock::now() +
-                        std::chrono::duration<double>(slew_.time_to_settle()) + 2s;
+  const auto deadline =
+      std::chrono::steady_clock::now() + std::chrono::duration<double>(slew_.time_to_settle()) + 2s;
   tick(monotonic_now_ns());
   while (!slew_.settled() && std::chrono::steady_clock::now() < deadline) {
     std::this_thread::sleep_for(kPoll);

@@ -87,12 +87,12 @@ void draw(const ControllerStatus& s, const PanelForce& force, const Operator& op
   line(row++, "joints   %+7.2f %+7.2f %+7.2f %+7.2f %+7.2f %+7.2f deg", p.joint_position[0] * kDeg,
        p.joint_position[1] * kDeg, p.joint_position[2] * kDeg, p.joint_position[3] * kDeg,
        p.joint_position[4] * kDeg, p.joint_position[5] * kDeg);
-  line(row++, "operator %+7.2f %+7.2f %+7.2f N  %+6.3f %+6.3f %+6.3f N.m",
-       p.operator_wrench[0], p.operator_wrench[1], p.operator_wrench[2], p.operator_wrench[3],
-       p.operator_wrench[4], p.operator_wrench[5]);
-  line(row++, "coupling %+7.2f %+7.2f %+7.2f N  %+6.3f %+6.3f %+6.3f N.m",
-       p.coupling_wrench[0], p.coupling_wrench[1], p.coupling_wrench[2], p.coupling_wrench[3],
-       p.coupling_wrench[4], p.coupling_wrench[5]);
+  line(row++, "operator %+7.2f %+7.2f %+7.2f N  %+6.3f %+6.3f %+6.3f N.m", p.operator_wrench[0],
+       p.operator_wrench[1], p.operator_wrench[2], p.operator_wrench[3], p.operator_wrench[4],
+       p.operator_wrench[5]);
+  line(row++, "coupling %+7.2f %+7.2f %+7.2f N  %+6.3f %+6.3f %+6.3f N.m", p.coupling_wrench[0],
+       p.coupling_wrench[1], p.coupling_wrench[2], p.coupling_wrench[3], p.coupling_wrench[4],
+       p.coupling_wrench[5]);
   ++row;
   line(row++, "cycle    wake p99 %.1f us (max %.1f)  servo p99 %.1f us", us(t.wake_latency.p99_ns),
        us(t.wake_latency.max_ns), us(t.servo_execution.p99_ns));
@@ -114,8 +114,8 @@ void draw(const ControllerStatus& s, const PanelForce& force, const Operator& op
   const shm::Vector6& applied = op.force().applied();
   if (op.force_available()) {
     line(row++, "force    %s step %.3g %s | %+.2f %+.2f %+.2f N %+.3f %+.3f %+.3f N.m",
-         kAxisNames[force.axis], force.step(), force.axis < 3 ? "N" : "N.m", applied[0],
-         applied[1], applied[2], applied[3], applied[4], applied[5]);
+         kAxisNames[force.axis], force.step(), force.axis < 3 ? "N" : "N.m", applied[0], applied[1],
+         applied[2], applied[3], applied[4], applied[5]);
   } else {
     line(row++, "force    unavailable: %s", op.force_unavailable().c_str());
   }

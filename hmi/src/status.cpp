@@ -68,8 +68,8 @@ std::string status_json(const ControllerStatus& s) {
   std::ostringstream out;
   out << std::setprecision(9);
   const shm::TelemetryPayload& t = s.telemetry;
-  out << "{\"instance\":\"" << s.instance << "\",\"cycle\":" << s.vp.cycle
-      << ",\"core_state\":\"" << shm::core_state_name(s.vp.core_state) << "\",\"stop_reason\":\""
+  out << "{\"instance\":\"" << s.instance << "\",\"cycle\":" << s.vp.cycle << ",\"core_state\":\""
+      << shm::core_state_name(s.vp.core_state) << "\",\"stop_reason\":\""
       << shm::stop_reason_name(s.vp.stop_reason) << "\",\"powered\":" << std::boolalpha
       << s.powered() << ",\"emergency_stop\":" << s.emergency_stop()
       << ",\"fail_safe\":" << s.has_state_bit(shm::state_bits::kFailSafe)
@@ -95,8 +95,8 @@ std::string status_json(const ControllerStatus& s) {
       << ",\"servo_execution_p99_ns\":" << t.servo_execution.p99_ns
       << ",\"misses_total\":" << t.misses_total
       << ",\"consecutive_misses\":" << t.consecutive_misses
-      << ",\"degraded_cycles\":" << t.degraded_cycles << "},\"client\":{\"connected\":"
-      << s.client_connected();
+      << ",\"degraded_cycles\":" << t.degraded_cycles
+      << "},\"client\":{\"connected\":" << s.client_connected();
   if (s.client_connected()) {
     out << ",\"peer\":\"" << ipv4_text(s.link.peer_ipv4) << ":" << s.link.peer_port
         << "\",\"session_id\":" << s.link.session_id << ",\"sample_age_ms\":" << s.client_age_ms()

@@ -10,7 +10,8 @@ namespace hapticctrl::hmi {
 namespace {
 
 std::vector<std::string> fields_of(std::string line) {
-  std::replace_if(line.begin(), line.end(), [](char c) { return c == ',' || c == '\t'; }, ' ');
+  std::replace_if(
+      line.begin(), line.end(), [](char c) { return c == ',' || c == '\t'; }, ' ');
   std::istringstream in(line);
   std::vector<std::string> fields;
   for (std::string f; in >> f;) {
@@ -65,9 +66,9 @@ WrenchSequence WrenchSequence::parse(const std::string& text, const std::string&
       throw std::invalid_argument(where() + "times must increase strictly");
     }
     if (!check.acceptable(sample.wrench)) {
-      throw std::invalid_argument(where() + "wrench must be finite, |f| <= " +
-                                  std::to_string(limits.max_force) + " N and |t| <= " +
-                                  std::to_string(limits.max_torque) + " N.m per axis");
+      throw std::invalid_argument(
+          where() + "wrench must be finite, |f| <= " + std::to_string(limits.max_force) +
+          " N and |t| <= " + std::to_string(limits.max_torque) + " N.m per axis");
     }
     seq.samples_.push_back(sample);
   }

@@ -15,11 +15,11 @@
 #include "hapticctrl/rt_core/black_box.hpp"
 #include "hapticctrl/rt_core/core_config.hpp"
 #include "hapticctrl/rt_core/core_report.hpp"
-#include "hapticctrl/shm/names.hpp"
 #include "hapticctrl/rt_core/executive.hpp"
 #include "hapticctrl/rt_core/rt_preflight.hpp"
 #include "hapticctrl/rt_core/servo.hpp"
 #include "hapticctrl/rt_core/threaded_servo_tasks.hpp"
+#include "hapticctrl/shm/names.hpp"
 #include "hapticctrl/shm/segment.hpp"
 
 namespace {
@@ -102,8 +102,8 @@ int run_core(const CoreConfig& config) {
                                        &segment.writable<shm::RegionId::kEvents>()},
                       black_box);
   std::cerr << "hapticctrl-core: instance '" << config.instance << "' running, period "
-            << config.period / kNsPerUs << " us, rt mode " << shm::rt_mode_name(static_cast<std::uint32_t>(rt.mode())) << ", cpu "
-            << cpu << "\n";
+            << config.period / kNsPerUs << " us, rt mode "
+            << shm::rt_mode_name(static_cast<std::uint32_t>(rt.mode())) << ", cpu " << cpu << "\n";
 
   const ExecutiveResult result = executive.run(&g_signal_stop);
   const shm::TelemetryPayload final_figures = executive.telemetry();
@@ -129,12 +129,14 @@ int run_core(const CoreConfig& config) {
   }
   if (result.fail_safe) {
     std::cerr << "hapticctrl-core: FAIL-SAFE after cycle " << final_figures.cycle << ": "
-              << shm::stop_reason_name(static_cast<std::uint32_t>(result.reason)) << " (motors inhibited, supply off, client told)"
+              << shm::stop_reason_name(static_cast<std::uint32_t>(result.reason))
+              << " (motors inhibited, supply off, client told)"
               << (black_box_path.empty() ? "" : "; black box: " + black_box_path) << "\n";
     return 3;
   }
   std::cerr << "hapticctrl-core: stopped after " << final_figures.cycle
-            << " cycles: " << shm::stop_reason_name(static_cast<std::uint32_t>(result.reason)) << "\n";
+            << " cycles: " << shm::stop_reason_name(static_cast<std::uint32_t>(result.reason))
+            << "\n";
   return 0;
 }
 

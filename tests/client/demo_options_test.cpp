@@ -16,11 +16,19 @@ TEST(DemoOptions, DefaultsTalkToTheLocalBridgeAndPowerOn) {
 }
 
 TEST(DemoOptions, ParsesTheSceneAndTheRun) {
-  const DemoOptions o = DemoOptions::parse(
-      {"--server", "10.0.0.2:6000", "--headless", "--duration", "2.5", "--script", "s.txt",
-       "--log", "d.csv", "--json", "--status-ms", "250", "--no-power", "--mass", "1.2", "--radius",
-       "0.04", "--gap", "0.005", "--contact-stiffness", "3000", "--contact-damping", "40",
-       "--friction", "0.3", "--gravity"});
+  const DemoOptions o = DemoOptions::parse({"--server",    "10.0.0.2:6000",
+                                            "--headless",  "--duration",
+                                            "2.5",         "--script",
+                                            "s.txt",       "--log",
+                                            "d.csv",       "--json",
+                                            "--status-ms", "250",
+                                            "--no-power",  "--mass",
+                                            "1.2",         "--radius",
+                                            "0.04",        "--gap",
+                                            "0.005",       "--contact-stiffness",
+                                            "3000",        "--contact-damping",
+                                            "40",          "--friction",
+                                            "0.3",         "--gravity"});
   EXPECT_EQ(o.server, "10.0.0.2:6000");
   EXPECT_TRUE(o.headless);
   EXPECT_DOUBLE_EQ(o.duration_s, 2.5);

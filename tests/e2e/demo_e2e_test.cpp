@@ -27,7 +27,8 @@ std::vector<double> json_numbers(const std::string& json, const std::string& key
     return {};
   }
   std::string text = json.substr(at + key.size() + 3);
-  text = text[0] == '[' ? text.substr(1, text.find(']') - 1) : text.substr(0, text.find_first_of(",}"));
+  text = text[0] == '[' ? text.substr(1, text.find(']') - 1)
+                        : text.substr(0, text.find_first_of(",}"));
   std::vector<double> values;
   std::istringstream in(text);
   for (std::string v; std::getline(in, v, ',');) {
@@ -112,9 +113,9 @@ TEST(DemoEndToEnd, PushingTheHandleBringsTheSphereToRestAgainstTheFixedOne) {
   ASSERT_TRUE(stack.ready()) << stack.diagnostics();
   Demo demo(stack, {});
   ASSERT_TRUE(demo.ready()) << demo.err();
-  ASSERT_TRUE(ControllerStack::eventually(
-      [&] { return (vp_of(stack).state_word & shm::state_bits::kCoupled) != 0; }))
-      << "the demo powers on and couples";
+  ASSERT_TRUE(ControllerStack::eventually([&] {
+    return (vp_of(stack).state_word & shm::state_bits::kCoupled) != 0;
+  })) << "the demo powers on and couples";
   const double x0 = position_of(stack).handle_pose[0];
   constexpr double kPush = 5.0;
   ASSERT_EQ(run_hmi(stack, {"force", "5", "0", "0", "0", "0", "0"}), 0);
@@ -169,11 +170,15 @@ TEST(DemoEndToEnd, KillingTheClientFadesTheCouplingAndTheArmStaysPut) {
   const double before = force_norm(vp_of(stack));
   demo.process().signal(SIGKILL);
   double largest = 0.0;
-  EXPECT_TRUE(ControllerStack::eventually([&] {
-    const shm::VpPayload vp = vp_of(stack);
-    largest = std::max(largest, force_norm(vp));
-    return (vp.state_word & shm::state_bits::kCoupled) == 0 && vp.coupling_wrench == shm::Vector6{};
-  }, 3s)) << "the coupling fades to zero once the client falls silent";
+  EXPECT_TRUE(ControllerStack::eventually(
+      [&] {
+        const shm::VpPayload vp = vp_of(stack);
+        largest = std::max(largest, force_norm(vp));
+        return (vp.state_word & shm::state_bits::kCoupled) == 0 &&
+               vp.coupling_wrench == shm::Vector6{};
+      },
+      3s))
+      << "the coupling fades to zero once the client falls silent";
   EXPECT_LE(largest, before + 0.05) << "fading, never a spike";
   const shm::Pose7 after_fade = position_of(stack).handle_pose;
   std::this_thread::sleep_for(1s);

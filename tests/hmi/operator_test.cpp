@@ -48,8 +48,8 @@ TEST(Operator, CommandsTakeEffectAndTheForceRampsIntoTheRegion) {
       2s));
   EXPECT_FALSE(op.status().powered()) << "the emergency stop cuts the power";
   EXPECT_TRUE(op.send_and_wait(
-      shm::CtrlCode::kEmergencyReset,
-      [](const ControllerStatus& s) { return !s.emergency_stop(); }, 2s));
+      shm::CtrlCode::kEmergencyReset, [](const ControllerStatus& s) { return !s.emergency_stop(); },
+      2s));
 
   EXPECT_FALSE(op.request_force({150, 0, 0, 0, 0, 0})) << "beyond the operator limits";
   ASSERT_TRUE(op.request_force({4, 0, 0, 0, 0.2, 0}));
@@ -74,9 +74,9 @@ TEST(Operator, ASecondForceWriterIsTurnedAwayButCommandsStillWork) {
   std::ofstream(sequence) << "0 1 0 0 0 0 0\n10 1 0 0 0 0 0\n";
   test::SpawnedProcess player(HAPTICCTRL_HMI_BINARY, {"--instance", stack.instance(), "play",
                                                       sequence, "--log", "/dev/null"});
-  ASSERT_TRUE(ControllerStack::eventually(
-      [&] { return player.err().find("playing 2 samples") != std::string::npos; }))
-      << player.err();
+  ASSERT_TRUE(ControllerStack::eventually([&] {
+    return player.err().find("playing 2 samples") != std::string::npos;
+  })) << player.err();
   Operator second(stack.instance(), true);
   EXPECT_FALSE(second.force_available());
   EXPECT_NE(second.force_unavailable().find("already written by live process"), std::string::npos)

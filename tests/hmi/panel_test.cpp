@@ -90,13 +90,12 @@ TEST(Panel, KeysPowerTheArmPushTheHandleAndStopTheController) {
   panel.keys("p");
   EXPECT_TRUE(ControllerStack::eventually([&] { return watch.status().powered(); }, 2s));
   panel.keys("1++");  // fx, two steps of 2 N
-  EXPECT_TRUE(ControllerStack::eventually([&] {
-    return watch.status().position.operator_wrench[0] == 4.0;
-  }, 2s)) << "operator fx " << watch.status().position.operator_wrench[0];
+  EXPECT_TRUE(ControllerStack::eventually(
+      [&] { return watch.status().position.operator_wrench[0] == 4.0; }, 2s))
+      << "operator fx " << watch.status().position.operator_wrench[0];
   panel.keys("0");
-  EXPECT_TRUE(ControllerStack::eventually([&] {
-    return watch.status().position.operator_wrench == shm::Vector6{};
-  }, 2s));
+  EXPECT_TRUE(ControllerStack::eventually(
+      [&] { return watch.status().position.operator_wrench == shm::Vector6{}; }, 2s));
   panel.keys(" ");
   EXPECT_TRUE(ControllerStack::eventually([&] { return watch.status().emergency_stop(); }, 2s));
   panel.keys("r");

@@ -135,7 +135,6 @@ hapticctrl_lcm::bridge_stats_t to_bridge_stats(const shm::LinkStatsPayload& s, s
   return m;
 }
 
-
 hapticctrl_lcm::event_t to_event(const shm::Event& e, std::uint64_t lost_before,
                                  std::int64_t utime) {
   hapticctrl_lcm::event_t m{};

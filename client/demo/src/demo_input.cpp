@@ -21,6 +21,47 @@ void set_part(AppliedWrench& a, std::size_t first, const ScriptEvent& e) noexcep
   a.wrench[first + 2] = e.z;
 }
 
+/// One script line (comment stripped, not blank). Throws with `where` ("file:line: ") first.
+ScriptEvent parse_event(const std::string& content, const std::string& where) {
+  std::istringstream fields(content);
+  ScriptEvent e;
+  std::string action;
+  if (!(fields >> e.t)) {
+    throw std::invalid_argument(where + "expected 't action [values]'");
+  }
+  if (!(fields >> action)) {
+    throw std::invalid_argument(where + "missing action (push, twist, release, quit)");
+  }
+  const bool with_values = action == "push" || action == "twist";
+  if (action == "push") {
+    e.kind = ScriptEvent::Kind::kPush;
+  } else if (action == "twist") {
+    e.kind = ScriptEvent::Kind::kTwist;
+  } else if (action == "release") {
+    e.kind = ScriptEvent::Kind::kRelease;
+  } else if (action == "quit") {
+    e.kind = ScriptEvent::Kind::kQuit;
+  } else {
+    throw std::invalid_argument(where + "unknown action '" + action + "'");
+  }
+  if (with_values && !(fields >> e.x >> e.y >> e.z)) {
+    throw std::invalid_argument(where + action + " needs three numbers");
+  }
+  std::string extra;
+  if (fields >> extra) {
+    throw std::invalid_argument(where + "unexpected '" + extra + "'");
+  }
+  const double limit = e.kind == ScriptEvent::Kind::kPush ? kMaxAppliedForce : kMaxAppliedTorque;
+  if (!std::isfinite(e.t) || e.t < 0.0 || !std::isfinite(e.x) || !std::isfinite(e.y) ||
+      !std::isfinite(e.z) || std::abs(e.x) > limit || std::abs(e.y) > limit ||
+      std::abs(e.z) > limit) {
+    throw std::invalid_argument(
+        where + "values must be finite, t >= 0, |force| <= " + std::to_string(kMaxAppliedForce) +
+        " N, |torque| <= " + std::to_string(kMaxAppliedTorque) + " N.m");
+  }
+  return e;
+}
+
 }  // namespace
 
 InputResult apply_demo_key(int key, AppliedWrench& a) noexcept {
@@ -57,47 +98,12 @@ DemoScript DemoScript::parse(const std::string& text, const std::string& source)
   std::istringstream in(text);
   std::string line;
   for (int number = 1; std::getline(in, line); ++number) {
-    const std::string where = source + ":" + std::to_string(number) + ": ";
     const std::string content = line.substr(0, line.find('#'));
     if (content.find_first_not_of(" \t\r") == std::string::npos) {
       continue;  // blank or comment
     }
-    std::istringstream fields(content);
-    ScriptEvent e;
-    std::string action;
-    if (!(fields >> e.t)) {
-      throw std::invalid_argument(where + "expected 't action [values]'");
-    }
-    if (!(fields >> action)) {
-      throw std::invalid_argument(where + "missing action (push, twist, release, quit)");
-    }
-    const bool with_values = action == "push" || action == "twist";
-    if (action == "push") {
-      e.kind = ScriptEvent::Kind::kPush;
-    } else if (action == "twist") {
-      e.kind = ScriptEvent::Kind::kTwist;
-    } else if (action == "release") {
-      e.kind = ScriptEvent::Kind::kRelease;
-    } else if (action == "quit") {
-      e.kind = ScriptEvent::Kind::kQuit;
-    } else {
-      throw std::invalid_argument(where + "unknown action '" + action + "'");
-    }
-    if (with_values && !(fields >> e.x >> e.y >> e.z)) {
-      throw std::invalid_argument(where + action + " needs three numbers");
-    }
-    std::string extra;
-    if (fields >> extra) {
-      throw std::invalid_argument(where + "unexpected '" + extra + "'");
-    }
-    const double limit = e.kind == ScriptEvent::Kind::kPush ? kMaxAppliedForce : kMaxAppliedTorque;
-    if (!std::isfinite(e.t) || e.t < 0.0 || !std::isfinite(e.x) || !std::isfinite(e.y) ||
-        !std::isfinite(e.z) || std::abs(e.x) > limit || std::abs(e.y) > limit ||
-        std::abs(e.z) > limit) {
-      throw std::invalid_argument(where + "values must be finite, t >= 0, |force| <= " +
-                                  std::to_string(kMaxAppliedForce) + " N, |torque| <= " +
-                                  std::to_string(kMaxAppliedTorque) + " N.m");
-    }
+    const std::string where = source + ":" + std::to_string(number) + ": ";
+    const ScriptEvent e = parse_event(content, where);
     if (!script.events_.empty() && e.t <= script.events_.back().t) {
       throw std::invalid_argument(where + "times must increase strictly");
     }

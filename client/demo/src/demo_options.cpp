@@ -15,8 +15,8 @@ double number_of(const std::string& text, const std::string& option, double lo, 
     used = 0;
   }
   if (text.empty() || used != text.size() || !std::isfinite(value) || value < lo || value > hi) {
-    throw std::invalid_argument(option + " must be a number within [" + std::to_string(lo) +
-                                ", " + std::to_string(hi) + "] (got '" + text + "')");
+    throw std::invalid_argument(option + " must be a number within [" + std::to_string(lo) + ", " +
+                                std::to_string(hi) + "] (got '" + text + "')");
   }
   return value;
 }

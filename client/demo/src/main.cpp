@@ -99,9 +99,8 @@ demo::SphereScene scene_at(const client::StateSnapshot& s, const demo::DemoOptio
   start.orientation =
       Eigen::Quaterniond(s.handle_pose[6], s.handle_pose[3], s.handle_pose[4], s.handle_pose[5])
           .normalized();
-  config.fixed_center =
-      start.position +
-      Eigen::Vector3d::UnitX() * (config.fixed_radius + config.mobile_radius + o.gap);
+  config.fixed_center = start.position + Eigen::Vector3d::UnitX() *
+                                             (config.fixed_radius + config.mobile_radius + o.gap);
   return {config, start};
 }
 
@@ -253,8 +252,7 @@ int run(const demo::DemoOptions& o) {
       // The controller may be gone already: the session ends either way.
     }
   }
-  print_status(stderr, std::chrono::duration<double>(Clock::now() - start).count(), s, scene,
-               "\n");
+  print_status(stderr, std::chrono::duration<double>(Clock::now() - start).count(), s, scene, "\n");
   std::fprintf(stderr, "hapticctrl-demo: ended (%s) after %llu steps\n", ended,
                static_cast<unsigned long long>(steps));
   if (o.json) {

@@ -68,8 +68,8 @@ Eigen::Vector3d SphereScene::contact_force() const noexcept {
   if (push <= 0.0) {
     return Eigen::Vector3d::Zero();
   }
-  Eigen::Vector3d friction = -config_.contact_stiffness * stretch_ -
-                             config_.contact_damping * c.slip_velocity;
+  Eigen::Vector3d friction =
+      -config_.contact_stiffness * stretch_ - config_.contact_damping * c.slip_velocity;
   const double limit = config_.friction * push;
   if (friction.norm() > limit) {
     friction *= limit / friction.norm();
@@ -96,8 +96,8 @@ void SphereScene::update_stretch(const Contact& c, double dt) noexcept {
     return;
   }
   twist_ += state_.angular_velocity * dt;
-  const double twist_limit = config_.rolling_resistance * push /
-                             (config_.contact_stiffness * config_.mobile_radius);
+  const double twist_limit =
+      config_.rolling_resistance * push / (config_.contact_stiffness * config_.mobile_radius);
   if (twist_.norm() > twist_limit) {
     twist_ *= twist_limit / twist_.norm();  // rolling: the patch moves on
   }
@@ -148,8 +148,8 @@ void SphereScene::step(const client::Vector6& coupling, const client::Vector6& a
 
 client::Pose7 SphereScene::pose() const noexcept {
   const Eigen::Quaterniond& q = state_.orientation;
-  return {state_.position.x(), state_.position.y(), state_.position.z(), q.x(), q.y(), q.z(),
-          q.w()};
+  return {
+      state_.position.x(), state_.position.y(), state_.position.z(), q.x(), q.y(), q.z(), q.w()};
 }
 
 client::Vector6 SphereScene::twist() const noexcept {

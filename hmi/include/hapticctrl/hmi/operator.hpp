@@ -55,9 +55,7 @@ class Operator {
   void settle_force();
   [[nodiscard]] const shm::ForceSlew& force() const noexcept { return slew_; }
   [[nodiscard]] bool force_available() const noexcept { return force_unavailable_.empty(); }
-  [[nodiscard]] const std::string& force_unavailable() const noexcept {
-    return force_unavailable_;
-  }
+  [[nodiscard]] const std::string& force_unavailable() const noexcept { return force_unavailable_; }
 
   [[nodiscard]] ControllerStatus status() const;
   /// Whether the controller still runs (its lock is held and this segment is current).

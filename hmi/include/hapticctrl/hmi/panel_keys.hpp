@@ -16,16 +16,16 @@ namespace hapticctrl::hmi {
 
 enum class PanelAction {
   kNone,
-  kCommand,      ///< send `command`
-  kForce,        ///< request the (changed) `wrench`
-  kAskStop,      ///< ask to confirm the controller stop
+  kCommand,  ///< send `command`
+  kForce,    ///< request the (changed) `wrench`
+  kAskStop,  ///< ask to confirm the controller stop
   kQuit,
 };
 
 /// The panel's force state: the wrench requested and how the keys change it.
 struct PanelForce {
   shm::Vector6 wrench{};
-  std::size_t axis = 0;  ///< 0..5: fx fy fz tx ty tz
+  std::size_t axis = 0;      ///< 0..5: fx fy fz tx ty tz
   double force_step = 2.0;   ///< N per key press
   double torque_step = 0.1;  ///< N.m per key press
 

@@ -11,8 +11,8 @@
 namespace hapticctrl::hmi {
 
 struct PlayResult {
-  std::uint64_t rows = 0;         ///< CSV rows written (controller cycles seen)
-  double played_s = 0.0;          ///< how long the sequence ran
+  std::uint64_t rows = 0;           ///< CSV rows written (controller cycles seen)
+  double played_s = 0.0;            ///< how long the sequence ran
   bool controller_stopped = false;  ///< the controller stopped or failed safe during playback
 };
 

@@ -35,9 +35,7 @@ struct ControllerStatus {
   [[nodiscard]] bool emergency_stop() const noexcept {
     return has_state_bit(shm::state_bits::kEmergencyStop);
   }
-  [[nodiscard]] bool client_connected() const noexcept {
-    return link_ok && link.session_id != 0;
-  }
+  [[nodiscard]] bool client_connected() const noexcept { return link_ok && link.session_id != 0; }
   /// Age of the client's last sample when read (ms); negative without a client.
   [[nodiscard]] double client_age_ms() const noexcept;
 };

@@ -8,8 +8,9 @@
 /// gives way beyond rolling_resistance * normal force * radius. Without them a sphere pushed
 /// onto a sphere by a force with no lateral stiffness (the operator's hand on a
 /// gravity-compensated arm) slides or rolls off sideways: that equilibrium is unstable. Gravity
-/// is optional; integration is semi-implicit Euler at the client's time step. Allocation-free; the integrator reads no
-/// clock (it takes dt), so a scenario of any length is a fast deterministic test.
+/// is optional; integration is semi-implicit Euler at the client's time step. Allocation-free; the
+/// integrator reads no clock (it takes dt), so a scenario of any length is a fast deterministic
+/// test.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 

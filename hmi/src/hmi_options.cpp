@@ -1,21 +1,16 @@
 #include "hapticctrl/hmi/hmi_options.hpp"
 
-#include <cmath>
 #include <map>
 #include <stdexcept>
+
+#include "number_text.hpp"
 
 namespace hapticctrl::hmi {
 namespace {
 
 double number_of(const std::string& text, const std::string& what) {
-  std::size_t used = 0;
   double value = 0.0;
-  try {
-    value = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != text.size() || text.empty() || !std::isfinite(value)) {
+  if (!parse_finite(text, value)) {
     throw std::invalid_argument(what + " must be a finite number (got '" + text + "')");
   }
   return value;

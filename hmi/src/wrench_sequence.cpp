@@ -6,6 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "number_text.hpp"
+
 namespace hapticctrl::hmi {
 namespace {
 
@@ -18,16 +20,6 @@ std::vector<std::string> fields_of(std::string line) {
     fields.push_back(f);
   }
   return fields;
-}
-
-bool parse_number(const std::string& text, double& out) {
-  std::size_t used = 0;
-  try {
-    out = std::stod(text, &used);
-  } catch (const std::exception&) {
-    return false;
-  }
-  return used == text.size();
 }
 
 }  // namespace
@@ -48,10 +40,10 @@ WrenchSequence WrenchSequence::parse(const std::string& text, const std::string&
     double values[7] = {};  // NOLINT(*-avoid-c-arrays)
     bool numeric = fields.size() == 7;
     for (std::size_t i = 0; numeric && i < 7; ++i) {
-      numeric = parse_number(fields[i], values[i]);
+      numeric = parse_finite(fields[i], values[i]);
     }
     if (!numeric) {
-      if (seq.samples_.empty() && !fields.empty() && !parse_number(fields[0], values[0])) {
+      if (seq.samples_.empty() && !fields.empty() && !parse_finite(fields[0], values[0])) {
         continue;  // a header line ("t fx fy fz tx ty tz")
       }
       throw std::invalid_argument(where() + "expected 7 numbers: t fx fy fz tx ty tz");

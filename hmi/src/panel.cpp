@@ -158,6 +158,63 @@ void handle_command(Operator& op, shm::CtrlCode code, PanelView& view) {
   }
 }
 
+/// The keyboard side of the panel: one key (or ERR for none). Returns false to quit.
+class KeyHandler {
+ public:
+  explicit KeyHandler(Operator& op) : op_(&op), limits_(op.force().limits()) {
+    force_.wrench = op.force().applied();
+  }
+
+  bool on_key(int key, PanelView& view) {
+    if (asking_stop_) {
+      return confirm_stop(key, view);
+    }
+    if (key == ERR) {
+      return true;
+    }
+    const KeyResult r = apply_key(key, force_, limits_.max_force, limits_.max_torque);
+    switch (r.action) {
+      case PanelAction::kQuit:
+        return false;
+      case PanelAction::kCommand:
+        handle_command(*op_, r.command, view);
+        break;
+      case PanelAction::kForce:
+        view.message = op_->request_force(force_.wrench) ? "" : "force refused";
+        break;
+      case PanelAction::kAskStop:
+        view.message = "stop the controller? press y to confirm";
+        asking_stop_ = true;
+        break;
+      case PanelAction::kNone:
+        break;
+    }
+    return true;
+  }
+
+  [[nodiscard]] const PanelForce& force() const noexcept { return force_; }
+
+ private:
+  bool confirm_stop(int key, PanelView& view) {
+    if (key == ERR) {
+      return true;  // still asking
+    }
+    asking_stop_ = false;
+    if (key == 'y' || key == 'Y') {
+      handle_command(*op_, shm::CtrlCode::kStop, view);
+      view.message = "stop requested: the controller shuts down";
+    } else {
+      view.message = "stop cancelled";
+    }
+    return true;
+  }
+
+  Operator* op_;
+  shm::ForceLimits limits_;
+  PanelForce force_;
+  bool asking_stop_ = false;
+};
+
 }  // namespace
 
 int run_panel(Operator& op) {
@@ -166,41 +223,13 @@ int run_panel(Operator& op) {
   }
   shm::EventReader events(op.segment().region<shm::RegionId::kEvents>(), /*from_start=*/true);
   PanelView view;
-  PanelForce force;
-  force.wrench = op.force().applied();
-  const shm::ForceLimits limits = op.force().limits();
-  bool asking_stop = false;
-  std::string farewell;
+  KeyHandler keys(op);
+  bool controller_gone = false;
   {
     CursesSession curses;
     std::int64_t next_draw = 0;
     view.previous = op.status();
-    for (;;) {
-      const int key = getch();
-      if (asking_stop) {
-        asking_stop = false;
-        if (key == 'y' || key == 'Y') {
-          handle_command(op, shm::CtrlCode::kStop, view);
-          view.message = "stop requested: the controller shuts down";
-        } else if (key != ERR) {
-          view.message = "stop cancelled";
-        } else {
-          asking_stop = true;
-        }
-      } else if (key != ERR) {
-        const KeyResult r = apply_key(key, force, limits.max_force, limits.max_torque);
-        if (r.action == PanelAction::kQuit) {
-          break;
-        }
-        if (r.action == PanelAction::kCommand) {
-          handle_command(op, r.command, view);
-        } else if (r.action == PanelAction::kForce) {
-          view.message = op.request_force(force.wrench) ? "" : "force refused";
-        } else if (r.action == PanelAction::kAskStop) {
-          view.message = "stop the controller? press y to confirm";
-          asking_stop = true;
-        }
-      }
+    while (keys.on_key(getch(), view)) {
       const std::int64_t now = monotonic_now_ns();
       op.tick(now);
       if (now < next_draw) {
@@ -208,8 +237,7 @@ int run_panel(Operator& op) {
       }
       next_draw = now + kRedrawNs;
       if (!op.controller_alive()) {
-        farewell = "hapticctrl-hmi: the controller of instance '" + op.segment().instance() +
-                   "' stopped (" + shm::stop_reason_name(view.previous.vp.stop_reason) + ")";
+        controller_gone = true;
         break;
       }
       events.poll([&](const shm::Event& e) {
@@ -219,19 +247,21 @@ int run_panel(Operator& op) {
         }
       });
       const ControllerStatus s = op.status();
-      const double fpc = control_frames_per_cycle(view.previous, s);
-      view.frames_per_cycle = fpc;
+      view.frames_per_cycle = control_frames_per_cycle(view.previous, s);
       view.previous = s;
-      draw(s, force, op, view);
+      draw(s, keys.force(), op, view);
     }
   }
-  if (op.controller_alive()) {
-    (void)op.request_force({});
-    op.settle_force();  // let go of the handle before leaving
+  if (controller_gone) {
+    // The mapping outlives the removed segment: its last VP says how the controller ended.
+    const ControllerStatus last = op.status();
+    std::fprintf(stderr, "hapticctrl-hmi: the controller of instance '%s' ended (%s, %s)\n",
+                 op.segment().instance().c_str(), shm::core_state_name(last.vp.core_state),
+                 shm::stop_reason_name(last.vp.stop_reason));
+    return 0;
   }
-  if (!farewell.empty()) {
-    std::fprintf(stderr, "%s\n", farewell.c_str());
-  }
+  (void)op.request_force({});
+  op.settle_force();  // let go of the handle before leaving
   return 0;
 }
 

@@ -106,6 +106,7 @@ TEST(Panel, KeysPowerTheArmPushTheHandleAndStopTheController) {
   EXPECT_EQ(panel.wait(5s), 0) << "the panel leaves when the controller is gone";
   EXPECT_EQ(stack.core().wait(5s), 0);
   EXPECT_NE(panel.screen().find("POWER ON"), std::string::npos);
+  EXPECT_NE(panel.screen().find("ended (stopping, stop requested)"), std::string::npos);
 }
 
 TEST(Panel, RefusesToRunWithoutATerminal) {

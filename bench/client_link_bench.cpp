@@ -8,13 +8,16 @@
 //  3. The answer stream over --seconds: rate, loss, late frames, inter-arrival percentiles and
 //     jitter, against the seed requirement (>= 1 sample per 3 ms, < 1 in 10 lost).
 //
-// usage: hapticctrl-bench-link --port P [--seconds S] [--pings N] [--json]
-// (bench/client_link.sh starts the core and the bridge, idle and under stress-ng.)
+// usage: hapticctrl-bench-link --port P [--seconds S] [--pings N] [--json] [--samples PREFIX]
+// (bench/client_link.sh and scripts/bench.sh start the core and the bridge, idle and under
+// stress-ng.) --samples writes every round trip (µs, one per line) to PREFIX.client_rtt and
+// PREFIX.udp_rtt, for distributions and CDF plots.
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -137,6 +140,17 @@ StreamResult client_loop(std::uint16_t port, double seconds) {
   return r;
 }
 
+void write_samples(const std::string& path, const std::vector<double>& values) {
+  std::FILE* out = std::fopen(path.c_str(), "w");
+  if (out == nullptr) {
+    throw std::runtime_error("cannot write " + path);
+  }
+  for (const double v : values) {
+    std::fprintf(out, "%.1f\n", v);
+  }
+  std::fclose(out);
+}
+
 void print_row(const char* name, const Percentiles& p) {
   std::printf("  %-34s n=%-7zu p50 %8.1f  p99 %8.1f  p99.9 %8.1f  max %8.1f us\n", name, p.n, p.p50,
               p.p99, p.p999, p.max);
@@ -149,6 +163,7 @@ int main(int argc, char** argv) {
   double seconds = 10.0;
   int pings = 20000;
   bool json = false;
+  std::string samples;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--port" && i + 1 < argc) {
@@ -159,8 +174,12 @@ int main(int argc, char** argv) {
       pings = std::stoi(argv[++i]);
     } else if (a == "--json") {
       json = true;
+    } else if (a == "--samples" && i + 1 < argc) {
+      samples = argv[++i];
     } else {
-      std::fprintf(stderr, "usage: %s --port P [--seconds S] [--pings N] [--json]\n", argv[0]);
+      std::fprintf(stderr,
+                   "usage: %s --port P [--seconds S] [--pings N] [--json] [--samples PREFIX]\n",
+                   argv[0]);
       return 64;
     }
   }
@@ -169,8 +188,13 @@ int main(int argc, char** argv) {
     return 64;
   }
   try {
-    const Percentiles raw = percentiles(raw_udp_pingpong(pings));
+    const std::vector<double> raw_samples = raw_udp_pingpong(pings);
+    const Percentiles raw = percentiles(raw_samples);
     const StreamResult r = client_loop(port, seconds);
+    if (!samples.empty()) {
+      write_samples(samples + ".udp_rtt", raw_samples);
+      write_samples(samples + ".client_rtt", r.rtt_us);
+    }
     const Percentiles rtt = percentiles(r.rtt_us);
     const Percentiles gap = percentiles(r.interarrival_us);
     const double period_us = static_cast<double>(r.period_ns) / 1e3;
@@ -184,14 +208,15 @@ int main(int argc, char** argv) {
     if (json) {
       std::printf(
           "{\"period_us\":%.1f,\"seconds\":%.2f,\"raw_udp_rtt_p50_us\":%.1f,"
-          "\"raw_udp_rtt_p99_us\":%.1f,\"client_rtt_p50_us\":%.1f,\"client_rtt_p99_us\":%.1f,"
+          "\"raw_udp_rtt_p99_us\":%.1f,\"raw_udp_rtt_p999_us\":%.1f,\"raw_udp_rtt_max_us\":%.1f,"
+          "\"client_rtt_p50_us\":%.1f,\"client_rtt_p99_us\":%.1f,\"client_rtt_p999_us\":%.1f,"
           "\"client_rtt_max_us\":%.1f,\"answers\":%.0f,\"expected\":%.0f,\"lost\":%llu,"
           "\"late\":%llu,\"loss_ratio\":%.6f,\"uplink_loss_ratio\":%.6f,"
           "\"gap_p50_us\":%.1f,\"gap_p99_us\":%.1f,\"gap_p999_us\":%.1f,\"gap_max_us\":%.1f,"
           "\"jitter_us\":%.1f,\"library_gap_max_us\":%.1f,\"gaps_over_3ms\":%zu,"
           "\"controller_stopped\":%s}\n",
-          period_us, r.seconds, raw.p50, raw.p99, rtt.p50, rtt.p99, rtt.max, received, expected,
-          static_cast<unsigned long long>(r.stats.answers_lost),
+          period_us, r.seconds, raw.p50, raw.p99, raw.p999, raw.max, rtt.p50, rtt.p99, rtt.p999,
+          rtt.max, received, expected, static_cast<unsigned long long>(r.stats.answers_lost),
           static_cast<unsigned long long>(r.stats.answers_late), loss, uplink_loss, gap.p50,
           gap.p99, gap.p999, gap.max, r.stats.jitter_us, r.stats.interarrival_max_us,
           r.gaps_over_3ms, r.controller_stopped ? "true" : "false");

@@ -10,7 +10,7 @@ PACKAGES=(
   libeigen3-dev liblcm-dev liblcm-bin liblcm-java libglib2.0-dev libtirpc-dev rpcsvc-proto zlib1g-dev
   libbenchmark-dev libgtest-dev libgmock-dev libncurses-dev
   # monitoring, analysis and benchmarks
-  default-jdk-headless libjchart2d-java gnuplot-nox rt-tests stress-ng procps util-linux
+  default-jdk-headless libjchart2d-java gnuplot-nox rt-tests stress-ng procps util-linux python3
 )
 
 missing=()

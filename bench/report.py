@@ -1,0 +1,400 @@
+#!/usr/bin/env python3
+"""Writes the system benchmark's report from scripts/bench.sh's raw outputs.
+
+usage: bench/report.py OUT_DIR      (reads OUT_DIR/raw/, writes OUT_DIR/report.md,
+                                     OUT_DIR/results.json and OUT_DIR/*.png with gnuplot)
+
+Every figure stands next to the baseline measured in the same run and the ratio between them.
+"""
+import json
+import math
+import os
+import subprocess
+import sys
+
+PERIODS = (1000, 250, 100)
+LOADS = ("idle", "load")
+
+
+def load_json(path):
+    try:
+        with open(path, encoding="utf-8") as f:
+            text = f.read().strip()
+        return json.loads(text) if text else {}
+    except (OSError, ValueError):
+        return {}
+
+
+def read_hist(path):
+    """A cyclictest-format histogram: 'bin count' lines (1 us bins), '# Max Latencies' etc."""
+    bins, overflows, maximum = [], 0, None
+    try:
+        with open(path, encoding="utf-8") as f:
+            for line in f:
+                parts = line.split()
+                if not parts:
+                    continue
+                if parts[0][0].isdigit() and len(parts) >= 2:
+                    bins.append((int(parts[0]), int(parts[1])))
+                elif "Max Latencies" in line:
+                    maximum = int(parts[-1])
+                elif "Histogram Overflows" in line:
+                    overflows = int(parts[-1])
+    except OSError:
+        pass
+    return {"bins": bins, "overflows": overflows, "max": maximum}
+
+
+def hist_stats(h):
+    """p50/p99/p99.9 (upper bin edge, us), max and sample count of a histogram."""
+    total = sum(c for _, c in h["bins"]) + h["overflows"]
+    out = {"samples": total, "max_us": h["max"]}
+    for name, q in (("p50_us", 0.5), ("p99_us", 0.99), ("p999_us", 0.999)):
+        want, seen, value = q * total, 0, h["max"]
+        for us, count in h["bins"]:
+            seen += count
+            if total and seen >= want:
+                value = us + 1
+                break
+        out[name] = value
+    return out
+
+
+def sample_stats(values):
+    values = sorted(values)
+    if not values:
+        return {"samples": 0}
+
+    def at(q):
+        return values[min(len(values) - 1, int(q * len(values)))]
+
+    return {"samples": len(values), "p50_us": at(0.5), "p99_us": at(0.99),
+            "p999_us": at(0.999), "max_us": values[-1]}
+
+
+def read_samples(path):
+    try:
+        with open(path, encoding="utf-8") as f:
+            return [float(line) for line in f if line.strip()]
+    except (OSError, ValueError):
+        return []
+
+
+def ratio(a, b):
+    if a is None or b is None or not b:
+        return None
+    return a / b
+
+
+def fmt(v, digits=1):
+    if v is None:
+        return "n/a"
+    if isinstance(v, float) and (math.isnan(v) or math.isinf(v)):
+        return "n/a"
+    return f"{v:.{digits}f}" if isinstance(v, float) else str(v)
+
+
+def fmt_ratio(v):
+    return "n/a" if v is None else f"{v:.2f}x"
+
+
+def ns_to_us(summary, key):
+    v = summary.get(key)
+    return None if v is None else v / 1000.0
+
+
+def latency_results(raw):
+    results = {}
+    for period in PERIODS:
+        results[str(period)] = {}
+        for load in LOADS:
+            base = os.path.join(raw, f"lat-{period}-{load}")
+            core_json = load_json(base + ".core.json")
+            core = hist_stats(read_hist(base + ".core.hist"))
+            cyclic = hist_stats(read_hist(base + ".cyclictest.hist"))
+            start = core_json.get("servo_start_delay", {})
+            execution = core_json.get("servo_execution", {})
+            results[str(period)][load] = {
+                "core": core,
+                "cyclictest": cyclic,
+                "ratio": {k: ratio(core.get(k), cyclic.get(k))
+                          for k in ("p50_us", "p99_us", "p999_us", "max_us")},
+                "misses": core_json.get("misses_total"),
+                "degraded_cycles": core_json.get("degraded_cycles"),
+                "cycles": core_json.get("cycles"),
+                "stop_reason": core_json.get("stop_reason", "core did not report"),
+                "rt_mode": core_json.get("rt_mode"),
+                "servo_start_us": {k: ns_to_us(start, k + "_ns")
+                                   for k in ("p50", "p99", "p999", "max")},
+                "servo_execution_us": {k: ns_to_us(execution, k + "_ns")
+                                       for k in ("p50", "p99", "p999", "max")},
+            }
+    return results
+
+
+def link_results(raw):
+    results = {}
+    for load in LOADS:
+        figures = load_json(os.path.join(raw, f"link-{load}.json"))
+        client = sample_stats(read_samples(os.path.join(raw, f"link-{load}.client_rtt")))
+        udp = sample_stats(read_samples(os.path.join(raw, f"link-{load}.udp_rtt")))
+        results[load] = {
+            "figures": figures,
+            "client_rtt": client,
+            "udp_rtt": udp,
+            "ratio": {k: ratio(client.get(k), udp.get(k))
+                      for k in ("p50_us", "p99_us", "p999_us", "max_us")},
+        }
+    return results
+
+
+def micro_results(raw):
+    results = {}
+    for name in ("shm", "protocol", "rt-core"):
+        data = load_json(os.path.join(raw, f"micro-{name}.json"))
+        for b in data.get("benchmarks", []):
+            if b.get("run_type", "iteration") != "iteration":
+                continue
+            scale = {"ns": 1.0, "us": 1e3, "ms": 1e6, "s": 1e9}.get(b.get("time_unit", "ns"), 1.0)
+            # "BM_WakeRoundTripFutex/min_time:1.000/real_time" -> "BM_WakeRoundTripFutex"
+            results[b["name"].split("/")[0]] = b["real_time"] * scale
+    return results
+
+
+MICRO_PAIRS = (
+    ("BM_SeqlockPublishQuietly", "BM_StructCopyBaseline"),
+    ("BM_SeqlockRead", "BM_StructCopyBaseline"),
+    ("BM_WakeRoundTripFutex", "BM_WakeRoundTripPipe"),
+    ("BM_WakeRoundTripUdpLoopback", "BM_WakeRoundTripFutex"),
+    ("BM_EncodeAnswer", "BM_CopyFrameStruct"),
+    ("BM_DecodeAnswer", "BM_CopyFrameStruct"),
+    ("BM_EncodeControlObject", "BM_CopyFrameStruct"),
+    ("BM_DecodeControlObject", "BM_CopyFrameStruct"),
+    ("BM_ControlLaw", "BM_ForwardKinematicsAndJacobian"),
+    ("BM_FullCycle1ms", "BM_SimulatorStep1ms"),
+)
+
+
+def requirements(lat, link):
+    """The seeds' performance requirements, each met or not, and by how much."""
+    rows = []
+    worst_exec = max((r["servo_execution_us"]["max"] or 0.0)
+                     for p in lat.values() for r in p.values())
+    rows.append({"requirement": "full cycle (SERVO execution) <= 500 us",
+                 "measured": f"max {worst_exec:.1f} us over every period and load",
+                 "met": worst_exec <= 500.0,
+                 "margin": f"{500.0 - worst_exec:+.1f} us ({worst_exec / 500.0 * 100:.1f} % of the bound)"})
+    starts = [(p, l, r["servo_start_us"]) for p, pr in lat.items() for l, r in pr.items()]
+    worst_start = max((s["max"] or 0.0) for _, _, s in starts)
+    worst_p999 = max((s["p999"] or 0.0) for _, _, s in starts)
+    rows.append({"requirement": "SERVO starts <= 50 us after CLOCK wakes it",
+                 "measured": f"max {worst_start:.1f} us (p99.9 at most {worst_p999:.1f} us)",
+                 "met": worst_start <= 50.0,
+                 "margin": f"{50.0 - worst_start:+.1f} us at the max, {50.0 - worst_p999:+.1f} us at p99.9"})
+    loaded = {p: pr["load"] for p, pr in lat.items()}
+    misses = {p: r["misses"] for p, r in loaded.items()}
+    total = sum(m for m in misses.values() if m is not None)
+    rows.append({"requirement": "no missed deadline with user space heavily loaded",
+                 "measured": ", ".join(f"{p} us: {fmt(m)} misses ({r['stop_reason']})"
+                                       for (p, m), r in zip(misses.items(), loaded.values())),
+                 "met": all(m == 0 for m in misses.values()),
+                 "margin": f"{total} misses in all"})
+    lf = link["load"]["figures"]
+    if lf:
+        rate = lf.get("answers", 0) / max(lf.get("seconds", 1), 1e-9)
+        loss = lf.get("loss_ratio", 1.0)
+        met = rate >= 1000.0 / 3.0 and loss < 0.1 and not lf.get("controller_stopped", False)
+        rows.append({"requirement": "client data >= 1 sample / 3 ms, < 1 in 10 lost (under load)",
+                     "measured": f"{rate:.0f} samples/s, loss {loss * 100:.3f} %, "
+                                 f"{lf.get('gaps_over_3ms', 'n/a')} gaps over 3 ms",
+                     "met": met,
+                     "margin": f"{rate / (1000.0 / 3.0):.1f}x the rate, loss {loss / 0.1 * 100:.2f} % of the bound"})
+    else:
+        rows.append({"requirement": "client data >= 1 sample / 3 ms, < 1 in 10 lost (under load)",
+                     "measured": "no result (the link run failed)", "met": False, "margin": "n/a"})
+    return rows
+
+
+def table(header, rows):
+    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    lines += ["| " + " | ".join(str(c) for c in row) + " |" for row in rows]
+    return "\n".join(lines)
+
+
+def write_plots(out, raw, lat):
+    """Latency histograms (core vs cyclictest, log scale) and the RTT CDF against UDP."""
+    plots = []
+    for period in PERIODS:
+        series = []
+        for load in LOADS:
+            for who, suffix in (("core", "core.hist"), ("cyclictest", "cyclictest.hist")):
+                h = read_hist(os.path.join(raw, f"lat-{period}-{load}.{suffix}"))
+                dat = os.path.join(raw, f"plot-lat-{period}-{load}-{who}.dat")
+                with open(dat, "w", encoding="utf-8") as f:
+                    for us, count in h["bins"]:
+                        if count:
+                            f.write(f"{us + 0.5} {count}\n")
+                if os.path.getsize(dat):
+                    series.append((dat, f"{who} {load}"))
+        png = f"latency-{period}us.png"
+        script = [
+            "set terminal pngcairo size 900,500" if has_pngcairo() else "set terminal png size 900,500",
+            f"set output '{os.path.join(out, png)}'",
+            f"set title 'Wake-up latency at {period} us: hapticctrl-core vs cyclictest'",
+            "set xlabel 'latency (us)'", "set ylabel 'cycles'", "set logscale y", "set logscale x",
+            "set yrange [0.5:*]",
+            "set grid",
+        ]
+        if series:
+            script.append("plot " + ", ".join(f"'{d}' using 1:2 with steps title '{t}'" for d, t in series))
+        else:
+            script.append("set label 'no samples' at graph 0.5,0.5 center")
+            script.append("plot 1 notitle")
+        run_gnuplot(script)
+        plots.append(png)
+    series = []
+    for load in LOADS:
+        for who, suffix in (("client via bridge+core", "client_rtt"), ("raw UDP", "udp_rtt")):
+            values = sorted(read_samples(os.path.join(raw, f"link-{load}.{suffix}")))
+            dat = os.path.join(raw, f"plot-cdf-{load}-{suffix}.dat")
+            with open(dat, "w", encoding="utf-8") as f:
+                step = max(1, len(values) // 2000)
+                for i in range(0, len(values), step):
+                    f.write(f"{values[i]} {(i + 1) / len(values)}\n")
+            if values:
+                series.append((dat, f"{who}, {load}"))
+    script = [
+        "set terminal pngcairo size 900,500" if has_pngcairo() else "set terminal png size 900,500",
+        f"set output '{os.path.join(out, 'rtt-cdf.png')}'",
+        "set title 'Round trip at 1 kHz: client through hapticctrl-udp and the core vs raw UDP'",
+        "set xlabel 'round-trip time (us)'", "set ylabel 'fraction of samples'", "set logscale x",
+        "set key bottom right", "set grid", "set yrange [0:1]",
+    ]
+    if series:
+        script.append("plot " + ", ".join(f"'{d}' using 1:2 with lines title '{t}'" for d, t in series))
+    else:
+        script.append("plot 1 notitle")
+    run_gnuplot(script)
+    plots.append("rtt-cdf.png")
+    return plots
+
+
+_PNGCAIRO = None
+
+
+def has_pngcairo():
+    global _PNGCAIRO
+    if _PNGCAIRO is None:
+        r = subprocess.run(["gnuplot", "-e", "set terminal"], capture_output=True, text=True, check=False)
+        _PNGCAIRO = "pngcairo" in (r.stdout + r.stderr)
+    return _PNGCAIRO
+
+
+def run_gnuplot(lines):
+    subprocess.run(["gnuplot"], input="\n".join(lines) + "\n", text=True, check=True)
+
+
+def report(out, machine, lat, link, micro, handoff, reqs, plots):
+    md = ["# hapticctrl system benchmark", ""]
+    md.append(f"Run {machine.get('date', '?')} at {machine.get('git', '?')}: kernel "
+              f"{machine.get('kernel', '?')} ({'PREEMPT_RT' if machine.get('preempt_rt') else 'not PREEMPT_RT'}), "
+              f"{machine.get('cpus', '?')} CPUs ({machine.get('cpu_model', '?')}), virtualization "
+              f"{machine.get('virtualization', '?')}, SCHED_FIFO {'granted' if machine.get('sched_fifo') else 'refused'}, "
+              f"RLIMIT_MEMLOCK {machine.get('memlock_kib', '?')} KiB, load average before the run "
+              f"{machine.get('loadavg', '?')}. Load: `{machine.get('load', '?')}`. "
+              f"{machine.get('latency_seconds', '?')} s per latency run, {machine.get('link_seconds', '?')} s per link run; "
+              f"core and cyclictest on CPU {machine.get('bench_cpu', '?')} at SCHED_FIFO 80.")
+    md += ["", "Every figure stands next to a baseline measured in the same run; ratios are measured / baseline.", ""]
+
+    md += ["## The seeds' requirements", ""]
+    md.append(table(["requirement", "measured", "met", "margin"],
+                    [[r["requirement"], r["measured"], "met" if r["met"] else "**not met**", r["margin"]] for r in reqs]))
+
+    md += ["", "## 1. Wake-up latency: hapticctrl-core vs cyclictest (us)", ""]
+    rows = []
+    for period in PERIODS:
+        for load in LOADS:
+            r = lat[str(period)][load]
+            c, y, q = r["core"], r["cyclictest"], r["ratio"]
+            rows.append([f"{period} us", load,
+                         f"{fmt(c.get('p50_us'))} / {fmt(y.get('p50_us'))} ({fmt_ratio(q['p50_us'])})",
+                         f"{fmt(c.get('p99_us'))} / {fmt(y.get('p99_us'))} ({fmt_ratio(q['p99_us'])})",
+                         f"{fmt(c.get('p999_us'))} / {fmt(y.get('p999_us'))} ({fmt_ratio(q['p999_us'])})",
+                         f"{fmt(c.get('max_us'))} / {fmt(y.get('max_us'))} ({fmt_ratio(q['max_us'])})",
+                         f"{fmt(r['misses'])} of {fmt(r['cycles'])}", r["stop_reason"]])
+    md.append(table(["period", "load", "p50 core / cyclictest", "p99", "p99.9", "max", "core misses", "core ended"], rows))
+    md += ["", " ".join(f"![latency at {p} us]({p_png})" for p, p_png in zip(PERIODS, plots[:3])), ""]
+
+    md += ["## 2. SERVO start delay after the CLOCK release vs a bare futex hand-off (us)", ""]
+    floor50 = handoff.get("p50_ns", 0) / 1000.0 if handoff else None
+    floor99 = handoff.get("p99_ns", 0) / 1000.0 if handoff else None
+    floormax = handoff.get("max_ns", 0) / 1000.0 if handoff else None
+    md.append(f"Floor (same CPU, SCHED_FIFO, {handoff.get('samples', 0) if handoff else 0} hand-offs): "
+              f"p50 {fmt(floor50)}, p99 {fmt(floor99)}, max {fmt(floormax)} us.")
+    md.append("")
+    rows = []
+    for period in PERIODS:
+        for load in LOADS:
+            s = lat[str(period)][load]["servo_start_us"]
+            e = lat[str(period)][load]["servo_execution_us"]
+            rows.append([f"{period} us", load,
+                         f"{fmt(s['p50'])} ({fmt_ratio(ratio(s['p50'], floor50))})",
+                         f"{fmt(s['p99'])} ({fmt_ratio(ratio(s['p99'], floor99))})",
+                         fmt(s["p999"]), f"{fmt(s['max'])} ({fmt_ratio(ratio(s['max'], floormax))})",
+                         f"{fmt(e['p99'])} / {fmt(e['max'])}"])
+    md.append(table(["period", "load", "start p50 (x floor)", "start p99 (x floor)", "start p99.9",
+                     "start max (x floor max)", "SERVO execution p99 / max"], rows))
+
+    md += ["", "## 3. End to end at 1 kHz: client -> hapticctrl-udp -> core -> client (us)", ""]
+    rows = []
+    for load in LOADS:
+        r = link[load]
+        c, u, q, f = r["client_rtt"], r["udp_rtt"], r["ratio"], r["figures"]
+        rows.append([load,
+                     f"{fmt(c.get('p50_us'))} / {fmt(u.get('p50_us'))} ({fmt_ratio(q['p50_us'])})",
+                     f"{fmt(c.get('p99_us'))} / {fmt(u.get('p99_us'))} ({fmt_ratio(q['p99_us'])})",
+                     f"{fmt(c.get('p999_us'))} / {fmt(u.get('p999_us'))} ({fmt_ratio(q['p999_us'])})",
+                     f"{fmt(c.get('max_us'))} / {fmt(u.get('max_us'))} ({fmt_ratio(q['max_us'])})",
+                     f"{fmt(f.get('gap_p99_us'))} / {fmt(f.get('gap_max_us'))}",
+                     fmt(f.get("jitter_us")),
+                     f"{fmt(f.get('answers'))} of {fmt(f.get('expected'))}, lost {fmt(f.get('lost'))}, late {fmt(f.get('late'))}",
+                     "yes" if f.get("controller_stopped") else "no"])
+    md.append(table(["load", "RTT p50 client / raw UDP", "p99", "p99.9", "max",
+                     "answer gap p99 / max", "jitter (RFC 3550)", "answers", "core stopped"], rows))
+    md.append("")
+    md.append("The client's round trip includes waiting for the next controller cycle (its floor is one "
+              "period, 1000 us); the raw UDP ping-pong is the kernel's loopback floor.")
+    md += ["", f"![RTT CDF]({plots[3]})", ""]
+
+    md += ["## 4. Micro-benchmarks (ns per operation)", ""]
+    rows = []
+    for a, b in MICRO_PAIRS:
+        if a in micro:
+            rows.append([a, fmt(micro[a]), b, fmt(micro.get(b)), fmt_ratio(ratio(micro[a], micro.get(b)))])
+    md.append(table(["benchmark", "ns", "same-run baseline", "ns", "ratio"], rows))
+    md.append("")
+    with open(os.path.join(out, "report.md"), "w", encoding="utf-8") as f:
+        f.write("\n".join(md) + "\n")
+
+
+def main():
+    if len(sys.argv) != 2:
+        sys.exit("usage: bench/report.py OUT_DIR")
+    out = sys.argv[1]
+    raw = os.path.join(out, "raw")
+    machine = load_json(os.path.join(raw, "machine.json"))
+    lat = latency_results(raw)
+    link = link_results(raw)
+    micro = micro_results(raw)
+    handoff = load_json(os.path.join(raw, "handoff.json"))
+    reqs = requirements(lat, link)
+    plots = write_plots(out, raw, lat)
+    report(out, machine, lat, link, micro, handoff, reqs, plots)
+    results = {"machine": machine, "latency": lat, "servo_start_floor": handoff, "link": link,
+               "micro_ns": micro, "requirements": reqs, "plots": plots}
+    with open(os.path.join(out, "results.json"), "w", encoding="utf-8") as f:
+        json.dump(results, f, indent=1, sort_keys=True)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# Smoke test of the system benchmark (label bench): scripts/bench.sh --smoke (1 s runs) must
+# produce a well-formed report, results.json and PNG plots. No timing thresholds here: the
+# figures are the report's business.
+# usage: bench_report_test.sh BUILD_DIR SOURCE_DIR
+set -euo pipefail
+BUILD=$1 SOURCE=$2
+OUT=$(mktemp -d)
+trap 'rm -rf "$OUT"' EXIT
+"$SOURCE/scripts/bench.sh" --smoke --build "$BUILD" --out "$OUT" >"$OUT/bench.log" 2>&1 ||
+  { cat "$OUT/bench.log"; exit 1; }
+python3 - "$OUT" <<'PY'
+import json, os, sys
+out = sys.argv[1]
+report = open(os.path.join(out, "report.md"), encoding="utf-8").read()
+for heading in ("## The seeds' requirements", "## 1. Wake-up latency", "## 2. SERVO start delay",
+                "## 3. End to end at 1 kHz", "## 4. Micro-benchmarks"):
+    assert heading in report, f"report.md lacks '{heading}'"
+for period in (1000, 250, 100):
+    assert report.count(f"| {period} us | ") >= 4, f"report.md lacks the {period} us rows"
+r = json.load(open(os.path.join(out, "results.json"), encoding="utf-8"))
+for key in ("machine", "latency", "servo_start_floor", "link", "micro_ns", "requirements", "plots"):
+    assert key in r, f"results.json lacks {key}"
+assert r["machine"]["cpus"] >= 1 and "kernel" in r["machine"]
+for period in ("1000", "250", "100"):
+    for load in ("idle", "load"):
+        run = r["latency"][period][load]
+        assert run["core"]["samples"] > 0, f"no core samples at {period} us {load}"
+        assert run["cyclictest"]["samples"] > 0, f"no cyclictest samples at {period} us {load}"
+        assert run["cycles"] is not None, f"the core reported nothing at {period} us {load}"
+for load in ("idle", "load"):
+    link = r["link"][load]
+    assert link["figures"].get("answers", 0) > 0, f"no answers in the {load} link run"
+    assert link["client_rtt"]["samples"] > 0 and link["udp_rtt"]["samples"] > 0
+assert r["servo_start_floor"].get("samples", 0) > 0
+for name in ("BM_SeqlockRead", "BM_EncodeAnswer", "BM_DecodeAnswer", "BM_FullCycle1ms"):
+    assert r["micro_ns"].get(name, 0) > 0, f"micro-benchmark {name} missing"
+assert len(r["requirements"]) == 4 and all(isinstance(q["met"], bool) for q in r["requirements"])
+assert len(r["plots"]) == 4
+for png in r["plots"]:
+    with open(os.path.join(out, png), "rb") as f:
+        assert f.read(8) == b"\x89PNG\r\n\x1a\n", f"{png} is not a PNG"
+print("bench report: well-formed")
+PY

@@ -41,6 +41,9 @@ std::string core_usage() {
   --miss-window N          cycles in the miss-rate window (default 1000)
   --trip-miss-ppm N        fail-safe when the window miss rate exceeds N ppm (default 0: report)
   --trip-bucket N          fail-safe when the leaky-bucket score exceeds N (default 0: report)
+  --sim-substep-us N       simulator's longest integration sub-step, 10..1000 µs (default 125:
+                           0.28 % energy drift in 10 s); longer steps cost less CPU, for
+                           slow or instrumented builds, and are less accurate
   --help                   this text
 )";
 }
@@ -96,6 +99,8 @@ CoreConfig parse_core_args(const std::vector<std::string>& args) {
           parse_number<std::uint32_t>(opt, value(), 1, DeadlineMonitor::kMaxWindow);
     } else if (opt == "--trip-miss-ppm") {
       c.chronic.trip_window_ppm = parse_number<std::uint32_t>(opt, value(), 0, 1'000'000);
+    } else if (opt == "--sim-substep-us") {
+      c.sim_substep = parse_number<TimeNs>(opt, value(), 10, 1000) * kNsPerUs;
     } else if (opt == "--trip-bucket") {
       c.chronic.trip_bucket = parse_number<std::uint32_t>(opt, value(), 0, 1U << 30);
     } else {

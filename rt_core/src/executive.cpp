@@ -111,9 +111,7 @@ shm::StopReason Executive::run_slot(TimeNs scheduled, TimeNs woke) noexcept {
   (void)tasks_->busy(ServoRole::kMain);  // lets a scripted runner catch up to `checked`
   if (!times.degraded) {
     times.servo_started = tasks_->started_at(ServoRole::kMain);
-    if (shared_->main_commit_cycle.load(std::memory_order_acquire) == cycle_) {
-      times.finished = shared_->main_commit_time.load(std::memory_order_relaxed);
-    }
+    times.finished = tasks_->finished_at(ServoRole::kMain, cycle_);
   }
   const MonitorVerdict verdict = monitor_.on_cycle(times);
   const bool miss = verdict != MonitorVerdict::kGood;

@@ -67,8 +67,9 @@ int run_core(const CoreConfig& config) {
   shm::Segment segment = shm::Segment::create(
       {.instance = config.instance, .group = config.group, .period_ns = config.period});
   const Vector6d ready_pose = (Vector6d() << 0, -0.6, 1.2, 0, -0.6, 0).finished();
-  SimulatedArm arm(dynamics, SimulatorOptions{}, ready_pose,
-                   &segment.region<shm::RegionId::kForce>());
+  SimulatorOptions sim_options;
+  sim_options.max_substep = static_cast<double>(config.sim_substep) * 1e-9;
+  SimulatedArm arm(dynamics, sim_options, ready_pose, &segment.region<shm::RegionId::kForce>());
   ServoShared shared(
       arm, segment.ctrl_reader(),
       ServoRegions{&segment.region<shm::RegionId::kVpr>(), &segment.writable<shm::RegionId::kVp>(),

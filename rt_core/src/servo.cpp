@@ -187,10 +187,6 @@ void ServoTask::commit(std::uint64_t cycle, TimeNs now) noexcept {
     s.regions.position->publish_quietly(pos, now);
   }
   s.commit_cycle.store(cycle, std::memory_order_release);
-  if (role_ == ServoRole::kMain) {
-    s.main_commit_time.store(now, std::memory_order_relaxed);
-    s.main_commit_cycle.store(cycle, std::memory_order_release);
-  }
 }
 
 }  // namespace hapticctrl::rt_core

@@ -86,6 +86,22 @@ TEST(SphereScene, FrictionAndRollingResistanceHoldASlightlyObliquePush) {
   EXPECT_GT(rolling.state().position.y(), 0.01) << "rolled off sideways";
 }
 
+TEST(SphereScene, ACoarseClientStepBoundsTheContactGainsAndStaysStable) {
+  SceneConfig c = touching_scene();
+  c.fixed_center = {0.06, -0.003, 0.0};
+  SphereState start;
+  start.position = {0.0001, 0.0, 0.0};
+  SphereScene scene(c, start);
+  constexpr double kCoarse = 0.01;  // a 10 ms client step: the configured damping would diverge
+  for (int i = 0; i < 500; ++i) {
+    scene.step({}, {5, 0, 0, 0, 0, 0}, kCoarse);
+  }
+  EXPECT_LT(scene.state().velocity.norm(), 1e-3);
+  EXPECT_NEAR(scene.contact_force().x(), -5.0, 1e-2);
+  EXPECT_DOUBLE_EQ(scene.contact_damping(), 0.5 * c.mass / kCoarse) << "bounded for the step";
+  EXPECT_DOUBLE_EQ(scene.contact_stiffness(), c.contact_stiffness) << "already stable";
+}
+
 TEST(SphereScene, CorruptInputsAndBadStepsLeaveTheSceneUntouched) {
   SphereScene scene(touching_scene(), {});
   scene.step({std::nan(""), 0, 0, 0, 0, 0}, {}, kDt);

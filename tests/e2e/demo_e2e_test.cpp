@@ -16,9 +16,25 @@ namespace {
 
 using namespace std::chrono_literals;
 
-/// 2 ms: the demo's physics steps at the controller period, and a coarser one blurs contact.
-constexpr int kPeriodUs = 2000;
-constexpr double kGap = 0.01;  // the demo's default gap between the spheres
+/// 4 ms. The demo steps its physics at the controller period: at 10 ms the coupled arm and
+/// sphere were still ringing at 1 cm/s after 4 s. And a VM stall of 10 ms (seen on this 2-vCPU
+/// VM, 2026-12-01) must cost fewer than the 5 consecutive misses that fail the core safe, as it
+/// did at 2 ms.
+///
+/// Instrumented builds run the behaviour tests' 10 ms cycle: at 4 ms, with ASan+UBSan
+/// processes starting beside it, the core still overran and failed safe (2026-12-01). The
+/// settling test needs the faster cycle and runs in the plain build only.
+#ifdef HAPTICCTRL_SANITIZED
+constexpr int kPeriodUs = ControllerStack::kDefaultPeriodUs;
+constexpr bool kCrispPhysics = false;
+#else
+constexpr int kPeriodUs = 4000;
+constexpr bool kCrispPhysics = true;
+#endif
+/// The core derives the coupling stiffness from the object's mass, the client step and the
+/// link delay (docs/control.md); for the demo's 0.5 kg sphere it stays above this up to 10 ms.
+constexpr double kLeastCouplingStiffness = 200.0;  // N/m
+constexpr double kGap = 0.01;                      // the demo's default gap between the spheres
 
 /// Numbers of `"key":[...]` (or `"key":n`) in a flat JSON object.
 std::vector<double> json_numbers(const std::string& json, const std::string& key) {
@@ -109,6 +125,9 @@ TEST(DemoEndToEnd, BeforePowerOnAnOperatorForceMovesNothingAndNothingIsCoupled) 
 }
 
 TEST(DemoEndToEnd, PushingTheHandleBringsTheSphereToRestAgainstTheFixedOne) {
+  if (!kCrispPhysics) {
+    GTEST_SKIP() << "needs the 4 ms cycle; instrumented builds run 10 ms (see kPeriodUs)";
+  }
   ControllerStack stack("e2e-push", kPeriodUs);
   ASSERT_TRUE(stack.ready()) << stack.diagnostics();
   Demo demo(stack, {});
@@ -133,10 +152,12 @@ TEST(DemoEndToEnd, PushingTheHandleBringsTheSphereToRestAgainstTheFixedOne) {
       << "the handle is at rest";
   EXPECT_GT(sphere[0] - x0, kGap) << "the sphere travelled the gap (and pressed in)";
   EXPECT_GT(p.handle_pose[0] - x0, kGap) << "the handle came along";
-  // Handle and sphere are apart by the coupling spring's deflection under the push, no more.
+  // Handle and sphere are apart by the coupling spring's deflection under the push, no more:
+  // the handle leads (it pushes the sphere through the spring) by at most push / k.
   const auto coupling = json_numbers(json, "coupling_wrench");
   EXPECT_NEAR(coupling[0], kPush, 0.05 * kPush);
-  EXPECT_LT(std::abs(p.handle_pose[0] - sphere[0]), 0.005) << json;
+  EXPECT_GT(p.handle_pose[0] - sphere[0], 0.0) << json;
+  EXPECT_LT(p.handle_pose[0] - sphere[0], kPush / kLeastCouplingStiffness) << json;
   EXPECT_EQ(demo.status(), 0) << demo.err();
 }
 

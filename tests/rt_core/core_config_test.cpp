@@ -37,7 +37,8 @@ TEST(CoreConfig, ParsesEveryOption) {
                               "/tmp/h",      "--inject-overrun",
                               "100:5",       "--trip-miss-ppm",
                               "1000",        "--miss-window",
-                              "500"});
+                              "500",         "--sim-substep-us",
+                              "400"});
   EXPECT_EQ(c.instance, "a1");
   EXPECT_EQ(c.period, 250 * kNsPerUs);
   EXPECT_EQ(c.duration, 1'500'000'000);
@@ -51,6 +52,7 @@ TEST(CoreConfig, ParsesEveryOption) {
   EXPECT_TRUE(c.allow_fault_injection);
   EXPECT_EQ(c.chronic.trip_window_ppm, 1000U);
   EXPECT_EQ(c.chronic.window_cycles, 500U);
+  EXPECT_EQ(c.sim_substep, 400 * kNsPerUs);
 }
 
 TEST(CoreConfig, RejectsBadInputWithTheOptionName) {
@@ -60,6 +62,7 @@ TEST(CoreConfig, RejectsBadInputWithTheOptionName) {
   expect_error({"--rt", "maybe"}, "--rt must be enforce, warn or ignore");
   expect_error({"--priority", "99"}, "--priority");
   expect_error({"--inject-overrun", "5"}, "CYCLE:K");
+  expect_error({"--sim-substep-us", "2000"}, "--sim-substep-us: 2000 is out of range [10, 1000]");
   expect_error({"--instance"}, "--instance needs a value");
   expect_error({"--frobnicate"}, "unknown option '--frobnicate'");
 }

@@ -41,7 +41,10 @@ TEST(ThreadedServoTasks, ReleasedCyclesRunAndCommit) {
     tasks.release(ServoRole::kMain, k, rig.clock.now());
     ASSERT_TRUE(wait_idle(tasks, ServoRole::kMain)) << "cycle " << k;
     EXPECT_GE(tasks.started_at(ServoRole::kMain), 0);
-    EXPECT_EQ(rig.shared.main_commit_cycle.load(), k);
+    EXPECT_EQ(rig.shared.commit_cycle.load(), k);
+    EXPECT_GE(tasks.finished_at(ServoRole::kMain, k), tasks.started_at(ServoRole::kMain))
+        << "timed after the commit, arm commands included";
+    EXPECT_EQ(tasks.finished_at(ServoRole::kMain, k + 1), -1) << "not finished yet";
   }
   tasks.stop();
 }

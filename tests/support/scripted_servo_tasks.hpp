@@ -54,6 +54,11 @@ class ScriptedServoTasks final : public rt_core::ServoTasks {
     catch_up();
     return pending(role).started;
   }
+  rt_core::TimeNs finished_at(rt_core::ServoRole role, std::uint64_t cycle) noexcept override {
+    catch_up();
+    const Pending& p = pending(role);
+    return p.last_finished_cycle == cycle ? p.last_finished_at : -1;
+  }
   void stop() noexcept override { stopped = true; }
 
   rt_core::TimeNs start_delay = 5 * rt_core::kNsPerUs;
@@ -67,6 +72,8 @@ class ScriptedServoTasks final : public rt_core::ServoTasks {
     std::optional<std::uint64_t> cycle;
     rt_core::TimeNs started = -1;
     rt_core::TimeNs finish_at = 0;
+    std::optional<std::uint64_t> last_finished_cycle;
+    rt_core::TimeNs last_finished_at = -1;
   };
   Pending& pending(rt_core::ServoRole role) {
     return role == rt_core::ServoRole::kMain ? main_ : degraded_;
@@ -87,6 +94,8 @@ class ScriptedServoTasks final : public rt_core::ServoTasks {
       if (next->task->finish(*next->cycle, next->finish_at) == rt_core::StepResult::kDiscarded) {
         ++discarded;
       }
+      next->last_finished_cycle = next->cycle;
+      next->last_finished_at = next->finish_at;
       next->cycle.reset();
     }
   }

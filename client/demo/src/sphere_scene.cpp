@@ -33,7 +33,29 @@ void SceneConfig::validate() const {
 }
 
 SphereScene::SphereScene(const SceneConfig& config, const SphereState& start) noexcept
-    : config_(config), state_(start) {}
+    : config_(config), state_(start), gains_(gains_for(0.0)) {}
+
+SphereScene::ContactGains SphereScene::gains_for(double dt) const noexcept {
+  const double m = config_.mass;
+  const double inertia = config_.inertia();
+  const double r2 = config_.mobile_radius * config_.mobile_radius;
+  // Friction acts at the contact point, which both translation and rotation move.
+  const double contact_point_mass = m * inertia / (inertia + m * r2);
+  const auto stiffness = [dt](double k, double mass) {
+    return dt > 0.0 ? std::min(k, mass / (dt * dt)) : k;
+  };
+  const auto damping = [dt](double b, double mass) {
+    return dt > 0.0 ? std::min(b, 0.5 * mass / dt) : b;
+  };
+  ContactGains g;
+  g.normal_k = stiffness(config_.contact_stiffness, m);
+  g.normal_b = damping(config_.contact_damping, m);
+  g.tangent_k = stiffness(config_.contact_stiffness, contact_point_mass);
+  g.tangent_b = damping(config_.contact_damping, contact_point_mass);
+  g.rolling_k = stiffness(config_.contact_stiffness * r2, inertia);
+  g.rolling_b = damping(config_.contact_damping * r2, inertia);
+  return g;
+}
 
 double SphereScene::penetration() const noexcept {
   return std::max(0.0, contact().depth);
@@ -59,7 +81,7 @@ double SphereScene::normal_push(const Contact& c) const noexcept {
     return 0.0;
   }
   const double depth_rate = -state_.velocity.dot(c.normal);
-  return std::max(0.0, config_.contact_stiffness * c.depth + config_.contact_damping * depth_rate);
+  return std::max(0.0, gains_.normal_k * c.depth + gains_.normal_b * depth_rate);
 }
 
 Eigen::Vector3d SphereScene::contact_force() const noexcept {
@@ -68,8 +90,7 @@ Eigen::Vector3d SphereScene::contact_force() const noexcept {
   if (push <= 0.0) {
     return Eigen::Vector3d::Zero();
   }
-  Eigen::Vector3d friction =
-      -config_.contact_stiffness * stretch_ - config_.contact_damping * c.slip_velocity;
+  Eigen::Vector3d friction = -gains_.tangent_k * stretch_ - gains_.tangent_b * c.slip_velocity;
   const double limit = config_.friction * push;
   if (friction.norm() > limit) {
     friction *= limit / friction.norm();
@@ -78,9 +99,7 @@ Eigen::Vector3d SphereScene::contact_force() const noexcept {
 }
 
 Eigen::Vector3d SphereScene::rolling_torque(double push) const noexcept {
-  const double r2 = config_.mobile_radius * config_.mobile_radius;
-  Eigen::Vector3d torque = -config_.contact_stiffness * r2 * twist_ -
-                           config_.contact_damping * r2 * state_.angular_velocity;
+  Eigen::Vector3d torque = -gains_.rolling_k * twist_ - gains_.rolling_b * state_.angular_velocity;
   const double limit = config_.rolling_resistance * push * config_.mobile_radius;
   if (torque.norm() > limit) {
     torque *= limit / torque.norm();
@@ -97,13 +116,13 @@ void SphereScene::update_stretch(const Contact& c, double dt) noexcept {
   }
   twist_ += state_.angular_velocity * dt;
   const double twist_limit =
-      config_.rolling_resistance * push / (config_.contact_stiffness * config_.mobile_radius);
+      config_.rolling_resistance * push * config_.mobile_radius / gains_.rolling_k;
   if (twist_.norm() > twist_limit) {
     twist_ *= twist_limit / twist_.norm();  // rolling: the patch moves on
   }
   stretch_ += c.slip_velocity * dt;
   stretch_ -= stretch_.dot(c.normal) * c.normal;  // stay in the tangent plane
-  const double limit = config_.friction * push / config_.contact_stiffness;
+  const double limit = config_.friction * push / gains_.tangent_k;
   if (stretch_.norm() > limit) {
     stretch_ *= limit / stretch_.norm();  // sliding: the anchor follows
   }
@@ -114,6 +133,7 @@ void SphereScene::step(const client::Vector6& coupling, const client::Vector6& a
   if (!(dt > 0.0) || !std::isfinite(dt)) {
     return;
   }
+  gains_ = gains_for(dt);
   const Contact touching = contact();
   update_stretch(touching, dt);
   const Eigen::Vector3d contact_push = contact_force();

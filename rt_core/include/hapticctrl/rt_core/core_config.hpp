@@ -29,6 +29,7 @@ struct CoreConfig {
   std::uint64_t inject_at_cycle = 0;   ///< --inject-overrun CYCLE:K (0: none)
   std::uint32_t inject_cycles = 0;
   ChronicMissConfig chronic;
+  TimeNs sim_substep = 125 * kNsPerUs;  ///< simulator's longest integration sub-step
   bool show_help = false;
 };
 

@@ -39,6 +39,9 @@ class ServoTasks {
   virtual bool busy(ServoRole role) noexcept = 0;
   /// Start time of the last cycle released to `role`, -1 if it has not started.
   virtual TimeNs started_at(ServoRole role) noexcept = 0;
+  /// When `role` finished `cycle` — law, arm commands (the simulator's integration step, for
+  /// the simulated arm) and publishing all done — or -1 if it has not finished that cycle.
+  virtual TimeNs finished_at(ServoRole role, std::uint64_t cycle) noexcept = 0;
   /// Stops and joins the tasks (fail-safe step 4). Not for the cycle.
   virtual void stop() noexcept = 0;
 };

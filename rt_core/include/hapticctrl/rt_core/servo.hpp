@@ -84,9 +84,6 @@ struct ServoShared {
   std::uint32_t inject_cycles = 0;
   /// Fault injection taken by the main SERVO: stall for this many cycles' worth.
   std::atomic<std::uint32_t> overrun_request{0};
-  /// Last cycle committed by the main SERVO, and when.
-  std::atomic<std::uint64_t> main_commit_cycle{0};
-  std::atomic<TimeNs> main_commit_time{-1};
   /// Last cycle committed by anyone.
   std::atomic<std::uint64_t> commit_cycle{0};
 };

@@ -34,6 +34,7 @@ class ThreadedServoTasks final : public ServoTasks {
   void release(ServoRole role, std::uint64_t cycle, TimeNs release_time) noexcept override;
   bool busy(ServoRole role) noexcept override;
   TimeNs started_at(ServoRole role) noexcept override;
+  TimeNs finished_at(ServoRole role, std::uint64_t cycle) noexcept override;
   void stop() noexcept override;
 
   /// Whether each thread got the scheduling it asked for (reported by the preflight).
@@ -48,6 +49,7 @@ class ThreadedServoTasks final : public ServoTasks {
     std::atomic<std::uint64_t> finished_cycle{0};
     std::atomic<TimeNs> release_time{0};
     std::atomic<TimeNs> started{-1};
+    std::atomic<TimeNs> finished{-1};  ///< end of `finished_cycle`, stored before it
     std::atomic<bool> placement_ok{false};
     std::atomic<bool> ready{false};  ///< placed, about to wait for the first release
     std::thread thread;

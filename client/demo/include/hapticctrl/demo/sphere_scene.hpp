@@ -66,8 +66,21 @@ class SphereScene {
   [[nodiscard]] client::Vector6 twist() const noexcept;
   /// Kinetic energy (J), for tests and the log.
   [[nodiscard]] double kinetic_energy() const noexcept;
+  /// Normal contact stiffness and damping in force at the last step (N/m, N.s/m).
+  [[nodiscard]] double contact_stiffness() const noexcept { return gains_.normal_k; }
+  [[nodiscard]] double contact_damping() const noexcept { return gains_.normal_b; }
 
  private:
+  /// Contact stiffness and damping as applied: the configured ones, bounded so that the
+  /// explicit integration stays stable at the step in use (omega * dt <= 1, damping * dt <=
+  /// half the mass it acts on).
+  struct ContactGains {
+    double normal_k = 0.0, normal_b = 0.0;
+    double tangent_k = 0.0, tangent_b = 0.0;
+    double rolling_k = 0.0, rolling_b = 0.0;
+  };
+  [[nodiscard]] ContactGains gains_for(double dt) const noexcept;
+
   struct Contact {
     Eigen::Vector3d normal = Eigen::Vector3d::UnitX();  ///< from the fixed to the mobile sphere
     double depth = 0.0;                                 ///< m; <= 0 apart
@@ -82,6 +95,7 @@ class SphereScene {
 
   SceneConfig config_;
   SphereState state_;
+  ContactGains gains_;
   Eigen::Vector3d stretch_ = Eigen::Vector3d::Zero();  ///< friction spring, tangent plane
   Eigen::Vector3d twist_ = Eigen::Vector3d::Zero();    ///< rolling spring (rotation vector)
 };

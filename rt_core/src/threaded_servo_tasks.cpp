@@ -26,11 +26,10 @@ void touch_stack(std::size_t bytes) noexcept {
   }
 }
 
-/// Subnormal floating-point numbers cost tens to hundreds of cycles per operation. Decaying
-/// quantities (filtered velocities, friction-damped motion) of an arm at rest under gravity
-/// compensation reach them within a few hundred cycles: with an instrumented build on this VM
-/// that made single SERVO runs 25x longer (60 us -> 1.5 ms at 2 ms period, 2026-12-01) and
-/// failed the core safe. Flushing them to zero changes values below 1e-308 only.
+/// Subnormal floating-point operands cost up to about a hundred cycles per operation on x86,
+/// and the quantities that decay while the arm rests under gravity compensation (filtered
+/// velocities, friction-damped motion) drift into that range: flush them to zero in the RT
+/// threads so that a quiet arm can never make a cycle slower. Only values below 1e-308 change.
 void flush_subnormals_to_zero() noexcept {
 #if defined(__SSE__)
   constexpr unsigned kFlushToZero = 0x8000;       // MXCSR.FTZ: subnormal results become 0

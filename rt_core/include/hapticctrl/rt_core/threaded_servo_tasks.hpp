@@ -66,8 +66,9 @@ class ThreadedServoTasks final : public ServoTasks {
   Worker degraded_;
 };
 
-/// Applies SCHED_FIFO `priority` (if > 0) and CPU affinity (if >= 0) to the calling thread and
-/// touches `stack_bytes` of stack so page faults happen now, not in the cycle. Returns whether
+/// Applies SCHED_FIFO `priority` (if > 0) and CPU affinity (if >= 0) to the calling thread,
+/// flushes subnormal floats to zero in it (FTZ/DAZ) and touches `stack_bytes` of stack so page
+/// faults happen now, not in the cycle. Returns whether
 /// everything asked for was granted. Not for the cycle.
 bool place_current_thread(const ThreadPlacement& placement,
                           std::size_t stack_bytes = std::size_t{256} * 1024) noexcept;

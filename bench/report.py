@@ -132,10 +132,23 @@ def latency_results(raw):
     return results
 
 
+def core_ending(path):
+    """How a core run ended, from its stderr ('FAIL-SAFE after cycle ...' or 'stopped ...')."""
+    try:
+        with open(path, encoding="utf-8") as f:
+            lines = [l.strip() for l in f if "FAIL-SAFE" in l or "stopped after" in l]
+    except OSError:
+        return "no log"
+    if not lines:
+        return "still running at the end"
+    return lines[-1].replace("hapticctrl-core: ", "").split(" (motors")[0]
+
+
 def link_results(raw):
     results = {}
     for load in LOADS:
         figures = load_json(os.path.join(raw, f"link-{load}.json"))
+        ending = core_ending(os.path.join(raw, f"link-{load}.core.err"))
         client = sample_stats(read_samples(os.path.join(raw, f"link-{load}.client_rtt")))
         udp = sample_stats(read_samples(os.path.join(raw, f"link-{load}.udp_rtt")))
         results[load] = {
@@ -144,6 +157,7 @@ def link_results(raw):
             "udp_rtt": udp,
             "ratio": {k: ratio(client.get(k), udp.get(k))
                       for k in ("p50_us", "p99_us", "p999_us", "max_us")},
+            "core_ended": ending,
         }
     return results
 
@@ -358,9 +372,9 @@ def report(out, machine, lat, link, micro, handoff, reqs, plots):
                      f"{fmt(f.get('gap_p99_us'))} / {fmt(f.get('gap_max_us'))}",
                      fmt(f.get("jitter_us")),
                      f"{fmt(f.get('answers'))} of {fmt(f.get('expected'))}, lost {fmt(f.get('lost'))}, late {fmt(f.get('late'))}",
-                     "yes" if f.get("controller_stopped") else "no"])
+                     r["core_ended"] if "FAIL-SAFE" in r["core_ended"] or f.get("controller_stopped") else "kept running"])
     md.append(table(["load", "RTT p50 client / raw UDP", "p99", "p99.9", "max",
-                     "answer gap p99 / max", "jitter (RFC 3550)", "answers", "core stopped"], rows))
+                     "answer gap p99 / max", "jitter (RFC 3550)", "answers", "core"], rows))
     md.append("")
     md.append("The client's round trip includes waiting for the next controller cycle (its floor is one "
               "period, 1000 us); the raw UDP ping-pong is the kernel's loopback floor.")

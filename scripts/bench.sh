@@ -2,8 +2,9 @@
 # The system benchmark: hapticctrl's timing against same-run baselines, idle and under load,
 # written up as bench-report/report.md (+ results.json, PNG plots).
 #
-#  1. wake-up latency: hapticctrl-core and cyclictest side by side (same priority, period, CPU),
-#     idle and under stress-ng CPU+memory load, at 1000, 250 and 100 µs;
+#  1. wake-up latency: hapticctrl-core (arm powered, so the SERVO does its full work) and
+#     cyclictest side by side (same priority, period, CPU), idle and under stress-ng CPU+memory
+#     load, at 1000, 250 and 100 µs;
 #  2. SERVO start delay after the CLOCK release, against a bare futex hand-off floor;
 #  3. end to end at 1 kHz: client -> hapticctrl-udp -> core -> client round trips and answer
 #     jitter, against a raw UDP ping-pong on the same loopback, idle and under load;
@@ -34,7 +35,8 @@ scripts/setup.sh
 if [[ ! -f $BUILD/build.ninja ]]; then
   cmake -S . -B "$BUILD" -G Ninja >/dev/null
 fi
-cmake --build "$BUILD" -j "$(nproc)" --target hapticctrl-core hapticctrl-udp hapticctrl-bench-link \
+cmake --build "$BUILD" -j "$(nproc)" --target hapticctrl-core hapticctrl-udp hapticctrl-hmi \
+  hapticctrl-bench-link \
   hapticctrl-bench-handoff hapticctrl-bench-shm hapticctrl-bench-protocol hapticctrl-bench-rt-core \
   >/dev/null
 rm -rf "$RAW"
@@ -86,7 +88,16 @@ latency_run() {  # period label
   CHILDREN+=("$ct")
   "$BUILD/rt_core/hapticctrl-core" --instance "bench$$" --duration "$LAT_S" --period-us "$period" \
     --priority "$PRIO" --cpu "$CPU" --rt warn --json --histogram "$base.core.hist" \
-    --blackbox-dir "$RAW" >"$base.core.json" 2>"$base.core.err" || true  # a fail-safe is a result
+    --blackbox-dir "$RAW" >"$base.core.json" 2>"$base.core.err" &
+  local core=$!
+  CHILDREN+=("$core")
+  # Powered, so that every SERVO run does the real work: law, and the simulator's integration.
+  for _ in $(seq 1 100); do
+    "$BUILD/hmi/hapticctrl-hmi" --instance "bench$$" status >/dev/null 2>&1 && break
+    sleep 0.02
+  done
+  "$BUILD/hmi/hapticctrl-hmi" --instance "bench$$" --timeout-ms 1000 power-on >/dev/null 2>&1 || true
+  wait "$core" || true  # a fail-safe is a result, reported as such
   wait "$ct" || true
 }
 for period in "${PERIODS[@]}"; do

@@ -18,13 +18,14 @@ class ControllerStack {
  public:
   /// Behaviour tests run a slow cycle (10 ms, the core's longest) beside other tests. The core
   /// takes SCHED_FIFO when allowed; sanitizer builds pass `--rt ignore` (no warning about
-  /// missing privileges in their logs) and integrate the simulated arm in 500 µs sub-steps
+  /// missing privileges in their logs) and integrate the simulated arm in 250 µs sub-steps
   /// instead of 125: instrumented, the simulator alone took 60 % of every period (2.4 ms of 4 ms
-  /// under ASan+UBSan, 2026-12-01) and cycles missed their deadline.
+  /// under ASan+UBSan, 2026-12-01) and cycles missed their deadline. (500 µs was too coarse: the
+  /// coupled VIRTMECH test then moved the handle 2 cm the wrong way, every time.)
   static constexpr int kDefaultPeriodUs = 10000;
 #ifdef HAPTICCTRL_SANITIZED
   static constexpr const char* kRtMode = "ignore";
-  static constexpr const char* kSimSubstepUs = "500";
+  static constexpr const char* kSimSubstepUs = "250";
 #else
   static constexpr const char* kRtMode = "warn";
   static constexpr const char* kSimSubstepUs = "125";

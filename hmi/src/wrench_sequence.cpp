@@ -26,7 +26,6 @@ std::vector<std::string> fields_of(std::string line) {
 
 WrenchSequence WrenchSequence::parse(const std::string& text, const std::string& source,
                                      const shm::ForceLimits& limits) {
-  const shm::ForceSlew check(limits);
   WrenchSequence seq;
   std::istringstream in(text);
   std::string line;
@@ -57,7 +56,7 @@ WrenchSequence WrenchSequence::parse(const std::string& text, const std::string&
     if (!seq.samples_.empty() && sample.t <= seq.samples_.back().t) {
       throw std::invalid_argument(where() + "times must increase strictly");
     }
-    if (!check.acceptable(sample.wrench)) {
+    if (!shm::wrench_acceptable(sample.wrench, limits)) {
       throw std::invalid_argument(
           where() + "wrench must be finite, |f| <= " + std::to_string(limits.max_force) +
           " N and |t| <= " + std::to_string(limits.max_torque) + " N.m per axis");

@@ -6,15 +6,14 @@
 #include <cmath>
 #include <numbers>
 
+#include "hapticctrl/shm/force_slew.hpp"
+
 namespace hapticctrl::rt_core {
 namespace {
 
 /// Velocity filter time constant of the measured velocity (s): a 1st-order low-pass on the
 /// encoder finite difference, as ARM_REFERENCE proposes.
 constexpr double kVelocityFilterTau = 0.002;
-/// Operator wrench beyond these is rejected as invalid input (N, N·m).
-constexpr double kMaxOperatorForce = 100.0;
-constexpr double kMaxOperatorTorque = 10.0;
 
 }  // namespace
 
@@ -135,12 +134,7 @@ void SimulatedArm::read_operator_wrench() noexcept {
   if (!force_->read(sample).ok()) {
     return;  // never written or torn: keep the last valid wrench
   }
-  bool valid = true;
-  for (std::size_t i = 0; i < 6; ++i) {
-    const double limit = i < 3 ? kMaxOperatorForce : kMaxOperatorTorque;
-    valid = valid && std::isfinite(sample.wrench[i]) && std::abs(sample.wrench[i]) <= limit;
-  }
-  if (!valid) {
+  if (!shm::wrench_acceptable(sample.wrench)) {  // non-finite, or beyond 100 N / 10 N·m
     ++rejected_;
     return;
   }

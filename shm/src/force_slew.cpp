@@ -5,9 +5,9 @@
 
 namespace hapticctrl::shm {
 
-bool ForceSlew::acceptable(const Vector6& wrench) const noexcept {
+bool wrench_acceptable(const Vector6& wrench, const ForceLimits& limits) noexcept {
   for (std::size_t i = 0; i < wrench.size(); ++i) {
-    const double limit = i < 3 ? limits_.max_force : limits_.max_torque;
+    const double limit = i < 3 ? limits.max_force : limits.max_torque;
     if (!std::isfinite(wrench[i]) || std::abs(wrench[i]) > limit) {
       return false;
     }

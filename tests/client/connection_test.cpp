@@ -206,11 +206,7 @@ TEST(Connection, WatchdogFadesTheCouplingWhenTheClientDiesAndARestartedClientRec
   ASSERT_TRUE(ControllerStack::eventually(
       [&] { return client.out().find("streaming") != std::string::npos; }, 10s))
       << client.err();
-  const auto coupled = [&] {
-    shm::PositionPayload p;
-    stack.segment().region<shm::RegionId::kPosition>().read(p);
-    return std::abs(p.coupling_wrench[0]);
-  };
+  const auto coupled = [&] { return std::abs(stack.position().coupling_wrench[0]); };
   EXPECT_GT(coupled(), 0.5);
   client.signal(SIGKILL);
   client.wait();

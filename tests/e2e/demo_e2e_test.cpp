@@ -59,18 +59,6 @@ int run_hmi(const ControllerStack& stack, std::vector<std::string> args) {
   return hmi.wait(20s);
 }
 
-shm::PositionPayload position_of(const ControllerStack& stack) {
-  shm::PositionPayload p;
-  (void)stack.segment().region<shm::RegionId::kPosition>().read(p);
-  return p;
-}
-
-shm::VpPayload vp_of(const ControllerStack& stack) {
-  shm::VpPayload vp;
-  (void)stack.segment().region<shm::RegionId::kVp>().read(vp);
-  return vp;
-}
-
 double distance(const shm::Pose7& a, const shm::Pose7& b) {
   return std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
 }
@@ -111,14 +99,14 @@ TEST(DemoEndToEnd, BeforePowerOnAnOperatorForceMovesNothingAndNothingIsCoupled) 
   ASSERT_TRUE(stack.ready()) << stack.diagnostics();
   Demo demo(stack, {"--no-power"});
   ASSERT_TRUE(demo.ready()) << demo.err();
-  const shm::Pose7 before = position_of(stack).handle_pose;
+  const shm::Pose7 before = stack.position().handle_pose;
   ASSERT_EQ(run_hmi(stack, {"force", "8", "0", "0", "0", "0", "0"}), 0);
   std::this_thread::sleep_for(700ms);
-  const shm::PositionPayload p = position_of(stack);
+  const shm::PositionPayload p = stack.position();
   EXPECT_EQ(p.operator_wrench[0], 8.0) << "the core does see the operator's push";
   EXPECT_LT(distance(p.handle_pose, before), 1e-9) << "but the unpowered arm stays on its brakes";
-  EXPECT_EQ(vp_of(stack).coupling_wrench, shm::Vector6{});
-  EXPECT_EQ(vp_of(stack).state_word & shm::state_bits::kPowered, 0U);
+  EXPECT_EQ(stack.vp().coupling_wrench, shm::Vector6{});
+  EXPECT_EQ(stack.vp().state_word & shm::state_bits::kPowered, 0U);
   const std::string json = demo.finish();
   EXPECT_EQ(json_numbers(json, "coupling_wrench"), std::vector<double>(6, 0.0)) << json;
   EXPECT_LT(std::abs(json_numbers(json, "sphere_velocity")[0]), 1e-12) << json;
@@ -133,13 +121,13 @@ TEST(DemoEndToEnd, PushingTheHandleBringsTheSphereToRestAgainstTheFixedOne) {
   Demo demo(stack, {});
   ASSERT_TRUE(demo.ready()) << demo.err();
   ASSERT_TRUE(ControllerStack::eventually([&] {
-    return (vp_of(stack).state_word & shm::state_bits::kCoupled) != 0;
+    return (stack.vp().state_word & shm::state_bits::kCoupled) != 0;
   })) << "the demo powers on and couples";
-  const double x0 = position_of(stack).handle_pose[0];
+  const double x0 = stack.position().handle_pose[0];
   constexpr double kPush = 5.0;
   ASSERT_EQ(run_hmi(stack, {"force", "5", "0", "0", "0", "0", "0"}), 0);
   std::this_thread::sleep_for(4s);  // reach, touch, settle (about 1.5 s on this machine)
-  const shm::PositionPayload p = position_of(stack);
+  const shm::PositionPayload p = stack.position();
   const std::string json = demo.finish();
   ASSERT_FALSE(json.empty()) << demo.err();
   const auto contact = json_numbers(json, "contact_force");
@@ -168,11 +156,11 @@ TEST(DemoEndToEnd, AForceOnTheSphereInTheClientMovesTheArmHandle) {
   std::ofstream(script) << "0.3 push 0 4 0\n1.3 release\n";
   Demo demo(stack, {"--script", script});
   ASSERT_TRUE(demo.ready()) << demo.err();
-  const shm::Pose7 before = position_of(stack).handle_pose;
+  const shm::Pose7 before = stack.position().handle_pose;
   EXPECT_TRUE(ControllerStack::eventually(
-      [&] { return position_of(stack).handle_pose[1] - before[1] > 0.01; }, 3s))
-      << "handle y moved by " << position_of(stack).handle_pose[1] - before[1];
-  EXPECT_LT(std::abs(position_of(stack).operator_wrench[1]), 1e-12) << "nobody pushed the handle";
+      [&] { return stack.position().handle_pose[1] - before[1] > 0.01; }, 3s))
+      << "handle y moved by " << stack.position().handle_pose[1] - before[1];
+  EXPECT_LT(std::abs(stack.position().operator_wrench[1]), 1e-12) << "nobody pushed the handle";
   demo.finish();
   std::remove(script.c_str());
 }
@@ -183,17 +171,17 @@ TEST(DemoEndToEnd, KillingTheClientFadesTheCouplingAndTheArmStaysPut) {
   Demo demo(stack, {});
   ASSERT_TRUE(demo.ready()) << demo.err();
   ASSERT_TRUE(ControllerStack::eventually(
-      [&] { return (vp_of(stack).state_word & shm::state_bits::kCoupled) != 0; }));
+      [&] { return (stack.vp().state_word & shm::state_bits::kCoupled) != 0; }));
   std::this_thread::sleep_for(300ms);
   auto force_norm = [](const shm::VpPayload& vp) {
     return std::hypot(vp.coupling_wrench[0], vp.coupling_wrench[1], vp.coupling_wrench[2]);
   };
-  const double before = force_norm(vp_of(stack));
+  const double before = force_norm(stack.vp());
   demo.process().signal(SIGKILL);
   double largest = 0.0;
   EXPECT_TRUE(ControllerStack::eventually(
       [&] {
-        const shm::VpPayload vp = vp_of(stack);
+        const shm::VpPayload vp = stack.vp();
         largest = std::max(largest, force_norm(vp));
         return (vp.state_word & shm::state_bits::kCoupled) == 0 &&
                vp.coupling_wrench == shm::Vector6{};
@@ -201,12 +189,12 @@ TEST(DemoEndToEnd, KillingTheClientFadesTheCouplingAndTheArmStaysPut) {
       3s))
       << "the coupling fades to zero once the client falls silent";
   EXPECT_LE(largest, before + 0.05) << "fading, never a spike";
-  const shm::Pose7 after_fade = position_of(stack).handle_pose;
+  const shm::Pose7 after_fade = stack.position().handle_pose;
   std::this_thread::sleep_for(1s);
-  const shm::PositionPayload p = position_of(stack);
+  const shm::PositionPayload p = stack.position();
   EXPECT_LT(distance(p.handle_pose, after_fade), 0.001) << "gravity compensation holds the arm";
   EXPECT_NE(p.state_word & shm::state_bits::kPowered, 0U) << "still powered";
-  EXPECT_EQ(vp_of(stack).core_state, static_cast<std::uint32_t>(shm::CoreState::kRunning));
+  EXPECT_EQ(stack.vp().core_state, static_cast<std::uint32_t>(shm::CoreState::kRunning));
 }
 
 TEST(DemoEndToEnd, StopFromTheHmiShutsTheControllerDownInTheFailSafeOrder) {
@@ -215,14 +203,14 @@ TEST(DemoEndToEnd, StopFromTheHmiShutsTheControllerDownInTheFailSafeOrder) {
   Demo demo(stack, {});
   ASSERT_TRUE(demo.ready()) << demo.err();
   ASSERT_TRUE(ControllerStack::eventually(
-      [&] { return (vp_of(stack).state_word & shm::state_bits::kPowered) != 0; }));
+      [&] { return (stack.vp().state_word & shm::state_bits::kPowered) != 0; }));
   SpawnedProcess hmi(HAPTICCTRL_HMI_BINARY, {"--instance", stack.instance(), "stop"});
   EXPECT_EQ(hmi.wait(20s), 0) << hmi.err();
   EXPECT_NE(hmi.out().find("stopped (stopping, stop requested)"), std::string::npos) << hmi.out();
   EXPECT_EQ(stack.core().wait(10s), 0) << stack.core().err();
   // The closing VP (step 3, "client told") is already unpowered with a zero wrench: steps 1 and
   // 2 came first. The demo saw it and left on its own.
-  const shm::VpPayload closing = vp_of(stack);
+  const shm::VpPayload closing = stack.vp();
   EXPECT_EQ(closing.core_state, static_cast<std::uint32_t>(shm::CoreState::kStopping));
   EXPECT_EQ(closing.state_word & shm::state_bits::kPowered, 0U);
   EXPECT_EQ(closing.coupling_wrench, shm::Vector6{});

@@ -104,6 +104,16 @@ class ControllerStack {
     segment_->region<shm::RegionId::kVpr>().read(v);
     return v;
   }
+  [[nodiscard]] shm::VpPayload vp() const {
+    shm::VpPayload v;
+    segment_->region<shm::RegionId::kVp>().read(v);
+    return v;
+  }
+  [[nodiscard]] shm::PositionPayload position() const {
+    shm::PositionPayload p;
+    segment_->region<shm::RegionId::kPosition>().read(p);
+    return p;
+  }
   [[nodiscard]] shm::LinkStatsPayload link_stats() const {
     shm::LinkStatsPayload s;
     segment_->region<shm::RegionId::kLinkStats>().read(s);

@@ -15,6 +15,12 @@ struct ForceLimits {
   double torque_rate = 50.0;  ///< N.m/s
 };
 
+/// Whether every component of an operator wrench is finite and within `limits`' magnitudes:
+/// the one acceptance test of the `force` region, applied by its writers and by the core.
+/// Real-time contract: noexcept, allocation-free; safe in the cycle.
+[[nodiscard]] bool wrench_acceptable(const Vector6& wrench,
+                                     const ForceLimits& limits = {}) noexcept;
+
 /// Rate-limited operator wrench. Real-time contract: every member is noexcept, allocation-free
 /// and constant-time; safe anywhere.
 class ForceSlew {
@@ -23,7 +29,9 @@ class ForceSlew {
       : limits_(limits), target_(start), applied_(start) {}
 
   /// Whether every component is finite and within the magnitude limits.
-  [[nodiscard]] bool acceptable(const Vector6& wrench) const noexcept;
+  [[nodiscard]] bool acceptable(const Vector6& wrench) const noexcept {
+    return wrench_acceptable(wrench, limits_);
+  }
   /// Sets the wrench to move towards. Refuses (false, target unchanged) what is not acceptable.
   bool set_target(const Vector6& wrench) noexcept;
   /// Advances the applied wrench by `dt` seconds (negative or non-finite: no move). Returns

@@ -13,6 +13,14 @@ void require_positive(double value, const char* name) {
   }
 }
 
+/// Scales `v` down to norm `limit` if it is longer (friction cones, rolling limits).
+void clamp_norm(Eigen::Vector3d& v, double limit) noexcept {
+  const double norm = v.norm();
+  if (norm > limit) {
+    v *= limit / norm;
+  }
+}
+
 }  // namespace
 
 void SceneConfig::validate() const {
@@ -86,46 +94,36 @@ double SphereScene::normal_push(const Contact& c) const noexcept {
 
 Eigen::Vector3d SphereScene::contact_force() const noexcept {
   const Contact c = contact();
-  const double push = normal_push(c);
+  return force_of(c, normal_push(c));
+}
+
+Eigen::Vector3d SphereScene::force_of(const Contact& c, double push) const noexcept {
   if (push <= 0.0) {
     return Eigen::Vector3d::Zero();
   }
   Eigen::Vector3d friction = -gains_.tangent_k * stretch_ - gains_.tangent_b * c.slip_velocity;
-  const double limit = config_.friction * push;
-  if (friction.norm() > limit) {
-    friction *= limit / friction.norm();
-  }
+  clamp_norm(friction, config_.friction * push);
   return push * c.normal + friction;
 }
 
 Eigen::Vector3d SphereScene::rolling_torque(double push) const noexcept {
   Eigen::Vector3d torque = -gains_.rolling_k * twist_ - gains_.rolling_b * state_.angular_velocity;
-  const double limit = config_.rolling_resistance * push * config_.mobile_radius;
-  if (torque.norm() > limit) {
-    torque *= limit / torque.norm();
-  }
+  clamp_norm(torque, config_.rolling_resistance * push * config_.mobile_radius);
   return torque;
 }
 
-void SphereScene::update_stretch(const Contact& c, double dt) noexcept {
-  const double push = normal_push(c);
+void SphereScene::update_stretch(const Contact& c, double push, double dt) noexcept {
   if (push <= 0.0) {
     stretch_.setZero();  // apart: the next touch anchors afresh
     twist_.setZero();
     return;
   }
   twist_ += state_.angular_velocity * dt;
-  const double twist_limit =
-      config_.rolling_resistance * push * config_.mobile_radius / gains_.rolling_k;
-  if (twist_.norm() > twist_limit) {
-    twist_ *= twist_limit / twist_.norm();  // rolling: the patch moves on
-  }
+  // Beyond the limit the patch rolls on / the anchor slides along.
+  clamp_norm(twist_, config_.rolling_resistance * push * config_.mobile_radius / gains_.rolling_k);
   stretch_ += c.slip_velocity * dt;
   stretch_ -= stretch_.dot(c.normal) * c.normal;  // stay in the tangent plane
-  const double limit = config_.friction * push / gains_.tangent_k;
-  if (stretch_.norm() > limit) {
-    stretch_ *= limit / stretch_.norm();  // sliding: the anchor follows
-  }
+  clamp_norm(stretch_, config_.friction * push / gains_.tangent_k);
 }
 
 void SphereScene::step(const client::Vector6& coupling, const client::Vector6& applied,
@@ -135,12 +133,13 @@ void SphereScene::step(const client::Vector6& coupling, const client::Vector6& a
   }
   gains_ = gains_for(dt);
   const Contact touching = contact();
-  update_stretch(touching, dt);
-  const Eigen::Vector3d contact_push = contact_force();
+  const double push = normal_push(touching);
+  update_stretch(touching, push, dt);
+  const Eigen::Vector3d contact_push = force_of(touching, push);
   Eigen::Vector3d force = contact_push;
   // Friction acts at the contact point, so it also turns the sphere; the patch resists that.
-  Eigen::Vector3d torque = (-config_.mobile_radius * touching.normal).cross(contact_push) +
-                           rolling_torque(normal_push(touching));
+  Eigen::Vector3d torque =
+      (-config_.mobile_radius * touching.normal).cross(contact_push) + rolling_torque(push);
   for (int i = 0; i < 3; ++i) {
     const auto k = static_cast<std::size_t>(i);
     force(i) += coupling[k] + applied[k];

@@ -88,8 +88,10 @@ class SphereScene {
   };
   [[nodiscard]] Contact contact() const noexcept;
   [[nodiscard]] double normal_push(const Contact& c) const noexcept;
+  /// Normal push plus friction for contact `c` pushing with `push` (N).
+  [[nodiscard]] Eigen::Vector3d force_of(const Contact& c, double push) const noexcept;
   /// Moves the friction anchor with the tangential slip; lets it slide beyond mu * normal.
-  void update_stretch(const Contact& c, double dt) noexcept;
+  void update_stretch(const Contact& c, double push, double dt) noexcept;
   /// Resisting torque of the contact patch against rolling and spinning.
   [[nodiscard]] Eigen::Vector3d rolling_torque(double push) const noexcept;
 

@@ -72,6 +72,7 @@ struct Connection::Impl {
   std::atomic<std::uint64_t> control_sent{0};
   std::atomic<std::int64_t> last_send_ns{0};
   std::atomic<bool> open{false};
+  std::atomic<std::int64_t> last_heard_ns{0};  // last valid frame from the bridge
   std::atomic<bool> running{true};
 
   mutable std::mutex state_mutex;
@@ -98,6 +99,7 @@ struct Connection::Impl {
         bridge(resolve(address)) {
     handshake();
     monitor.set_period(period_ns);
+    last_heard_ns.store(monotonic_ns(), std::memory_order_relaxed);
     open.store(true);
     receiver = std::thread([this] { receive_loop(); });
   }
@@ -229,7 +231,25 @@ struct Connection::Impl {
                         now);
       }
       keep_alive(now);
+      close_if_silent(now);
     }
+  }
+
+  /// A session whose bridge sends nothing at all (no answer, no refusal) for `answer_timeout` is
+  /// over: the bridge was killed, or lost its controller without a word.
+  void close_if_silent(std::int64_t now) noexcept {
+    const auto limit_ns = std::chrono::nanoseconds(options.answer_timeout).count();
+    if (limit_ns == 0 || !open.load(std::memory_order_relaxed) ||
+        now - last_heard_ns.load(std::memory_order_relaxed) <= limit_ns) {
+      return;
+    }
+    {
+      const std::lock_guard lock(ack_mutex);
+      closed_reason = "no answer from the bridge for " +  // once per session: not a cycle path
+                      std::to_string(options.answer_timeout.count()) + " ms";
+    }
+    open.store(false);
+    ack_cv.notify_all();
   }
 
   void handle_datagram(std::span<const std::uint8_t> bytes, const Endpoint& from,
@@ -241,6 +261,7 @@ struct Connection::Impl {
       monitor.on_invalid();
       return;
     }
+    last_heard_ns.store(now, std::memory_order_relaxed);
     if (frame.body.type == HCP_ANSWER) {
       handle_answer(frame, now);
     } else if (frame.body.type == HCP_REFUSE) {  // the bridge ended the session, and says why

@@ -39,6 +39,8 @@ const char* stop_reason_name(std::uint64_t stop_reason) noexcept {
       return "duration elapsed";
     case static_cast<std::uint64_t>(StopReason::kVelocityLimit):
       return "velocity above the safety threshold";
+    case static_cast<std::uint64_t>(StopReason::kCoreLost):
+      return "the controller process is gone (killed or crashed)";
     default:
       return "unknown reason";
   }

@@ -129,6 +129,21 @@ std::optional<OldSegmentInfo> peek_existing(const std::string& name) {
   return info;
 }
 
+/// The exclusive flock of a live core. Attached processes probe the lock with a shared flock held
+/// for a few microseconds (Segment::core_alive, every 2 ms while a core is silent): a core
+/// starting in that window retries instead of reporting a running instance that is not there.
+bool take_exclusive_lock(int fd) {
+  for (int attempt = 0;; ++attempt) {
+    if (flock(fd, LOCK_EX | LOCK_NB) == 0) {
+      return true;
+    }
+    if (errno != EWOULDBLOCK || attempt == 3) {
+      return false;
+    }
+    usleep(1000);
+  }
+}
+
 /// Opens the lock object and takes the exclusive flock that marks a live core. Guards against
 /// the classic unlink race: the lock we hold must still be the one the name points to.
 int acquire_instance_lock(const SegmentNames& names, const std::string& instance,
@@ -138,7 +153,7 @@ int acquire_instance_lock(const SegmentNames& names, const std::string& instance
     if (fd < 0) {
       throw_system("open lock " + shm_path(names.lock), errno);
     }
-    if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
+    if (!take_exclusive_lock(fd)) {
       const int error = errno;
       ::close(fd);
       if (error == EWOULDBLOCK) {
@@ -277,6 +292,13 @@ Segment Segment::attach(std::string_view instance, const AttachOptions& options)
                                                  " does not exist); start hapticctrl-core first");
     }
     throw_system("open " + path, errno);
+  }
+  // Kept open to probe the core's lock cheaply (core_alive) for as long as we are attached.
+  seg.lock_fd_ = shm_open(seg.names_.lock.c_str(), O_RDONLY | O_CLOEXEC, 0);
+  if (seg.lock_fd_ < 0) {
+    throw ShmError(ShmErrc::kNoController, "no controller is running for instance '" +
+                                               seg.instance_ + "' (its lock " +
+                                               shm_path(seg.names_.lock) + " is gone)");
   }
   struct stat st {};
   if (fstat(seg.fd_, &st) != 0) {
@@ -436,14 +458,16 @@ bool Segment::core_alive() const {
   if (creator_) {
     return true;
   }
-  const int fd = shm_open(names_.lock.c_str(), O_RDONLY | O_CLOEXEC, 0);
-  if (fd < 0) {
+  if (lock_fd_ < 0) {
     return false;
   }
-  // A shared lock is only granted when no core holds the exclusive one.
-  const bool alive = flock(fd, LOCK_SH | LOCK_NB) != 0 && errno == EWOULDBLOCK;
-  ::close(fd);  // also drops the probe's shared lock, if it got one
-  return alive;
+  // A shared lock is only granted when no core holds the exclusive one; the kernel drops a
+  // core's lock the moment its process ends, however it ends.
+  if (flock(lock_fd_, LOCK_SH | LOCK_NB) == 0) {
+    flock(lock_fd_, LOCK_UN);
+    return false;
+  }
+  return errno == EWOULDBLOCK;
 }
 
 bool Segment::still_current() const {

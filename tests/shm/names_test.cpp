@@ -10,7 +10,7 @@ namespace hapticctrl::shm {
 namespace {
 
 TEST(Names, EveryKnownCodeHasANameAndUnknownOnesSaySo) {
-  for (std::uint32_t r = 0; r <= static_cast<std::uint32_t>(StopReason::kVelocityLimit); ++r) {
+  for (std::uint32_t r = 0; r <= static_cast<std::uint32_t>(StopReason::kCoreLost); ++r) {
     EXPECT_EQ(std::string(stop_reason_name(r)).find("unknown"), std::string::npos) << r;
   }
   for (std::uint32_t s = 0; s <= static_cast<std::uint32_t>(CoreState::kStopped); ++s) {

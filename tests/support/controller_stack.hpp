@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "hapticctrl/shm/segment.hpp"
@@ -34,11 +35,22 @@ class ControllerStack {
   explicit ControllerStack(const std::string& tag, int period_us = kDefaultPeriodUs,
                            std::vector<std::string> bridge_extra = {})
       : instance_(unique_instance(tag)),
-        core_(HAPTICCTRL_CORE_BINARY,
-              {"--instance", instance_, "--period-us", std::to_string(period_us), "--rt", kRtMode,
-               "--sim-substep-us", kSimSubstepUs, "--blackbox-dir", "/tmp"}) {
+        period_us_(period_us),
+        bridge_extra_(std::move(bridge_extra)) {
+    start_core();
+    start_bridge();
+  }
+
+  /// Starts a new core for the instance (after the last one was killed or stopped) and maps
+  /// its segment.
+  void start_core() {
     using namespace std::chrono_literals;
-    period_us_ = period_us;
+    segment_.reset();
+    core_.emplace(HAPTICCTRL_CORE_BINARY,
+                  std::vector<std::string>{"--instance", instance_, "--period-us",
+                                           std::to_string(period_us_), "--rt", kRtMode,
+                                           "--sim-substep-us", kSimSubstepUs, "--blackbox-dir",
+                                           "/tmp"});
     for (int i = 0; i < 1000 && !segment_; ++i) {
       try {
         segment_.emplace(shm::Segment::attach(instance_));
@@ -46,18 +58,23 @@ class ControllerStack {
         std::this_thread::sleep_for(5ms);
       }
     }
-    std::vector<std::string> args{"--instance", instance_, "--port", "0"};
-    args.insert(args.end(), bridge_extra.begin(), bridge_extra.end());
+  }
+
+  /// Starts a UDP bridge: on a free port the first time, on the same port after that.
+  void start_bridge() {
+    using namespace std::chrono_literals;
+    std::vector<std::string> args{"--instance", instance_, "--port", std::to_string(port_)};
+    args.insert(args.end(), bridge_extra_.begin(), bridge_extra_.end());
     bridge_.emplace(HAPTICCTRL_UDP_BINARY, args);
     const std::string marker = "listening on 127.0.0.1:";
-    for (int i = 0; i < 1000 && port_ == 0; ++i) {
+    for (int i = 0; i < 1000; ++i) {
       const std::string out = bridge_->out();
       const auto at = out.find(marker);
       if (at != std::string::npos && out.find('\n', at) != std::string::npos) {
         port_ = static_cast<std::uint16_t>(std::stoi(out.substr(at + marker.size())));
-      } else {
-        std::this_thread::sleep_for(5ms);
+        return;
       }
+      std::this_thread::sleep_for(5ms);
     }
   }
 
@@ -70,12 +87,14 @@ class ControllerStack {
       bridge_->signal(SIGTERM);
       bridge_->wait(std::chrono::seconds(5));
     }
-    core_.signal(SIGTERM);
-    core_.wait(std::chrono::seconds(5));
+    if (core_) {
+      core_->signal(SIGTERM);
+      core_->wait(std::chrono::seconds(5));
+    }
   }
 
   [[nodiscard]] bool ready() const {
-    return segment_.has_value() && port_ != 0;
+    return segment_.has_value() && bridge_ && port_ != 0;
   }
   [[nodiscard]] std::uint16_t port() const {
     return port_;
@@ -90,13 +109,13 @@ class ControllerStack {
     return *segment_;
   }
   SpawnedProcess& core() {
-    return core_;
+    return *core_;
   }
   SpawnedProcess& bridge() {
     return *bridge_;
   }
   [[nodiscard]] std::string diagnostics() const {
-    return "core: " + core_.err() + "\nbridge: " + (bridge_ ? bridge_->err() : "");
+    return "core: " + (core_ ? core_->err() : "") + "\nbridge: " + (bridge_ ? bridge_->err() : "");
   }
 
   [[nodiscard]] shm::VprPayload vpr() const {
@@ -136,11 +155,12 @@ class ControllerStack {
 
  private:
   std::string instance_;
-  SpawnedProcess core_;
+  int period_us_ = 0;
+  std::vector<std::string> bridge_extra_;
+  std::optional<SpawnedProcess> core_;
   std::optional<SpawnedProcess> bridge_;
   std::optional<shm::Segment> segment_;
   std::uint16_t port_ = 0;
-  int period_us_ = 0;
 };
 
 }  // namespace hapticctrl::test

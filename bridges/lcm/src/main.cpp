@@ -20,6 +20,7 @@
 #include "hapticctrl/lcm_bridge/lcm_bridge_config.hpp"
 #include "hapticctrl/lcm_bridge/messages.hpp"
 #include "hapticctrl/protocol/monotonic_clock.hpp"
+#include "hapticctrl/shm/core_watch.hpp"
 #include "hapticctrl/shm/segment.hpp"
 
 namespace {
@@ -47,10 +48,27 @@ struct PublishCounters {
   std::atomic<std::uint64_t> events_lost{0};
 };
 
-/// Publishes what is due after each controller cycle, until `running` clears.
+/// The bridge's own event (index 0: not from the core's sequence) when the core is gone.
+hapticctrl_lcm::event_t core_gone_event(const shm::CoreWatch& watch, std::int64_t now) {
+  const shm::Event e{0,
+                     watch.last_cycle(),
+                     now,
+                     shm::EventKind::kCoreState,
+                     static_cast<std::uint32_t>(shm::CoreState::kStopped),
+                     watch.stop_reason()};
+  auto m = lb::to_event(e, 0, utime_of(now));
+  char noticed[96];  // NOLINT(*-avoid-c-arrays)
+  std::snprintf(noticed, sizeof noticed, " (noticed by the LCM bridge %.1f ms after its last heartbeat)",
+                static_cast<double>(watch.heartbeat_age_at_loss_ns()) * 1e-6);
+  m.text += noticed;
+  return m;
+}
+
+/// Publishes what is due after each controller cycle, until `running` clears or the core is
+/// gone (then publishes that as an event and sets `core_gone`).
 void publish_loop(const shm::Segment& seg, lcm::LCM& lcm, const Channels& ch,
                   const LcmBridgeConfig& config, const std::atomic<bool>& running,
-                  PublishCounters& counters) {
+                  std::atomic<bool>& core_gone, PublishCounters& counters) {
   const auto& vp_cell = seg.region<shm::RegionId::kVp>();
   shm::EventReader events(seg.region<shm::RegionId::kEvents>(), true);
   const auto arm_every_ns =
@@ -59,9 +77,9 @@ void publish_loop(const shm::Segment& seg, lcm::LCM& lcm, const Channels& ch,
   std::int64_t next_arm = 0;
   std::int64_t next_stats = 0;
   std::uint64_t lost_reported = 0;
+  shm::CoreWatch watch(seg);
   while (running.load(std::memory_order_relaxed)) {
-    const std::uint32_t seen = vp_cell.sequence_word();
-    vp_cell.wait_for_publish(seen, std::chrono::milliseconds(50));
+    const shm::CoreWatch::Wake wake = watch.wait();
     const std::int64_t now = monotonic_ns();
     shm::TelemetryPayload telemetry;
     (void)seg.region<shm::RegionId::kTelemetry>().read(telemetry);
@@ -97,6 +115,15 @@ void publish_loop(const shm::Segment& seg, lcm::LCM& lcm, const Channels& ch,
       counters.events.fetch_add(1, std::memory_order_relaxed);
     });
     counters.events_lost.store(events.lost(), std::memory_order_relaxed);
+    if (wake == shm::CoreWatch::Wake::kCoreGone) {  // after the core's own last events
+      auto m = core_gone_event(watch, now);
+      lcm.publish(ch.events, &m);
+      counters.events.fetch_add(1, std::memory_order_relaxed);
+      std::fprintf(stderr, "hapticctrl-lcm: controller '%s': %s\n", seg.instance().c_str(),
+                   m.text.c_str());
+      core_gone.store(true);
+      return;
+    }
   }
 }
 
@@ -136,22 +163,15 @@ void run_attached(shm::Segment& seg, lcm::LCM& lcm, const Channels& ch,
       },
       &hmi);
   std::atomic<bool> publishing{true};
-  std::thread publisher([&] { publish_loop(seg, lcm, ch, config, publishing, counters); });
-  std::int64_t next_liveness = 0;
-  while (!g_stop.load()) {
+  std::atomic<bool> core_gone{false};
+  std::thread publisher(
+      [&] { publish_loop(seg, lcm, ch, config, publishing, core_gone, counters); });
+  while (!g_stop.load() && !core_gone.load()) {
     lcm.handleTimeout(2);
     const std::int64_t now = monotonic_ns();
     hmi.tick(now);
     if (end_ns != 0 && now >= end_ns) {
       g_stop.store(true);
-    }
-    if (now >= next_liveness) {
-      next_liveness = now + 100'000'000;
-      if (!seg.core_alive() || !seg.still_current()) {
-        std::fprintf(stderr, "hapticctrl-lcm: controller '%s' went away; waiting for it\n",
-                     seg.instance().c_str());
-        break;
-      }
     }
   }
   publishing.store(false);

@@ -20,6 +20,8 @@
 #include <vector>
 
 #include "hapticctrl/protocol/monotonic_clock.hpp"
+#include "hapticctrl/shm/core_watch.hpp"
+#include "hapticctrl/shm/names.hpp"
 #include "hapticctrl/shm/segment.hpp"
 #include "hapticctrl/udp_bridge/bridge_config.hpp"
 #include "hapticctrl/udp_bridge/session.hpp"
@@ -48,16 +50,16 @@ std::uint64_t random_token() {
   return token;
 }
 
-/// The loop every mode shares: one datagram (or 10 ms), its reply, the watchdog, and every
-/// 100 ms `periodic()`, until it returns false or the bridge is told to stop.
-template <typename Periodic>
-void serve(UdpSocket& socket, Session& session, std::int64_t end_ns, Periodic periodic) {
+/// The loop every mode shares: one datagram (or 2 ms), its reply and the watchdog, then
+/// `keep_serving(now)`, until it returns false or the bridge is told to stop. (2 ms bounds how
+/// late the loss of the core is told to the client; idle, it costs 500 wake-ups a second.)
+template <typename KeepServing>
+void serve(UdpSocket& socket, Session& session, std::int64_t end_ns, KeepServing keep_serving) {
   FrameBuffer in{};
   FrameBuffer reply{};
-  std::int64_t next_periodic = 0;
   while (!g_stop.load()) {
     Endpoint from;
-    const Received r = socket.receive(in, from, std::chrono::milliseconds(10));
+    const Received r = socket.receive(in, from, std::chrono::milliseconds(2));
     const std::int64_t now = monotonic_ns();
     if (r.status == Received::Status::kDatagram) {
       const std::size_t n = session.on_datagram({in.data(), r.size}, from, now, reply);
@@ -73,11 +75,49 @@ void serve(UdpSocket& socket, Session& session, std::int64_t end_ns, Periodic pe
     if (end_ns != 0 && now >= end_ns) {
       g_stop.store(true);
     }
-    if (now >= next_periodic) {
-      next_periodic = now + 100'000'000;
-      if (!periodic()) {
-        return;
-      }
+    if (!keep_serving(now)) {
+      return;
+    }
+  }
+}
+
+void send_answer(UdpSocket& socket, Session& session, const shm::VpPayload& sample) {
+  FrameBuffer out{};
+  Endpoint to;
+  const std::size_t n = session.answer(sample, monotonic_ns(), out, to);
+  if (n != 0) {
+    const bool sent = socket.send_to({out.data(), n}, to);
+    (sent ? session.counters().frames_out : session.counters().send_failures)
+        .fetch_add(1, std::memory_order_relaxed);
+  }
+}
+
+/// One ANSWER per controller cycle, until `answering` clears or the core is gone. The end of the
+/// core gets a last ANSWER saying so (state stopped, its reason or "core lost"), then sets
+/// `core_lost`.
+void answer_cycles(const shm::Segment& segment, UdpSocket& socket, Session& session,
+                   const std::atomic<bool>& answering, std::atomic<bool>& core_lost) {
+  const auto& vp = segment.region<shm::RegionId::kVp>();
+  shm::CoreWatch watch(segment);
+  shm::VpPayload last;
+  while (answering.load(std::memory_order_relaxed)) {
+    const shm::CoreWatch::Wake wake = watch.wait();
+    if (wake == shm::CoreWatch::Wake::kCoreGone) {
+      last.core_state = static_cast<std::uint32_t>(shm::CoreState::kStopped);
+      last.stop_reason = watch.stop_reason();
+      last.state_word &= ~(shm::state_bits::kPowered | shm::state_bits::kCoupled);
+      send_answer(socket, session, last);
+      std::fprintf(stderr,
+                   "hapticctrl-udp: controller '%s' gone after cycle %llu (%s; noticed %.1f ms "
+                   "after its last heartbeat)\n",
+                   segment.instance().c_str(), static_cast<unsigned long long>(watch.last_cycle()),
+                   shm::stop_reason_name(watch.stop_reason()),
+                   static_cast<double>(watch.heartbeat_age_at_loss_ns()) * 1e-6);
+      core_lost.store(true);
+      return;
+    }
+    if (wake == shm::CoreWatch::Wake::kCycle && vp.read(last).ok()) {
+      send_answer(socket, session, last);
     }
   }
 }
@@ -90,33 +130,18 @@ void run_attached(shm::Segment& segment, UdpSocket& socket, Session& session, st
   session.set_controller(&ports, monotonic_ns());
 
   std::atomic<bool> answering{true};
-  std::thread answers([&] {
-    const auto& vp = segment.region<shm::RegionId::kVp>();
-    FrameBuffer out{};
-    while (answering.load(std::memory_order_relaxed)) {
-      const std::uint32_t seen = vp.sequence_word();
-      if (vp.wait_for_publish(seen, std::chrono::milliseconds(50)) != shm::WaitStatus::kPublished) {
-        continue;
-      }
-      shm::VpPayload sample;
-      if (!vp.read(sample).ok()) {
-        continue;
-      }
-      Endpoint to;
-      const std::size_t n = session.answer(sample, monotonic_ns(), out, to);
-      if (n != 0) {
-        const bool sent = socket.send_to({out.data(), n}, to);
-        (sent ? session.counters().frames_out : session.counters().send_failures)
-            .fetch_add(1, std::memory_order_relaxed);
-      }
-    }
-  });
+  std::atomic<bool> core_lost{false};
+  std::thread answers([&] { answer_cycles(segment, socket, session, answering, core_lost); });
 
-  serve(socket, session, end_ns, [&] {
-    shm::LinkStatsPayload s;
-    session.fill_stats(s);
-    stats.publish_quietly(s, monotonic_ns());
-    return segment.core_alive() && segment.still_current();
+  std::int64_t next_stats = 0;
+  serve(socket, session, end_ns, [&](std::int64_t now) {
+    if (now >= next_stats) {
+      next_stats = now + 100'000'000;
+      shm::LinkStatsPayload s;
+      session.fill_stats(s);
+      stats.publish_quietly(s, now);
+    }
+    return !core_lost.load();
   });
   // Tell the client why its session ends (the core then ramps the coupling out).
   FrameBuffer notice{};
@@ -134,7 +159,7 @@ void run_attached(shm::Segment& segment, UdpSocket& socket, Session& session, st
   answering.store(false);
   answers.join();
   if (!g_stop.load()) {
-    std::fprintf(stderr, "hapticctrl-udp: controller '%s' went away; waiting for it\n",
+    std::fprintf(stderr, "hapticctrl-udp: waiting for controller '%s'\n",
                  segment.instance().c_str());
   }
 }
@@ -215,8 +240,9 @@ int run(const BridgeConfig& config) {
                    config.instance.c_str());
       said_waiting = true;
     }
-    bool first = true;  // serve (refusing HELLOs) for 100 ms, then try to attach again
-    serve(socket, session, end_ns, [&first] { return std::exchange(first, false); });
+    // Serve (refusing HELLOs) for 100 ms, then try to attach again.
+    const std::int64_t retry_at = monotonic_ns() + 100'000'000;
+    serve(socket, session, end_ns, [retry_at](std::int64_t now) { return now < retry_at; });
   }
   if (config.json) {
     print_json(session);

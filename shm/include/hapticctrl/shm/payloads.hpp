@@ -39,6 +39,7 @@ enum class StopReason : std::uint32_t {
   kArmFault = 5,           ///< arm I/O reported a fault or non-finite measures
   kDurationElapsed = 6,    ///< --duration reached (orderly, exit 0)
   kVelocityLimit = 7,      ///< handle or joint speed above the safety threshold
+  kCoreLost = 8,  ///< never written by the core: a bridge's verdict that the core process is gone
 };
 
 /// Bits of the state word carried in VP (and over the protocol).

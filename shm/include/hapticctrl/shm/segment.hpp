@@ -105,7 +105,8 @@ class Segment {
 
   [[nodiscard]] bool is_creator() const noexcept { return creator_; }
   [[nodiscard]] const std::string& instance() const noexcept { return instance_; }
-  /// Whether a live core holds the instance lock (one flock probe; not for the cycle).
+  /// Whether a live core holds the instance lock: two flock calls on a descriptor opened at
+  /// attach, a few microseconds. Not for the cycle.
   [[nodiscard]] bool core_alive() const;
   /// Whether the instance's name still refers to this segment (false once a new core replaced
   /// it, or after the core removed it). Not for the cycle.
@@ -134,7 +135,7 @@ class Segment {
   std::string instance_;
   SegmentNames names_;
   int fd_ = -1;
-  int lock_fd_ = -1;
+  int lock_fd_ = -1;  ///< creator: holds the exclusive flock; others: probes it
   bool creator_ = false;
   std::uint64_t my_claim_ = 0;
   const SegmentHeader* header_ = nullptr;

@@ -1,0 +1,34 @@
+#include "hapticctrl/shm/core_watch.hpp"
+
+#include <ctime>
+
+namespace hapticctrl::shm {
+namespace {
+
+std::int64_t monotonic_now_ns() {
+  timespec ts{};
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
+}
+
+}  // namespace
+
+CoreWatch::Wake CoreWatch::wait() {
+  const auto& vp = segment_->region<RegionId::kVp>();
+  if (vp.wait_for_publish(vp.sequence_word(), poll_) == WaitStatus::kPublished) {
+    return Wake::kCycle;
+  }
+  if (segment_->core_alive() && segment_->still_current()) {
+    return Wake::kSilent;
+  }
+  const SegmentHeader& header = segment_->header();
+  last_cycle_ = header.heartbeat_cycle.load(std::memory_order_acquire);
+  age_at_loss_ns_ = monotonic_now_ns() - header.heartbeat_ns.load(std::memory_order_acquire);
+  stop_reason_ = header.stop_reason.load(std::memory_order_acquire);
+  if (stop_reason_ == static_cast<std::uint32_t>(StopReason::kNone)) {
+    stop_reason_ = static_cast<std::uint32_t>(StopReason::kCoreLost);
+  }
+  return Wake::kCoreGone;
+}
+
+}  // namespace hapticctrl::shm

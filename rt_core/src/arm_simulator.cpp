@@ -123,6 +123,7 @@ bool SimulatedArm::get_measures(ArmMeasures& out) noexcept {
   out.torque = applied_torque_;
   out.supply_on = supply_on_;
   out.operator_wrench = operator_wrench_;
+  out.operator_wrench_rejected = rejected_;
   return out.position.allFinite() && out.velocity.allFinite();
 }
 

@@ -35,6 +35,7 @@ std::string telemetry_json(const shm::TelemetryPayload& t) {
   out << ",";
   latency_json(out, "measured_period", t.measured_period);
   out << ",\"vpr_torn\":" << t.vpr_torn << ",\"vpr_stale\":" << t.vpr_stale
+      << ",\"vpr_rejected\":" << t.vpr_rejected << ",\"force_rejected\":" << t.force_rejected
       << ",\"ctrl_accepted\":" << t.ctrl_accepted << ",\"ctrl_rejected\":" << t.ctrl_rejected
       << "}";
   return out.str();

@@ -203,6 +203,8 @@ shm::TelemetryPayload Executive::telemetry() const noexcept {
   t.measured_period = measured_period_.summary();
   t.vpr_torn = shared_->counters.vpr_torn.load(std::memory_order_relaxed);
   t.vpr_stale = shared_->counters.vpr_stale.load(std::memory_order_relaxed);
+  t.vpr_rejected = shared_->counters.vpr_rejected.load(std::memory_order_relaxed);
+  t.force_rejected = shared_->counters.force_rejected.load(std::memory_order_relaxed);
   t.ctrl_accepted = shared_->counters.ctrl_accepted.load(std::memory_order_relaxed);
   t.ctrl_rejected = shared_->counters.ctrl_rejected.load(std::memory_order_relaxed);
   wake_latency_.coarse(t.wake_histogram);

@@ -76,6 +76,8 @@ void ServoTask::gather(std::uint64_t cycle, TimeNs now, TimeNs dt) noexcept {
   if (!s.arm->get_measures(inputs_.measures)) {
     s.counters.arm_faults.fetch_add(1, std::memory_order_relaxed);
   }
+  s.counters.force_rejected.store(inputs_.measures.operator_wrench_rejected,
+                                  std::memory_order_relaxed);
 
   // Logical state from ctrl, in each writer's order.
   s.ctrl.drain([&](const shm::CtrlCommand& command) {

@@ -125,7 +125,7 @@ std::map<std::string, Topic> topics() {
       "degraded_cycles,skipped_slots,late_servo_discarded,window_miss_ppm,leaky_bucket_score" +
           latency_columns("wake") + latency_columns("start_delay") + latency_columns("execution") +
           latency_columns("period") +
-          ",vpr_torn,vpr_stale,force_rejected,ctrl_accepted,ctrl_rejected" + histogram,
+          ",vpr_torn,vpr_stale,vpr_rejected,force_rejected,ctrl_accepted,ctrl_rejected" + histogram,
       [](const void* d, int n, Row& r) {
         hapticctrl_lcm::cycle_stats_t m{};
         if (!decode(d, n, m)) {
@@ -139,7 +139,7 @@ std::map<std::string, Topic> topics() {
         put(r, m.servo_start_delay);
         put(r, m.servo_execution);
         put(r, m.measured_period);
-        r << ',' << m.vpr_torn << ',' << m.vpr_stale << ',' << m.force_rejected << ','
+        r << ',' << m.vpr_torn << ',' << m.vpr_stale << ',' << m.vpr_rejected << ',' << m.force_rejected << ','
           << m.ctrl_accepted << ',' << m.ctrl_rejected;
         put(r, m.wake_histogram);
         return true;

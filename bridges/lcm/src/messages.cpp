@@ -93,6 +93,7 @@ hapticctrl_lcm::cycle_stats_t to_cycle_stats(const shm::TelemetryPayload& t, std
   m.measured_period = to_latency(t.measured_period);
   m.vpr_torn = static_cast<std::int64_t>(t.vpr_torn);
   m.vpr_stale = static_cast<std::int64_t>(t.vpr_stale);
+  m.vpr_rejected = static_cast<std::int64_t>(t.vpr_rejected);
   m.force_rejected = static_cast<std::int64_t>(t.force_rejected);
   m.ctrl_accepted = static_cast<std::int64_t>(t.ctrl_accepted);
   m.ctrl_rejected = static_cast<std::int64_t>(t.ctrl_rejected);

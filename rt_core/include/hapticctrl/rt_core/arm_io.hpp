@@ -22,6 +22,8 @@ struct ArmMeasures {
   /// Wrench the operator applies at the handle (base frame), when the arm senses it (the
   /// simulator does; hardware without a force sensor reports zero).
   Vector6d operator_wrench = Vector6d::Zero();
+  /// Operator wrench samples refused so far (non-finite or beyond the limits); 0 without one.
+  std::uint64_t operator_wrench_rejected = 0;
 };
 
 /// What the servo asks of the motors for the next period.

@@ -163,6 +163,7 @@ struct TelemetryPayload {
   LatencySummary measured_period{};    ///< between consecutive CLOCK wake-ups
   std::uint64_t vpr_torn = 0;          ///< VPr reads that gave up
   std::uint64_t vpr_stale = 0;         ///< cycles run on extrapolated/faded client data
+  std::uint64_t vpr_rejected = 0;      ///< VPr samples refused (non-finite, out of range)
   std::uint64_t force_rejected = 0;    ///< force samples rejected (non-finite, out of range)
   std::uint64_t ctrl_accepted = 0;
   std::uint64_t ctrl_rejected = 0;
@@ -216,7 +217,7 @@ static_assert(sizeof(VpPayload) == 288);
 static_assert(sizeof(ForcePayload) == 48);
 static_assert(sizeof(PositionPayload) == 360);
 static_assert(sizeof(LatencySummary) == 64);
-static_assert(sizeof(TelemetryPayload) == 472);
+static_assert(sizeof(TelemetryPayload) == 480);
 static_assert(sizeof(LinkStatsPayload) == 192);
 
 }  // namespace hapticctrl::shm

@@ -104,6 +104,7 @@ void ServoTask::gather(std::uint64_t cycle, TimeNs now, TimeNs dt) noexcept {
     s.arm->get_measures(inputs_.measures);
   }
   inputs_.logical = s.logical;
+  law_.continue_from(s.rendered);
   exchange_client(now);
 }
 
@@ -139,6 +140,7 @@ void ServoTask::commit(std::uint64_t cycle, TimeNs now) noexcept {
     commands.torque.setZero();
   }
   s.arm->send_commands(commands, now, inputs_.dt);
+  s.rendered = commands.enable ? law_.memory() : RenderMemory{};
 
   std::uint32_t state_word =
       s.logical.state_word() | s.clock_state_bits.load(std::memory_order_relaxed);

@@ -171,15 +171,16 @@ Vector6d ServoLaw::limit_wrench(const Vector6d& wrench, const shm::VprPayload& c
   // Rate limit: never a step larger than force_rate * dt (torque scaled like the peaks).
   const double max_force_step = lim.force_rate * dt;
   const double max_torque_step = lim.force_rate * (lim.torque_peak / lim.force_peak) * dt;
-  const Vector3d df = target.head<3>() - last_wrench_.head<3>();
-  const Vector3d dtau = target.tail<3>() - last_wrench_.tail<3>();
+  const Vector6d& last = memory_.wrench;
+  const Vector3d df = target.head<3>() - last.head<3>();
+  const Vector3d dtau = target.tail<3>() - last.tail<3>();
   if (df.norm() > max_force_step || dtau.norm() > max_torque_step) {
     ++counters_.rate_limited;
   }
   Vector6d limited;
-  limited << last_wrench_.head<3>() + clamp_norm(df, max_force_step),
-      last_wrench_.tail<3>() + clamp_norm(dtau, max_torque_step);
-  last_wrench_ = limited;
+  limited << last.head<3>() + clamp_norm(df, max_force_step),
+      last.tail<3>() + clamp_norm(dtau, max_torque_step);
+  memory_.wrench = limited;
   return limited;
 }
 
@@ -218,22 +219,23 @@ Vector6d ServoLaw::joint_walls(const Vector6d& q) const noexcept {
 Vector6d ServoLaw::guard_passivity(const Vector6d& wrench, const Vector6d& twist,
                                    double dt) noexcept {
   // One-port passivity observer (Hannaford & Ryu) at the user's port, the handle: during the
-  // last period the rendered wrench was `last_applied_` while the handle moved with `twist`, so
+  // last period the rendered wrench was `memory_.port_wrench` while the handle moved with `twist`, so
   // the user gave the port -w . v dt. The running total going negative means the port has
   // delivered more energy to the hand than it received (delay, loss, sampling, an unstable
   // client): the passivity controller then adds just enough damping on the handle's motion to
   // dissipate the deficit, bounded by the damping the device renders stably (model limits).
-  observed_energy_ -= last_applied_.dot(twist) * dt;
+  double& energy = memory_.observed_energy;
+  energy -= memory_.port_wrench.dot(twist) * dt;
   Vector6d w = wrench;
   const double speed_sq = twist.squaredNorm();
-  if (config_.passivity_guard && observed_energy_ < 0.0 && speed_sq > 1e-12) {
+  if (config_.passivity_guard && energy < 0.0 && speed_sq > 1e-12) {
     const ArmLimits& lim = dynamics_->model().limits;
-    const double alpha = -observed_energy_ / (dt * speed_sq);
+    const double alpha = -energy / (dt * speed_sq);
     const double alpha_lin = std::min(alpha, lim.max_damping_linear);
     const double alpha_ang = std::min(alpha, lim.max_damping_angular);
     w.head<3>() -= alpha_lin * twist.head<3>();
     w.tail<3>() -= alpha_ang * twist.tail<3>();
-    observed_energy_ +=
+    energy +=
         (alpha_lin * twist.head<3>().squaredNorm() + alpha_ang * twist.tail<3>().squaredNorm()) *
         dt;
     ++counters_.passivity_active;
@@ -241,8 +243,8 @@ Vector6d ServoLaw::guard_passivity(const Vector6d& wrench, const Vector6d& twist
   const ArmLimits& lim = dynamics_->model().limits;
   w.head<3>() = clamp_norm(w.head<3>(), lim.force_peak);
   w.tail<3>() = clamp_norm(w.tail<3>(), lim.torque_peak);
-  last_applied_ = w;
-  last_wrench_ = w;
+  memory_.port_wrench = w;
+  memory_.wrench = w;
   return w;
 }
 
@@ -275,7 +277,7 @@ void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) 
   out.commands.enable = in.logical.powered && in.measures.supply_on;
   if (!out.commands.enable || dt <= 0.0) {
     out.commands.torque.setZero();
-    last_wrench_.setZero();  // power-on starts from zero force, never with a step
+    memory_.wrench.setZero();  // power-on starts from zero force, never with a step
     return;
   }
 
@@ -291,7 +293,7 @@ void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) 
       in.client.command_type == static_cast<std::uint32_t>(shm::CommandType::kImpedance)) {
     wrench = guard_passivity(wrench, twist, dt);
   } else {
-    last_applied_.setZero();
+    memory_.port_wrench.setZero();
   }
   if (out.coupled) {
     // The object feels the opposite of the rendered wrench, in the client's frame, unscaled.
@@ -310,7 +312,7 @@ void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) 
     ++counters_.non_finite_outputs;
     tau.setZero();
     out.commands.enable = false;
-    last_wrench_.setZero();
+    memory_.wrench.setZero();
   }
   out.commands.torque = tau;
 }

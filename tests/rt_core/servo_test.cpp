@@ -133,6 +133,33 @@ TEST(Servo, LateMainCommitAfterDegradedIsDiscarded) {
   EXPECT_EQ(rig.shared.counters.late_discarded.load(), 1U);
 }
 
+TEST(Servo, MainAndDegradedServoContinueOneRateLimitedWrench) {
+  ServoRig rig;
+  rig.writer.send(shm::CtrlCode::kPowerOn, 0, 0);
+  shm::VprPayload client;
+  client.session_id = 1;
+  client.command_type = static_cast<std::uint32_t>(shm::CommandType::kImpedance);
+  client.impedance_wrench = {30.0, 0, 0, 0, 0, 0};
+  const double limit = test::default_dynamics().model().limits.force_rate * 1e-3;  // per 1 ms
+  double previous = 0.0;
+  double largest_step = 0.0;
+  double largest = 0.0;
+  for (std::uint64_t k = 1; k <= 80; ++k) {
+    client.client_sequence = static_cast<std::uint32_t>(k);
+    rig.vpr->publish(client, static_cast<TimeNs>(k) * kNsPerMs);
+    // From cycle 30 on, every other cycle is the degraded SERVO's (it renders no coupling).
+    ServoTask& task = (k >= 30 && k % 2 == 0) ? rig.degraded_task : rig.main_task;
+    ASSERT_EQ(rig.cycle(task, k), StepResult::kDone);
+    shm::PositionPayload p;
+    ASSERT_TRUE(rig.regions.position->read(p).ok());
+    largest_step = std::max(largest_step, std::abs(p.coupling_wrench[0] - previous));
+    largest = std::max(largest, p.coupling_wrench[0]);
+    previous = p.coupling_wrench[0];
+  }
+  EXPECT_GT(largest, 10.0) << "the impedance wrench ramped up";
+  EXPECT_LE(largest_step, limit + 1e-9) << "whichever SERVO renders, the wrench never steps";
+}
+
 TEST(Servo, InhibitFlagOverridesPower) {
   ServoRig rig;
   rig.writer.send(shm::CtrlCode::kPowerOn, 0, 0);

@@ -88,6 +88,10 @@ struct LcmMonitor {
     c.origin = "hapticctrl tests";
     lcm.publish(prefix + "hmi_command", &c);
   }
+  std::vector<hapticctrl_lcm::event_t> events_copy() {
+    const std::lock_guard lock(events_mutex);
+    return events;
+  }
   bool saw_event(const std::string& text) {
     const std::lock_guard lock(events_mutex);
     for (const auto& e : events) {

@@ -67,6 +67,9 @@ struct ServoShared {
   std::uint64_t last_client_sequence = 0;
   TimeNs last_client_arrival = 0;
 
+  /// The committed cycle's render memory; each task's law continues from it.
+  RenderMemory rendered;
+
   ServoCounters counters;
   /// Set by the CLOCK at the start of the stop sequence: motor commands stay disabled.
   std::atomic<bool> inhibit{false};

@@ -82,6 +82,18 @@ struct LawConfig {
   double default_time_step = 1e-3;   ///< s, when the client declares none
 };
 
+/// What the law carries from one cycle to the next about the wrench it rendered. The main and
+/// the degraded SERVO each run a law of their own; the task that commits a cycle hands this on
+/// to both (ServoShared), so that the rate limit and the passivity observer continue from what
+/// the handle actually got, whichever SERVO rendered it. (Each law keeping its own let the
+/// wrench jump between the two laws' last values when degraded cycles interleaved: 17.8 N in one
+/// 4 ms cycle against an 8 N limit, found by the fault-injection test, 2026-12-01.)
+struct RenderMemory {
+  Vector6d wrench = Vector6d::Zero();       ///< handle wrench rendered last cycle
+  Vector6d port_wrench = Vector6d::Zero();  ///< what the passivity observer saw at the port
+  double observed_energy = 0.0;             ///< J, see observed_energy()
+};
+
 /// Counters of the law (cycle-safe reads).
 struct LawCounters {
   std::uint64_t non_finite_outputs = 0;
@@ -108,7 +120,11 @@ class ServoLaw {
 
   /// Net energy the user has given the rendering port at the handle (J): negative means the port
   /// delivered more energy to the hand than it received (the guard then adds damping).
-  [[nodiscard]] double observed_energy() const noexcept { return observed_energy_; }
+  [[nodiscard]] double observed_energy() const noexcept { return memory_.observed_energy; }
+  /// Continues from what was rendered last (the committed cycle's memory). Safe in the cycle.
+  void continue_from(const RenderMemory& memory) noexcept { memory_ = memory; }
+  /// What this law rendered in its last compute(). Safe in the cycle.
+  [[nodiscard]] const RenderMemory& memory() const noexcept { return memory_; }
   [[nodiscard]] const LawCounters& counters() const noexcept { return counters_; }
   [[nodiscard]] const LawConfig& config() const noexcept { return config_; }
 
@@ -125,11 +141,9 @@ class ServoLaw {
   const ArmDynamics* dynamics_;
   LawConfig config_;
   ChainState chain_;
-  Vector6d last_wrench_ = Vector6d::Zero();
-  double observed_energy_ = 0.0;
+  RenderMemory memory_;
   double link_delay_ = 0.0;
   TimeNs previous_age_ = 0;
-  Vector6d last_applied_ = Vector6d::Zero();  ///< rendered wrench applied during this period
   LawCounters counters_;
 };
 

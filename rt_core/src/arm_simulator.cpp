@@ -132,9 +132,11 @@ void SimulatedArm::read_operator_wrench() noexcept {
     return;
   }
   shm::ForcePayload sample;
-  if (!force_->read(sample).ok()) {
-    return;  // never written or torn: keep the last valid wrench
+  const shm::ReadResult r = force_->read(sample);
+  if (!r.ok() || r.sequence == force_sequence_) {
+    return;  // never written, torn, or already seen: keep the last valid wrench
   }
+  force_sequence_ = r.sequence;  // each refused sample is counted once
   if (!shm::wrench_acceptable(sample.wrench)) {  // non-finite, or beyond 100 N / 10 N·m
     ++rejected_;
     return;

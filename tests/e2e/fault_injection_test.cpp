@@ -387,5 +387,95 @@ TEST(FaultInjection, AKilledCoreIsToldToClientAndLcmWithinMillisecondsAndTheNext
   EXPECT_LE(median(lcm_heartbeat_ms), 10.0 + kPeriodUs * 1e-3);
 }
 
+TEST(FaultInjection, AFrozenBridgeIsStaleInputTheCouplingFadesAndResumesOnContinue) {
+  ControllerStack stack("fi-stop", kPeriodUs);
+  ASSERT_TRUE(stack.ready()) << stack.diagnostics();
+  // Couples an object 3 cm from the handle and streams it on every answer.
+  SpawnedProcess client(HAPTICCTRL_STREAMING_CLIENT, {std::to_string(stack.port())});
+  ASSERT_TRUE(ControllerStack::eventually([&] { return coupled(stack); }, 10s)) << client.err();
+  ForceStepWatch watch(stack.segment(), arm_limits());
+  const auto stale = [&] { return (stack.vp().state_word & shm::state_bits::kClientStale) != 0; };
+
+  stack.bridge().signal(SIGSTOP);  // longer than the session watchdog (100 ms)
+  EXPECT_TRUE(ControllerStack::eventually([&] { return stale() && !coupled(stack); }, 1s))
+      << "the core sees the client's data go stale and fades the coupling out";
+  std::this_thread::sleep_for(300ms);
+  stack.bridge().signal(SIGCONT);
+  EXPECT_TRUE(ControllerStack::eventually([&] { return coupled(stack) && !stale(); }, 2s))
+      << "the queued frames bring the same session back: " << client.err();
+  EXPECT_EQ(stack.link_stats().sessions_opened, 1U);
+  EXPECT_EQ(stack.link_stats().watchdog_expiries, 0U) << "the frozen bridge's clock did not run";
+  watch.stop();
+  EXPECT_LE(watch.largest_coupling_excess(), kRounding);
+  EXPECT_FALSE(watch.left_running());
+}
+
+TEST(FaultInjection, AMisbehavingSharedMemoryWriterIsRefusedOrLimitedAndCountedAndTheCoreStaysUp) {
+  ControllerStack stack("fi-rogue", kPeriodUs);
+  ASSERT_TRUE(stack.ready()) << stack.diagnostics();
+  stack.bridge().signal(SIGTERM);  // the rogue takes the UDP bridge's place as VPr's writer
+  ASSERT_EQ(stack.bridge().wait(5s), 0);
+  shm::Segment rogue = shm::Segment::attach(
+      stack.instance(),
+      shm::AttachOptions{{shm::RegionId::kVpr, shm::RegionId::kForce}, /*ctrl_writer=*/true});
+  ASSERT_EQ(rogue.ctrl_writer().send(shm::CtrlCode::kPowerOn, 0, 0), shm::CtrlSendStatus::kQueued);
+  ASSERT_TRUE(ControllerStack::eventually(
+      [&] { return (stack.vp().state_word & shm::state_bits::kPowered) != 0; }));
+  ForceStepWatch watch(stack.segment(), arm_limits());
+  auto& vpr = rogue.writable<shm::RegionId::kVpr>();
+  auto& force = rogue.writable<shm::RegionId::kForce>();
+
+  // Not-a-number and a base frame that is no rotation: refused, counted.
+  shm::VprPayload sample;
+  sample.session_id = 1;
+  sample.command_type = static_cast<std::uint32_t>(shm::CommandType::kImpedance);
+  sample.impedance_wrench[0] = std::nan("");
+  vpr.publish(sample, monotonic_ns());
+  EXPECT_TRUE(ControllerStack::eventually([&] { return telemetry_of(stack).vpr_rejected == 1; }));
+  sample.impedance_wrench[0] = 0.0;
+  sample.base_frame = {0, 0, 0, 0, 0, 0, 3};
+  vpr.publish(sample, monotonic_ns());
+  EXPECT_TRUE(ControllerStack::eventually([&] { return telemetry_of(stack).vpr_rejected == 2; }));
+
+  // A wrench of 1e9 N, kept fresh for half a second: saturated to the device's peak, reached no
+  // faster than the rate limit, then faded out when the writer falls silent.
+  sample.base_frame = {0, 0, 0, 0, 0, 0, 1};
+  sample.impedance_wrench = {1e9, 0, 0, 0, 0, 0};
+  const rt_core::ArmLimits limits = arm_limits();
+  double strongest = 0.0;
+  for (int i = 0; i < 50; ++i) {
+    vpr.publish(sample, monotonic_ns());
+    const shm::PositionPayload p = stack.position();
+    strongest = std::max(strongest, std::hypot(p.coupling_wrench[0], p.coupling_wrench[1],
+                                               p.coupling_wrench[2]));
+    std::this_thread::sleep_for(std::chrono::microseconds(kPeriodUs));
+  }
+  EXPECT_GT(strongest, 0.5 * limits.force_peak) << "the wrench was rendered";
+  EXPECT_LE(strongest, limits.force_peak + limits.max_damping_linear * limits.max_speed);
+  EXPECT_TRUE(ControllerStack::eventually([&] {
+    const shm::PositionPayload p = stack.position();
+    return std::hypot(p.coupling_wrench[0], p.coupling_wrench[1], p.coupling_wrench[2]) < 1e-9;
+  })) << "faded out once the writer fell silent";
+
+  // A writer that dies in the middle of a write leaves the sequence odd: every read is torn,
+  // counted, and the core carries on without client data.
+  vpr.raw_sequence_word().fetch_add(1);
+  EXPECT_TRUE(ControllerStack::eventually([&] { return telemetry_of(stack).vpr_torn > 0; }));
+  vpr.raw_sequence_word().fetch_add(1);
+
+  // Operator forces that are not a number or beyond 100 N: refused and counted; the simulated
+  // hand keeps pushing with the last acceptable one (none here).
+  force.publish(shm::ForcePayload{{std::nan(""), 0, 0, 0, 0, 0}}, monotonic_ns());
+  EXPECT_TRUE(ControllerStack::eventually([&] { return telemetry_of(stack).force_rejected == 1; }));
+  force.publish(shm::ForcePayload{{1e6, 0, 0, 0, 0, 0}}, monotonic_ns());
+  EXPECT_TRUE(ControllerStack::eventually([&] { return telemetry_of(stack).force_rejected == 2; }));
+  EXPECT_EQ(stack.position().operator_wrench, shm::Vector6{});
+
+  watch.stop();
+  EXPECT_LE(watch.largest_coupling_excess(), kRounding);
+  EXPECT_FALSE(watch.left_running()) << stack.diagnostics();
+  EXPECT_EQ(telemetry_of(stack).core_state, static_cast<std::uint32_t>(shm::CoreState::kRunning));
+}
+
 }  // namespace
 }  // namespace hapticctrl::test

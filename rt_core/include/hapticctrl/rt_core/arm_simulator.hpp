@@ -84,6 +84,7 @@ class SimulatedArm final : public ArmIo {
   Vector6d measured_velocity_ = Vector6d::Zero();
   bool supply_on_ = false;
   std::uint64_t rejected_ = 0;
+  std::uint64_t force_sequence_ = 0;  ///< the last operator force sample read
 };
 
 }  // namespace hapticctrl::rt_core

@@ -26,6 +26,23 @@ TEST(BridgeConfig, ParsesEveryOption) {
   EXPECT_TRUE(c.json);
 }
 
+TEST(BridgeConfig, AllowListAndHandshakeRate) {
+  const BridgeConfig c = BridgeConfig::parse(
+      {"--allow-client", "127.0.0.1", "--allow-client", "10.1.0.0/16", "--hello-rate", "5"});
+  ASSERT_EQ(c.allowed_clients.size(), 2U);
+  EXPECT_EQ(c.allowed_clients[1].mask, 0xFFFF0000U);
+  EXPECT_DOUBLE_EQ(c.hello_rate, 5.0);
+  EXPECT_TRUE(BridgeConfig::parse({}).allowed_clients.empty()) << "no list: any source";
+  try {
+    BridgeConfig::parse({"--allow-client", "10.1.0.0/33"});
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "--allow-client: '10.1.0.0/33': the prefix length must be 0..32");
+  }
+  EXPECT_THROW(BridgeConfig::parse({"--allow-client", "lab-pc"}), std::invalid_argument);
+  EXPECT_THROW(BridgeConfig::parse({"--hello-rate", "0"}), std::invalid_argument);
+}
+
 TEST(BridgeConfig, OtherInterfacesNeedAnExplicitChoice) {
   EXPECT_THROW(BridgeConfig::parse({"--bind", "0.0.0.0"}), std::invalid_argument);
   EXPECT_EQ(BridgeConfig::parse({"--bind", "0.0.0.0", "--allow-remote"}).bind_address, "0.0.0.0");

@@ -402,6 +402,36 @@ TEST_F(SessionTest, ClosingTellsTheClientWhyWithItsToken) {
   EXPECT_EQ(controller.vpr_now().session_id, 0U);
 }
 
+TEST(SessionSecurity, ASourceOffTheAllowListIsDroppedUndecodedAndCounted) {
+  test::InMemoryController controller;
+  Session session({100, ClientAllowList({Ipv4Network::parse("127.0.0.2")}), {}},
+                  [] { return std::uint64_t{7}; });
+  session.set_controller(&controller.ports, 0);
+  Client stranger{&session};  // 127.0.0.1
+  stranger.hello();
+  EXPECT_FALSE(stranger.replied);
+  stranger.feed({1, 2, 3});  // not even a frame: still "not allowed", not "size"
+  EXPECT_EQ(session.counters().dropped_for(LinkDrop::kNotAllowed), 2U);
+  Client friendly{&session, Endpoint::resolve("127.0.0.2", 40000)};
+  friendly.hello();
+  ASSERT_TRUE(friendly.replied);
+  EXPECT_EQ(friendly.reply.body.type, HCP_WELCOME);
+}
+
+TEST(SessionSecurity, AHandshakeFloodIsAnsweredOnlyAtItsRate) {
+  test::InMemoryController controller;
+  Session session({100, {}, {10.0, 4.0}}, [] { return std::uint64_t{7}; });
+  session.set_controller(&controller.ports, 0);
+  Client flood{&session};
+  int answered = 0;
+  for (int i = 0; i < 100; ++i) {
+    flood.hello();
+    answered += flood.replied ? 1 : 0;
+  }
+  EXPECT_EQ(answered, 4) << "the burst, then nothing within the same instant";
+  EXPECT_EQ(session.counters().dropped_for(LinkDrop::kRateLimited), 96U);
+}
+
 TEST_F(SessionTest, StatsReflectTheSessionAndCounters) {
   client.hello();
   client.send_object(0.1F);

@@ -253,6 +253,24 @@ TEST(Connection, AStoppingControllerClosesTheSessionAndTheClientIsTold) {
   }
 }
 
+TEST(Connection, ABridgeWithAnAllowListIgnoresEveryOtherAddress) {
+  ControllerStack stack("allowlist", ControllerStack::kDefaultPeriodUs,
+                        {"--allow-client", "127.0.0.2"});
+  ASSERT_TRUE(stack.ready()) << stack.diagnostics();
+  ConnectOptions quick;
+  quick.connect_timeout = 300ms;
+  try {
+    Connection c(address_of(stack), quick);  // from 127.0.0.1
+    FAIL() << "a client off the allow-list got a session";
+  } catch (const ClientError& e) {
+    EXPECT_EQ(e.code(), ErrorCode::kTimeout) << e.what();
+  }
+  EXPECT_TRUE(ControllerStack::eventually([&] {
+    return stack.link_stats().dropped[static_cast<std::size_t>(shm::LinkDrop::kNotAllowed)] > 0;
+  }, 1s)) << "its handshakes were counted as not allowed";
+  EXPECT_EQ(stack.link_stats().sessions_opened, 0U);
+}
+
 TEST(Connection, NoControllerAndNoBridgeGiveClearErrors) {
   ConnectOptions quick;
   quick.connect_timeout = 200ms;

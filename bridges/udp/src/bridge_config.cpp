@@ -33,6 +33,10 @@ const char* BridgeConfig::usage() noexcept {
          "  --bind ADDRESS      IPv4 address to listen on (default: 127.0.0.1)\n"
          "  --port N            UDP port (default: 5125; 0: any free port, printed)\n"
          "  --allow-remote      required to bind an address other than loopback\n"
+         "  --allow-client NET  serve only this client address or network (a.b.c.d[/n]);\n"
+         "                      repeat for more (default: any address that reaches the port)\n"
+         "  --hello-rate N      handshakes (HELLO) answered per second per source, and the\n"
+         "                      burst allowed, 1..10000 (default: 20)\n"
          "  --watchdog-ms N     default session watchdog, 10..60000 ms (default: 100)\n"
          "  --priority N        SCHED_FIFO priority 1..98 for both threads (below the core's)\n"
          "  --duration S        exit after S seconds (default: run until SIGINT/SIGTERM)\n"
@@ -57,6 +61,14 @@ BridgeConfig BridgeConfig::parse(const std::vector<std::string>& args) {
       c.port = number<std::uint16_t>(a, value(), 0, 65535);
     } else if (a == "--allow-remote") {
       c.allow_remote = true;
+    } else if (a == "--allow-client") {
+      try {
+        c.allowed_clients.push_back(Ipv4Network::parse(value()));
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument(a + ": " + e.what());
+      }
+    } else if (a == "--hello-rate") {
+      c.hello_rate = number<double>(a, value(), 1.0, 10000.0);
     } else if (a == "--watchdog-ms") {
       c.watchdog_ms = number<std::uint32_t>(a, value(), 10, 60000);
     } else if (a == "--priority") {

@@ -42,7 +42,9 @@ LinkDrop drop_reason_of(DecodeStatus status) noexcept {
 }
 
 Session::Session(SessionSettings settings, std::function<std::uint64_t()> random_token)
-    : settings_(settings), random_token_(std::move(random_token)) {
+    : settings_(std::move(settings)),
+      random_token_(std::move(random_token)),
+      hello_limiter_(settings_.hello_limits) {
   view_.publish_quietly(session_, 0);
 }
 
@@ -63,6 +65,11 @@ std::size_t Session::on_datagram(std::span<const std::uint8_t> bytes,
                                  const protocol::Endpoint& from, TimeNs now,
                                  std::span<std::uint8_t> reply) noexcept {
   counters_.frames_in.fetch_add(1, std::memory_order_relaxed);
+  const std::uint32_t source = ntohl(from.address.sin_addr.s_addr);
+  if (!settings_.allowed_clients.allows(source)) {
+    counters_.drop(LinkDrop::kNotAllowed);  // not even decoded
+    return 0;
+  }
   hcp_frame in;
   const DecodeStatus status = protocol::decode(bytes, in);
   // A PARAM with a bad value from the session is answered (REJECTED), not silently dropped.
@@ -73,6 +80,10 @@ std::size_t Session::on_datagram(std::span<const std::uint8_t> bytes,
   }
   switch (in.body.type) {
     case HCP_HELLO:
+      if (!hello_limiter_.admit(source, now)) {
+        counters_.drop(LinkDrop::kRateLimited);
+        return 0;
+      }
       return on_hello(in, from, now, reply);
     case HCP_CONTROL_OBJECT:
     case HCP_CONTROL_WRENCH:

@@ -182,12 +182,15 @@ enum class LinkDrop : std::uint32_t {
   kSequence,    ///< replayed or reordered (not newer than the last accepted)
   kRange,       ///< non-finite or out-of-range value
   kUnexpected,  ///< a frame type the bridge never accepts (WELCOME, ANSWER, ...)
+  kNotAllowed,  ///< the source address is not on the allow-list (--allow-client)
+  kRateLimited, ///< a HELLO beyond its source's handshake rate (--hello-rate)
   kCount,
 };
 inline constexpr std::size_t kLinkDropCount = static_cast<std::size_t>(LinkDrop::kCount);
 /// Stable short names of LinkDrop values, for telemetry and logs.
 inline constexpr std::array<const char*, kLinkDropCount> kLinkDropNames{
-    "size", "magic", "version", "crc", "malformed", "token", "sequence", "range", "unexpected"};
+    "size",  "magic", "version",    "crc",         "malformed", "token",
+    "sequence", "range", "unexpected", "not_allowed", "rate_limited"};
 
 /// link_stats: the UDP bridge's session and frame counters (written by hapticctrl-udp).
 struct LinkStatsPayload {
@@ -218,6 +221,6 @@ static_assert(sizeof(ForcePayload) == 48);
 static_assert(sizeof(PositionPayload) == 360);
 static_assert(sizeof(LatencySummary) == 64);
 static_assert(sizeof(TelemetryPayload) == 480);
-static_assert(sizeof(LinkStatsPayload) == 192);
+static_assert(sizeof(LinkStatsPayload) == 208);
 
 }  // namespace hapticctrl::shm

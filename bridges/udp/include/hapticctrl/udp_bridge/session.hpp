@@ -18,6 +18,8 @@
 #include "hapticctrl/shm/ctrl.hpp"
 #include "hapticctrl/shm/payloads.hpp"
 #include "hapticctrl/shm/seqlock.hpp"
+#include "hapticctrl/udp_bridge/client_allow_list.hpp"
+#include "hapticctrl/udp_bridge/hello_limiter.hpp"
 
 namespace hapticctrl::udp_bridge {
 
@@ -65,6 +67,8 @@ struct LinkCounters {
 /// Bridge-wide settings.
 struct SessionSettings {
   std::uint32_t default_watchdog_ms = 100;
+  ClientAllowList allowed_clients;  ///< empty: every source address
+  HelloLimits hello_limits;
 };
 
 /// The drop reason a codec status stands for.
@@ -155,6 +159,7 @@ class Session {
   shm::SeqlockCell<SessionView> view_;
   std::atomic<std::uint32_t> control_received_shared_{0};
   std::uint32_t answer_sequence_ = 0;  ///< answer thread only
+  HelloLimiter hello_limiter_;         ///< receive thread only
   LinkCounters counters_;
 };
 

@@ -39,22 +39,28 @@ if [[ "${CI:-}" == "true" ]]; then
   echo "== ThreadSanitizer"
   configure_build_test build-tsan 'unit|sim|integration' 3 \
     -DHAPTICCTRL_SANITIZER=thread -DHAPTICCTRL_BUILD_BENCH=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo
-  echo "== fuzz the protocol decoder and the bridge session (libFuzzer, ${FUZZ_SECONDS:=60} s)"
+  echo "== fuzz the decoder, the arm model, the option parsers and LCM HMI input (libFuzzer)"
   CC=clang CXX=clang++ cmake -S "$ROOT" -B build-fuzz -G Ninja -DHAPTICCTRL_WERROR=ON \
     -DHAPTICCTRL_BUILD_FUZZ=ON -DHAPTICCTRL_BUILD_TESTS=OFF -DHAPTICCTRL_BUILD_BENCH=OFF \
     -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
-  cmake --build build-fuzz --target hapticctrl-fuzz-decoder -j "$JOBS"
-  corpus=$(mktemp -d)
-  log=$(mktemp)
-  if ! build-fuzz/tests/fuzz/hapticctrl-fuzz-decoder -max_total_time="$FUZZ_SECONDS" \
-    -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix=build-fuzz/ "$corpus" tests/fuzz/seeds \
-    >"$log" 2>&1; then
-    tail -n 60 "$log"
-    echo "fuzzing found a crash (reproducer: the crash-* file above)" >&2
-    exit 1
-  fi
-  grep -E "^stat::number_of_executed_units|DONE" "$log"
-  rm -f "$log"
-  rm -rf "$corpus"
+  fuzzers=(decoder arm-model config lcm-hmi)
+  cmake --build build-fuzz -j "$JOBS" --target "${fuzzers[@]/#/hapticctrl-fuzz-}"
+  for name in "${fuzzers[@]}"; do
+    # The protocol decoder faces the network: half of the time budget; the others a sixth each.
+    share=6
+    [[ $name == decoder ]] && share=2
+    seconds=$(( ${FUZZ_SECONDS:=90} / share ))
+    corpus=$(mktemp -d)  # new inputs stay out of the repository's seed corpus
+    log=$(mktemp)
+    if ! "build-fuzz/tests/fuzz/hapticctrl-fuzz-$name" -max_total_time="$seconds" \
+      -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix=build-fuzz/ \
+      "$corpus" "tests/fuzz/corpus/$name" >"$log" 2>&1; then
+      tail -n 60 "$log"
+      echo "fuzzing $name found a crash (reproducer: the crash-* file above)" >&2
+      exit 1
+    fi
+    echo "$name: $(grep -E "^stat::number_of_executed_units" "$log") in $seconds s"
+    rm -rf "$log" "$corpus"
+  done
 fi
 echo "== all tests passed"

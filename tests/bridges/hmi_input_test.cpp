@@ -100,6 +100,25 @@ TEST_F(HmiTest, MalformedAndUnknownMessagesAreCountedAndIgnored) {
   EXPECT_TRUE(controller.drain().empty());
 }
 
+TEST_F(HmiTest, StringLengthsThatLcmWouldMisreadAreMalformed) {
+  // The origin's length is the last 4-byte field before its bytes ("test" + NUL: 5).
+  HmiInput hmi = make(true);
+  auto bad = force(5.0);
+  const std::size_t length_at = bad.size() - 5 - 4;
+  for (const std::uint32_t length : {0x80000000U, 0xFFFFFFFFU, 0U, 4U, 6U}) {
+    for (std::size_t i = 0; i < 4; ++i) {
+      bad[length_at + i] = static_cast<std::uint8_t>(length >> (24 - 8 * i));
+    }
+    hmi.on_force(bad.data(), bad.size(), 0);
+  }
+  auto unterminated = command(Command::EMERGENCY_STOP);
+  unterminated.back() = 'x';
+  hmi.on_command(unterminated.data(), unterminated.size(), 0);
+  EXPECT_EQ(hmi.counters().malformed.load(), 6U);
+  EXPECT_TRUE(controller.drain().empty());
+  EXPECT_EQ(applied_force(), shm::Vector6{});
+}
+
 TEST_F(HmiTest, OutOfRangeOrNonFiniteForcesAreRefused) {
   HmiInput hmi = make(true);
   for (const double bad :

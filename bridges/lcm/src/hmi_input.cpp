@@ -1,6 +1,7 @@
 #include "hapticctrl/lcm_bridge/hmi_input.hpp"
 
 #include <algorithm>
+#include <cstdint>
 
 #include "hapticctrl_lcm/hmi_command_t.hpp"
 #include "hapticctrl_lcm/hmi_force_t.hpp"
@@ -27,6 +28,25 @@ shm::CtrlCode ctrl_code_of(std::int32_t command) noexcept {
   }
 }
 
+/// Whether the one string of an HMI message, its last field, declares exactly the bytes that are
+/// left (NUL included). Debian's lcm-gen 1.3.1 decodes string lengths without checking that they
+/// are positive: a length of INT32_MIN overflows and the decoder copies 2 GB from past the
+/// message (found by fuzzing, 2026-12-01). So the length is checked before LCM decodes.
+template <typename Message>
+bool last_string_is_sound(const void* data, std::size_t size) noexcept {
+  // Fingerprint and fixed fields, then the length: an empty string encodes as length 1 + NUL.
+  static const auto length_at = static_cast<std::size_t>(Message{}.getEncodedSize()) - 5;
+  if (size < length_at + 5) {
+    return false;
+  }
+  const auto* bytes = static_cast<const std::uint8_t*>(data);
+  std::uint32_t length = 0;
+  for (std::size_t i = 0; i < 4; ++i) {
+    length = length << 8U | bytes[length_at + i];
+  }
+  return length == size - length_at - 4 && bytes[size - 1] == 0;
+}
+
 }  // namespace
 
 HmiInput::HmiInput(const HmiSettings& settings, shm::CtrlWriter* ctrl,
@@ -36,7 +56,8 @@ HmiInput::HmiInput(const HmiSettings& settings, shm::CtrlWriter* ctrl,
 void HmiInput::on_command(const void* data, std::size_t size, std::int64_t now_ns) noexcept {
   Command m{};
   try {
-    if (m.decode(data, 0, static_cast<int>(size)) < 0) {
+    if (!last_string_is_sound<Command>(data, size) ||
+        m.decode(data, 0, static_cast<int>(size)) < 0) {
       counters_.malformed.fetch_add(1, std::memory_order_relaxed);
       return;
     }
@@ -63,7 +84,8 @@ void HmiInput::on_command(const void* data, std::size_t size, std::int64_t now_n
 void HmiInput::on_force(const void* data, std::size_t size, std::int64_t now_ns) noexcept {
   hapticctrl_lcm::hmi_force_t m{};
   try {
-    if (m.decode(data, 0, static_cast<int>(size)) < 0) {
+    if (!last_string_is_sound<hapticctrl_lcm::hmi_force_t>(data, size) ||
+        m.decode(data, 0, static_cast<int>(size)) < 0) {
       counters_.malformed.fetch_add(1, std::memory_order_relaxed);
       return;
     }

@@ -286,9 +286,11 @@ void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) 
   if (twist.head<3>().norm() > lim.max_speed) {
     // Speed safety (FD-style): drop the rendered wrench and brake the handle instead.
     target << -lim.max_damping_linear * twist.head<3>(), Vector3d::Zero();
+    out.coupled = false;  // the object must not feel the brake
     ++counters_.speed_limited;
   }
-  Vector6d wrench = limit_wrench(target, in.client, dt);
+  const Vector6d coupling = limit_wrench(target, in.client, dt);
+  Vector6d wrench = coupling;
   if (out.coupled ||
       in.client.command_type == static_cast<std::uint32_t>(shm::CommandType::kImpedance)) {
     wrench = guard_passivity(wrench, twist, dt);
@@ -296,9 +298,11 @@ void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) 
     memory_.port_wrench.setZero();
   }
   if (out.coupled) {
-    // The object feels the opposite of the rendered wrench, in the client's frame, unscaled.
-    out.coupling_wrench << -(frame.rotation * wrench.head<3>()) / frame.force_factor,
-        -(frame.rotation * wrench.tail<3>()) / frame.force_factor;
+    // The object feels the opposite of the coupling, in the client's frame, unscaled. Not the
+    // passivity guard's damping: that brakes the handle, and mirrored onto the object it would
+    // push the object along with the handle's motion.
+    out.coupling_wrench << -(frame.rotation * coupling.head<3>()) / frame.force_factor,
+        -(frame.rotation * coupling.tail<3>()) / frame.force_factor;
   }
   out.handle_wrench = wrench;
 

@@ -208,6 +208,49 @@ TEST(ServoLaw, ExcessiveHandleSpeedBrakesInsteadOfRendering) {
   EXPECT_LT(out.handle_wrench.head<3>().dot(v), 0.0) << "the wrench opposes the motion";
 }
 
+TEST(ServoLaw, TheBrakeOfTheSpeedSafetyIsNeverPassedToTheCoupledObject) {
+  // Mirrored onto the client's object, the brake (and the passivity guard's damping, which also
+  // only brakes the handle) pushed a free object along with the handle's motion: the demo's
+  // sphere flew tens of metres under random operator pushes (found by the soak, 2026-12-01).
+  ServoLaw law(default_dynamics());
+  ServoInputs in = powered_at(kReady);
+  const ChainState s = chain_at(kReady);
+  in.client = virtmech_client(
+      {s.handle_position.x() + 0.002, s.handle_position.y(), s.handle_position.z(), 0, 0, 0, 1});
+  in.client_valid = true;
+  in.measures.velocity << 0, 3.0, 0, 0, 0, 0;  // > 1 m/s at the handle
+  ServoOutputs out;
+  law.compute(in, false, out);
+  EXPECT_GT(law.counters().speed_limited, 0U);
+  EXPECT_FALSE(out.coupled) << "the coupling is suspended while the handle is braked";
+  EXPECT_TRUE(out.coupling_wrench.isZero());
+  EXPECT_FALSE(out.handle_wrench.isZero()) << "the handle is braked";
+}
+
+TEST(ServoLaw, TheObjectFeelsTheCouplingButNotThePassivityGuardsDamping) {
+  ServoLaw law(default_dynamics());
+  ServoInputs in = powered_at(kReady);
+  const ChainState s = chain_at(kReady);
+  in.client = virtmech_client(
+      {s.handle_position.x() + 0.002, s.handle_position.y(), s.handle_position.z(), 0, 0, 0, 1});
+  in.client_valid = true;
+  ServoOutputs out;
+  for (int k = 0; k < 50; ++k) {  // ramp the coupling up, handle at rest
+    law.compute(in, false, out);
+  }
+  // The handle now moves along the spring's pull, faster and faster: the port gives energy
+  // to the hand, the guard turns on and adds damping on the handle only.
+  in.measures.velocity << 0.0, 0.0, 0.0, 0.0, 0.0, 0.0;
+  for (int k = 0; k < 200 && law.counters().passivity_active == 0; ++k) {
+    in.measures.velocity(1) = -0.01 * k;
+    law.compute(in, false, out);
+  }
+  ASSERT_GT(law.counters().passivity_active, 0U);
+  EXPECT_TRUE(out.coupled);
+  EXPECT_GT((out.handle_wrench + out.coupling_wrench).norm(), 1e-6)
+      << "the handle got damping that the object did not";
+}
+
 TEST(ServoLaw, WorkspaceWallPushesTheHandleBackIntoTheBox) {
   ServoLaw law(default_dynamics());
   // Shoulder and elbow pitched down: the handle is below the box's bottom face (z = 0.025 m).

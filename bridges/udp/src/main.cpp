@@ -89,6 +89,9 @@ void send_answer(UdpSocket& socket, Session& session, const shm::VpPayload& samp
     const bool sent = socket.send_to({out.data(), n}, to);
     (sent ? session.counters().frames_out : session.counters().send_failures)
         .fetch_add(1, std::memory_order_relaxed);
+    if (sent) {
+      session.counters().answers_sent.fetch_add(1, std::memory_order_relaxed);
+    }
   }
 }
 
@@ -180,11 +183,12 @@ void print_json(const Session& session) {
   shm::LinkStatsPayload s;
   session.fill_stats(s);
   std::printf(
-      "{\"frames_in\":%llu,\"frames_out\":%llu,\"control_accepted\":%llu,"
+      "{\"frames_in\":%llu,\"frames_out\":%llu,\"answers_sent\":%llu,\"control_accepted\":%llu,"
       "\"params_applied\":%llu,\"param_duplicates\":%llu,\"params_rejected\":%llu,"
       "\"sessions_opened\":%llu,\"sessions_closed\":%llu,\"watchdog_expiries\":%llu,"
       "\"refused_busy\":%llu,\"refused_version\":%llu,\"send_failures\":%llu,\"dropped\":{",
       static_cast<unsigned long long>(s.frames_in), static_cast<unsigned long long>(s.frames_out),
+      static_cast<unsigned long long>(session.counters().answers_sent.load()),
       static_cast<unsigned long long>(s.control_accepted),
       static_cast<unsigned long long>(s.params_applied),
       static_cast<unsigned long long>(s.param_duplicates),

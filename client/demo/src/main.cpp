@@ -152,14 +152,18 @@ void print_json(const client::StateSnapshot& s, const demo::SphereScene& scene,
       "\"sphere_velocity\":[%.9g,%.9g,%.9g],\"contact_force\":[%.9g,%.9g,%.9g],"
       "\"penetration\":%.9g,\"coupling_wrench\":[%.9g,%.9g,%.9g,%.9g,%.9g,%.9g],"
       "\"handle_position\":[%.9g,%.9g,%.9g],\"fixed_center\":[%.9g,%.9g,%.9g],"
-      "\"answers_received\":%llu,\"answers_lost\":%llu,\"rtt_mean_us\":%.1f}\n",
+      "\"answers_received\":%llu,\"answers_lost\":%llu,\"answers_late\":%llu,"
+      "\"frames_invalid\":%llu,\"control_sent\":%llu,\"rtt_mean_us\":%.1f}\n",
       static_cast<unsigned long long>(steps), ended, s.powered() ? "true" : "false", p.x(), p.y(),
       p.z(), v.x(), v.y(), v.z(), contact.x(), contact.y(), contact.z(), scene.penetration(),
       s.coupling_wrench[0], s.coupling_wrench[1], s.coupling_wrench[2], s.coupling_wrench[3],
       s.coupling_wrench[4], s.coupling_wrench[5], s.handle_pose[0], s.handle_pose[1],
       s.handle_pose[2], scene.config().fixed_center.x(), scene.config().fixed_center.y(),
       scene.config().fixed_center.z(), static_cast<unsigned long long>(st.answers_received),
-      static_cast<unsigned long long>(st.answers_lost), st.rtt_mean_us);
+      static_cast<unsigned long long>(st.answers_lost),
+      static_cast<unsigned long long>(st.answers_late),
+      static_cast<unsigned long long>(st.frames_invalid),
+      static_cast<unsigned long long>(st.control_sent), st.rtt_mean_us);
 }
 
 int run(const demo::DemoOptions& o) {

@@ -44,6 +44,7 @@ struct SessionView {
 struct LinkCounters {
   std::atomic<std::uint64_t> frames_in{0};
   std::atomic<std::uint64_t> frames_out{0};
+  std::atomic<std::uint64_t> answers_sent{0};  ///< of frames_out (the bridge's --json only)
   std::atomic<std::uint64_t> control_accepted{0};
   std::atomic<std::uint64_t> params_applied{0};
   std::atomic<std::uint64_t> param_duplicates{0};
@@ -107,6 +108,7 @@ class Session {
                      protocol::Endpoint& to) noexcept;
 
   [[nodiscard]] LinkCounters& counters() noexcept { return counters_; }
+  [[nodiscard]] const LinkCounters& counters() const noexcept { return counters_; }
   /// Copies the counters and session into a link_stats payload.
   void fill_stats(shm::LinkStatsPayload& out) const noexcept;
 

@@ -136,7 +136,7 @@ void SimulatedArm::read_operator_wrench() noexcept {
   if (!r.ok() || r.sequence == force_sequence_) {
     return;  // never written, torn, or already seen: keep the last valid wrench
   }
-  force_sequence_ = r.sequence;  // each refused sample is counted once
+  force_sequence_ = r.sequence;                  // each refused sample is counted once
   if (!shm::wrench_acceptable(sample.wrench)) {  // non-finite, or beyond 100 N / 10 N·m
     ++rejected_;
     return;

@@ -219,8 +219,8 @@ Vector6d ServoLaw::joint_walls(const Vector6d& q) const noexcept {
 Vector6d ServoLaw::guard_passivity(const Vector6d& wrench, const Vector6d& twist,
                                    double dt) noexcept {
   // One-port passivity observer (Hannaford & Ryu) at the user's port, the handle: during the
-  // last period the rendered wrench was `memory_.port_wrench` while the handle moved with `twist`, so
-  // the user gave the port -w . v dt. The running total going negative means the port has
+  // last period the rendered wrench was `memory_.port_wrench` while the handle moved with `twist`,
+  // so the user gave the port -w . v dt. The running total going negative means the port has
   // delivered more energy to the hand than it received (delay, loss, sampling, an unstable
   // client): the passivity controller then adds just enough damping on the handle's motion to
   // dissipate the deficit, bounded by the damping the device renders stably (model limits).

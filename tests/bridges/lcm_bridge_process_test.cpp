@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
-#include "hapticctrl_lcm/hmi_force_t.hpp"
 #include "hapticctrl_lcm/hmi_command_t.hpp"
+#include "hapticctrl_lcm/hmi_force_t.hpp"
 #include "support/controller_stack.hpp"
 #include "support/lcm_monitor.hpp"
 

@@ -265,9 +265,12 @@ TEST(Connection, ABridgeWithAnAllowListIgnoresEveryOtherAddress) {
   } catch (const ClientError& e) {
     EXPECT_EQ(e.code(), ErrorCode::kTimeout) << e.what();
   }
-  EXPECT_TRUE(ControllerStack::eventually([&] {
-    return stack.link_stats().dropped[static_cast<std::size_t>(shm::LinkDrop::kNotAllowed)] > 0;
-  }, 1s)) << "its handshakes were counted as not allowed";
+  EXPECT_TRUE(ControllerStack::eventually(
+      [&] {
+        return stack.link_stats().dropped[static_cast<std::size_t>(shm::LinkDrop::kNotAllowed)] > 0;
+      },
+      1s))
+      << "its handshakes were counted as not allowed";
   EXPECT_EQ(stack.link_stats().sessions_opened, 0U);
 }
 

@@ -101,8 +101,8 @@ class ForceStepWatch {
             std::max(std::hypot(p.handle_twist[0], p.handle_twist[1], p.handle_twist[2]),
                      std::hypot(last.handle_twist[0], last.handle_twist[1], last.handle_twist[2]));
         coupling_step_ = std::max(coupling_step_.load(), coupling / gap);
-        coupling_excess_ = std::max(coupling_excess_.load(),
-                                    coupling / gap - rate_step_ - max_damping_ * speed);
+        coupling_excess_ =
+            std::max(coupling_excess_.load(), coupling / gap - rate_step_ - max_damping_ * speed);
         ++cycles_;
       }
       last = p;
@@ -214,12 +214,11 @@ void start_demo(std::optional<SpawnedProcess>& p, const ControllerStack& stack) 
 
 /// A minute of operator force changing every 0.25 s to a random push of up to 6 N per axis.
 std::string write_random_force_sequence(std::mt19937& rng) {
-  const std::string path = "/tmp/hapticctrl-fault-" + std::to_string(getpid()) + ".seq";
+  std::string path = "/tmp/hapticctrl-fault-" + std::to_string(getpid()) + ".seq";
   std::ofstream out(path);
   std::uniform_real_distribution<double> force(-6.0, 6.0);
   for (int i = 0; i < 240; ++i) {
-    out << i * 0.25 << ' ' << force(rng) << ' ' << force(rng) << ' ' << force(rng)
-        << " 0 0 0\n";
+    out << i * 0.25 << ' ' << force(rng) << ' ' << force(rng) << ' ' << force(rng) << " 0 0 0\n";
   }
   return path;
 }
@@ -227,8 +226,8 @@ std::string write_random_force_sequence(std::mt19937& rng) {
 void start_player(std::optional<SpawnedProcess>& p, const ControllerStack& stack,
                   const std::string& sequence) {
   p.reset();
-  p.emplace(HAPTICCTRL_HMI_BINARY,
-            std::vector<std::string>{"--instance", stack.instance(), "play", sequence});
+  p.emplace(HAPTICCTRL_HMI_BINARY, std::vector<std::string>{"--instance", stack.instance(), "play",
+                                                            sequence, "--log", "/dev/null"});
 }
 
 TEST(FaultInjection, SoftRealTimeProcessesKilledAtRandomMomentsComeBackWithoutAForceStep) {
@@ -290,9 +289,10 @@ TEST(FaultInjection, SoftRealTimeProcessesKilledAtRandomMomentsComeBackWithoutAF
         player->wait(5s);
         start_player(player, stack, sequence);
         const std::int64_t restarted_at = monotonic_ns();
-        EXPECT_TRUE(ControllerStack::eventually(
-            [&] { return watch.last_force_sample_ns() > restarted_at; }))
-            << "the new player writes the operator force: " << player->err();
+        EXPECT_TRUE(ControllerStack::eventually([&] {
+          return watch.last_force_sample_ns() > restarted_at;
+        })) << "the new player writes the operator force: "
+            << player->err();
         break;
       }
     }
@@ -301,13 +301,14 @@ TEST(FaultInjection, SoftRealTimeProcessesKilledAtRandomMomentsComeBackWithoutAF
   std::remove(sequence.c_str());
   const shm::TelemetryPayload t = telemetry_of(stack);
   const std::uint64_t misses = t.misses_total - misses_before;
-  std::printf("%llu cycles watched; largest coupling step %.4f N per cycle (rate limit %.4f, "
-              "beyond the law's allowance by %.4f N); fastest operator force change %.1f N/s "
-              "(limit %.1f); deadline misses %llu; %s\n",
-              static_cast<unsigned long long>(watch.cycles()), watch.largest_coupling_step(),
-              arm_limits().force_rate * kPeriodS, watch.largest_coupling_excess(),
-              watch.fastest_operator_rate(), operator_rate_limit(),
-              static_cast<unsigned long long>(misses), cycle_health(t).c_str());
+  std::printf(
+      "%llu cycles watched; largest coupling step %.4f N per cycle (rate limit %.4f, "
+      "beyond the law's allowance by %.4f N); fastest operator force change %.1f N/s "
+      "(limit %.1f); deadline misses %llu; %s\n",
+      static_cast<unsigned long long>(watch.cycles()), watch.largest_coupling_step(),
+      arm_limits().force_rate * kPeriodS, watch.largest_coupling_excess(),
+      watch.fastest_operator_rate(), operator_rate_limit(), static_cast<unsigned long long>(misses),
+      cycle_health(t).c_str());
   EXPECT_GT(watch.cycles(), 100U);
   EXPECT_LE(watch.largest_coupling_excess(), kRounding);
   EXPECT_LE(watch.fastest_operator_rate(), operator_rate_limit() * (1.0 + 1e-9));
@@ -446,8 +447,8 @@ TEST(FaultInjection, AMisbehavingSharedMemoryWriterIsRefusedOrLimitedAndCountedA
   for (int i = 0; i < 50; ++i) {
     vpr.publish(sample, monotonic_ns());
     const shm::PositionPayload p = stack.position();
-    strongest = std::max(strongest, std::hypot(p.coupling_wrench[0], p.coupling_wrench[1],
-                                               p.coupling_wrench[2]));
+    strongest = std::max(
+        strongest, std::hypot(p.coupling_wrench[0], p.coupling_wrench[1], p.coupling_wrench[2]));
     std::this_thread::sleep_for(std::chrono::microseconds(kPeriodUs));
   }
   EXPECT_GT(strongest, 0.5 * limits.force_peak) << "the wrench was rendered";

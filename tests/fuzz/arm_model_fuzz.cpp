@@ -13,9 +13,10 @@ namespace {
 namespace rc = hapticctrl::rt_core;
 
 bool finite(const rc::ArmModel& m) {
-  bool ok = m.gravity.allFinite() && m.handle.allFinite() && m.limits.workspace_center.allFinite() &&
-            m.limits.workspace_half_size.allFinite() && std::isfinite(m.limits.force_peak) &&
-            std::isfinite(m.limits.torque_peak) && std::isfinite(m.limits.force_rate);
+  bool ok = m.gravity.allFinite() && m.handle.allFinite() &&
+            m.limits.workspace_center.allFinite() && m.limits.workspace_half_size.allFinite() &&
+            std::isfinite(m.limits.force_peak) && std::isfinite(m.limits.torque_peak) &&
+            std::isfinite(m.limits.force_rate);
   for (const rc::JointModel& j : m.joints) {
     ok = ok && j.origin.allFinite() && j.axis.allFinite() && j.com.allFinite() &&
          j.inertia.allFinite() && std::isfinite(j.mass) && std::isfinite(j.q_min) &&

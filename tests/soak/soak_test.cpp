@@ -89,7 +89,7 @@ long socket_drops(std::uint16_t port) {
 
 /// Random operator pushes of up to 4 N per axis, a new one every 0.25 s, for `seconds`.
 std::string write_sequence(double seconds) {
-  const std::string path = "/tmp/hapticctrl-soak-" + std::to_string(getpid()) + ".seq";
+  std::string path = "/tmp/hapticctrl-soak-" + std::to_string(getpid()) + ".seq";
   std::ofstream out(path);
   std::mt19937 rng(20261201);
   std::uniform_real_distribution<double> force(-4.0, 4.0);
@@ -106,9 +106,8 @@ TEST(Soak, AnHourOfCoupledRunningBalancesEveryCounterAndGrowsNothing) {
   ASSERT_TRUE(stack.ready()) << stack.diagnostics();
   const std::string url = unique_lcm_url();
   LcmMonitor monitor(url, stack.instance());
-  SpawnedProcess lcm(HAPTICCTRL_LCM_BINARY,
-                     {"--instance", stack.instance(), "--lcm-url", url, "--arm-rate-hz", "100",
-                      "--json"});
+  SpawnedProcess lcm(HAPTICCTRL_LCM_BINARY, {"--instance", stack.instance(), "--lcm-url", url,
+                                             "--arm-rate-hz", "100", "--json"});
   SpawnedProcess demo(HAPTICCTRL_DEMO_BINARY,
                       {"--server", "127.0.0.1:" + std::to_string(stack.port()), "--headless",
                        "--json", "--duration", std::to_string(seconds)});
@@ -116,7 +115,8 @@ TEST(Soak, AnHourOfCoupledRunningBalancesEveryCounterAndGrowsNothing) {
       [&] { return (stack.vp().state_word & shm::state_bits::kCoupled) != 0; }, 10s))
       << demo.err();
   const std::string sequence = write_sequence(seconds);
-  SpawnedProcess player(HAPTICCTRL_HMI_BINARY, {"--instance", stack.instance(), "play", sequence});
+  SpawnedProcess player(HAPTICCTRL_HMI_BINARY,
+                        {"--instance", stack.instance(), "play", sequence, "--log", "/dev/null"});
 
   // Memory after a warm-up (a tenth of the run, at least 5 s), and at the end.
   const auto warm_up = std::chrono::duration<double>(std::max(5.0, seconds / 10));
@@ -164,40 +164,38 @@ TEST(Soak, AnHourOfCoupledRunningBalancesEveryCounterAndGrowsNothing) {
     return json_number(bridge.substr(bridge.find("\"dropped\"")), reason);
   };
   const double control_sent = json_number(client, "control_sent");
-  const double control_accounted = json_number(bridge, "control_accepted") +
-                                   dropped("sequence") + dropped("range") +
-                                   static_cast<double>(kernel_drops);
+  const double control_accounted = json_number(bridge, "control_accepted") + dropped("sequence") +
+                                   dropped("range") + static_cast<double>(kernel_drops);
   const double answers_sent = json_number(bridge, "answers_sent");
   const double answers_seen = json_number(client, "answers_received") +
                               json_number(client, "answers_lost") +
                               json_number(client, "answers_late");
   const auto events_published = static_cast<std::size_t>(json_number(publisher, "events"));
   const auto events_received = monitor.events_copy().size();
-  const auto last_event_index =
-      events_received == 0 ? 0 : monitor.events_copy().back().index;
+  const auto last_event_index = events_received == 0 ? 0 : monitor.events_copy().back().index;
 
   std::printf("soak: %.0f s at %.0f Hz, %llu cycles, core %s\n", seconds, 1e6 / period_us,
               static_cast<unsigned long long>(t.cycle), shm::core_state_name(t.core_state));
-  std::printf("  deadline misses %llu: %llu slots skipped after late wake-ups (wake max %.0f us), "
-              "%llu cycles the degraded SERVO ran (SERVO start max %.0f us, execution max %.0f "
-              "us)\n",
-              static_cast<unsigned long long>(t.misses_total),
-              static_cast<unsigned long long>(t.skipped_slots),
-              static_cast<double>(t.wake_latency.max_ns) * 1e-3,
-              static_cast<unsigned long long>(t.degraded_cycles),
-              static_cast<double>(t.servo_start_delay.max_ns) * 1e-3,
-              static_cast<double>(t.servo_execution.max_ns) * 1e-3);
+  std::printf(
+      "  deadline misses %llu: %llu slots skipped after late wake-ups (wake max %.0f us), "
+      "%llu cycles the degraded SERVO ran (SERVO start max %.0f us, execution max %.0f "
+      "us)\n",
+      static_cast<unsigned long long>(t.misses_total),
+      static_cast<unsigned long long>(t.skipped_slots),
+      static_cast<double>(t.wake_latency.max_ns) * 1e-3,
+      static_cast<unsigned long long>(t.degraded_cycles),
+      static_cast<double>(t.servo_start_delay.max_ns) * 1e-3,
+      static_cast<double>(t.servo_execution.max_ns) * 1e-3);
   std::printf("  control frames: sent %.0f = accepted %.0f + dropped %.0f + kernel %ld\n",
               control_sent, json_number(bridge, "control_accepted"),
               dropped("sequence") + dropped("range"), kernel_drops);
-  std::printf("  answers: sent %.0f, received %.0f + lost %.0f + late %.0f (in flight at the "
-              "end %.0f)\n",
-              answers_sent, json_number(client, "answers_received"),
-              json_number(client, "answers_lost"), json_number(client, "answers_late"),
-              answers_sent - answers_seen);
+  std::printf(
+      "  answers: sent %.0f, received %.0f + lost %.0f + late %.0f (in flight at the "
+      "end %.0f)\n",
+      answers_sent, json_number(client, "answers_received"), json_number(client, "answers_lost"),
+      json_number(client, "answers_late"), answers_sent - answers_seen);
   std::printf("  events: core %llu, published %zu, received %zu\n",
-              static_cast<unsigned long long>(last_event_index), events_published,
-              events_received);
+              static_cast<unsigned long long>(last_event_index), events_published, events_received);
   for (const auto& [name, before] : rss_before) {
     std::printf("  %s RSS %ld -> %ld KiB\n", name.c_str(), before, rss_after[name]);
   }

@@ -47,10 +47,9 @@ class ControllerStack {
     using namespace std::chrono_literals;
     segment_.reset();
     core_.emplace(HAPTICCTRL_CORE_BINARY,
-                  std::vector<std::string>{"--instance", instance_, "--period-us",
-                                           std::to_string(period_us_), "--rt", kRtMode,
-                                           "--sim-substep-us", kSimSubstepUs, "--blackbox-dir",
-                                           "/tmp"});
+                  std::vector<std::string>{
+                      "--instance", instance_, "--period-us", std::to_string(period_us_), "--rt",
+                      kRtMode, "--sim-substep-us", kSimSubstepUs, "--blackbox-dir", "/tmp"});
     for (int i = 0; i < 1000 && !segment_; ++i) {
       try {
         segment_.emplace(shm::Segment::attach(instance_));

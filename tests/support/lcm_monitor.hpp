@@ -43,7 +43,8 @@ struct LcmMonitor {
     lcm.subscribeFunction(prefix + "arm_state",
                           &LcmMonitor::raw<hapticctrl_lcm::arm_state_t, &LcmMonitor::on_arm>, this);
     lcm.subscribeFunction(prefix + "cycle_stats",
-                          &LcmMonitor::raw<hapticctrl_lcm::cycle_stats_t, &LcmMonitor::on_stats>, this);
+                          &LcmMonitor::raw<hapticctrl_lcm::cycle_stats_t, &LcmMonitor::on_stats>,
+                          this);
     lcm.subscribeFunction(prefix + "events",
                           &LcmMonitor::raw<hapticctrl_lcm::event_t, &LcmMonitor::on_event>, this);
   }

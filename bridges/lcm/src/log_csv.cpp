@@ -139,8 +139,8 @@ std::map<std::string, Topic> topics() {
         put(r, m.servo_start_delay);
         put(r, m.servo_execution);
         put(r, m.measured_period);
-        r << ',' << m.vpr_torn << ',' << m.vpr_stale << ',' << m.vpr_rejected << ',' << m.force_rejected << ','
-          << m.ctrl_accepted << ',' << m.ctrl_rejected;
+        r << ',' << m.vpr_torn << ',' << m.vpr_stale << ',' << m.vpr_rejected << ','
+          << m.force_rejected << ',' << m.ctrl_accepted << ',' << m.ctrl_rejected;
         put(r, m.wake_histogram);
         return true;
       }};

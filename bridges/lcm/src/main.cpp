@@ -58,7 +58,8 @@ hapticctrl_lcm::event_t core_gone_event(const shm::CoreWatch& watch, std::int64_
                      watch.stop_reason()};
   auto m = lb::to_event(e, 0, utime_of(now));
   char noticed[96];  // NOLINT(*-avoid-c-arrays)
-  std::snprintf(noticed, sizeof noticed, " (noticed by the LCM bridge %.1f ms after its last heartbeat)",
+  std::snprintf(noticed, sizeof noticed,
+                " (noticed by the LCM bridge %.1f ms after its last heartbeat)",
                 static_cast<double>(watch.heartbeat_age_at_loss_ns()) * 1e-6);
   m.text += noticed;
   return m;

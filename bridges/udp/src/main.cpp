@@ -227,7 +227,8 @@ int run(const BridgeConfig& config) {
   std::printf("hapticctrl-udp: listening on %s for instance '%s'\n",
               socket.local_endpoint().to_string().c_str(), config.instance.c_str());
   std::fflush(stdout);
-  Session session({config.watchdog_ms, hapticctrl::udp_bridge::ClientAllowList(config.allowed_clients),
+  Session session({config.watchdog_ms,
+                   hapticctrl::udp_bridge::ClientAllowList(config.allowed_clients),
                    {config.hello_rate, config.hello_rate}},
                   random_token);
   const std::int64_t end_ns =

@@ -35,7 +35,8 @@ struct ServoRegions {
 struct ServoCounters {
   std::atomic<std::uint64_t> vpr_torn{0};
   std::atomic<std::uint64_t> vpr_rejected{0};
-  std::atomic<std::uint64_t> force_rejected{0};  ///< the arm's ArmMeasures::operator_wrench_rejected
+  std::atomic<std::uint64_t> force_rejected{
+      0};  ///< the arm's ArmMeasures::operator_wrench_rejected
   std::atomic<std::uint64_t> vpr_stale{0};
   std::atomic<std::uint64_t> ctrl_accepted{0};
   std::atomic<std::uint64_t> ctrl_rejected{0};

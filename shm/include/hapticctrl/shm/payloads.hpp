@@ -173,23 +173,23 @@ struct TelemetryPayload {
 
 /// Why the UDP bridge dropped an incoming datagram (index into LinkStatsPayload::dropped).
 enum class LinkDrop : std::uint32_t {
-  kSize = 0,    ///< truncated, oversized, or not a multiple of 4 bytes
-  kMagic,       ///< not a hapticctrl frame
-  kVersion,     ///< another major protocol version
-  kCrc,         ///< CRC-32 mismatch
-  kMalformed,   ///< XDR decoding failed or unknown frame type
-  kToken,       ///< no session, wrong session token, or another source address
-  kSequence,    ///< replayed or reordered (not newer than the last accepted)
-  kRange,       ///< non-finite or out-of-range value
-  kUnexpected,  ///< a frame type the bridge never accepts (WELCOME, ANSWER, ...)
-  kNotAllowed,  ///< the source address is not on the allow-list (--allow-client)
-  kRateLimited, ///< a HELLO beyond its source's handshake rate (--hello-rate)
+  kSize = 0,     ///< truncated, oversized, or not a multiple of 4 bytes
+  kMagic,        ///< not a hapticctrl frame
+  kVersion,      ///< another major protocol version
+  kCrc,          ///< CRC-32 mismatch
+  kMalformed,    ///< XDR decoding failed or unknown frame type
+  kToken,        ///< no session, wrong session token, or another source address
+  kSequence,     ///< replayed or reordered (not newer than the last accepted)
+  kRange,        ///< non-finite or out-of-range value
+  kUnexpected,   ///< a frame type the bridge never accepts (WELCOME, ANSWER, ...)
+  kNotAllowed,   ///< the source address is not on the allow-list (--allow-client)
+  kRateLimited,  ///< a HELLO beyond its source's handshake rate (--hello-rate)
   kCount,
 };
 inline constexpr std::size_t kLinkDropCount = static_cast<std::size_t>(LinkDrop::kCount);
 /// Stable short names of LinkDrop values, for telemetry and logs.
 inline constexpr std::array<const char*, kLinkDropCount> kLinkDropNames{
-    "size",  "magic", "version",    "crc",         "malformed", "token",
+    "size",     "magic", "version",    "crc",         "malformed",   "token",
     "sequence", "range", "unexpected", "not_allowed", "rate_limited"};
 
 /// link_stats: the UDP bridge's session and frame counters (written by hapticctrl-udp).

@@ -39,6 +39,16 @@ shm::VprPayload virtmech_client(const std::array<double, 7>& object_pose) {
   return c;
 }
 
+/// Powered at the ready pose, coupled (VIRTMECH) to an object `dx` ahead of the handle along x.
+ServoInputs coupled_to_object_ahead(double dx) {
+  ServoInputs in = powered_at(kReady);
+  const ChainState s = chain_at(kReady);
+  in.client = virtmech_client(
+      {s.handle_position.x() + dx, s.handle_position.y(), s.handle_position.z(), 0, 0, 0, 1});
+  in.client_valid = true;
+  return in;
+}
+
 TEST(ServoLaw, UnpoweredOutputsNothing) {
   ServoLaw law(default_dynamics());
   ServoInputs in = powered_at(kReady);
@@ -121,12 +131,7 @@ TEST(ServoLaw, GainsFollowObjectMassAndTimeStepWithinDeviceBounds) {
 
 TEST(ServoLaw, VirtmechPullsTheHandleTowardTheObjectAndReturnsTheOpposite) {
   ServoLaw law(default_dynamics());
-  ServoInputs in = powered_at(kReady);
-  const ChainState s = chain_at(kReady);
-  in.client = virtmech_client(
-      {s.handle_position.x() + 0.002, s.handle_position.y(), s.handle_position.z(), 0, 0, 0, 1});
-  in.client.object_pose[3] = 0;
-  in.client_valid = true;
+  ServoInputs in = coupled_to_object_ahead(0.002);
   // The handle frame is the identity rotation at the ready pose (pitches cancel).
   ServoOutputs out;
   for (int k = 0; k < 50; ++k) {
@@ -139,12 +144,8 @@ TEST(ServoLaw, VirtmechPullsTheHandleTowardTheObjectAndReturnsTheOpposite) {
 
 TEST(ServoLaw, VirtmechWithoutAnAttachedObjectRendersNothing) {
   ServoLaw law(default_dynamics());
-  ServoInputs in = powered_at(kReady);
-  const ChainState s = chain_at(kReady);
-  in.client = virtmech_client(
-      {s.handle_position.x() + 0.002, s.handle_position.y(), s.handle_position.z(), 0, 0, 0, 1});
+  ServoInputs in = coupled_to_object_ahead(0.002);
   in.client.flags = 0;  // virtDetachVO
-  in.client_valid = true;
   ServoOutputs out;
   for (int k = 0; k < 50; ++k) {
     law.compute(in, false, out);
@@ -155,11 +156,7 @@ TEST(ServoLaw, VirtmechWithoutAnAttachedObjectRendersNothing) {
 
 TEST(ServoLaw, StaleClientFadesOnTheRampWithoutSteps) {
   ServoLaw law(default_dynamics());
-  ServoInputs in = powered_at(kReady);
-  const ChainState s = chain_at(kReady);
-  in.client = virtmech_client(
-      {s.handle_position.x() + 0.005, s.handle_position.y(), s.handle_position.z(), 0, 0, 0, 1});
-  in.client_valid = true;
+  ServoInputs in = coupled_to_object_ahead(0.005);
   ServoOutputs out;
   for (int k = 0; k < 20; ++k) {
     law.compute(in, false, out);
@@ -213,11 +210,7 @@ TEST(ServoLaw, TheBrakeOfTheSpeedSafetyIsNeverPassedToTheCoupledObject) {
   // only brakes the handle) pushed a free object along with the handle's motion: the demo's
   // sphere flew tens of metres under random operator pushes (found by the soak, 2026-12-01).
   ServoLaw law(default_dynamics());
-  ServoInputs in = powered_at(kReady);
-  const ChainState s = chain_at(kReady);
-  in.client = virtmech_client(
-      {s.handle_position.x() + 0.002, s.handle_position.y(), s.handle_position.z(), 0, 0, 0, 1});
-  in.client_valid = true;
+  ServoInputs in = coupled_to_object_ahead(0.002);
   in.measures.velocity << 0, 3.0, 0, 0, 0, 0;  // > 1 m/s at the handle
   ServoOutputs out;
   law.compute(in, false, out);
@@ -229,11 +222,7 @@ TEST(ServoLaw, TheBrakeOfTheSpeedSafetyIsNeverPassedToTheCoupledObject) {
 
 TEST(ServoLaw, TheObjectFeelsTheCouplingButNotThePassivityGuardsDamping) {
   ServoLaw law(default_dynamics());
-  ServoInputs in = powered_at(kReady);
-  const ChainState s = chain_at(kReady);
-  in.client = virtmech_client(
-      {s.handle_position.x() + 0.002, s.handle_position.y(), s.handle_position.z(), 0, 0, 0, 1});
-  in.client_valid = true;
+  ServoInputs in = coupled_to_object_ahead(0.002);
   ServoOutputs out;
   for (int k = 0; k < 50; ++k) {  // ramp the coupling up, handle at rest
     law.compute(in, false, out);

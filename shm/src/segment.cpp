@@ -296,6 +296,9 @@ Segment Segment::attach(std::string_view instance, const AttachOptions& options)
   // Kept open to probe the core's lock cheaply (core_alive) for as long as we are attached.
   seg.lock_fd_ = shm_open(seg.names_.lock.c_str(), O_RDONLY | O_CLOEXEC, 0);
   if (seg.lock_fd_ < 0) {
+    if (errno != ENOENT) {
+      throw_system("open lock " + shm_path(seg.names_.lock), errno);
+    }
     throw ShmError(ShmErrc::kNoController, "no controller is running for instance '" +
                                                seg.instance_ + "' (its lock " +
                                                shm_path(seg.names_.lock) + " is gone)");

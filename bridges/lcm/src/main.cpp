@@ -84,7 +84,7 @@ void publish_loop(const shm::Segment& seg, lcm::LCM& lcm, const Channels& ch,
     const std::int64_t now = monotonic_ns();
     shm::TelemetryPayload telemetry;
     (void)seg.region<shm::RegionId::kTelemetry>().read(telemetry);
-    if (now >= next_arm) {
+    if (wake == shm::CoreWatch::Wake::kCycle && now >= next_arm) {  // silence is no new state
       next_arm = arm_every_ns == 0 ? 0 : std::max(next_arm + arm_every_ns, now - arm_every_ns);
       shm::PositionPayload position;
       shm::VpPayload vp;

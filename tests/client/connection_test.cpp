@@ -274,6 +274,28 @@ TEST(Connection, ABridgeWithAnAllowListIgnoresEveryOtherAddress) {
   EXPECT_EQ(stack.link_stats().sessions_opened, 0U);
 }
 
+TEST(Connection, ASessionWhoseBridgeFallsSilentIsClosedAfterTheAnswerTimeout) {
+  ControllerStack stack("silent");
+  ASSERT_TRUE(stack.ready()) << stack.diagnostics();
+  ConnectOptions options;
+  options.answer_timeout = 300ms;
+  Connection c(address_of(stack), options);
+  StateSnapshot s;
+  ASSERT_TRUE(c.wait_for_answer(0, 2s, s));
+  stack.bridge().signal(SIGKILL);  // no REFUSE, no BYE: just silence
+  const auto killed = std::chrono::steady_clock::now();
+  ASSERT_TRUE(ControllerStack::eventually([&] { return !c.is_open(); }, 3s));
+  EXPECT_GE(std::chrono::steady_clock::now() - killed, 250ms) << "not before the timeout";
+  try {
+    c.set_power(true);
+    FAIL() << "a closed session refuses calls";
+  } catch (const ClientError& e) {
+    EXPECT_EQ(e.code(), ErrorCode::kClosed);
+    EXPECT_NE(std::string(e.what()).find("no answer from the bridge for 300 ms"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(Connection, NoControllerAndNoBridgeGiveClearErrors) {
   ConnectOptions quick;
   quick.connect_timeout = 200ms;

@@ -142,7 +142,7 @@ TEST(Soak, AnHourOfCoupledRunningBalancesEveryCounterAndGrowsNothing) {
       },
       std::chrono::milliseconds(static_cast<long>(seconds * 1000) + 30'000)))
       << demo.err();
-  ASSERT_EQ(demo.wait(5s), 0) << demo.err();
+  ASSERT_EQ(demo.wait(5s), 0) << demo.err() << stack.diagnostics();
   const shm::TelemetryPayload t = [&] {
     shm::TelemetryPayload v;
     stack.segment().region<shm::RegionId::kTelemetry>().read(v);
@@ -201,6 +201,8 @@ TEST(Soak, AnHourOfCoupledRunningBalancesEveryCounterAndGrowsNothing) {
   }
 
   EXPECT_EQ(t.core_state, static_cast<std::uint32_t>(shm::CoreState::kRunning));
+  EXPECT_NE(client.find("\"ended\":\"duration\""), std::string::npos)
+      << "the client ran its whole duration: " << client << demo.err();
   EXPECT_EQ(control_sent, control_accounted) << client << "\n" << bridge;
   EXPECT_GE(answers_sent - answers_seen, 0.0);
   EXPECT_LE(answers_sent - answers_seen, 10.0) << "only the answers in flight at the close";
@@ -208,6 +210,7 @@ TEST(Soak, AnHourOfCoupledRunningBalancesEveryCounterAndGrowsNothing) {
   EXPECT_EQ(json_number(publisher, "events_lost"), 0.0);
   EXPECT_EQ(last_event_index, events_published);
   for (const auto& [name, before] : rss_before) {
+    EXPECT_GT(before, 0) << name << " was not running after the warm-up";
     EXPECT_LE(rss_after[name] - before, 256) << name << " grew (KiB)";
   }
 }

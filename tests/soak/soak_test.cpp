@@ -102,7 +102,10 @@ std::string write_sequence(double seconds) {
 TEST(Soak, AnHourOfCoupledRunningBalancesEveryCounterAndGrowsNothing) {
   const double seconds = soak_seconds();
   const int period_us = soak_period_us();
-  ControllerStack stack("soak", period_us, {"--json"});  // the client answers every cycle
+  // The client answers every cycle. A 1 s session watchdog: an hour on a VM sees the odd
+  // 100 ms stall of an ordinary process, which the default 100 ms would (rightly) end the
+  // session for; the soak is about counters and memory, not that.
+  ControllerStack stack("soak", period_us, {"--json", "--watchdog-ms", "1000"});
   ASSERT_TRUE(stack.ready()) << stack.diagnostics();
   const std::string url = unique_lcm_url();
   LcmMonitor monitor(url, stack.instance());

@@ -14,6 +14,7 @@
 #include <cstring>
 #include <exception>
 #include <optional>
+#include <span>
 #include <string>
 #include <thread>
 #include <utility>
@@ -50,6 +51,15 @@ std::uint64_t random_token() {
   return token;
 }
 
+/// Sends one frame and counts it as sent or failed. Returns whether it went out.
+bool send_counted(UdpSocket& socket, Session& session, std::span<const std::uint8_t> frame,
+                  const Endpoint& to) {
+  const bool sent = socket.send_to(frame, to);
+  (sent ? session.counters().frames_out : session.counters().send_failures)
+      .fetch_add(1, std::memory_order_relaxed);
+  return sent;
+}
+
 /// The loop every mode shares: one datagram (or 2 ms), its reply and the watchdog, then
 /// `keep_serving(now)`, until it returns false or the bridge is told to stop. (2 ms bounds how
 /// late the loss of the core is told to the client; idle, it costs 500 wake-ups a second.)
@@ -64,9 +74,7 @@ void serve(UdpSocket& socket, Session& session, std::int64_t end_ns, KeepServing
     if (r.status == Received::Status::kDatagram) {
       const std::size_t n = session.on_datagram({in.data(), r.size}, from, now, reply);
       if (n != 0) {
-        const bool sent = socket.send_to({reply.data(), n}, from);
-        (sent ? session.counters().frames_out : session.counters().send_failures)
-            .fetch_add(1, std::memory_order_relaxed);
+        send_counted(socket, session, {reply.data(), n}, from);
       }
     } else if (r.status == Received::Status::kOversized) {
       session.on_oversized();
@@ -85,13 +93,8 @@ void send_answer(UdpSocket& socket, Session& session, const shm::VpPayload& samp
   FrameBuffer out{};
   Endpoint to;
   const std::size_t n = session.answer(sample, monotonic_ns(), out, to);
-  if (n != 0) {
-    const bool sent = socket.send_to({out.data(), n}, to);
-    (sent ? session.counters().frames_out : session.counters().send_failures)
-        .fetch_add(1, std::memory_order_relaxed);
-    if (sent) {
-      session.counters().answers_sent.fetch_add(1, std::memory_order_relaxed);
-    }
+  if (n != 0 && send_counted(socket, session, {out.data(), n}, to)) {
+    session.counters().answers_sent.fetch_add(1, std::memory_order_relaxed);
   }
 }
 

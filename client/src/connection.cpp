@@ -7,6 +7,8 @@
 #include <cstring>
 #include <limits>
 #include <mutex>
+#include <string>
+#include <string_view>
 #include <thread>
 
 #include "hapticctrl/protocol/codec.hpp"
@@ -243,10 +245,16 @@ struct Connection::Impl {
         now - last_heard_ns.load(std::memory_order_relaxed) <= limit_ns) {
       return;
     }
+    // Once per session: not a cycle path.
+    close_session("no answer from the bridge for " +
+                  std::to_string(options.answer_timeout.count()) + " ms");
+  }
+
+  /// Marks the session closed for `reason` and wakes whoever waits for an acknowledgement.
+  void close_session(std::string_view reason) noexcept {
     {
       const std::lock_guard lock(ack_mutex);
-      closed_reason = "no answer from the bridge for " +  // once per session: not a cycle path
-                      std::to_string(options.answer_timeout.count()) + " ms";
+      closed_reason.assign(reason);
     }
     open.store(false);
     ack_cv.notify_all();
@@ -265,12 +273,7 @@ struct Connection::Impl {
     if (frame.body.type == HCP_ANSWER) {
       handle_answer(frame, now);
     } else if (frame.body.type == HCP_REFUSE) {  // the bridge ended the session, and says why
-      {
-        const std::lock_guard lock(ack_mutex);
-        closed_reason.assign(protocol::text_of(frame.body.hcp_body_u.refuse.reason));
-      }
-      open.store(false);
-      ack_cv.notify_all();
+      close_session(protocol::text_of(frame.body.hcp_body_u.refuse.reason));
     } else if (frame.body.type == HCP_ACK) {
       const hcp_ack& a = frame.body.hcp_body_u.ack;
       {

@@ -1,5 +1,7 @@
 #include "hapticctrl/lcm_bridge/hmi_input.hpp"
 
+#include <lcm/lcm_coretypes.h>
+
 #include <algorithm>
 #include <cstdint>
 
@@ -39,12 +41,10 @@ bool last_string_is_sound(const void* data, std::size_t size) noexcept {
   if (size < length_at + 5) {
     return false;
   }
-  const auto* bytes = static_cast<const std::uint8_t*>(data);
-  std::uint32_t length = 0;
-  for (std::size_t i = 0; i < 4; ++i) {
-    length = length << 8U | bytes[length_at + i];
-  }
-  return length == size - length_at - 4 && bytes[size - 1] == 0;
+  std::int32_t length = 0;  // decoded as LCM encodes it (big-endian)
+  __int32_t_decode_array(data, static_cast<int>(length_at), 4, &length, 1);
+  return length > 0 && static_cast<std::size_t>(length) == size - length_at - 4 &&
+         static_cast<const std::uint8_t*>(data)[size - 1] == 0;
 }
 
 }  // namespace

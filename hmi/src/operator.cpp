@@ -3,7 +3,6 @@
 #include <dirent.h>
 
 #include <algorithm>
-#include <ctime>
 #include <thread>
 
 namespace hapticctrl::hmi {
@@ -42,12 +41,6 @@ shm::Segment attach_segment(const std::string& instance, bool with_force) {
 }
 
 }  // namespace
-
-std::int64_t monotonic_now_ns() noexcept {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
-}
 
 std::vector<std::string> listed_instances() {
   std::vector<std::string> names;

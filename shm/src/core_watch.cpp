@@ -1,17 +1,8 @@
 #include "hapticctrl/shm/core_watch.hpp"
 
-#include <ctime>
+#include "hapticctrl/shm/monotonic_clock.hpp"
 
 namespace hapticctrl::shm {
-namespace {
-
-std::int64_t monotonic_now_ns() {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
-}
-
-}  // namespace
 
 CoreWatch::Wake CoreWatch::wait() {
   const auto& vp = segment_->region<RegionId::kVp>();

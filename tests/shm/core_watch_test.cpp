@@ -4,22 +4,16 @@
 
 #include <atomic>
 #include <chrono>
-#include <ctime>
 #include <optional>
 #include <thread>
 
+#include "hapticctrl/shm/monotonic_clock.hpp"
 #include "support/child_process.hpp"
 
 namespace hapticctrl::shm {
 namespace {
 
 using namespace std::chrono_literals;
-
-std::int64_t now_ns() {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
-}
 
 /// A core (the creator, here in-process: flock locks belong to open file descriptions, so the
 /// attacher's probe meets the creator's lock like another process's) and an attached watcher.
@@ -41,7 +35,7 @@ TEST(CoreWatch, APublishEndsTheWaitAsACycle) {
   std::atomic<bool> done{false};
   std::thread cycles([&] {  // a core cycling every millisecond, for at most 5 s
     for (int i = 0; i < 5000 && !done.load(); ++i) {
-      rig.core->writable<RegionId::kVp>().publish(VpPayload{}, now_ns());
+      rig.core->writable<RegionId::kVp>().publish(VpPayload{}, monotonic_now_ns());
       std::this_thread::sleep_for(1ms);
     }
   });
@@ -60,7 +54,7 @@ TEST(CoreWatch, ALiveCoreThatPublishesNothingIsSilentNotGone) {
 
 TEST(CoreWatch, ACoreWithoutAStopReasonIsLostAndTheAgeOfItsLastHeartbeatIsKept) {
   Rig rig;
-  rig.beat(42, now_ns() - 5'000'000);
+  rig.beat(42, monotonic_now_ns() - 5'000'000);
   rig.core.reset();  // the lock is released, as when the kernel ends a killed process
   ASSERT_EQ(rig.watch.wait(), CoreWatch::Wake::kCoreGone);
   EXPECT_EQ(rig.watch.last_cycle(), 42U);

@@ -18,6 +18,7 @@
 #include "hapticctrl/hmi/status.hpp"
 #include "hapticctrl/shm/ctrl.hpp"
 #include "hapticctrl/shm/force_slew.hpp"
+#include "hapticctrl/shm/monotonic_clock.hpp"
 #include "hapticctrl/shm/segment.hpp"
 
 namespace hapticctrl::hmi {
@@ -70,6 +71,6 @@ class Operator {
 };
 
 /// CLOCK_MONOTONIC in nanoseconds (the regions' publish clock).
-[[nodiscard]] std::int64_t monotonic_now_ns() noexcept;
+using shm::monotonic_now_ns;
 
 }  // namespace hapticctrl::hmi

@@ -5,10 +5,10 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <sstream>
 
 #include "hapticctrl/shm/payloads.hpp"
 #include "support/controller_stack.hpp"
+#include "support/json_fields.hpp"
 #include "support/spawned_process.hpp"
 
 namespace hapticctrl::test {
@@ -35,23 +35,6 @@ constexpr bool kCrispPhysics = true;
 /// link delay (docs/control.md); for the demo's 0.5 kg sphere it stays above this up to 10 ms.
 constexpr double kLeastCouplingStiffness = 200.0;  // N/m
 constexpr double kGap = 0.01;                      // the demo's default gap between the spheres
-
-/// Numbers of `"key":[...]` (or `"key":n`) in a flat JSON object.
-std::vector<double> json_numbers(const std::string& json, const std::string& key) {
-  const auto at = json.find("\"" + key + "\":");
-  if (at == std::string::npos) {
-    return {};
-  }
-  std::string text = json.substr(at + key.size() + 3);
-  text = text[0] == '[' ? text.substr(1, text.find(']') - 1)
-                        : text.substr(0, text.find_first_of(",}"));
-  std::vector<double> values;
-  std::istringstream in(text);
-  for (std::string v; std::getline(in, v, ',');) {
-    values.push_back(std::stod(v));
-  }
-  return values;
-}
 
 int run_hmi(const ControllerStack& stack, std::vector<std::string> args) {
   args.insert(args.begin(), {"--instance", stack.instance()});

@@ -17,6 +17,7 @@
 #include "hapticctrl/client/connection.hpp"
 #include "hapticctrl/rt_core/arm_model.hpp"
 #include "hapticctrl/shm/force_slew.hpp"
+#include "hapticctrl/shm/monotonic_clock.hpp"
 #include "hapticctrl/shm/payloads.hpp"
 #include "support/controller_stack.hpp"
 #include "support/lcm_monitor.hpp"
@@ -33,12 +34,6 @@ using namespace std::chrono_literals;
 /// 2.6 ms then, against 0.3 ms quiet).
 constexpr int kPeriodUs = ControllerStack::kDefaultPeriodUs;
 constexpr double kPeriodS = kPeriodUs * 1e-6;
-
-std::int64_t monotonic_ns() {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(
-             std::chrono::steady_clock::now().time_since_epoch())
-      .count();
-}
 
 /// Follows every cycle of a core from a thread and keeps the largest change per cycle of the
 /// force the motors put on the handle (coupling, norm) beyond what the law allows (the rate
@@ -80,6 +75,11 @@ class ForceStepWatch {
     bool have_last = false;
     while (running_) {
       vp.wait_for_publish(vp.sequence_word(), 50ms);
+      // The header too: a core that fails safe stops publishing position before it says so.
+      if (segment_.header().core_state.load() !=
+          static_cast<std::uint32_t>(shm::CoreState::kRunning)) {
+        left_running_ = true;
+      }
       follow_operator_force();
       shm::PositionPayload p;
       if (!position.read(p).ok() || (have_last && p.cycle == last.cycle)) {
@@ -168,12 +168,6 @@ std::string cycle_health(const shm::TelemetryPayload& t) {
   return text;
 }
 
-shm::TelemetryPayload telemetry_of(const ControllerStack& stack) {
-  shm::TelemetryPayload t;
-  stack.segment().region<shm::RegionId::kTelemetry>().read(t);
-  return t;
-}
-
 bool coupled(const ControllerStack& stack) {
   return (stack.vp().state_word & shm::state_bits::kCoupled) != 0;
 }
@@ -246,7 +240,7 @@ TEST(FaultInjection, SoftRealTimeProcessesKilledAtRandomMomentsComeBackWithoutAF
   ASSERT_TRUE(ControllerStack::eventually([&] { return coupled(stack); }, 10s)) << demo->err();
   start_player(player, stack, sequence);
   ForceStepWatch watch(stack.segment(), arm_limits());
-  const std::uint64_t misses_before = telemetry_of(stack).misses_total;
+  const std::uint64_t misses_before = stack.telemetry().misses_total;
 
   // Each victim comes back by being started again; the demo also when its bridge was killed
   // (a client does not reconnect on its own: a new session re-couples the sphere wherever it is).
@@ -290,7 +284,7 @@ TEST(FaultInjection, SoftRealTimeProcessesKilledAtRandomMomentsComeBackWithoutAF
         player->signal(SIGKILL);
         player->wait(5s);
         start_player(player, stack, sequence);
-        const std::int64_t restarted_at = monotonic_ns();
+        const std::int64_t restarted_at = shm::monotonic_now_ns();
         EXPECT_TRUE(ControllerStack::eventually([&] {
           return watch.last_force_sample_ns() > restarted_at;
         })) << "the new player writes the operator force: "
@@ -301,7 +295,7 @@ TEST(FaultInjection, SoftRealTimeProcessesKilledAtRandomMomentsComeBackWithoutAF
   }
   watch.stop();
   std::remove(sequence.c_str());
-  const shm::TelemetryPayload t = telemetry_of(stack);
+  const shm::TelemetryPayload t = stack.telemetry();
   const std::uint64_t misses = t.misses_total - misses_before;
   std::printf(
       "%llu cycles watched; largest coupling step %.4f N per cycle (rate limit %.4f, "
@@ -342,7 +336,7 @@ TEST(FaultInjection, AKilledCoreIsToldToClientAndLcmWithinMillisecondsAndTheNext
     ASSERT_TRUE(monitor.pump_until([&] { return monitor.arm_states > 0; }, 5s)) << lcm->err();
     const std::size_t events_before = monitor.events_copy().size();
 
-    const std::int64_t killed_at = monotonic_ns();
+    const std::int64_t killed_at = shm::monotonic_now_ns();
     stack.core().signal(SIGKILL);
     stack.core().wait(5s);
     ASSERT_TRUE(ControllerStack::eventually([&] { return !c.is_open(); }, 2s));
@@ -433,12 +427,12 @@ TEST(FaultInjection, AMisbehavingSharedMemoryWriterIsRefusedOrLimitedAndCountedA
   sample.session_id = 1;
   sample.command_type = static_cast<std::uint32_t>(shm::CommandType::kImpedance);
   sample.impedance_wrench[0] = std::nan("");
-  vpr.publish(sample, monotonic_ns());
-  EXPECT_TRUE(ControllerStack::eventually([&] { return telemetry_of(stack).vpr_rejected == 1; }));
+  vpr.publish(sample, shm::monotonic_now_ns());
+  EXPECT_TRUE(ControllerStack::eventually([&] { return stack.telemetry().vpr_rejected == 1; }));
   sample.impedance_wrench[0] = 0.0;
   sample.base_frame = {0, 0, 0, 0, 0, 0, 3};
-  vpr.publish(sample, monotonic_ns());
-  EXPECT_TRUE(ControllerStack::eventually([&] { return telemetry_of(stack).vpr_rejected == 2; }));
+  vpr.publish(sample, shm::monotonic_now_ns());
+  EXPECT_TRUE(ControllerStack::eventually([&] { return stack.telemetry().vpr_rejected == 2; }));
 
   // A wrench of 1e9 N, kept fresh for half a second: saturated to the device's peak, reached no
   // faster than the rate limit, then faded out when the writer falls silent.
@@ -447,7 +441,7 @@ TEST(FaultInjection, AMisbehavingSharedMemoryWriterIsRefusedOrLimitedAndCountedA
   const rt_core::ArmLimits limits = arm_limits();
   double strongest = 0.0;
   for (int i = 0; i < 50; ++i) {
-    vpr.publish(sample, monotonic_ns());
+    vpr.publish(sample, shm::monotonic_now_ns());
     const shm::PositionPayload p = stack.position();
     strongest = std::max(
         strongest, std::hypot(p.coupling_wrench[0], p.coupling_wrench[1], p.coupling_wrench[2]));
@@ -463,21 +457,21 @@ TEST(FaultInjection, AMisbehavingSharedMemoryWriterIsRefusedOrLimitedAndCountedA
   // A writer that dies in the middle of a write leaves the sequence odd: every read is torn,
   // counted, and the core carries on without client data.
   vpr.raw_sequence_word().fetch_add(1);
-  EXPECT_TRUE(ControllerStack::eventually([&] { return telemetry_of(stack).vpr_torn > 0; }));
+  EXPECT_TRUE(ControllerStack::eventually([&] { return stack.telemetry().vpr_torn > 0; }));
   vpr.raw_sequence_word().fetch_add(1);
 
   // Operator forces that are not a number or beyond 100 N: refused and counted; the simulated
   // hand keeps pushing with the last acceptable one (none here).
-  force.publish(shm::ForcePayload{{std::nan(""), 0, 0, 0, 0, 0}}, monotonic_ns());
-  EXPECT_TRUE(ControllerStack::eventually([&] { return telemetry_of(stack).force_rejected == 1; }));
-  force.publish(shm::ForcePayload{{1e6, 0, 0, 0, 0, 0}}, monotonic_ns());
-  EXPECT_TRUE(ControllerStack::eventually([&] { return telemetry_of(stack).force_rejected == 2; }));
+  force.publish(shm::ForcePayload{{std::nan(""), 0, 0, 0, 0, 0}}, shm::monotonic_now_ns());
+  EXPECT_TRUE(ControllerStack::eventually([&] { return stack.telemetry().force_rejected == 1; }));
+  force.publish(shm::ForcePayload{{1e6, 0, 0, 0, 0, 0}}, shm::monotonic_now_ns());
+  EXPECT_TRUE(ControllerStack::eventually([&] { return stack.telemetry().force_rejected == 2; }));
   EXPECT_EQ(stack.position().operator_wrench, shm::Vector6{});
 
   watch.stop();
   EXPECT_LE(watch.largest_coupling_excess(), kRounding);
   EXPECT_FALSE(watch.left_running()) << stack.diagnostics();
-  EXPECT_EQ(telemetry_of(stack).core_state, static_cast<std::uint32_t>(shm::CoreState::kRunning));
+  EXPECT_EQ(stack.telemetry().core_state, static_cast<std::uint32_t>(shm::CoreState::kRunning));
 }
 
 }  // namespace

@@ -24,6 +24,7 @@
 #include "hapticctrl/shm/names.hpp"
 #include "hapticctrl/shm/payloads.hpp"
 #include "support/controller_stack.hpp"
+#include "support/json_fields.hpp"
 #include "support/lcm_monitor.hpp"
 #include "support/spawned_process.hpp"
 
@@ -45,12 +46,6 @@ double soak_seconds() {
 int soak_period_us() {
   const char* text = std::getenv("HAPTICCTRL_SOAK_PERIOD_US");
   return text != nullptr ? std::stoi(text) : 1000;
-}
-
-/// A number `"key":n` from a flat JSON line (NaN when absent).
-double json_number(const std::string& json, const std::string& key) {
-  const auto at = json.find("\"" + key + "\":");
-  return at == std::string::npos ? std::nan("") : std::stod(json.substr(at + key.size() + 3));
 }
 
 /// Resident memory of a process [KiB].
@@ -146,11 +141,7 @@ TEST(Soak, AnHourOfCoupledRunningBalancesEveryCounterAndGrowsNothing) {
       std::chrono::milliseconds(static_cast<long>(seconds * 1000) + 30'000)))
       << demo.err();
   ASSERT_EQ(demo.wait(5s), 0) << demo.err() << stack.diagnostics();
-  const shm::TelemetryPayload t = [&] {
-    shm::TelemetryPayload v;
-    stack.segment().region<shm::RegionId::kTelemetry>().read(v);
-    return v;
-  }();
+  const shm::TelemetryPayload t = stack.telemetry();
   monitor.pump(300ms);  // the last events
   const long kernel_drops = socket_drops(stack.port());
   lcm.signal(SIGTERM);

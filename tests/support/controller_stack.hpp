@@ -2,6 +2,8 @@
 /// The real processes a client talks to: hapticctrl-core (simulated arm) and hapticctrl-udp on a
 /// free loopback port, for one unique instance; plus a read-only view of the instance's shared
 /// memory to check what reached the controller. Both processes are killed on destruction.
+#include <sys/mman.h>
+
 #include <chrono>
 #include <optional>
 #include <string>
@@ -90,6 +92,10 @@ class ControllerStack {
       core_->signal(SIGTERM);
       core_->wait(std::chrono::seconds(5));
     }
+    // A core a test killed cannot remove its segment: leave nothing behind in /dev/shm.
+    const shm::SegmentNames names = shm::SegmentNames::of(instance_);
+    shm_unlink(names.segment.c_str());
+    shm_unlink(names.lock.c_str());
   }
 
   [[nodiscard]] bool ready() const {
@@ -131,6 +137,11 @@ class ControllerStack {
     shm::PositionPayload p;
     segment_->region<shm::RegionId::kPosition>().read(p);
     return p;
+  }
+  [[nodiscard]] shm::TelemetryPayload telemetry() const {
+    shm::TelemetryPayload t;
+    segment_->region<shm::RegionId::kTelemetry>().read(t);
+    return t;
   }
   [[nodiscard]] shm::LinkStatsPayload link_stats() const {
     shm::LinkStatsPayload s;

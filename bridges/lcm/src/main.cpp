@@ -82,9 +82,15 @@ void publish_loop(const shm::Segment& seg, lcm::LCM& lcm, const Channels& ch,
   while (running.load(std::memory_order_relaxed)) {
     const shm::CoreWatch::Wake wake = watch.wait();
     const std::int64_t now = monotonic_ns();
+    // Arm state after a cycle only (a silent 2 ms wake of the watch is no new state); statistics
+    // by the clock; the regions are read only for what is due.
+    const bool arm_due = wake == shm::CoreWatch::Wake::kCycle && now >= next_arm;
+    const bool stats_due = now >= next_stats;
     shm::TelemetryPayload telemetry;
-    (void)seg.region<shm::RegionId::kTelemetry>().read(telemetry);
-    if (wake == shm::CoreWatch::Wake::kCycle && now >= next_arm) {  // silence is no new state
+    if (arm_due || stats_due) {
+      (void)seg.region<shm::RegionId::kTelemetry>().read(telemetry);
+    }
+    if (arm_due) {
       next_arm = arm_every_ns == 0 ? 0 : std::max(next_arm + arm_every_ns, now - arm_every_ns);
       shm::PositionPayload position;
       shm::VpPayload vp;
@@ -98,7 +104,7 @@ void publish_loop(const shm::Segment& seg, lcm::LCM& lcm, const Channels& ch,
         counters.arm_state.fetch_add(1, std::memory_order_relaxed);
       }
     }
-    if (now >= next_stats) {
+    if (stats_due) {
       next_stats = now + stats_every_ns;
       auto stats = lb::to_cycle_stats(telemetry, utime_of(now));
       lcm.publish(ch.cycle_stats, &stats);

@@ -123,30 +123,27 @@ class ControllerStack {
     return "core: " + (core_ ? core_->err() : "") + "\nbridge: " + (bridge_ ? bridge_->err() : "");
   }
 
+  /// The latest sample of a seqlock region (default values if never written).
+  template <shm::RegionId Id>
+  [[nodiscard]] auto latest() const {
+    typename shm::RegionType<Id>::Payload sample{};
+    segment_->region<Id>().read(sample);
+    return sample;
+  }
   [[nodiscard]] shm::VprPayload vpr() const {
-    shm::VprPayload v;
-    segment_->region<shm::RegionId::kVpr>().read(v);
-    return v;
+    return latest<shm::RegionId::kVpr>();
   }
   [[nodiscard]] shm::VpPayload vp() const {
-    shm::VpPayload v;
-    segment_->region<shm::RegionId::kVp>().read(v);
-    return v;
+    return latest<shm::RegionId::kVp>();
   }
   [[nodiscard]] shm::PositionPayload position() const {
-    shm::PositionPayload p;
-    segment_->region<shm::RegionId::kPosition>().read(p);
-    return p;
+    return latest<shm::RegionId::kPosition>();
   }
   [[nodiscard]] shm::TelemetryPayload telemetry() const {
-    shm::TelemetryPayload t;
-    segment_->region<shm::RegionId::kTelemetry>().read(t);
-    return t;
+    return latest<shm::RegionId::kTelemetry>();
   }
   [[nodiscard]] shm::LinkStatsPayload link_stats() const {
-    shm::LinkStatsPayload s;
-    segment_->region<shm::RegionId::kLinkStats>().read(s);
-    return s;
+    return latest<shm::RegionId::kLinkStats>();
   }
 
   /// Polls `predicate` every 5 ms for at most `timeout`.

@@ -29,12 +29,6 @@ hapticctrl_lcm::latency_t to_latency(const shm::LatencySummary& s) {
 
 }  // namespace
 
-Channels Channels::of(const std::string& instance) {
-  const std::string p = "hapticctrl." + instance + ".";
-  return {p + "arm_state", p + "coupling",    p + "cycle_stats", p + "bridge_stats",
-          p + "events",    p + "hmi_command", p + "hmi_force"};
-}
-
 hapticctrl_lcm::arm_state_t to_arm_state(const shm::PositionPayload& p, std::int64_t utime) {
   hapticctrl_lcm::arm_state_t m{};
   m.utime = utime;

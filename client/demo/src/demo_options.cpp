@@ -28,10 +28,12 @@ const char* DemoOptions::usage() noexcept {
          "         [--script FILE] [--log CSV] [--json] [--status-ms MS] [--no-power]\n"
          "         [--mass KG] [--radius M] [--gap M] [--contact-stiffness N/M]\n"
          "         [--contact-damping NS/M] [--friction MU] [--gravity]\n"
+         "         [--lcm-url URL] [--instance NAME] [--scene-rate HZ] [--no-lcm]\n"
          "The seeds' test client: a mobile sphere coupled to the arm (VIRTMECH) next to a fixed\n"
          "one. Keys (with a terminal): x y z / X Y Z push the sphere along +/-, u v w / U V W\n"
          "twist it, 0 releases, q quits. Script lines: 't push fx fy fz', 't twist tx ty tz',\n"
-         "'t release', 't quit'. Exit: 0 done, 1 error, 2 the controller ended the session\n"
+         "'t release', 't quit'. The scene goes out on LCM (hapticctrl.<instance>.scene,\n"
+         "default 30 Hz, local-only URL) for the web view. Exit: 0 done, 1 error, 2 the controller ended the session\n"
          "abnormally (fail-safe), 64 usage.\n";
 }
 
@@ -77,6 +79,17 @@ DemoOptions DemoOptions::parse(const std::vector<std::string>& args) {
       o.scene.friction = number_of(value(), a, 0.0, 2.0);
     } else if (a == "--gravity") {
       o.scene.gravity = true;
+    } else if (a == "--lcm-url") {
+      o.lcm_url = value();
+    } else if (a == "--instance") {
+      o.instance = value();
+      if (o.instance.empty() || o.instance.find_first_of(". \t") != std::string::npos) {
+        throw std::invalid_argument("--instance must be a non-empty name without dots or spaces");
+      }
+    } else if (a == "--scene-rate") {
+      o.scene_rate_hz = number_of(value(), a, 1.0, 1000.0);
+    } else if (a == "--no-lcm") {
+      o.publish_scene = false;
     } else {
       throw std::invalid_argument("unknown option '" + a + "'");
     }

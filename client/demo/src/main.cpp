@@ -19,6 +19,7 @@
 #include "hapticctrl/client/connection.hpp"
 #include "hapticctrl/demo/demo_input.hpp"
 #include "hapticctrl/demo/demo_options.hpp"
+#include "hapticctrl/demo/scene_publisher.hpp"
 #include "hapticctrl/demo/sphere_scene.hpp"
 
 namespace {
@@ -62,6 +63,11 @@ class RawKeyboard {
   termios saved_{};
   bool active_ = false;
 };
+
+std::int64_t monotonic_us() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(Clock::now().time_since_epoch())
+      .count();
+}
 
 /// StateSnapshot::core_state from which the controller is going away (fail-safe, stopping).
 constexpr std::uint32_t kCoreFailSafe = 2;
@@ -180,6 +186,10 @@ int run(const demo::DemoOptions& o) {
     }
     log_header(log);
   }
+  std::optional<demo::ScenePublisher> scene_out;
+  if (o.publish_scene) {
+    scene_out.emplace(o.lcm_url, o.instance, o.scene_rate_hz);
+  }
   client::ConnectOptions connect;
   connect.client_name = "hapticctrl-demo";
   client::Connection c(client::Address::parse(o.server), connect);
@@ -237,6 +247,10 @@ int run(const demo::DemoOptions& o) {
     scene.step(s.coupling_wrench, applied.wrench, dt);
     (void)c.send_object_state(scene.pose(), scene.twist());
     ++steps;
+    if (const std::int64_t now_us = monotonic_us(); scene_out && scene_out->due(now_us * 1000)) {
+      (void)scene_out->publish(
+          demo::to_scene_message(scene, applied, c.statistics(), steps, now_us));
+    }
     if (log.is_open()) {
       log_row(log, t, s, scene, applied);
     }

@@ -5,10 +5,11 @@
 #include <string>
 #include <vector>
 
+#include "hapticctrl/lcmtypes/channels.hpp"
+
 namespace hapticctrl::lcm_bridge {
 
-/// LCM's default multicast group with ttl=0: nothing leaves this host.
-inline constexpr const char* kDefaultLcmUrl = "udpm://239.255.76.67:7667?ttl=0";
+using lcmtypes::kDefaultLcmUrl;
 
 struct LcmBridgeConfig {
   std::string instance = "default";

@@ -4,6 +4,7 @@
 /// Pure conversions: no I/O. Not for a hard-RT cycle (event texts are std::string).
 #include <string>
 
+#include "hapticctrl/lcmtypes/channels.hpp"
 #include "hapticctrl/shm/events.hpp"
 #include "hapticctrl/shm/payloads.hpp"
 #include "hapticctrl_lcm/arm_state_t.hpp"
@@ -14,11 +15,7 @@
 
 namespace hapticctrl::lcm_bridge {
 
-/// Channel names: "hapticctrl.<instance>.<topic>", so several controllers share one network.
-struct Channels {
-  std::string arm_state, coupling, cycle_stats, bridge_stats, events, hmi_command, hmi_force;
-  static Channels of(const std::string& instance);
-};
+using lcmtypes::Channels;
 
 [[nodiscard]] hapticctrl_lcm::arm_state_t to_arm_state(const shm::PositionPayload& p,
                                                        std::int64_t utime);

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "hapticctrl/demo/sphere_scene.hpp"
+#include "hapticctrl/lcmtypes/channels.hpp"
 
 namespace hapticctrl::demo {
 
@@ -18,6 +19,10 @@ struct DemoOptions {
   int status_ms = 0;        ///< a status line every so many ms (0: only at the end)
   bool power_on = true;     ///< --no-power: leave power-on to the operator
   double gap = 0.01;        ///< initial gap between the spheres along +x [m]
+  bool publish_scene = true;  ///< scene_t on LCM for operator views (--no-lcm: off)
+  std::string lcm_url = lcmtypes::kDefaultLcmUrl;
+  std::string instance = "default";
+  double scene_rate_hz = 30.0;
   SceneConfig scene;        ///< mass, radii, contact, gravity (fixed centre set at start)
   bool help = false;
 

@@ -1,0 +1,252 @@
+// hapticctrl-web: the operator's web view. Serves the page (bridges/web/www), pushes the
+// controller's LCM telemetry and the demo's scene to every open page at display rate over
+// WebSocket, and forwards the page's commands as LCM HMI messages (the LCM bridge applies them).
+// It never touches the core's shared memory: it can run on any host that sees the LCM traffic.
+// Exit: 0 done, 1 error, 64 usage.
+#include <lcm/lcm-cpp.hpp>
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <exception>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "hapticctrl/lcmtypes/channels.hpp"
+#include "hapticctrl/rt_core/arm_model.hpp"
+#include "hapticctrl/web_bridge/model_json.hpp"
+#include "hapticctrl/web_bridge/page_gateway.hpp"
+#include "hapticctrl/web_bridge/telemetry_view.hpp"
+#include "hapticctrl/web_bridge/web_config.hpp"
+#include "hapticctrl/web_bridge/web_server.hpp"
+
+namespace {
+
+namespace wb = hapticctrl::web_bridge;
+using hapticctrl::lcmtypes::Channels;
+
+std::atomic<bool> g_stop{false};
+void on_signal(int /*sig*/) {
+  g_stop.store(true);
+}
+
+std::int64_t monotonic_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+/// Publishes the page's accepted requests on the instance's HMI channels.
+class LcmHmiPublisher final : public wb::HmiPublisher {
+ public:
+  LcmHmiPublisher(lcm::LCM& lcm, const Channels& channels) : lcm_(lcm), channels_(channels) {}
+  bool publish(const hapticctrl_lcm::hmi_command_t& m) override {
+    return lcm_.publish(channels_.hmi_command, &m) == 0;
+  }
+  bool publish(const hapticctrl_lcm::hmi_force_t& m) override {
+    return lcm_.publish(channels_.hmi_force, &m) == 0;
+  }
+
+ private:
+  lcm::LCM& lcm_;
+  const Channels& channels_;
+};
+
+/// Decodes the subscribed telemetry into the view; counts what does not decode. Runs on the
+/// LCM thread.
+class TelemetryInput {
+ public:
+  TelemetryInput(lcm::LCM& lcm, const Channels& ch, wb::TelemetryView& view) : view_(view) {
+    lcm.subscribe(ch.arm_state, &TelemetryInput::on_arm_state, this);
+    lcm.subscribe(ch.coupling, &TelemetryInput::on_coupling, this);
+    lcm.subscribe(ch.cycle_stats, &TelemetryInput::on_cycle_stats, this);
+    lcm.subscribe(ch.events, &TelemetryInput::on_event, this);
+    lcm.subscribe(ch.scene, &TelemetryInput::on_scene, this);
+  }
+
+  void on_arm_state(const lcm::ReceiveBuffer* rbuf, const std::string& /*channel*/) {
+    deliver<hapticctrl_lcm::arm_state_t>(rbuf, &wb::TelemetryView::on_arm_state);
+  }
+  void on_coupling(const lcm::ReceiveBuffer* rbuf, const std::string& /*channel*/) {
+    deliver<hapticctrl_lcm::coupling_t>(rbuf, &wb::TelemetryView::on_coupling);
+  }
+  void on_cycle_stats(const lcm::ReceiveBuffer* rbuf, const std::string& /*channel*/) {
+    deliver<hapticctrl_lcm::cycle_stats_t>(rbuf, &wb::TelemetryView::on_cycle_stats);
+  }
+  void on_event(const lcm::ReceiveBuffer* rbuf, const std::string& /*channel*/) {
+    if (!wb::event_strings_sound(rbuf->data, rbuf->data_size)) {
+      malformed_.fetch_add(1, std::memory_order_relaxed);
+      return;
+    }
+    deliver<hapticctrl_lcm::event_t>(rbuf, &wb::TelemetryView::on_event);
+  }
+  void on_scene(const lcm::ReceiveBuffer* rbuf, const std::string& /*channel*/) {
+    deliver<hapticctrl_lcm::scene_t>(rbuf, &wb::TelemetryView::on_scene);
+  }
+
+  [[nodiscard]] std::uint64_t received() const noexcept { return received_.load(); }
+  [[nodiscard]] std::uint64_t malformed() const noexcept { return malformed_.load(); }
+
+ private:
+  template <typename Message>
+  void deliver(const lcm::ReceiveBuffer* rbuf,
+               void (wb::TelemetryView::*to_view)(const Message&, std::int64_t)) {
+    Message m{};
+    bool decoded = false;
+    try {
+      decoded = m.decode(rbuf->data, 0, static_cast<int>(rbuf->data_size)) >= 0;
+    } catch (const std::exception&) {  // LCM's string decoding may throw bad_alloc
+      decoded = false;
+    }
+    if (!decoded) {
+      malformed_.fetch_add(1, std::memory_order_relaxed);
+      return;
+    }
+    received_.fetch_add(1, std::memory_order_relaxed);
+    (view_.*to_view)(m, monotonic_ns());
+  }
+
+  wb::TelemetryView& view_;
+  std::atomic<std::uint64_t> received_{0};
+  std::atomic<std::uint64_t> malformed_{0};
+};
+
+/// What the server asks of the bridge: greetings, page requests, the model and statistics.
+class BridgeHandler final : public wb::PageHandler {
+ public:
+  BridgeHandler(const wb::WebConfig& config, std::string model, wb::TelemetryView& view,
+                wb::PageGateway& gateway, const TelemetryInput& input)
+      : config_(config), model_(std::move(model)), view_(view), gateway_(gateway),
+        input_(input) {}
+
+  std::vector<std::string> greeting() override {
+    const nlohmann::json hello{{"type", "hello"},
+                               {"instance", config_.instance},
+                               {"remote_commands", config_.allow_remote_commands},
+                               {"rate_hz", config_.push_rate_hz}};
+    return {hello.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace), model_,
+            view_.history_frame()};
+  }
+
+  std::string on_message(wb::PageSession& page, std::string_view text) override {
+    return gateway_.handle(page, text, monotonic_ns());
+  }
+
+  std::string model() override { return model_; }
+
+  std::string stats() override {
+    const auto& c = gateway_.counters();
+    const auto get = [](const std::atomic<std::uint64_t>& v) {
+      return v.load(std::memory_order_relaxed);
+    };
+    const nlohmann::json j{{"lcm_received", input_.received()},
+                           {"lcm_malformed", input_.malformed()},
+                           {"commands_forwarded", get(c.commands_forwarded)},
+                           {"forces_forwarded", get(c.forces_forwarded)},
+                           {"refused", get(c.refused)},
+                           {"malformed", get(c.malformed)},
+                           {"out_of_range", get(c.out_of_range)},
+                           {"rate_limited", get(c.rate_limited)},
+                           {"publish_failed", get(c.publish_failed)}};
+    return j.dump();
+  }
+
+ private:
+  const wb::WebConfig& config_;
+  std::string model_;
+  wb::TelemetryView& view_;
+  wb::PageGateway& gateway_;
+  const TelemetryInput& input_;
+};
+
+/// Pushes a state frame to every page at the configured rate until told to stop.
+void push_loop(wb::TelemetryView& view, wb::WebServer& server, double rate_hz,
+               const std::atomic<bool>& running) {
+  const auto period = std::chrono::nanoseconds(static_cast<std::int64_t>(1e9 / rate_hz));
+  auto next = std::chrono::steady_clock::now();
+  while (running.load()) {
+    next += period;
+    const auto now = std::chrono::steady_clock::now();
+    if (next < now) {
+      next = now + period;  // after a stall: the next slot, never a burst
+    }
+    std::this_thread::sleep_until(next);
+    const std::string frame = view.next_frame(monotonic_ns());
+    if (server.pages() > 0) {
+      server.broadcast(frame);
+    }
+  }
+}
+
+int run(const wb::WebConfig& config) {
+  const std::string model_path = config.arm_model_path.empty()
+                                     ? hapticctrl::rt_core::default_arm_model_path()
+                                     : config.arm_model_path;
+  const std::string model = wb::model_json(hapticctrl::rt_core::load_arm_model(model_path));
+  lcm::LCM lcm(config.lcm_url);
+  if (!lcm.good()) {
+    throw std::runtime_error("cannot open LCM at '" + config.lcm_url + "'");
+  }
+  const Channels ch = Channels::of(config.instance);
+  wb::TelemetryView view;
+  TelemetryInput input(lcm, ch, view);
+  LcmHmiPublisher publisher(lcm, ch);
+  wb::PageGateway gateway(publisher, config.allow_remote_commands);
+  BridgeHandler handler(config, model, view, gateway, input);
+  wb::ServerSettings settings;
+  settings.listen = config.listen;
+  settings.www_dir = config.www_dir.empty() ? HAPTICCTRL_WEB_WWW_DIR : config.www_dir;
+  settings.max_pages = config.max_pages;
+  wb::WebServer server(settings, handler);
+  const std::string address = config.listen.substr(0, config.listen.rfind(':'));
+  std::fprintf(stderr,
+               "hapticctrl-web: listening on http://%s:%u/ (instance '%s', %s, remote commands "
+               "%s)\n",
+               address.c_str(), static_cast<unsigned>(server.port()), config.instance.c_str(),
+               config.lcm_url.c_str(),
+               config.allow_remote_commands ? "enabled" : "disabled (emergency stop only)");
+  std::atomic<bool> running{true};
+  std::thread pusher([&] { push_loop(view, server, config.push_rate_hz, running); });
+  const std::int64_t end_ns =
+      config.duration_s > 0.0 ? monotonic_ns() + static_cast<std::int64_t>(config.duration_s * 1e9)
+                              : 0;
+  while (!g_stop.load() && (end_ns == 0 || monotonic_ns() < end_ns)) {
+    lcm.handleTimeout(50);
+  }
+  running.store(false);
+  pusher.join();
+  if (config.json) {
+    std::printf("{\"server\":%s,\"bridge\":%s}\n", server.counters_json().c_str(),
+                handler.stats().c_str());
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  wb::WebConfig config;
+  try {
+    config = wb::WebConfig::parse(std::vector<std::string>(argv + 1, argv + argc));
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "hapticctrl-web: %s\n%s", e.what(), wb::WebConfig::usage());
+    return 64;
+  }
+  if (config.help) {
+    std::printf("%s", wb::WebConfig::usage());
+    return 0;
+  }
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+  std::signal(SIGPIPE, SIG_IGN);  // a browser gone mid-write is an error return, not a signal
+  try {
+    return run(config);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "hapticctrl-web: %s\n", e.what());
+    return 1;
+  }
+}

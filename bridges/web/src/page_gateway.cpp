@@ -1,0 +1,66 @@
+#include "hapticctrl/web_bridge/page_gateway.hpp"
+
+#include <algorithm>
+
+namespace hapticctrl::web_bridge {
+namespace {
+
+void count(std::atomic<std::uint64_t>& counter) noexcept {
+  counter.fetch_add(1, std::memory_order_relaxed);
+}
+
+}  // namespace
+
+std::string PageGateway::handle(PageSession& page, std::string_view text, std::int64_t now_ns) {
+  PageRequest request = parse_page_request(text, allow_remote_commands_);
+  switch (request.kind) {
+    case PageRequestKind::kCommand:
+    case PageRequestKind::kForce:
+      return forward(page, request, now_ns);
+    case PageRequestKind::kRefused:
+      count(counters_.refused);
+      break;
+    case PageRequestKind::kOutOfRange:
+      count(counters_.out_of_range);
+      break;
+    case PageRequestKind::kMalformed:
+      count(counters_.malformed);
+      break;
+  }
+  return reply_json(request);
+}
+
+std::string PageGateway::forward(PageSession& page, const PageRequest& request,
+                                 std::int64_t now_ns) {
+  const bool force = request.kind == PageRequestKind::kForce;
+  if (force && page.sent_force && now_ns - page.last_force_ns < kMinForceIntervalNs) {
+    count(counters_.rate_limited);
+    return {};  // the next one, a few ms later, carries the same intent
+  }
+  const std::string origin = "web " + page.peer;
+  bool sent = false;
+  if (force) {
+    hapticctrl_lcm::hmi_force_t m{};
+    m.utime = now_ns / 1000;
+    std::copy(request.wrench.begin(), request.wrench.end(), m.wrench);
+    m.origin = origin;
+    sent = publisher_.publish(m);
+    page.last_force_ns = now_ns;
+    page.sent_force = true;
+  } else {
+    hapticctrl_lcm::hmi_command_t m{};
+    m.utime = now_ns / 1000;
+    m.command = request.command;
+    m.origin = origin;
+    sent = publisher_.publish(m);
+  }
+  if (!sent) {
+    count(counters_.publish_failed);
+    return reply_json(request.name, false, "the LCM bus refused the message");
+  }
+  count(force ? counters_.forces_forwarded : counters_.commands_forwarded);
+  // Forces stream at 20 Hz: only commands get an acknowledgement.
+  return force ? std::string() : reply_json(request);
+}
+
+}  // namespace hapticctrl::web_bridge

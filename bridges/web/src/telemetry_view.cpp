@@ -1,0 +1,249 @@
+#include "hapticctrl/web_bridge/telemetry_view.hpp"
+
+#include <cstring>
+#include <nlohmann/json.hpp>
+
+#include "hapticctrl/shm/names.hpp"
+
+namespace hapticctrl::web_bridge {
+namespace {
+
+using Json = nlohmann::json;
+
+enum Source : std::size_t { kArm, kCoupling, kStats, kEvents, kScene };
+
+template <std::size_t N>
+Json array_of(const double (&values)[N]) {
+  return Json(std::vector<double>(values, values + N));
+}
+
+Json latency_us(const hapticctrl_lcm::latency_t& l) {
+  return {{"p50", static_cast<double>(l.p50_ns) / 1e3},
+          {"p99", static_cast<double>(l.p99_ns) / 1e3},
+          {"max", static_cast<double>(l.max_ns) / 1e3}};
+}
+
+Json arm_json(const hapticctrl_lcm::arm_state_t& m) {
+  return {{"cycle", m.cycle},
+          {"state_word", m.state_word},
+          {"core_state", m.core_state},
+          {"q", array_of(m.joint_position)},
+          {"qd", array_of(m.joint_velocity)},
+          {"tau", array_of(m.joint_torque)},
+          {"handle_pose", array_of(m.handle_pose)},
+          {"handle_twist", array_of(m.handle_twist)},
+          {"operator_wrench", array_of(m.operator_wrench)},
+          {"coupling_wrench", array_of(m.coupling_wrench)}};
+}
+
+Json coupling_json(const hapticctrl_lcm::coupling_t& m) {
+  return {{"session_id", m.session_id},
+          {"command_type", m.command_type},
+          {"object_attached", m.object_attached},
+          {"object_pose", array_of(m.object_pose)},
+          {"coupling_wrench", array_of(m.coupling_wrench)},
+          {"client_age_ms", m.client_age_ms},
+          {"client_stale", m.client_stale}};
+}
+
+Json stats_json(const hapticctrl_lcm::cycle_stats_t& m, const StatsInterval& interval) {
+  const auto core_state = static_cast<std::uint64_t>(m.core_state);
+  const auto stop_reason = static_cast<std::uint64_t>(m.stop_reason);
+  return {{"cycle", m.cycle},
+          {"period_ns", m.period_ns},
+          {"rt_mode", shm::rt_mode_name(static_cast<std::uint64_t>(m.rt_mode))},
+          {"core_state", m.core_state},
+          {"core_state_name", shm::core_state_name(core_state)},
+          {"stop_reason", m.stop_reason},
+          {"stop_reason_name", shm::stop_reason_name(stop_reason)},
+          {"consecutive_misses", m.consecutive_misses},
+          {"misses_total", m.misses_total},
+          {"degraded_cycles", m.degraded_cycles},
+          {"skipped_slots", m.skipped_slots},
+          {"vpr_stale", m.vpr_stale},
+          {"vpr_rejected", m.vpr_rejected},
+          {"force_rejected", m.force_rejected},
+          {"wake_us", latency_us(m.wake_latency)},
+          {"servo_start_us", latency_us(m.servo_start_delay)},
+          {"servo_execution_us", latency_us(m.servo_execution)},
+          {"interval",
+           {{"cycles", interval.cycles},
+            {"misses", interval.misses},
+            {"skipped_slots", interval.skipped_slots},
+            {"wake_max_us_at_most", interval.wake_max_us_at_most}}}};
+}
+
+Json scene_json(const hapticctrl_lcm::scene_t& m) {
+  return {{"steps", m.steps},
+          {"fixed_center", array_of(m.fixed_center)},
+          {"fixed_radius", m.fixed_radius},
+          {"mobile_pose", array_of(m.mobile_pose)},
+          {"mobile_radius", m.mobile_radius},
+          {"contact_force", array_of(m.contact_force)},
+          {"penetration", m.penetration},
+          {"applied_wrench", array_of(m.applied_wrench)},
+          {"rtt_last_us", m.rtt_last_us},
+          {"rtt_mean_us", m.rtt_mean_us},
+          {"rtt_max_us", m.rtt_max_us},
+          {"answers_received", m.answers_received},
+          {"answers_lost", m.answers_lost}};
+}
+
+Json event_json(const hapticctrl_lcm::event_t& m) {
+  return {{"index", m.index}, {"cycle", m.cycle}, {"time_ns", m.time_ns},
+          {"kind", m.kind},   {"code", m.code},   {"value", m.value},
+          {"text", m.text},   {"lost_before", m.lost_before}};
+}
+
+std::string dump(const Json& j) {
+  // Strings come from LCM: replace invalid UTF-8 instead of throwing.
+  return j.dump(-1, ' ', false, Json::error_handler_t::replace);
+}
+
+/// Reads a big-endian int32 (LCM's encoding) at `at`.
+std::int32_t int32_at(const std::uint8_t* p, std::size_t at) noexcept {
+  return static_cast<std::int32_t>(
+      (static_cast<std::uint32_t>(p[at]) << 24U) | (static_cast<std::uint32_t>(p[at + 1]) << 16U) |
+      (static_cast<std::uint32_t>(p[at + 2]) << 8U) | static_cast<std::uint32_t>(p[at + 3]));
+}
+
+/// Skips one LCM string at `at` (int32 length with the NUL, then the bytes); false if it does
+/// not fit in `size` or is not NUL-terminated.
+bool skip_string(const std::uint8_t* p, std::size_t size, std::size_t& at) noexcept {
+  if (at + 4 > size) {
+    return false;
+  }
+  const std::int32_t length = int32_at(p, at);
+  at += 4;
+  if (length <= 0 || static_cast<std::size_t>(length) > size - at) {
+    return false;
+  }
+  at += static_cast<std::size_t>(length);
+  return p[at - 1] == 0;
+}
+
+}  // namespace
+
+StatsInterval interval_between(const hapticctrl_lcm::cycle_stats_t& before,
+                               const hapticctrl_lcm::cycle_stats_t& after) noexcept {
+  const bool same_core = after.cycle >= before.cycle && after.misses_total >= before.misses_total;
+  StatsInterval i;
+  i.cycles = after.cycle - (same_core ? before.cycle : 0);
+  i.misses = after.misses_total - (same_core ? before.misses_total : 0);
+  i.skipped_slots = after.skipped_slots - (same_core ? before.skipped_slots : 0);
+  constexpr int kOpenBucket = 12;  // 10 ms and beyond
+  for (int b = kOpenBucket; b >= 0; --b) {
+    const std::int64_t hits = after.wake_histogram[b] - (same_core ? before.wake_histogram[b] : 0);
+    if (hits > 0) {
+      i.wake_max_us_at_most = b == kOpenBucket ? -1 : after.histogram_edges_us[b];
+      break;
+    }
+  }
+  return i;
+}
+
+StatsInterval merged(const StatsInterval& a, const StatsInterval& b) noexcept {
+  StatsInterval m;
+  m.cycles = a.cycles + b.cycles;
+  m.misses = a.misses + b.misses;
+  m.skipped_slots = a.skipped_slots + b.skipped_slots;
+  const bool open = a.wake_max_us_at_most < 0 || b.wake_max_us_at_most < 0;
+  m.wake_max_us_at_most =
+      open ? -1 : std::max(a.wake_max_us_at_most, b.wake_max_us_at_most);
+  return m;
+}
+
+bool event_strings_sound(const void* data, std::size_t size) noexcept {
+  const auto* p = static_cast<const std::uint8_t*>(data);
+  std::size_t at = 8 + 4 * 8;  // fingerprint, utime, index, cycle, time_ns
+  if (!skip_string(p, size, at)) {  // kind
+    return false;
+  }
+  at += 4 + 8;  // code, value
+  return skip_string(p, size, at) && at + 8 == size;  // text, then lost_before
+}
+
+TelemetryView::TelemetryView(std::size_t event_history) : event_history_(event_history) {}
+
+void TelemetryView::on_arm_state(const hapticctrl_lcm::arm_state_t& m, std::int64_t now_ns) {
+  const std::lock_guard lock(mutex_);
+  arm_ = m;
+  received_[kArm] = {now_ns, true};
+}
+
+void TelemetryView::on_coupling(const hapticctrl_lcm::coupling_t& m, std::int64_t now_ns) {
+  const std::lock_guard lock(mutex_);
+  coupling_ = m;
+  received_[kCoupling] = {now_ns, true};
+}
+
+void TelemetryView::on_cycle_stats(const hapticctrl_lcm::cycle_stats_t& m, std::int64_t now_ns) {
+  const std::lock_guard lock(mutex_);
+  if (stats_) {
+    const StatsInterval step = interval_between(*stats_, m);
+    interval_ = interval_ ? merged(*interval_, step) : step;
+  }
+  stats_ = m;
+  stats_fresh_ = true;
+  received_[kStats] = {now_ns, true};
+}
+
+void TelemetryView::on_event(const hapticctrl_lcm::event_t& m, std::int64_t now_ns) {
+  const std::lock_guard lock(mutex_);
+  events_.push_back(m);
+  if (events_.size() > event_history_) {
+    events_.pop_front();
+  }
+  events_unsent_ = std::min(events_unsent_ + 1, events_.size());
+  received_[kEvents] = {now_ns, true};
+}
+
+void TelemetryView::on_scene(const hapticctrl_lcm::scene_t& m, std::int64_t now_ns) {
+  const std::lock_guard lock(mutex_);
+  scene_ = m;
+  received_[kScene] = {now_ns, true};
+}
+
+std::string TelemetryView::next_frame(std::int64_t now_ns) {
+  const std::lock_guard lock(mutex_);
+  static constexpr const char* kNames[] = {"arm", "coupling", "stats", "events", "scene"};
+  Json age = Json::object();
+  for (std::size_t i = 0; i < received_.size(); ++i) {
+    age[kNames[i]] = received_[i].any
+                         ? Json(static_cast<double>(now_ns - received_[i].at_ns) / 1e6)
+                         : Json(nullptr);
+  }
+  Json frame{{"type", "state"}, {"age_ms", age}};
+  const bool arm_live = received_[kArm].any && now_ns - received_[kArm].at_ns < kSilentAfterNs;
+  frame["controller_silent"] = !arm_live;
+  frame["arm"] = arm_ ? arm_json(*arm_) : Json(nullptr);
+  frame["coupling"] = coupling_ ? coupling_json(*coupling_) : Json(nullptr);
+  frame["scene"] = scene_ ? scene_json(*scene_) : Json(nullptr);
+  if (stats_fresh_ && stats_) {
+    frame["stats"] = stats_json(*stats_, interval_.value_or(StatsInterval{}));
+    stats_fresh_ = false;
+    interval_.reset();
+  }
+  Json events = Json::array();
+  for (std::size_t i = events_.size() - events_unsent_; i < events_.size(); ++i) {
+    events.push_back(event_json(events_[i]));
+  }
+  events_unsent_ = 0;
+  frame["events"] = std::move(events);
+  return dump(frame);
+}
+
+std::string TelemetryView::history_frame() const {
+  const std::lock_guard lock(mutex_);
+  Json events = Json::array();
+  for (const auto& e : events_) {
+    events.push_back(event_json(e));
+  }
+  Json frame{{"type", "history"}, {"events", std::move(events)}};
+  if (stats_) {
+    frame["stats"] = stats_json(*stats_, StatsInterval{});
+  }
+  return dump(frame);
+}
+
+}  // namespace hapticctrl::web_bridge

@@ -1,0 +1,65 @@
+#include "hapticctrl/demo/scene_publisher.hpp"
+
+#include <lcm/lcm-cpp.hpp>
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "hapticctrl/lcmtypes/channels.hpp"
+
+namespace hapticctrl::demo {
+
+hapticctrl_lcm::scene_t to_scene_message(const SphereScene& scene, const AppliedWrench& applied,
+                                         const client::LinkStatistics& link, std::uint64_t steps,
+                                         std::int64_t utime) {
+  hapticctrl_lcm::scene_t m{};
+  m.utime = utime;
+  m.steps = static_cast<std::int64_t>(steps);
+  const SceneConfig& c = scene.config();
+  for (int i = 0; i < 3; ++i) {
+    m.fixed_center[i] = c.fixed_center(i);
+  }
+  m.fixed_radius = c.fixed_radius;
+  const client::Pose7 pose = scene.pose();
+  std::copy(pose.begin(), pose.end(), m.mobile_pose);
+  m.mobile_radius = c.mobile_radius;
+  const Eigen::Vector3d contact = scene.contact_force();
+  for (int i = 0; i < 3; ++i) {
+    m.contact_force[i] = contact(i);
+  }
+  m.penetration = scene.penetration();
+  std::copy(applied.wrench.begin(), applied.wrench.end(), m.applied_wrench);
+  m.rtt_last_us = link.rtt_last_us;
+  m.rtt_mean_us = link.rtt_mean_us;
+  m.rtt_max_us = link.rtt_max_us;
+  m.answers_received = static_cast<std::int64_t>(link.answers_received);
+  m.answers_lost = static_cast<std::int64_t>(link.answers_lost);
+  return m;
+}
+
+ScenePublisher::ScenePublisher(const std::string& url, const std::string& instance,
+                               double rate_hz)
+    : lcm_(std::make_unique<lcm::LCM>(url)),
+      channel_(lcmtypes::Channels::of(instance).scene),
+      period_ns_(static_cast<std::int64_t>(1e9 / rate_hz)) {
+  if (!lcm_->good()) {
+    throw std::runtime_error("cannot open LCM on '" + url +
+                             "' to publish the scene (--no-lcm runs without it)");
+  }
+}
+
+ScenePublisher::~ScenePublisher() = default;
+
+bool ScenePublisher::due(std::int64_t now_ns) noexcept {
+  if (now_ns < next_ns_) {
+    return false;
+  }
+  next_ns_ = next_ns_ + period_ns_ > now_ns ? next_ns_ + period_ns_ : now_ns + period_ns_;
+  return true;
+}
+
+bool ScenePublisher::publish(const hapticctrl_lcm::scene_t& message) {
+  return lcm_->publish(channel_, &message) == 0;
+}
+
+}  // namespace hapticctrl::demo

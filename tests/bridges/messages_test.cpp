@@ -5,13 +5,6 @@
 namespace hapticctrl::lcm_bridge {
 namespace {
 
-TEST(Messages, ChannelsCarryTheInstance) {
-  const Channels c = Channels::of("lab2");
-  EXPECT_EQ(c.arm_state, "hapticctrl.lab2.arm_state");
-  EXPECT_EQ(c.events, "hapticctrl.lab2.events");
-  EXPECT_EQ(c.hmi_command, "hapticctrl.lab2.hmi_command");
-}
-
 TEST(Messages, ArmStateCopiesEveryField) {
   shm::PositionPayload p;
   p.cycle = 7;

@@ -47,6 +47,22 @@ TEST(DemoOptions, ParsesTheSceneAndTheRun) {
   EXPECT_TRUE(o.scene.gravity);
 }
 
+TEST(DemoOptions, PublishesTheSceneOnTheLocalBusUnlessTold) {
+  const DemoOptions defaults = DemoOptions::parse({});
+  EXPECT_TRUE(defaults.publish_scene);
+  EXPECT_NE(defaults.lcm_url.find("ttl=0"), std::string::npos);
+  EXPECT_EQ(defaults.instance, "default");
+  EXPECT_EQ(defaults.scene_rate_hz, 30.0);
+  const DemoOptions o = DemoOptions::parse(
+      {"--lcm-url", "memq://", "--instance", "lab", "--scene-rate", "60", "--no-lcm"});
+  EXPECT_FALSE(o.publish_scene);
+  EXPECT_EQ(o.lcm_url, "memq://");
+  EXPECT_EQ(o.instance, "lab");
+  EXPECT_EQ(o.scene_rate_hz, 60.0);
+  EXPECT_THROW((void)DemoOptions::parse({"--instance", "a.b"}), std::invalid_argument);
+  EXPECT_THROW((void)DemoOptions::parse({"--scene-rate", "0"}), std::invalid_argument);
+}
+
 TEST(DemoOptions, RefusesOutOfRangeValuesAndUnknownOptions) {
   EXPECT_THROW((void)DemoOptions::parse({"--mass", "0"}), std::invalid_argument);
   EXPECT_THROW((void)DemoOptions::parse({"--mass", "nan"}), std::invalid_argument);

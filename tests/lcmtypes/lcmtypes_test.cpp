@@ -14,6 +14,7 @@
 #include "hapticctrl_lcm/hmi_command_t.hpp"
 #include "hapticctrl_lcm/hmi_force_t.hpp"
 #include "hapticctrl_lcm/latency_t.hpp"
+#include "hapticctrl_lcm/scene_t.hpp"
 
 namespace hapticctrl {
 namespace {
@@ -63,6 +64,7 @@ struct Samples {
   hapticctrl_lcm::event_t event{};
   hapticctrl_lcm::hmi_command_t command{};
   hapticctrl_lcm::hmi_force_t force{};
+  hapticctrl_lcm::scene_t scene{};
 
   Samples() {
     latency = {1, 2, 3, 4, 5, 6, 7, 8};
@@ -94,6 +96,11 @@ struct Samples {
     force = {};
     force.wrench[2] = -5.5;
     force.origin = "test";
+    scene = {};
+    scene.steps = 1234;
+    scene.mobile_pose[6] = 1.0;
+    scene.penetration = 0.002;
+    scene.rtt_last_us = 850.5;
   }
 };
 
@@ -108,6 +115,7 @@ void expect_every_type_round_trips(lcm::LCM& lcm) {
   EXPECT_EQ(bytes_of(round_trip(lcm, s.event)), bytes_of(s.event));
   EXPECT_EQ(bytes_of(round_trip(lcm, s.command)), bytes_of(s.command));
   EXPECT_EQ(bytes_of(round_trip(lcm, s.force)), bytes_of(s.force));
+  EXPECT_EQ(bytes_of(round_trip(lcm, s.scene)), bytes_of(s.scene));
   EXPECT_EQ(round_trip(lcm, s.bridge).drop_names[1], "token");
   EXPECT_EQ(round_trip(lcm, s.stats).cycle, 123456789012LL);
 }

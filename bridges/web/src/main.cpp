@@ -60,32 +60,44 @@ class LcmHmiPublisher final : public wb::HmiPublisher {
 /// LCM thread.
 class TelemetryInput {
  public:
+  // Raw subscriptions decoded here, as hapticctrl-lcm does (Debian LCM 1.3.1's typed
+  // member-function subscription trips UBSan inside its own header).
   TelemetryInput(lcm::LCM& lcm, const Channels& ch, wb::TelemetryView& view) : view_(view) {
-    lcm.subscribe(ch.arm_state, &TelemetryInput::on_arm_state, this);
-    lcm.subscribe(ch.coupling, &TelemetryInput::on_coupling, this);
-    lcm.subscribe(ch.cycle_stats, &TelemetryInput::on_cycle_stats, this);
-    lcm.subscribe(ch.events, &TelemetryInput::on_event, this);
-    lcm.subscribe(ch.scene, &TelemetryInput::on_scene, this);
-  }
-
-  void on_arm_state(const lcm::ReceiveBuffer* rbuf, const std::string& /*channel*/) {
-    deliver<hapticctrl_lcm::arm_state_t>(rbuf, &wb::TelemetryView::on_arm_state);
-  }
-  void on_coupling(const lcm::ReceiveBuffer* rbuf, const std::string& /*channel*/) {
-    deliver<hapticctrl_lcm::coupling_t>(rbuf, &wb::TelemetryView::on_coupling);
-  }
-  void on_cycle_stats(const lcm::ReceiveBuffer* rbuf, const std::string& /*channel*/) {
-    deliver<hapticctrl_lcm::cycle_stats_t>(rbuf, &wb::TelemetryView::on_cycle_stats);
-  }
-  void on_event(const lcm::ReceiveBuffer* rbuf, const std::string& /*channel*/) {
-    if (!wb::event_strings_sound(rbuf->data, rbuf->data_size)) {
-      malformed_.fetch_add(1, std::memory_order_relaxed);
-      return;
-    }
-    deliver<hapticctrl_lcm::event_t>(rbuf, &wb::TelemetryView::on_event);
-  }
-  void on_scene(const lcm::ReceiveBuffer* rbuf, const std::string& /*channel*/) {
-    deliver<hapticctrl_lcm::scene_t>(rbuf, &wb::TelemetryView::on_scene);
+    using Buffer = lcm::ReceiveBuffer;
+    lcm.subscribeFunction(
+        ch.arm_state,
+        +[](const Buffer* b, const std::string& /*ch*/, TelemetryInput* self) {
+          self->deliver<hapticctrl_lcm::arm_state_t>(b, &wb::TelemetryView::on_arm_state);
+        },
+        this);
+    lcm.subscribeFunction(
+        ch.coupling,
+        +[](const Buffer* b, const std::string& /*ch*/, TelemetryInput* self) {
+          self->deliver<hapticctrl_lcm::coupling_t>(b, &wb::TelemetryView::on_coupling);
+        },
+        this);
+    lcm.subscribeFunction(
+        ch.cycle_stats,
+        +[](const Buffer* b, const std::string& /*ch*/, TelemetryInput* self) {
+          self->deliver<hapticctrl_lcm::cycle_stats_t>(b, &wb::TelemetryView::on_cycle_stats);
+        },
+        this);
+    lcm.subscribeFunction(
+        ch.events,
+        +[](const Buffer* b, const std::string& /*ch*/, TelemetryInput* self) {
+          if (!wb::event_strings_sound(b->data, b->data_size)) {
+            self->malformed_.fetch_add(1, std::memory_order_relaxed);
+            return;
+          }
+          self->deliver<hapticctrl_lcm::event_t>(b, &wb::TelemetryView::on_event);
+        },
+        this);
+    lcm.subscribeFunction(
+        ch.scene,
+        +[](const Buffer* b, const std::string& /*ch*/, TelemetryInput* self) {
+          self->deliver<hapticctrl_lcm::scene_t>(b, &wb::TelemetryView::on_scene);
+        },
+        this);
   }
 
   [[nodiscard]] std::uint64_t received() const noexcept { return received_.load(); }

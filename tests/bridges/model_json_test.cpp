@@ -1,0 +1,24 @@
+#include "hapticctrl/web_bridge/model_json.hpp"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+namespace hapticctrl::web_bridge {
+namespace {
+
+TEST(ModelJson, CarriesTheKinematicsOfTheShippedModel) {
+  const rt_core::ArmModel model = rt_core::load_arm_model(rt_core::default_arm_model_path());
+  const auto j = nlohmann::json::parse(model_json(model));
+  EXPECT_EQ(j["type"], "model");
+  EXPECT_EQ(j["name"], model.name);
+  ASSERT_EQ(j["joints"].size(), 6U);
+  EXPECT_EQ(j["joints"][1]["origin"][2], model.joints[1].origin.z());
+  EXPECT_EQ(j["joints"][1]["axis"][1], 1.0);  // J2 pitches about y
+  EXPECT_EQ(j["joints"][2]["limits"][0], model.joints[2].q_min);
+  EXPECT_EQ(j["handle"][0], model.handle.x());
+  EXPECT_EQ(j["workspace"]["half_size"][2], model.limits.workspace_half_size.z());
+}
+
+}  // namespace
+}  // namespace hapticctrl::web_bridge

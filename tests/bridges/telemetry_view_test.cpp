@@ -1,0 +1,160 @@
+#include "hapticctrl/web_bridge/telemetry_view.hpp"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace hapticctrl::web_bridge {
+namespace {
+
+using Json = nlohmann::json;
+constexpr std::int64_t kMs = 1'000'000;
+
+hapticctrl_lcm::cycle_stats_t stats_at(std::int64_t cycle, std::int64_t misses) {
+  hapticctrl_lcm::cycle_stats_t s{};
+  s.cycle = cycle;
+  s.misses_total = misses;
+  s.core_state = 1;
+  s.period_ns = 1'000'000;
+  const std::int64_t edges[12] = {2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000, 5000, 10000};
+  for (int i = 0; i < 12; ++i) {
+    s.histogram_edges_us[i] = edges[i];
+  }
+  s.wake_histogram[3] = cycle;  // every wake-up within 20 µs
+  return s;
+}
+
+std::string encoded(const hapticctrl_lcm::event_t& e) {
+  std::string b(static_cast<std::size_t>(e.getEncodedSize()), '\0');
+  e.encode(b.data(), 0, static_cast<int>(b.size()));
+  return b;
+}
+
+TEST(TelemetryView, FrameCarriesTheLatestArmStateAndItsAge) {
+  TelemetryView view;
+  hapticctrl_lcm::arm_state_t arm{};
+  arm.cycle = 42;
+  arm.state_word = 1;
+  arm.joint_position[1] = -0.6;
+  arm.handle_pose[6] = 1.0;
+  arm.coupling_wrench[2] = -3.5;
+  view.on_arm_state(arm, 1000 * kMs);
+  const Json f = Json::parse(view.next_frame(1010 * kMs));
+  EXPECT_EQ(f["type"], "state");
+  EXPECT_EQ(f["arm"]["cycle"], 42);
+  EXPECT_EQ(f["arm"]["q"][1], -0.6);
+  EXPECT_EQ(f["arm"]["coupling_wrench"][2], -3.5);
+  EXPECT_DOUBLE_EQ(f["age_ms"]["arm"].get<double>(), 10.0);
+  EXPECT_TRUE(f["age_ms"]["scene"].is_null());
+  EXPECT_FALSE(f["controller_silent"].get<bool>());
+}
+
+TEST(TelemetryView, AControllerWithoutArmStateForHalfASecondIsSilent) {
+  TelemetryView view;
+  EXPECT_TRUE(Json::parse(view.next_frame(0))["controller_silent"].get<bool>());
+  view.on_arm_state({}, 100 * kMs);
+  EXPECT_FALSE(Json::parse(view.next_frame(599 * kMs))["controller_silent"].get<bool>());
+  EXPECT_TRUE(Json::parse(view.next_frame(600 * kMs))["controller_silent"].get<bool>());
+}
+
+TEST(TelemetryView, StatisticsAndEventsGoOutOnceEach) {
+  TelemetryView view;
+  view.on_cycle_stats(stats_at(1000, 0), 0);
+  view.on_cycle_stats(stats_at(1100, 2), 100 * kMs);
+  hapticctrl_lcm::event_t e{};
+  e.index = 3;
+  e.kind = "power";
+  e.text = "power on";
+  view.on_event(e, 100 * kMs);
+  const Json first = Json::parse(view.next_frame(110 * kMs));
+  ASSERT_TRUE(first.contains("stats"));
+  EXPECT_EQ(first["stats"]["core_state_name"], "running");
+  EXPECT_EQ(first["stats"]["interval"]["cycles"], 100);
+  EXPECT_EQ(first["stats"]["interval"]["misses"], 2);
+  EXPECT_EQ(first["stats"]["interval"]["wake_max_us_at_most"], 20);
+  ASSERT_EQ(first["events"].size(), 1U);
+  EXPECT_EQ(first["events"][0]["text"], "power on");
+  const Json second = Json::parse(view.next_frame(120 * kMs));
+  EXPECT_FALSE(second.contains("stats"));
+  EXPECT_TRUE(second["events"].empty());
+  const Json history = Json::parse(view.history_frame());
+  EXPECT_EQ(history["events"].size(), 1U);
+}
+
+TEST(TelemetryView, KeepsTheLastEventsOnly) {
+  TelemetryView view(3);
+  for (int i = 1; i <= 5; ++i) {
+    hapticctrl_lcm::event_t e{};
+    e.index = i;
+    view.on_event(e, 0);
+  }
+  const Json f = Json::parse(view.next_frame(0));
+  ASSERT_EQ(f["events"].size(), 3U);
+  EXPECT_EQ(f["events"][0]["index"], 3);
+  EXPECT_EQ(f["events"][2]["index"], 5);
+}
+
+TEST(TelemetryView, InvalidUtf8FromTheBusIsReplacedNotThrown) {
+  TelemetryView view;
+  hapticctrl_lcm::event_t e{};
+  e.text = "bad \xff\xfe bytes";
+  view.on_event(e, 0);
+  EXPECT_TRUE(Json::accept(view.next_frame(0)));
+}
+
+TEST(StatsInterval, CountsTheDifferenceAndTheWorstBucket) {
+  hapticctrl_lcm::cycle_stats_t before = stats_at(1000, 1);
+  hapticctrl_lcm::cycle_stats_t after = stats_at(1100, 4);
+  after.skipped_slots = 2;
+  after.wake_histogram[12] = 1;  // one wake-up beyond 10 ms
+  const StatsInterval i = interval_between(before, after);
+  EXPECT_EQ(i.cycles, 100);
+  EXPECT_EQ(i.misses, 3);
+  EXPECT_EQ(i.skipped_slots, 2);
+  EXPECT_EQ(i.wake_max_us_at_most, -1);
+  EXPECT_EQ(interval_between(after, after).wake_max_us_at_most, 0);  // no cycle ran
+}
+
+TEST(StatsInterval, ANewCoreStartsFromItsOwnTotals) {
+  const StatsInterval i = interval_between(stats_at(5000, 7), stats_at(200, 0));
+  EXPECT_EQ(i.cycles, 200);
+  EXPECT_EQ(i.misses, 0);
+}
+
+TEST(StatsInterval, MergingAddsAndKeepsTheWorst) {
+  const StatsInterval m = merged({10, 1, 0, 50}, {20, 2, 1, 20});
+  EXPECT_EQ(m.cycles, 30);
+  EXPECT_EQ(m.misses, 3);
+  EXPECT_EQ(m.wake_max_us_at_most, 50);
+  EXPECT_EQ(merged({1, 0, 0, 50}, {1, 0, 0, -1}).wake_max_us_at_most, -1);
+}
+
+TEST(EventStrings, SoundEventsPass) {
+  hapticctrl_lcm::event_t e{};
+  e.kind = "core_state";
+  e.text = "fail-safe";
+  const auto b = encoded(e);
+  EXPECT_TRUE(event_strings_sound(b.data(), b.size()));
+}
+
+TEST(EventStrings, LyingLengthsAndTruncationFail) {
+  hapticctrl_lcm::event_t e{};
+  e.kind = "kind";
+  e.text = "text";
+  auto b = encoded(e);
+  constexpr std::size_t kKindLength = 8 + 32;  // fingerprint + four int64
+  for (const char first : {'\x80', '\x7f', '\x00'}) {  // INT32_MIN-ish, huge, zero
+    std::string lying = b;
+    lying.replace(kKindLength, 4, std::string{first, 0, 0, 0});
+    EXPECT_FALSE(event_strings_sound(lying.data(), lying.size())) << int{first};
+  }
+  EXPECT_FALSE(event_strings_sound(b.data(), b.size() - 1));
+  EXPECT_FALSE(event_strings_sound(b.data(), 10));
+  std::string unterminated = b;
+  unterminated.replace(kKindLength + 4 + 4, 1, "x");  // the kind's NUL
+  EXPECT_FALSE(event_strings_sound(unterminated.data(), unterminated.size()));
+}
+
+}  // namespace
+}  // namespace hapticctrl::web_bridge

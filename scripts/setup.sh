@@ -11,7 +11,15 @@ PACKAGES=(
   libbenchmark-dev libgtest-dev libgmock-dev libncurses-dev
   # monitoring, analysis and benchmarks
   default-jdk-headless libjchart2d-java gnuplot-nox rt-tests stress-ng procps util-linux python3
+  # the web view (bridges/web): HTTP/WebSocket server, JSON, and the browser its test drives
+  civetweb libcivetweb-dev nlohmann-json3-dev chromium
 )
+# Node.js and npm install the web page's libraries (pinned by bridges/web/package-lock.json) at
+# build time and run its browser test. A Node.js from elsewhere (NodeSource ships npm inside its
+# nodejs package) is used as it is: Debian's npm package would conflict with it.
+if ! command -v npm >/dev/null || ! command -v node >/dev/null; then
+  PACKAGES+=(nodejs npm)
+fi
 
 missing=()
 for pkg in "${PACKAGES[@]}"; do

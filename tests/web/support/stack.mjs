@@ -1,0 +1,128 @@
+// The real controller stack for browser tests: core, UDP bridge, LCM bridge, demo client and web
+// bridge on loopback, for one unique instance; stopped and cleaned up (processes, /dev/shm) by
+// stop(), which the tests call from after() so that a failure leaves nothing behind.
+import { spawn, execFileSync } from 'node:child_process';
+import { rmSync, existsSync } from 'node:fs';
+import { setTimeout as sleep } from 'node:timers/promises';
+
+const env = (name) => {
+  const value = process.env[name];
+  if (!value) throw new Error(`${name} is not set (ctest sets it; see tests/web/CMakeLists.txt)`);
+  return value;
+};
+
+export const binaries = {
+  core: () => env('HAPTICCTRL_CORE'),
+  udp: () => env('HAPTICCTRL_UDP'),
+  lcm: () => env('HAPTICCTRL_LCM'),
+  demo: () => env('HAPTICCTRL_DEMO'),
+  web: () => env('HAPTICCTRL_WEB'),
+  hmi: () => env('HAPTICCTRL_HMI'),
+};
+
+/** Polls `predicate` every `everyMs` until it is truthy or `timeoutMs` passes; returns its value. */
+export async function until(predicate, { timeoutMs = 5000, everyMs = 50 } = {}) {
+  const end = Date.now() + timeoutMs;
+  for (;;) {
+    const value = await predicate();
+    if (value) return value;
+    if (Date.now() >= end) return value;
+    await sleep(everyMs);
+  }
+}
+
+class Process {
+  constructor(name, binary, args) {
+    this.name = name;
+    this.output = '';
+    this.child = spawn(binary, args, { stdio: ['ignore', 'pipe', 'pipe'] });
+    this.exited = new Promise((resolve) => this.child.on('exit', (code, signal) => resolve(code ?? 128 + (signal === 'SIGKILL' ? 9 : 15))));
+    this.running = true;
+    this.exited.then(() => { this.running = false; });
+    for (const stream of [this.child.stdout, this.child.stderr]) {
+      stream.on('data', (chunk) => { this.output += chunk.toString(); });
+    }
+  }
+
+  /** Waits for `pattern` in the output; returns the match. */
+  async waitFor(pattern, timeoutMs = 10000) {
+    const match = await until(() => this.output.match(pattern), { timeoutMs });
+    if (!match) throw new Error(`${this.name}: no ${pattern} within ${timeoutMs} ms; output:\n${this.output}`);
+    return match;
+  }
+
+  async stop(signal = 'SIGTERM', timeoutMs = 5000) {
+    if (!this.running) return;
+    this.child.kill(signal);
+    const done = await Promise.race([this.exited, sleep(timeoutMs).then(() => null)]);
+    if (done === null) {
+      this.child.kill('SIGKILL');
+      await this.exited;
+    }
+  }
+}
+
+export class Stack {
+  constructor(tag) {
+    this.instance = `w${process.pid}-${tag}`;
+    this.processes = {};
+  }
+
+  hmi(...args) {
+    return execFileSync(binaries.hmi(), ['--instance', this.instance, ...args], { encoding: 'utf8', timeout: 10000 });
+  }
+
+  /** The controller's state read from shared memory (hapticctrl-hmi status --json). */
+  status() {
+    return JSON.parse(this.hmi('status', '--json'));
+  }
+
+  async start({ periodUs = 10000 } = {}) {
+    const i = ['--instance', this.instance];
+    const core = this.run('core', binaries.core(), [...i, '--period-us', String(periodUs), '--rt', 'warn']);
+    await core.waitFor(/running, period/);
+    const udp = this.run('udp', binaries.udp(), [...i, '--port', '0']);
+    this.udpPort = Number((await udp.waitFor(/listening on 127\.0\.0\.1:(\d+)/))[1]);
+    const lcm = this.run('lcm', binaries.lcm(), [...i, '--allow-remote-commands']);
+    await lcm.waitFor(/remote commands enabled/);
+    const demo = this.run('demo', binaries.demo(), ['--server', `127.0.0.1:${this.udpPort}`, ...i, '--headless', '--no-power']);
+    await demo.waitFor(/ready:/);
+    await this.startWeb();
+  }
+
+  /** Starts the web bridge: on a free port the first time, on the same port after that. */
+  async startWeb() {
+    const web = this.run('web', binaries.web(), ['--instance', this.instance, '--listen', `127.0.0.1:${this.webPort ?? 0}`,
+      '--allow-remote-commands', '--rate', '20']);
+    this.webPort = Number((await web.waitFor(/listening on http:\/\/127\.0\.0\.1:(\d+)\//))[1]);
+    this.url = `http://127.0.0.1:${this.webPort}/`;
+  }
+
+  async startLcm() {
+    const lcm = this.run('lcm', binaries.lcm(), ['--instance', this.instance, '--allow-remote-commands']);
+    await lcm.waitFor(/remote commands enabled/);
+  }
+
+  run(name, binary, args) {
+    this.processes[name] = new Process(name, binary, args);
+    return this.processes[name];
+  }
+
+  async stopProcess(name, signal = 'SIGTERM') {
+    await this.processes[name]?.stop(signal);
+  }
+
+  /** Everything down, the core first (its fail-safe order), then the rest; no segment left. */
+  async stop() {
+    await this.stopProcess('core');
+    for (const name of ['demo', 'udp', 'lcm', 'web']) await this.stopProcess(name);
+    for (const suffix of ['', '.lock']) {
+      const path = `/dev/shm/hapticctrl.${this.instance}${suffix}`;
+      if (existsSync(path)) rmSync(path);
+    }
+  }
+
+  logs() {
+    return Object.values(this.processes).map((p) => `--- ${p.name}\n${p.output}`).join('\n');
+  }
+}

@@ -1,0 +1,155 @@
+// The operator web page in a real browser (Debian's chromium, headless, driven by
+// playwright-core) against the real controller stack on loopback: the page loads and draws the
+// arm, power-on from the page powers the arm (read back from shared memory with hapticctrl-hmi),
+// a force slider moves the handle, the emergency stop latches, losing the LCM bridge or the web
+// bridge is shown, and a stopped controller's reason is shown. Screenshots go to
+// $HAPTICCTRL_ARTIFACTS.
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import { mkdirSync } from 'node:fs';
+import { join } from 'node:path';
+import { Stack, until } from './support/stack.mjs';
+
+const { chromium } = await import(process.env.PLAYWRIGHT_CORE ?? 'playwright-core');
+const artifacts = process.env.HAPTICCTRL_ARTIFACTS ?? 'test-artifacts/web';
+mkdirSync(artifacts, { recursive: true });
+
+const stack = new Stack('view');
+let browser;
+let page;
+const pageErrors = [];
+
+/** window.hapticctrl, the page's own status object, as plain JSON. */
+const pageStatus = () => page.evaluate(() => {
+  const s = window.hapticctrl;
+  return {
+    connected: s.connected,
+    webgl: s.webgl,
+    framesReceived: s.framesReceived,
+    framesRendered: s.view?.framesRendered ?? 0,
+    modelMismatchM: s.modelMismatchM,
+    remote: s.hello?.remote_commands,
+    arm: s.frame?.arm,
+    scene: s.frame?.scene,
+    silent: s.frame?.controller_silent,
+    plots: s.plots.counts(),
+  };
+});
+const alarm = () => page.locator('[data-testid=alarm]');
+const alarmText = async () => ((await alarm().isVisible()) ? alarm().innerText() : '');
+const shot = (name) => page.screenshot({ path: join(artifacts, `${name}.png`) });
+
+before(async () => {
+  await stack.start();
+  browser = await chromium.launch({
+    executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
+    headless: true,
+    // Software WebGL: Chromium no longer falls back to SwiftShader on its own.
+    args: ['--no-sandbox', '--disable-gpu', '--disable-background-networking',
+      '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
+  });
+  page = await browser.newPage({ viewport: { width: 1280, height: 960 } });
+  page.on('pageerror', (error) => pageErrors.push(error.message));
+});
+
+after(async () => {
+  await browser?.close();
+  await stack.stop();
+});
+
+test('the page loads, connects and draws the arm and the spheres', async () => {
+  await page.goto(stack.url);
+  const s = await until(async () => {
+    const status = await pageStatus();
+    return status.framesReceived > 5 && status.scene && status.framesRendered > 0 ? status : null;
+  }, { timeoutMs: 10000 });
+  assert.ok(s, `no live frames: ${JSON.stringify(await pageStatus())}\n${stack.logs()}`);
+  assert.equal(s.connected, true);
+  assert.equal(s.webgl, true, 'WebGL unavailable');
+  assert.equal(s.remote, true);
+  assert.ok(s.modelMismatchM < 0.002, `the page's kinematics put the handle ${s.modelMismatchM} m off`);
+  // The canvas holds a picture, not a blank clear colour: count distinct colours.
+  const colours = await page.evaluate(() => {
+    const source = document.getElementById('scene');
+    const copy = document.createElement('canvas');
+    copy.width = source.width;
+    copy.height = source.height;
+    const context = copy.getContext('2d');
+    context.drawImage(source, 0, 0);
+    const pixels = context.getImageData(0, 0, copy.width, copy.height).data;
+    const seen = new Set();
+    for (let i = 0; i < pixels.length; i += 4 * 97) seen.add((pixels[i] << 16) | (pixels[i + 1] << 8) | pixels[i + 2]);
+    return seen.size;
+  });
+  assert.ok(colours > 20, `the 3D canvas looks empty (${colours} colours)`);
+  assert.deepEqual(pageErrors, []);
+  await shot('01-loaded');
+});
+
+test('power on from the page powers the arm', async () => {
+  assert.equal(stack.status().powered, false);
+  await page.click('[data-testid=power-on]');
+  assert.ok(await until(() => stack.status().powered), 'the core did not power on');
+  await until(async () => (await page.locator('[data-testid=power]').innerText()) === 'powered');
+  assert.equal(await page.locator('[data-testid=power]').innerText(), 'powered');
+});
+
+test('a force slider moves the handle', async () => {
+  const before = stack.status().handle_pose;
+  await page.locator('[data-testid=slider-Fy]').fill('5');
+  const moved = await until(() => {
+    const now = stack.status();
+    return now.handle_pose[1] - before[1] > 0.01 && now.operator_wrench[1] > 4 ? now : null;
+  }, { timeoutMs: 8000 });
+  assert.ok(moved, `the handle did not move along +y: ${JSON.stringify(stack.status())}`);
+  const s = await until(async () => {
+    const status = await pageStatus();
+    return status.arm && status.arm.handle_pose[1] - before[1] > 0.01 ? status : null;
+  });
+  assert.ok(s, 'the page did not show the handle moving');
+  assert.ok(s.plots.force > 10 && s.plots.latency > 3 && s.plots.rtt > 3, JSON.stringify(s.plots));
+  await page.waitForTimeout(1500); // let the plots fill for the picture
+  await shot('02-force-applied');
+  await page.click('[data-testid=release]');
+  assert.ok(await until(() => Math.abs(stack.status().operator_wrench[1]) < 0.1), 'the force was not released');
+});
+
+test('the emergency stop button latches the stop, and reset clears it', async () => {
+  await page.click('[data-testid=estop]');
+  assert.ok(await until(() => stack.status().emergency_stop), 'the e-stop did not latch');
+  assert.equal(stack.status().powered, false);
+  await until(async () => (await alarmText()).includes('EMERGENCY STOP'));
+  assert.match(await alarmText(), /EMERGENCY STOP latched/);
+  assert.equal(await page.locator('[data-testid=estop]').innerText(), 'E-STOP LATCHED');
+  await shot('03-estop-latched');
+  await page.click('[data-testid=reset]');
+  assert.ok(await until(() => !stack.status().emergency_stop), 'the reset did not clear the e-stop');
+  assert.ok(await until(async () => (await alarmText()) === ''), 'the alarm stayed');
+});
+
+test('a silent controller and a lost web bridge are shown, and both recover', async () => {
+  await stack.stopProcess('lcm', 'SIGKILL');
+  assert.ok(await until(async () => /No telemetry from the controller/.test(await alarmText())),
+    `no alarm for a silent controller: '${await alarmText()}'`);
+  await shot('04-controller-silent');
+  await stack.startLcm();
+  assert.ok(await until(async () => (await alarmText()) === '', { timeoutMs: 8000 }), 'the alarm stayed after recovery');
+
+  await stack.stopProcess('web', 'SIGKILL');
+  assert.ok(await until(async () => /CONNECTION TO THE CONTROLLER LOST/.test(await alarmText())),
+    `no alarm for a lost connection: '${await alarmText()}'`);
+  assert.equal(await page.locator('[data-testid=link]').innerText(), 'web: lost');
+  await shot('05-connection-lost');
+  await stack.startWeb();
+  assert.ok(await until(async () => (await pageStatus()).connected && (await alarmText()) === '', { timeoutMs: 10000 }),
+    'the page did not reconnect');
+});
+
+test('a stopped controller shows its reason prominently', async () => {
+  stack.hmi('stop');
+  assert.ok(await until(async () => /stop requested/.test(await alarmText()), { timeoutMs: 8000 }),
+    `no stop reason: '${await alarmText()}'`);
+  assert.match(await page.locator('[data-testid=events]').innerText(), /stop requested/);
+  await shot('06-controller-stopped');
+  assert.deepEqual(pageErrors, []);
+});

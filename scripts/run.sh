@@ -5,6 +5,7 @@
 #   hapticctrl-udp   the client protocol on 127.0.0.1:$HAPTICCTRL_PORT (5125)
 #   hapticctrl-lcm   telemetry on LCM, host-local (watch it with scripts/spy.sh)
 #   hapticctrl-demo  the test client: a sphere coupled to the arm, next to a fixed sphere
+#   hapticctrl-web   the 3D operator view on http://127.0.0.1:$HAPTICCTRL_WEB_PORT/ (8080)
 #   hapticctrl-hmi   the operator panel, in this terminal
 # Quitting the panel (q), or Ctrl-C, stops everything: the controller in its fail-safe order,
 # then the others; no process and no /dev/shm segment is left. Without a terminal it plays a
@@ -20,6 +21,7 @@ cmake --build build -j "$(nproc)" >/dev/null
 
 INSTANCE=${HAPTICCTRL_INSTANCE:-demo}
 PORT=${HAPTICCTRL_PORT:-5125}
+WEB_PORT=${HAPTICCTRL_WEB_PORT:-8080}
 RUN_DIR=build/run
 mkdir -p "$RUN_DIR"
 HMI=(build/hmi/hapticctrl-hmi --instance "$INSTANCE")
@@ -55,7 +57,17 @@ for _ in $(seq 100); do
 done
 build/bridges/udp/hapticctrl-udp --instance "$INSTANCE" --port "$PORT" 2>"$RUN_DIR/udp.log" &
 PIDS+=($!)
-build/bridges/lcm/hapticctrl-lcm --instance "$INSTANCE" 2>"$RUN_DIR/lcm.log" &
+# The web page watches, and its emergency stop always acts. With HAPTICCTRL_WEB_CONTROL=1 (and
+# a terminal) the page is the operator panel instead of this terminal: the LCM bridge then takes
+# the force region (one writer per region) and both bridges accept the page's power and force.
+REMOTE=()
+if [[ "${HAPTICCTRL_WEB_CONTROL:-0}" == 1 && -t 0 && -t 1 ]]; then
+  REMOTE=(--allow-remote-commands)
+fi
+build/bridges/lcm/hapticctrl-lcm --instance "$INSTANCE" "${REMOTE[@]}" 2>"$RUN_DIR/lcm.log" &
+PIDS+=($!)
+build/bridges/web/hapticctrl-web --instance "$INSTANCE" --listen "127.0.0.1:$WEB_PORT" \
+  "${REMOTE[@]}" 2>"$RUN_DIR/web.log" &
 PIDS+=($!)
 build/client/demo/hapticctrl-demo --server "127.0.0.1:$PORT" --headless --json \
   --log "$RUN_DIR/demo.csv" >"$RUN_DIR/demo.json" 2>"$RUN_DIR/demo.log" &
@@ -66,6 +78,18 @@ for _ in $(seq 100); do
   sleep 0.05
 done
 
+sleep 0.3
+if grep -q "listening on" "$RUN_DIR/web.log"; then
+  echo "run: operator view on http://127.0.0.1:$WEB_PORT/ (from another machine: ssh -L $WEB_PORT:127.0.0.1:$WEB_PORT)"
+else
+  echo "run: the web view did not start: $(cat "$RUN_DIR/web.log")" >&2
+fi
+
+if [[ ${#REMOTE[@]} -gt 0 ]]; then
+  echo "run: the web page is the operator panel; Ctrl-C stops everything"
+  wait "$CORE_PID" || true
+  exit 0
+fi
 if [[ -t 0 && -t 1 ]]; then
   "${HMI[@]}" || true
   exit 0  # stop_all (EXIT) stops the controller and the rest

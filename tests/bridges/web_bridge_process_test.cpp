@@ -30,8 +30,8 @@ using test::WebSocketClient;
 class WebBridgeProcess : public ::testing::Test {
  protected:
   void start(bool allow_remote_commands) {
-    std::vector<std::string> args{"--listen", "127.0.0.1:0", "--instance", instance_, "--rate",
-                                  "60", "--json"};
+    std::vector<std::string> args{"--listen", "127.0.0.1:0", "--instance", instance_,
+                                  "--rate",   "60",          "--json"};
     if (allow_remote_commands) {
       args.emplace_back("--allow-remote-commands");
     }
@@ -88,7 +88,8 @@ class WebBridgeProcess : public ::testing::Test {
   Json stats() const {
     const std::string response = test::http_get(port_, "/api/stats");
     const auto body = response.find("\r\n\r\n");
-    return body == std::string::npos ? Json() : Json::parse(response.substr(body + 4), nullptr, false);
+    return body == std::string::npos ? Json()
+                                     : Json::parse(response.substr(body + 4), nullptr, false);
   }
 
   std::string instance_ = test::unique_instance("web");

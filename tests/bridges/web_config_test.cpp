@@ -16,10 +16,10 @@ TEST(WebConfig, DefaultsServeThisHostOnlyWithoutRemoteCommands) {
 }
 
 TEST(WebConfig, ParsesEveryOption) {
-  const WebConfig c = WebConfig::parse(
-      {"--listen", "0.0.0.0:9000", "--www", "/srv/www", "--arm-model", "m.arm", "--instance",
-       "lab", "--lcm-url", "memq://", "--rate", "60", "--max-pages", "2",
-       "--allow-remote-commands", "--duration", "1.5", "--json"});
+  const WebConfig c =
+      WebConfig::parse({"--listen", "0.0.0.0:9000", "--www", "/srv/www", "--arm-model", "m.arm",
+                        "--instance", "lab", "--lcm-url", "memq://", "--rate", "60", "--max-pages",
+                        "2", "--allow-remote-commands", "--duration", "1.5", "--json"});
   EXPECT_EQ(c.listen, "0.0.0.0:9000");
   EXPECT_EQ(c.www_dir, "/srv/www");
   EXPECT_EQ(c.arm_model_path, "m.arm");
@@ -33,18 +33,17 @@ TEST(WebConfig, ParsesEveryOption) {
 }
 
 TEST(WebConfig, RefusesBadValuesNamingTheOption) {
-  for (const auto& args : std::vector<std::vector<std::string>>{
-           {"--listen", "8080"},
-           {"--listen", "localhost:8080"},
-           {"--listen", "127.0.0.1:70000"},
-           {"--listen", "127.0.0.1:"},
-           {"--rate", "0"},
-           {"--rate", "61"},
-           {"--rate", "fast"},
-           {"--max-pages", "0"},
-           {"--duration", "-1"},
-           {"--instance"},
-           {"--bogus"}}) {
+  for (const auto& args : std::vector<std::vector<std::string>>{{"--listen", "8080"},
+                                                                {"--listen", "localhost:8080"},
+                                                                {"--listen", "127.0.0.1:70000"},
+                                                                {"--listen", "127.0.0.1:"},
+                                                                {"--rate", "0"},
+                                                                {"--rate", "61"},
+                                                                {"--rate", "fast"},
+                                                                {"--max-pages", "0"},
+                                                                {"--duration", "-1"},
+                                                                {"--instance"},
+                                                                {"--bogus"}}) {
     try {
       (void)WebConfig::parse(args);
       ADD_FAILURE() << args[0] << " accepted";

@@ -128,10 +128,10 @@ TEST_F(WebServerTest, HandsTextToTheHandlerAndRepliesWhenItAnswers) {
 TEST_F(WebServerTest, DropsBinaryFragmentedAndOversizedMessagesAndKeepsThePage) {
   WebServer& s = start();
   auto page = greeted_page();
-  page->send_frame(0x82, "\x01\x02\x03");              // binary
+  page->send_frame(0x82, "\x01\x02\x03");  // binary
   EXPECT_TRUE(page->receive_containing("text JSON messages only"));
-  page->send_frame(0x01, "{\"type\":");                // a first fragment (no FIN)
-  page->send_frame(0x80, "\"command\"}");              // its continuation
+  page->send_frame(0x01, "{\"type\":");    // a first fragment (no FIN)
+  page->send_frame(0x80, "\"command\"}");  // its continuation
   page->send_text(std::string(kMaxPageMessageBytes + 1, 'x'));
   EXPECT_TRUE(page->receive_containing("message too long"));
   page->send_text("ask still here");
@@ -173,6 +173,7 @@ TEST_F(WebServerTest, SurvivesGarbageTruncatedFramesAndAbsurdLengths) {
 TEST_F(WebServerTest, ForgetsClosedAndVanishedPages) {
   WebServer& s = start(8);
   std::vector<std::unique_ptr<WebSocketClient>> pages;
+  pages.reserve(6);
   for (int i = 0; i < 6; ++i) {
     pages.push_back(greeted_page());
   }

@@ -18,9 +18,8 @@ TEST(Channels, CarryTheInstance) {
 
 TEST(Channels, AreDistinct) {
   const Channels c = Channels::of("x");
-  const std::set<std::string> names{c.arm_state,   c.coupling,    c.cycle_stats,
-                                    c.bridge_stats, c.events,     c.hmi_command,
-                                    c.hmi_force,    c.scene};
+  const std::set<std::string> names{c.arm_state, c.coupling,    c.cycle_stats, c.bridge_stats,
+                                    c.events,    c.hmi_command, c.hmi_force,   c.scene};
   EXPECT_EQ(names.size(), 8U);
 }
 

@@ -133,8 +133,7 @@ class WebSocketClient {
   }
 
   /// The next text message containing `needle`, within `timeout_ms`.
-  std::optional<std::string> receive_containing(const std::string& needle,
-                                                int timeout_ms = 3000) {
+  std::optional<std::string> receive_containing(const std::string& needle, int timeout_ms = 3000) {
     const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);
     while (std::chrono::steady_clock::now() < end) {
       const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(

@@ -132,8 +132,7 @@ class BridgeHandler final : public wb::PageHandler {
  public:
   BridgeHandler(const wb::WebConfig& config, std::string model, wb::TelemetryView& view,
                 wb::PageGateway& gateway, const TelemetryInput& input)
-      : config_(config), model_(std::move(model)), view_(view), gateway_(gateway),
-        input_(input) {}
+      : config_(config), model_(std::move(model)), view_(view), gateway_(gateway), input_(input) {}
 
   std::vector<std::string> greeting() override {
     const nlohmann::json hello{{"type", "hello"},

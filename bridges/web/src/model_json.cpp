@@ -18,14 +18,13 @@ std::string model_json(const rt_core::ArmModel& model) {
                       {"axis", vector_json(j.axis)},
                       {"limits", nlohmann::json::array({j.q_min, j.q_max})}});
   }
-  const nlohmann::json model_json{
-      {"type", "model"},
-      {"name", model.name},
-      {"joints", std::move(joints)},
-      {"handle", vector_json(model.handle)},
-      {"workspace",
-       {{"center", vector_json(model.limits.workspace_center)},
-        {"half_size", vector_json(model.limits.workspace_half_size)}}}};
+  const nlohmann::json model_json{{"type", "model"},
+                                  {"name", model.name},
+                                  {"joints", std::move(joints)},
+                                  {"handle", vector_json(model.handle)},
+                                  {"workspace",
+                                   {{"center", vector_json(model.limits.workspace_center)},
+                                    {"half_size", vector_json(model.limits.workspace_half_size)}}}};
   return model_json.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 

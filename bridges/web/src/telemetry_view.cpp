@@ -90,9 +90,10 @@ Json scene_json(const hapticctrl_lcm::scene_t& m) {
 }
 
 Json event_json(const hapticctrl_lcm::event_t& m) {
-  return {{"index", m.index}, {"cycle", m.cycle}, {"time_ns", m.time_ns},
-          {"kind", m.kind},   {"code", m.code},   {"value", m.value},
-          {"text", m.text},   {"lost_before", m.lost_before}};
+  return {{"index", m.index},     {"cycle", m.cycle},
+          {"time_ns", m.time_ns}, {"kind", m.kind},
+          {"code", m.code},       {"value", m.value},
+          {"text", m.text},       {"lost_before", m.lost_before}};
 }
 
 std::string dump(const Json& j) {
@@ -148,18 +149,17 @@ StatsInterval merged(const StatsInterval& a, const StatsInterval& b) noexcept {
   m.misses = a.misses + b.misses;
   m.skipped_slots = a.skipped_slots + b.skipped_slots;
   const bool open = a.wake_max_us_at_most < 0 || b.wake_max_us_at_most < 0;
-  m.wake_max_us_at_most =
-      open ? -1 : std::max(a.wake_max_us_at_most, b.wake_max_us_at_most);
+  m.wake_max_us_at_most = open ? -1 : std::max(a.wake_max_us_at_most, b.wake_max_us_at_most);
   return m;
 }
 
 bool event_strings_sound(const void* data, std::size_t size) noexcept {
   const auto* p = static_cast<const std::uint8_t*>(data);
-  std::size_t at = 8 + 4 * 8;  // fingerprint, utime, index, cycle, time_ns
+  std::size_t at = 8 + 4 * 8;       // fingerprint, utime, index, cycle, time_ns
   if (!skip_string(p, size, at)) {  // kind
     return false;
   }
-  at += 4 + 8;  // code, value
+  at += 4 + 8;                                        // code, value
   return skip_string(p, size, at) && at + 8 == size;  // text, then lost_before
 }
 
@@ -209,9 +209,8 @@ std::string TelemetryView::next_frame(std::int64_t now_ns) {
   static constexpr const char* kNames[] = {"arm", "coupling", "stats", "events", "scene"};
   Json age = Json::object();
   for (std::size_t i = 0; i < received_.size(); ++i) {
-    age[kNames[i]] = received_[i].any
-                         ? Json(static_cast<double>(now_ns - received_[i].at_ns) / 1e6)
-                         : Json(nullptr);
+    age[kNames[i]] = received_[i].any ? Json(static_cast<double>(now_ns - received_[i].at_ns) / 1e6)
+                                      : Json(nullptr);
   }
   Json frame{{"type", "state"}, {"age_ms", age}};
   const bool arm_live = received_[kArm].any && now_ns - received_[kArm].at_ns < kSilentAfterNs;

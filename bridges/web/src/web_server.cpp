@@ -126,8 +126,8 @@ struct WebServer::Callbacks {
       return mg_send_http_error(conn, 405, "%s", "GET only"), 405;
     }
     WebServer& s = server(cbdata);
-    return send_json(conn, "{\"server\":" + s.counters_json() +
-                               ",\"bridge\":" + s.handler_.stats() + "}");
+    return send_json(
+        conn, "{\"server\":" + s.counters_json() + ",\"bridge\":" + s.handler_.stats() + "}");
   }
 
   static int on_model(mg_connection* conn, void* cbdata) {
@@ -144,24 +144,13 @@ WebServer::WebServer(const ServerSettings& settings, PageHandler& handler)
   // One server thread per open page (civetweb keeps a WebSocket on its thread) plus four
   // for files and the API.
   const std::string threads = std::to_string(settings.max_pages + 4);
-  const std::array<const char*, 17> options{"listening_ports",
-                                            settings.listen.c_str(),
-                                            "document_root",
-                                            settings.www_dir.c_str(),
-                                            "num_threads",
-                                            threads.c_str(),
-                                            "enable_directory_listing",
-                                            "no",
-                                            "request_timeout_ms",
-                                            "5000",
-                                            // A quiet page is pinged, not dropped.
-                                            "websocket_timeout_ms",
-                                            "5000",
-                                            "enable_websocket_ping_pong",
-                                            "yes",
-                                            "additional_header",
-                                            "X-Content-Type-Options: nosniff",
-                                            nullptr};
+  const std::array<const char*, 17> options{
+      "listening_ports", settings.listen.c_str(), "document_root", settings.www_dir.c_str(),
+      "num_threads", threads.c_str(), "enable_directory_listing", "no", "request_timeout_ms",
+      "5000",
+      // A quiet page is pinged, not dropped.
+      "websocket_timeout_ms", "5000", "enable_websocket_ping_pong", "yes", "additional_header",
+      "X-Content-Type-Options: nosniff", nullptr};
   mg_callbacks callbacks{};
   mg_init_data init{};
   init.callbacks = &callbacks;

@@ -33,7 +33,8 @@ const char* DemoOptions::usage() noexcept {
          "one. Keys (with a terminal): x y z / X Y Z push the sphere along +/-, u v w / U V W\n"
          "twist it, 0 releases, q quits. Script lines: 't push fx fy fz', 't twist tx ty tz',\n"
          "'t release', 't quit'. The scene goes out on LCM (hapticctrl.<instance>.scene,\n"
-         "default 30 Hz, local-only URL) for the web view. Exit: 0 done, 1 error, 2 the controller ended the session\n"
+         "default 30 Hz, local-only URL) for the web view. Exit: 0 done, 1 error, 2 the controller "
+         "ended the session\n"
          "abnormally (fail-safe), 64 usage.\n";
 }
 

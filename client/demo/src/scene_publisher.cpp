@@ -37,8 +37,7 @@ hapticctrl_lcm::scene_t to_scene_message(const SphereScene& scene, const Applied
   return m;
 }
 
-ScenePublisher::ScenePublisher(const std::string& url, const std::string& instance,
-                               double rate_hz)
+ScenePublisher::ScenePublisher(const std::string& url, const std::string& instance, double rate_hz)
     : lcm_(std::make_unique<lcm::LCM>(url)),
       channel_(lcmtypes::Channels::of(instance).scene),
       period_ns_(static_cast<std::int64_t>(1e9 / rate_hz)) {

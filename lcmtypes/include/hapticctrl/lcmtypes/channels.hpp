@@ -12,8 +12,7 @@ inline constexpr const char* kDefaultLcmUrl = "udpm://239.255.76.67:7667?ttl=0";
 
 /// Channel names: "hapticctrl.<instance>.<topic>", so several controllers share one network.
 struct Channels {
-  std::string arm_state, coupling, cycle_stats, bridge_stats, events, hmi_command, hmi_force,
-      scene;
+  std::string arm_state, coupling, cycle_stats, bridge_stats, events, hmi_command, hmi_force, scene;
 
   static Channels of(const std::string& instance) {
     const std::string p = "hapticctrl." + instance + ".";

@@ -55,8 +55,7 @@ class PageGateway {
 
   /// Handles one text message of `page` at `now_ns` (monotonic); returns the reply for the page
   /// (empty for forwarded forces, which the page sends 20 times a second).
-  [[nodiscard]] std::string handle(PageSession& page, std::string_view text,
-                                   std::int64_t now_ns);
+  [[nodiscard]] std::string handle(PageSession& page, std::string_view text, std::int64_t now_ns);
   [[nodiscard]] bool allow_remote_commands() const noexcept { return allow_remote_commands_; }
   [[nodiscard]] const GatewayCounters& counters() const noexcept { return counters_; }
 

@@ -26,11 +26,11 @@ inline constexpr double kMaxPageForce = 100.0;  ///< N
 inline constexpr double kMaxPageTorque = 10.0;  ///< N.m
 
 enum class PageRequestKind : std::uint8_t {
-  kCommand,    ///< `command` holds the hmi_command_t code
-  kForce,      ///< `wrench` holds the operator wrench
-  kMalformed,  ///< not JSON, not an object, unknown type, a missing or mistyped field
-  kOutOfRange, ///< a wrench value non-finite or beyond the bounds
-  kRefused,    ///< a command or force while remote commands are disabled
+  kCommand,     ///< `command` holds the hmi_command_t code
+  kForce,       ///< `wrench` holds the operator wrench
+  kMalformed,   ///< not JSON, not an object, unknown type, a missing or mistyped field
+  kOutOfRange,  ///< a wrench value non-finite or beyond the bounds
+  kRefused,     ///< a command or force while remote commands are disabled
 };
 
 struct PageRequest {

@@ -13,7 +13,7 @@ struct WebConfig {
   /// Where the HTTP/WebSocket server listens: "ADDRESS:PORT", loopback by default (port 0: any
   /// free port, printed at start). Give 0.0.0.0:PORT to serve other machines (docs/security.md).
   std::string listen = "127.0.0.1:8080";
-  std::string www_dir;  ///< the page's files; empty: the build's bridges/web/www
+  std::string www_dir;         ///< the page's files; empty: the build's bridges/web/www
   std::string arm_model_path;  ///< the model the page draws; empty: the shipped default
   std::string instance = "default";
   std::string lcm_url = lcmtypes::kDefaultLcmUrl;

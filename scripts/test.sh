@@ -39,15 +39,15 @@ if [[ "${CI:-}" == "true" ]]; then
   echo "== ThreadSanitizer"
   configure_build_test build-tsan 'unit|sim|integration' 3 \
     -DHAPTICCTRL_SANITIZER=thread -DHAPTICCTRL_BUILD_BENCH=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo
-  echo "== fuzz the decoder, the arm model, the option parsers and LCM HMI input (libFuzzer)"
+  echo "== fuzz the decoder, the arm model, the option parsers, LCM HMI input and web page input (libFuzzer)"
   CC=clang CXX=clang++ cmake -S "$ROOT" -B build-fuzz -G Ninja -DHAPTICCTRL_WERROR=ON \
     -DHAPTICCTRL_BUILD_FUZZ=ON -DHAPTICCTRL_BUILD_TESTS=OFF -DHAPTICCTRL_BUILD_BENCH=OFF \
     -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
-  fuzzers=(decoder arm-model config lcm-hmi)
+  fuzzers=(decoder arm-model config lcm-hmi web)
   cmake --build build-fuzz -j "$JOBS" --target "${fuzzers[@]/#/hapticctrl-fuzz-}"
   for name in "${fuzzers[@]}"; do
-    # The protocol decoder faces the network: half of the time budget; the others a sixth each.
-    share=6
+    # The protocol decoder faces the network: half of the time budget; the others an eighth each.
+    share=8
     [[ $name == decoder ]] && share=2
     seconds=$(( ${FUZZ_SECONDS:=90} / share ))
     corpus=$(mktemp -d)  # new inputs stay out of the repository's seed corpus

@@ -1,5 +1,5 @@
 // libFuzzer target: every command line and text the programs parse before they start: the
-// core's, both bridges', the HMI's and the demo's options, client addresses and operator force
+// core's, the three bridges', the HMI's and the demo's options, client addresses and operator force
 // sequences. The first byte chooses the parser; the rest is split at newlines into arguments
 // (the sequence parser gets it whole). Each parser must return or throw its documented
 // exception with a message; anything else is a finding.
@@ -16,6 +16,7 @@
 #include "hapticctrl/lcm_bridge/lcm_bridge_config.hpp"
 #include "hapticctrl/rt_core/core_config.hpp"
 #include "hapticctrl/udp_bridge/bridge_config.hpp"
+#include "hapticctrl/web_bridge/web_config.hpp"
 
 namespace {
 
@@ -31,7 +32,7 @@ std::vector<std::string> arguments(const std::string& text) {
 }
 
 void parse(std::uint8_t which, const std::string& text) {
-  switch (which % 7) {
+  switch (which % 8) {
     case 0:
       (void)hapticctrl::rt_core::parse_core_args(arguments(text));
       break;
@@ -49,6 +50,9 @@ void parse(std::uint8_t which, const std::string& text) {
       break;
     case 5:
       (void)hapticctrl::client::Address::parse(text);
+      break;
+    case 6:
+      (void)hapticctrl::web_bridge::WebConfig::parse(arguments(text));
       break;
     default:
       (void)hapticctrl::hmi::WrenchSequence::parse(text, "fuzz");

@@ -21,6 +21,7 @@ TEST(WebConfig, ParsesEveryOption) {
                         "--instance", "lab", "--lcm-url", "memq://", "--rate", "60", "--max-pages",
                         "2", "--allow-remote-commands", "--duration", "1.5", "--json"});
   EXPECT_EQ(c.listen, "0.0.0.0:9000");
+  EXPECT_TRUE(c.allow_remote);
   EXPECT_EQ(c.www_dir, "/srv/www");
   EXPECT_EQ(c.arm_model_path, "m.arm");
   EXPECT_EQ(c.instance, "lab");
@@ -51,6 +52,16 @@ TEST(WebConfig, RefusesBadValuesNamingTheOption) {
       EXPECT_NE(std::string(e.what()).find(args[0].substr(0, 8)), std::string::npos) << e.what();
     }
   }
+}
+
+TEST(WebConfig, ServingBeyondLoopbackMustBeMeant) {
+  try {
+    (void)WebConfig::parse({"--listen", "0.0.0.0:8080"});
+    FAIL() << "listened beyond loopback without --allow-remote";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("--allow-remote"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(WebConfig::parse({"--listen", "127.0.0.2:8080"}).listen, "127.0.0.2:8080");
 }
 
 }  // namespace

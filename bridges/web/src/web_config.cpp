@@ -41,7 +41,10 @@ const char* WebConfig::usage() noexcept {
          "The operator's web view: serves the page, pushes the controller's LCM telemetry to it\n"
          "over WebSocket and forwards its commands as LCM HMI messages.\n"
          "  --listen ADDR:PORT       HTTP/WebSocket address (default: 127.0.0.1:8080; port 0:\n"
-         "                           any free port; 0.0.0.0:PORT serves other machines)\n"
+         "                           any free port)\n"
+         "  --allow-remote           required with a --listen address beyond loopback, such as\n"
+         "                           0.0.0.0:8080 (every machine that reaches it sees the arm and\n"
+         "                           can press its emergency stop)\n"
          "  --www DIR                the page's files (default: the build's bridges/web/www)\n"
          "  --arm-model FILE         the arm model the page draws (default: the shipped one;\n"
          "                           give the core's if it runs another)\n"
@@ -69,6 +72,8 @@ WebConfig WebConfig::parse(const std::vector<std::string>& args) {
     if (a == "--listen") {
       c.listen = value();
       check_listen(c.listen);
+    } else if (a == "--allow-remote") {
+      c.allow_remote = true;
     } else if (a == "--www") {
       c.www_dir = value();
     } else if (a == "--arm-model") {
@@ -92,6 +97,11 @@ WebConfig WebConfig::parse(const std::vector<std::string>& args) {
     } else {
       throw std::invalid_argument("unknown option '" + a + "'");
     }
+  }
+  if (c.listen.rfind("127.", 0) != 0 && !c.allow_remote) {
+    throw std::invalid_argument("--listen " + c.listen +
+                                " serves the web view beyond this host: add --allow-remote to "
+                                "mean it");
   }
   return c;
 }

@@ -179,10 +179,13 @@ TEST_F(WebBridgeProcess, CountsMalformedInputFromPagesAndTheBusAndKeepsServing) 
   bytes.replace(8 + 32, 4, std::string("\x80\x00\x00\x00", 4));
   lcm_.publish(channels_.events, bytes.data(), static_cast<unsigned>(bytes.size()));
   lcm_.publish(channels_.arm_state, "short", 5);
+  // Every counter reaches its count (the page may be registered only after its greeting).
   Json s;
-  for (int i = 0; i < 100; ++i) {
+  for (int i = 0; i < 150; ++i) {
     s = stats();
-    if (s.is_object() && s["bridge"]["lcm_malformed"] == 2 && s["server"]["pages"] == 0) {
+    if (s.is_object() && s["bridge"]["lcm_malformed"] == 2 && s["bridge"]["malformed"] == 1 &&
+        s["bridge"]["out_of_range"] == 1 && s["server"]["dropped_binary"] == 1 &&
+        s["server"]["pages"] == 0) {
       break;
     }
     std::this_thread::sleep_for(20ms);

@@ -16,10 +16,10 @@ TEST(WebConfig, DefaultsServeThisHostOnlyWithoutRemoteCommands) {
 }
 
 TEST(WebConfig, ParsesEveryOption) {
-  const WebConfig c =
-      WebConfig::parse({"--listen", "0.0.0.0:9000", "--www", "/srv/www", "--arm-model", "m.arm",
-                        "--instance", "lab", "--lcm-url", "memq://", "--rate", "60", "--max-pages",
-                        "2", "--allow-remote-commands", "--duration", "1.5", "--json"});
+  const WebConfig c = WebConfig::parse({"--listen", "0.0.0.0:9000", "--allow-remote", "--www",
+                                        "/srv/www", "--arm-model", "m.arm", "--instance", "lab",
+                                        "--lcm-url", "memq://", "--rate", "60", "--max-pages", "2",
+                                        "--allow-remote-commands", "--duration", "1.5", "--json"});
   EXPECT_EQ(c.listen, "0.0.0.0:9000");
   EXPECT_TRUE(c.allow_remote);
   EXPECT_EQ(c.www_dir, "/srv/www");

@@ -227,6 +227,20 @@ TEST_F(WebServerTest, BroadcastsWhilePagesComeAndGo) {
   EXPECT_EQ(s.counters().pages_closed.load(), 20U);
 }
 
+TEST(SameOrigin, OnlyPagesOfThisServer) {
+  EXPECT_TRUE(same_origin(nullptr, "127.0.0.1:8080", true));  // not a browser
+  EXPECT_TRUE(same_origin("http://127.0.0.1:8080", "127.0.0.1:8080", true));
+  EXPECT_TRUE(same_origin("http://localhost:8080", "localhost:8080", true));
+  EXPECT_FALSE(same_origin("http://evil.example", "127.0.0.1:8080", true));
+  EXPECT_FALSE(same_origin("http://127.0.0.1:9999", "127.0.0.1:8080", true));
+  EXPECT_FALSE(same_origin("http://127.0.0.1:8080", nullptr, true));
+  // DNS rebinding: a site whose name now resolves to 127.0.0.1 has a matching Host.
+  EXPECT_FALSE(same_origin("http://rebound.example:8080", "rebound.example:8080", true));
+  // Serving a network (--allow-remote), machines are named.
+  EXPECT_TRUE(same_origin("http://controller.lab:8080", "controller.lab:8080", false));
+  EXPECT_FALSE(same_origin("http://evil.example", "controller.lab:8080", false));
+}
+
 TEST(WebServer, SaysWhyItCannotStart) {
   RecordingHandler handler;
   ServerSettings s;

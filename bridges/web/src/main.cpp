@@ -212,6 +212,7 @@ int run(const wb::WebConfig& config) {
   settings.listen = config.listen;
   settings.www_dir = config.www_dir.empty() ? HAPTICCTRL_WEB_WWW_DIR : config.www_dir;
   settings.max_pages = config.max_pages;
+  settings.loopback_only = !config.allow_remote;
   wb::WebServer server(settings, handler);
   const std::string address = config.listen.substr(0, config.listen.rfind(':'));
   std::fprintf(stderr,

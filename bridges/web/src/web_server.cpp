@@ -35,6 +35,16 @@ bool is_get(const mg_connection* conn) {
          std::strcmp(info->request_method, "GET") == 0;
 }
 
+/// Whether `host` (a Host header: name or address, optional port) names this machine by an
+/// IPv4 literal or as localhost.
+bool names_by_address(const std::string& host) {
+  const std::string name = host.substr(0, host.rfind(':'));
+  if (name == "localhost") {
+    return true;
+  }
+  return !name.empty() && name.find_first_not_of("0123456789.") == std::string::npos;
+}
+
 void init_civetweb_once() {
   static std::once_flag once;
   std::call_once(once, [] { mg_init_library(MG_FEATURES_WEBSOCKET); });
@@ -45,13 +55,24 @@ void init_civetweb_once() {
 
 }  // namespace
 
+bool same_origin(const char* origin, const char* host, bool loopback_only) {
+  if (origin == nullptr) {
+    return true;  // browsers always send Origin on a WebSocket; tools do not
+  }
+  if (host == nullptr || (loopback_only && !names_by_address(host))) {
+    return false;
+  }
+  return std::string(origin) == std::string("http://") + host;
+}
+
 /// civetweb's C callbacks; `cbdata` is the WebServer.
 struct WebServer::Callbacks {
   static WebServer& server(void* cbdata) { return *static_cast<WebServer*>(cbdata); }
 
   static int on_connect(const mg_connection* conn, void* cbdata) {
     WebServer& s = server(cbdata);
-    if (!s.origin_allowed(conn)) {
+    if (!same_origin(mg_get_header(conn, "Origin"), mg_get_header(conn, "Host"),
+                     s.loopback_only_)) {
       count(s.counters_.refused_origin);
       return 1;
     }
@@ -67,10 +88,12 @@ struct WebServer::Callbacks {
     const mg_request_info* info = mg_get_request_info(conn);
     auto page = std::make_unique<PageSession>();
     page->peer = std::string(info->remote_addr) + ":" + std::to_string(info->remote_port);
+    // Greeted and registered under the pages' lock: no broadcast frame can come before the
+    // greeting, and none is missed between the greeting's history and the registration.
+    const std::lock_guard lock(s.pages_mutex_);
     for (const std::string& frame : s.handler_.greeting()) {
       mg_websocket_write(conn, MG_WEBSOCKET_OPCODE_TEXT, frame.data(), frame.size());
     }
-    const std::lock_guard lock(s.pages_mutex_);
     page->id = s.next_page_id_++;
     mg_set_user_connection_data(conn, page.get());
     s.pages_[conn] = Page{conn, std::move(page)};
@@ -139,7 +162,7 @@ struct WebServer::Callbacks {
 };
 
 WebServer::WebServer(const ServerSettings& settings, PageHandler& handler)
-    : handler_(handler), max_pages_(settings.max_pages) {
+    : handler_(handler), max_pages_(settings.max_pages), loopback_only_(settings.loopback_only) {
   init_civetweb_once();
   // One server thread per open page (civetweb keeps a WebSocket on its thread) plus four
   // for files and the API.
@@ -195,17 +218,6 @@ std::size_t WebServer::broadcast(const std::string& text) {
 std::size_t WebServer::pages() const {
   const std::lock_guard lock(pages_mutex_);
   return pages_.size();
-}
-
-bool WebServer::origin_allowed(const mg_connection* conn) const {
-  // Browsers always send Origin on a WebSocket; tools do not. A page of this server has
-  // Origin "http://<Host header>".
-  const char* origin = mg_get_header(conn, "Origin");
-  if (origin == nullptr) {
-    return true;
-  }
-  const char* host = mg_get_header(conn, "Host");
-  return host != nullptr && std::string(origin) == std::string("http://") + host;
 }
 
 std::string WebServer::counters_json() const {

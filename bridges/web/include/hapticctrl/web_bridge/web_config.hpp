@@ -13,7 +13,7 @@ struct WebConfig {
   /// Where the HTTP/WebSocket server listens: "ADDRESS:PORT", loopback by default (port 0: any
   /// free port, printed at start). Another address also needs `allow_remote` (docs/security.md).
   std::string listen = "127.0.0.1:8080";
-  bool allow_remote = false;  ///< --allow-remote: a --listen address beyond loopback is meant
+  bool allow_remote = false;   ///< --allow-remote: a --listen address beyond loopback is meant
   std::string www_dir;         ///< the page's files; empty: the build's bridges/web/www
   std::string arm_model_path;  ///< the model the page draws; empty: the shipped default
   std::string instance = "default";

@@ -42,7 +42,16 @@ struct ServerSettings {
   std::string listen = "127.0.0.1:8080";  ///< "ADDRESS:PORT"; port 0: any free one
   std::string www_dir;
   int max_pages = 8;
+  /// Serving this host only: a page must name the server by an IPv4 address or "localhost"
+  /// (its Host header), so that a site re-resolving its name to 127.0.0.1 (DNS rebinding)
+  /// cannot pass for a page of this server.
+  bool loopback_only = true;
 };
+
+/// Whether a WebSocket upgrade comes from a page of this server: no Origin (not a browser), or
+/// an Origin equal to "http://" + `host`, where, for a loopback-only server, `host` names it by
+/// an IPv4 address or "localhost". Pure function (no I/O); `origin`/`host` may be null.
+[[nodiscard]] bool same_origin(const char* origin, const char* host, bool loopback_only);
 
 struct ServerCounters {
   std::atomic<std::uint64_t> pages_opened{0};
@@ -77,10 +86,9 @@ class WebServer {
  private:
   struct Callbacks;  // civetweb's C callbacks, friends of this class
 
-  bool origin_allowed(const mg_connection* conn) const;
-
   PageHandler& handler_;
   int max_pages_;
+  bool loopback_only_;
   std::uint16_t port_ = 0;
   mutable std::mutex pages_mutex_;  // held while writing to pages: a close waits for it
   struct Page {

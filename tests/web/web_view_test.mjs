@@ -145,6 +145,24 @@ test('a silent controller and a lost web bridge are shown, and both recover', as
     'the page did not reconnect');
 });
 
+test('a browser closed while holding a force lets the force go, and the bridge serves on', async () => {
+  const second = await browser.newPage({ viewport: { width: 1024, height: 768 } });
+  await second.goto(stack.url);
+  await until(() => second.evaluate(() => window.hapticctrl?.hello?.remote_commands === true));
+  await second.click('[data-testid=power-on]');
+  await second.locator('[data-testid=slider-Fz]').fill('3');
+  assert.ok(await until(() => stack.status().operator_wrench[2] > 2.5), 'the held force never arrived');
+  await second.close(); // the tab goes away mid-hold: no more force messages
+  const released = await until(() => Math.abs(stack.status().operator_wrench[2]) < 0.05, { timeoutMs: 3000 });
+  assert.ok(released, `the force outlived the closed page: ${JSON.stringify(stack.status().operator_wrench)}`);
+  const stats = await until(async () => {
+    const s = await (await fetch(`${stack.url}api/stats`)).json();
+    return s.server.pages === 1 ? s : null;
+  });
+  assert.ok(stats, 'the closed page is still counted');
+  assert.ok((await pageStatus()).connected, 'the first page lost its connection');
+});
+
 test('a stopped controller shows its reason prominently', async () => {
   stack.hmi('stop');
   assert.ok(await until(async () => /stop requested/.test(await alarmText()), { timeoutMs: 8000 }),

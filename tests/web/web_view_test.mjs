@@ -6,7 +6,7 @@
 // $HAPTICCTRL_ARTIFACTS.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { mkdirSync } from 'node:fs';
+import { mkdirSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { Stack, until } from './support/stack.mjs';
 
@@ -55,6 +55,7 @@ before(async () => {
 after(async () => {
   await browser?.close();
   await stack.stop();
+  writeFileSync(join(artifacts, 'processes.log'), stack.logs());
 });
 
 test('the page loads, connects and draws the arm and the spheres', async () => {

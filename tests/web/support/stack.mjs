@@ -79,7 +79,11 @@ export class Stack {
 
   async start({ periodUs = 10000 } = {}) {
     const i = ['--instance', this.instance];
-    const core = this.run('core', binaries.core(), [...i, '--period-us', String(periodUs), '--rt', 'warn']);
+    // Sanitizer builds integrate the arm in coarser sub-steps, as tests/support/controller_stack.hpp
+    // explains: instrumented, the simulator alone takes most of the period.
+    const substepUs = process.env.HAPTICCTRL_SANITIZED ? '250' : '125';
+    const core = this.run('core', binaries.core(), [...i, '--period-us', String(periodUs), '--rt', 'warn',
+      '--sim-substep-us', substepUs, '--blackbox-dir', '/tmp']);
     await core.waitFor(/running, period/);
     const udp = this.run('udp', binaries.udp(), [...i, '--port', '0']);
     this.udpPort = Number((await udp.waitFor(/listening on 127\.0\.0\.1:(\d+)/))[1]);

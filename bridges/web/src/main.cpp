@@ -10,7 +10,6 @@
 #include <csignal>
 #include <cstdio>
 #include <exception>
-#include <mutex>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <thread>
@@ -18,6 +17,7 @@
 
 #include "hapticctrl/lcmtypes/channels.hpp"
 #include "hapticctrl/rt_core/arm_model.hpp"
+#include "hapticctrl/shm/monotonic_clock.hpp"
 #include "hapticctrl/web_bridge/model_json.hpp"
 #include "hapticctrl/web_bridge/page_gateway.hpp"
 #include "hapticctrl/web_bridge/telemetry_view.hpp"
@@ -28,16 +28,11 @@ namespace {
 
 namespace wb = hapticctrl::web_bridge;
 using hapticctrl::lcmtypes::Channels;
+using hapticctrl::shm::monotonic_now_ns;
 
 std::atomic<bool> g_stop{false};
 void on_signal(int /*sig*/) {
   g_stop.store(true);
-}
-
-std::int64_t monotonic_ns() {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(
-             std::chrono::steady_clock::now().time_since_epoch())
-      .count();
 }
 
 /// Publishes the page's accepted requests on the instance's HMI channels.
@@ -119,7 +114,7 @@ class TelemetryInput {
       return;
     }
     received_.fetch_add(1, std::memory_order_relaxed);
-    (view_.*to_view)(m, monotonic_ns());
+    (view_.*to_view)(m, monotonic_now_ns());
   }
 
   wb::TelemetryView& view_;
@@ -144,7 +139,7 @@ class BridgeHandler final : public wb::PageHandler {
   }
 
   std::string on_message(wb::PageSession& page, std::string_view text) override {
-    return gateway_.handle(page, text, monotonic_ns());
+    return gateway_.handle(page, text, monotonic_now_ns());
   }
 
   std::string model() override { return model_; }
@@ -186,7 +181,7 @@ void push_loop(wb::TelemetryView& view, wb::WebServer& server, double rate_hz,
       next = now + period;  // after a stall: the next slot, never a burst
     }
     std::this_thread::sleep_until(next);
-    const std::string frame = view.next_frame(monotonic_ns());
+    const std::string frame = view.next_frame(monotonic_now_ns());
     if (server.pages() > 0) {
       server.broadcast(frame);
     }
@@ -224,9 +219,9 @@ int run(const wb::WebConfig& config) {
   std::atomic<bool> running{true};
   std::thread pusher([&] { push_loop(view, server, config.push_rate_hz, running); });
   const std::int64_t end_ns =
-      config.duration_s > 0.0 ? monotonic_ns() + static_cast<std::int64_t>(config.duration_s * 1e9)
+      config.duration_s > 0.0 ? monotonic_now_ns() + static_cast<std::int64_t>(config.duration_s * 1e9)
                               : 0;
-  while (!g_stop.load() && (end_ns == 0 || monotonic_ns() < end_ns)) {
+  while (!g_stop.load() && (end_ns == 0 || monotonic_now_ns() < end_ns)) {
     lcm.handleTimeout(50);
   }
   running.store(false);

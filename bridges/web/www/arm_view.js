@@ -79,7 +79,9 @@ export class ArmView {
     this.scene.add(this.fixedSphere, this.mobileSphere);
     this.framesRendered = 0;
     // Render on demand (new telemetry, camera moved, resize), not at the display's full rate:
-    // software WebGL on the controller's own host would otherwise take CPU from the cycle.
+    // software WebGL on the controller's own host would otherwise take CPU from the cycle
+    // (headless chromium with SwiftShader drawing every animation frame: 112 % of a vCPU on the
+    // 2-vCPU CI VM, 2026-12-01).
     this.dirty = true;
     this.controls.addEventListener('change', () => { this.dirty = true; });
     new ResizeObserver(() => this.resize()).observe(canvas.parentElement);

@@ -2,7 +2,7 @@
 // playwright-core) against the real controller stack on loopback: the page loads and draws the
 // arm, power-on from the page powers the arm (read back from shared memory with hapticctrl-hmi),
 // a force slider moves the handle, the emergency stop latches, losing the LCM bridge or the web
-// bridge is shown, and a stopped controller's reason is shown. Screenshots go to
+// bridge is shown, and the reason of a controller that stopped or failed safe is shown. Screenshots go to
 // $HAPTICCTRL_ARTIFACTS.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
@@ -170,5 +170,15 @@ test('a stopped controller shows its reason prominently', async () => {
     `no stop reason: '${await alarmText()}'`);
   assert.match(await page.locator('[data-testid=events]').innerText(), /stop requested/);
   await shot('06-controller-stopped');
+});
+
+test('a controller that fails safe shows why', async () => {
+  await stack.processes.core.exited;
+  // A new core made to overrun 5 cycles in a row half a second after its start.
+  await stack.startCore(['--inject-overrun', '50:5']);
+  assert.ok(await until(async () => /5 consecutive deadline misses/.test(await alarmText()), { timeoutMs: 10000 }),
+    `no fail-safe reason: '${await alarmText()}'`);
+  assert.match(await page.locator('[data-testid=events]').innerText(), /fail-safe/);
+  await shot('07-failed-safe');
   assert.deepEqual(pageErrors, []);
 });

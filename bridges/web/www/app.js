@@ -17,6 +17,7 @@ const CORE_STOPPING = 3;
 const FORCE_SEND_MS = 50; // the LCM bridge lets an operator force decay after 200 ms of silence
 const MODEL_TOLERANCE_M = 0.002;
 const MAX_EVENTS = 200;
+const SCENE_GONE_MS = 1000; // the demo publishes its scene at 30 Hz
 
 const $ = (id) => document.getElementById(id);
 const fmt = (v, digits = 3) => (v >= 0 ? '+' : '') + v.toFixed(digits);
@@ -165,8 +166,12 @@ function showState(frame) {
   const { arm, coupling, scene } = frame;
   const stats = status.stats;
   showAlarm(describeAlarm(frame, stats));
-  if (stats) {
+  if (status.coreLost || frame.controller_silent) {
+    setBadge($('core-state'), status.coreLost ? 'core: lost' : 'core: silent', 'bad');
+  } else if (stats) {
     setBadge($('core-state'), `core: ${stats.core_state_name}`, stats.core_state === 1 ? 'good' : 'bad');
+  }
+  if (stats) {
     $('rt').textContent = `${(stats.period_ns / 1e6).toFixed(3)} ms cycle · ${stats.rt_mode} · ${stats.misses_total} misses`;
   }
   if (arm) {
@@ -196,7 +201,7 @@ function showState(frame) {
   }
   $('contact').textContent = scene
     ? `${vec3(scene.contact_force, 2, ' N')} · ${(scene.penetration * 1000).toFixed(2)} mm`
-    : 'no scene (hapticctrl-demo publishes it)';
+    : 'no scene (a running hapticctrl-demo publishes it)';
 }
 
 function addEvents(events) {
@@ -232,6 +237,8 @@ function onMessage(text) {
       addEvents(message.events);
       break;
     case 'state':
+      // A scene its client stopped publishing is gone, not frozen where it was.
+      if (message.age_ms.scene === null || message.age_ms.scene > SCENE_GONE_MS) message.scene = null;
       status.frame = message;
       status.framesReceived += 1;
       if (message.stats) status.stats = message.stats;

@@ -81,7 +81,7 @@ export class Plots {
       const o = arm.operator_wrench;
       this.force.add(t, [Math.hypot(f[0], f[1], f[2]), f[0], f[1], f[2], Math.hypot(o[0], o[1], o[2])]);
     }
-    if (scene && scene.steps !== this.lastSceneSteps && frame.age_ms.scene < 1000) {
+    if (scene && scene.steps !== this.lastSceneSteps) {
       this.lastSceneSteps = scene.steps;
       this.rtt.add(t, [scene.rtt_last_us / 1000, scene.rtt_mean_us / 1000]);
     }

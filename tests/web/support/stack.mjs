@@ -66,6 +66,7 @@ export class Stack {
   constructor(tag) {
     this.instance = `w${process.pid}-${tag}`;
     this.processes = {};
+    this.finished = []; // replaced processes, for the logs
   }
 
   hmi(...args) {
@@ -77,14 +78,9 @@ export class Stack {
     return JSON.parse(this.hmi('status', '--json'));
   }
 
-  async start({ periodUs = 10000 } = {}) {
+  async start() {
     const i = ['--instance', this.instance];
-    // Sanitizer builds integrate the arm in coarser sub-steps, as tests/support/controller_stack.hpp
-    // explains: instrumented, the simulator alone takes most of the period.
-    const substepUs = process.env.HAPTICCTRL_SANITIZED ? '250' : '125';
-    const core = this.run('core', binaries.core(), [...i, '--period-us', String(periodUs), '--rt', 'warn',
-      '--sim-substep-us', substepUs, '--blackbox-dir', '/tmp']);
-    await core.waitFor(/running, period/);
+    await this.startCore();
     const udp = this.run('udp', binaries.udp(), [...i, '--port', '0']);
     this.udpPort = Number((await udp.waitFor(/listening on 127\.0\.0\.1:(\d+)/))[1]);
     const lcm = this.run('lcm', binaries.lcm(), [...i, '--allow-remote-commands']);
@@ -92,6 +88,16 @@ export class Stack {
     const demo = this.run('demo', binaries.demo(), ['--server', `127.0.0.1:${this.udpPort}`, ...i, '--headless', '--no-power']);
     await demo.waitFor(/ready:/);
     await this.startWeb();
+  }
+
+  /** Starts a core (10 ms cycle) with `extra` options, after the last one ended. */
+  async startCore(extra = []) {
+    // Sanitizer builds integrate the arm in coarser sub-steps, as tests/support/controller_stack.hpp
+    // explains: instrumented, the simulator alone takes most of the period.
+    const substepUs = process.env.HAPTICCTRL_SANITIZED ? '250' : '125';
+    const core = this.run('core', binaries.core(), ['--instance', this.instance, '--period-us', '10000',
+      '--rt', 'warn', '--sim-substep-us', substepUs, '--blackbox-dir', '/tmp', ...extra]);
+    await core.waitFor(/running, period/);
   }
 
   /** Starts the web bridge: on a free port the first time, on the same port after that. */
@@ -108,6 +114,7 @@ export class Stack {
   }
 
   run(name, binary, args) {
+    if (this.processes[name]) this.finished.push(this.processes[name]);
     this.processes[name] = new Process(name, binary, args);
     return this.processes[name];
   }
@@ -127,6 +134,6 @@ export class Stack {
   }
 
   logs() {
-    return Object.values(this.processes).map((p) => `--- ${p.name}\n${p.output}`).join('\n');
+    return [...this.finished, ...Object.values(this.processes)].map((p) => `--- ${p.name}\n${p.output}`).join('\n');
   }
 }

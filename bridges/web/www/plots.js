@@ -49,7 +49,7 @@ export class Plots {
       { label: 'worst wake, 100 ms (≤ µs)', stroke: '#f0c040', scale: 'us' },
       { label: 'p99 since start (µs)', stroke: '#3d8bfd', scale: 'us' },
       { label: 'misses', stroke: '#d23b3b', scale: 'n', paths: uPlot.paths.bars?.({ size: [0.6, 6] }) },
-    ], [{ ...axis('µs'), scale: 'us' }, { ...axis('misses', 1), scale: 'n', grid: { show: false } }]);
+    ], [{ ...axis('µs'), scale: 'us', size: 64 }, { ...axis('misses', 1), scale: 'n', grid: { show: false } }]);
     this.force = new RollingPlot(document.getElementById('plot-force'), '', [
       { label: 'rendered |F| (N)', stroke: '#ff4fd8', width: 2 },
       { label: 'Fx', stroke: '#e06c6c' },

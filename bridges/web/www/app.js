@@ -219,6 +219,25 @@ function addEvents(events) {
   while (list.children.length > MAX_EVENTS) list.lastChild.remove();
 }
 
+// The web bridge only forwards: say so when a request had no visible effect (the LCM bridge
+// refuses remote commands unless it runs with --allow-remote-commands).
+const EFFECTS = {
+  power_on: { done: (w) => !!(w & POWERED), hint: 'the arm did not power on (e-stop latched? hapticctrl-lcm without --allow-remote-commands?)' },
+  power_off: { done: (w) => !(w & POWERED), hint: 'the arm is still powered (hapticctrl-lcm without --allow-remote-commands?)' },
+  emergency_stop: { done: (w) => !!(w & ESTOP), hint: 'the emergency stop did not latch: is hapticctrl-lcm running?' },
+  emergency_reset: { done: (w) => !(w & ESTOP), hint: 'the emergency stop is still latched (hapticctrl-lcm without --allow-remote-commands?)' },
+};
+const EFFECT_WAIT_MS = 1500;
+
+function checkEffect(request) {
+  const effect = EFFECTS[request];
+  if (!effect) return;
+  setTimeout(() => {
+    const word = status.frame?.arm?.state_word;
+    if (word !== undefined && !effect.done(word)) $('reply').textContent = `${request}: sent, but ${effect.hint}`;
+  }, EFFECT_WAIT_MS);
+}
+
 function onMessage(text) {
   const message = JSON.parse(text);
   switch (message.type) {
@@ -250,6 +269,7 @@ function onMessage(text) {
     case 'reply':
       status.replies.push(message);
       $('reply').textContent = message.ok ? `${message.request}: sent` : `${message.request || 'request'}: refused — ${message.reason}`;
+      if (message.ok) checkEffect(message.request);
       break;
     default:
       break;

@@ -58,9 +58,9 @@ TEST(PageGateway, CountsEveryRefusalAndPublishesNothingForIt) {
   RecordingPublisher out;
   PageGateway gateway(out, false);
   PageSession page{1, "p"};
-  EXPECT_NE(gateway.handle(page, R"({"type":"command","command":"power_on"})", 0)
-                .find("\"ok\":false"),
-            std::string::npos);
+  EXPECT_NE(
+      gateway.handle(page, R"({"type":"command","command":"power_on"})", 0).find("\"ok\":false"),
+      std::string::npos);
   (void)gateway.handle(page, R"({"type":"force","wrench":[1,0,0,0,0,0]})", 0);
   (void)gateway.handle(page, R"({"type":"force","wrench":[1000,0,0,0,0,0]})", 0);
   (void)gateway.handle(page, "}{", 0);
@@ -83,9 +83,9 @@ TEST(PageGateway, TellsThePageWhenTheBusRefuses) {
   const std::string reply =
       gateway.handle(page, R"({"type":"command","command":"emergency_stop"})", 0);
   EXPECT_NE(reply.find("the LCM bus refused"), std::string::npos) << reply;
-  EXPECT_NE(gateway.handle(page, R"({"type":"force","wrench":[0,0,0,0,0,0]})", 0)
-                .find("\"ok\":false"),
-            std::string::npos);
+  EXPECT_NE(
+      gateway.handle(page, R"({"type":"force","wrench":[0,0,0,0,0,0]})", 0).find("\"ok\":false"),
+      std::string::npos);
   EXPECT_EQ(gateway.counters().publish_failed.load(), 2U);
 }
 

@@ -143,7 +143,7 @@ TEST(EventStrings, LyingLengthsAndTruncationFail) {
   e.kind = "kind";
   e.text = "text";
   auto b = encoded(e);
-  constexpr std::size_t kKindLength = 8 + 32;  // fingerprint + four int64
+  constexpr std::size_t kKindLength = 8 + 32;          // fingerprint + four int64
   for (const char first : {'\x80', '\x7f', '\x00'}) {  // INT32_MIN-ish, huge, zero
     std::string lying = b;
     lying.replace(kKindLength, 4, std::string{first, 0, 0, 0});

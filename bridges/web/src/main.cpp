@@ -219,8 +219,9 @@ int run(const wb::WebConfig& config) {
   std::atomic<bool> running{true};
   std::thread pusher([&] { push_loop(view, server, config.push_rate_hz, running); });
   const std::int64_t end_ns =
-      config.duration_s > 0.0 ? monotonic_now_ns() + static_cast<std::int64_t>(config.duration_s * 1e9)
-                              : 0;
+      config.duration_s > 0.0
+          ? monotonic_now_ns() + static_cast<std::int64_t>(config.duration_s * 1e9)
+          : 0;
   while (!g_stop.load() && (end_ns == 0 || monotonic_now_ns() < end_ns)) {
     lcm.handleTimeout(50);
   }

@@ -69,7 +69,7 @@ PIDS+=($!)
 build/bridges/web/hapticctrl-web --instance "$INSTANCE" --listen "127.0.0.1:$WEB_PORT" \
   "${REMOTE[@]}" 2>"$RUN_DIR/web.log" &
 PIDS+=($!)
-build/client/demo/hapticctrl-demo --server "127.0.0.1:$PORT" --headless --json \
+build/client/demo/hapticctrl-demo --server "127.0.0.1:$PORT" --instance "$INSTANCE" --headless --json \
   --log "$RUN_DIR/demo.csv" >"$RUN_DIR/demo.json" 2>"$RUN_DIR/demo.log" &
 DEMO_PID=$!
 PIDS+=("$DEMO_PID")

@@ -68,8 +68,10 @@ class Demo {
  private:
   static std::vector<std::string> args_for(const ControllerStack& stack,
                                            std::vector<std::string> extra) {
-    std::vector<std::string> args{"--server", "127.0.0.1:" + std::to_string(stack.port()),
-                                  "--headless", "--json"};
+    // Its scene goes to the instance's channel: nothing lands on the default instance's.
+    std::vector<std::string> args{"--server",   "127.0.0.1:" + std::to_string(stack.port()),
+                                  "--headless", "--json",
+                                  "--instance", stack.instance()};
     args.insert(args.end(), extra.begin(), extra.end());
     return args;
   }

@@ -34,6 +34,16 @@ using namespace std::chrono_literals;
 /// 2.6 ms then, against 0.3 ms quiet).
 constexpr int kPeriodUs = ControllerStack::kDefaultPeriodUs;
 constexpr double kPeriodS = kPeriodUs * 1e-6;
+/// The share of cycles that may miss during the soft-RT kills. Plain builds run the core
+/// SCHED_FIFO: what misses is the VM's (5 %). Sanitizer builds run it SCHED_OTHER beside
+/// instrumented bridges and demo, its SERVO taking 5.5-6.8 ms of the 10 ms period (p99, ASan,
+/// 2026-12-01), so the VM's busy moments cost more: 3 to 54 misses in ~550 cycles in six local
+/// runs that evening, 28 and 34 in CI; 20 % there still catches a core the kills disturb.
+#ifdef HAPTICCTRL_SANITIZED
+constexpr std::uint64_t kMissDivisor = 5;
+#else
+constexpr std::uint64_t kMissDivisor = 20;
+#endif
 
 /// Follows every cycle of a core from a thread and keeps the largest change per cycle of the
 /// force the motors put on the handle (coupling, norm) beyond what the law allows (the rate
@@ -203,7 +213,7 @@ void start_demo(std::optional<SpawnedProcess>& p, const ControllerStack& stack) 
   p.reset();
   p.emplace(HAPTICCTRL_DEMO_BINARY,
             std::vector<std::string>{"--server", "127.0.0.1:" + std::to_string(stack.port()),
-                                     "--headless"});
+                                     "--headless", "--instance", stack.instance()});
 }
 
 /// A minute of operator force changing every 0.25 s to a random push of up to 6 N per axis.
@@ -310,9 +320,9 @@ TEST(FaultInjection, SoftRealTimeProcessesKilledAtRandomMomentsComeBackWithoutAF
   EXPECT_LE(watch.fastest_operator_rate(), operator_rate_limit() * (1.0 + 1e-9));
   EXPECT_FALSE(watch.left_running()) << stack.diagnostics();
   EXPECT_EQ(t.core_state, static_cast<std::uint32_t>(shm::CoreState::kRunning));
-  // Misses here come from the VM (see kPeriodUs), with or without kills; the printed cycle
+  // Misses here come from the VM (see kMissDivisor), with or without kills; the printed cycle
   // health shows them. Five in a row would have failed the core safe (left_running()).
-  EXPECT_LE(misses, watch.cycles() / 20);
+  EXPECT_LE(misses, watch.cycles() / kMissDivisor);
   EXPECT_GT(t.ctrl_accepted, 0U);
 }
 

@@ -106,9 +106,10 @@ TEST(Soak, AnHourOfCoupledRunningBalancesEveryCounterAndGrowsNothing) {
   LcmMonitor monitor(url, stack.instance());
   SpawnedProcess lcm(HAPTICCTRL_LCM_BINARY, {"--instance", stack.instance(), "--lcm-url", url,
                                              "--arm-rate-hz", "100", "--json"});
-  SpawnedProcess demo(HAPTICCTRL_DEMO_BINARY,
-                      {"--server", "127.0.0.1:" + std::to_string(stack.port()), "--headless",
-                       "--json", "--duration", std::to_string(seconds)});
+  SpawnedProcess demo(
+      HAPTICCTRL_DEMO_BINARY,
+      {"--server", "127.0.0.1:" + std::to_string(stack.port()), "--headless", "--json",
+       "--duration", std::to_string(seconds), "--instance", stack.instance(), "--lcm-url", url});
   ASSERT_TRUE(ControllerStack::eventually(
       [&] { return (stack.vp().state_word & shm::state_bits::kCoupled) != 0; }, 10s))
       << demo.err();

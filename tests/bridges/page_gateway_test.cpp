@@ -27,7 +27,7 @@ constexpr std::int64_t kMs = 1'000'000;
 TEST(PageGateway, ForwardsACommandWithItsOriginAndAcknowledgesIt) {
   RecordingPublisher out;
   PageGateway gateway(out, true);
-  PageSession page{1, "10.0.0.7:5000"};
+  PageSession page{"10.0.0.7:5000"};
   const std::string reply =
       gateway.handle(page, R"({"type":"command","command":"power_on"})", 5'000 * kMs);
   ASSERT_EQ(out.commands.size(), 1U);
@@ -41,8 +41,8 @@ TEST(PageGateway, ForwardsACommandWithItsOriginAndAcknowledgesIt) {
 TEST(PageGateway, ForwardsForcesSilentlyAndLimitsTheirRatePerPage) {
   RecordingPublisher out;
   PageGateway gateway(out, true);
-  PageSession a{1, "a"};
-  PageSession b{2, "b"};
+  PageSession a{"a"};
+  PageSession b{"b"};
   const char* force = R"({"type":"force","wrench":[5,0,0,0,0,0]})";
   EXPECT_EQ(gateway.handle(a, force, 100 * kMs), "");
   EXPECT_EQ(gateway.handle(a, force, 105 * kMs), "");  // too soon: dropped
@@ -57,7 +57,7 @@ TEST(PageGateway, ForwardsForcesSilentlyAndLimitsTheirRatePerPage) {
 TEST(PageGateway, CountsEveryRefusalAndPublishesNothingForIt) {
   RecordingPublisher out;
   PageGateway gateway(out, false);
-  PageSession page{1, "p"};
+  PageSession page{"p"};
   EXPECT_NE(
       gateway.handle(page, R"({"type":"command","command":"power_on"})", 0).find("\"ok\":false"),
       std::string::npos);
@@ -79,7 +79,7 @@ TEST(PageGateway, TellsThePageWhenTheBusRefuses) {
   RecordingPublisher out;
   out.accept = false;
   PageGateway gateway(out, true);
-  PageSession page{1, "p"};
+  PageSession page{"p"};
   const std::string reply =
       gateway.handle(page, R"({"type":"command","command":"emergency_stop"})", 0);
   EXPECT_NE(reply.find("the LCM bus refused"), std::string::npos) << reply;

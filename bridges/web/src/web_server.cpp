@@ -94,7 +94,6 @@ struct WebServer::Callbacks {
     for (const std::string& frame : s.handler_.greeting()) {
       mg_websocket_write(conn, MG_WEBSOCKET_OPCODE_TEXT, frame.data(), frame.size());
     }
-    page->id = s.next_page_id_++;
     mg_set_user_connection_data(conn, page.get());
     s.pages_[conn] = Page{conn, std::move(page)};
     count(s.counters_.pages_opened);

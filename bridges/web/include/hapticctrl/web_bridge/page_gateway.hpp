@@ -32,7 +32,6 @@ class HmiPublisher {
 
 /// One page's connection state.
 struct PageSession {
-  std::uint64_t id = 0;
   std::string peer;  ///< "address:port", for the message's origin field and the log
   std::int64_t last_force_ns = 0;
   bool sent_force = false;

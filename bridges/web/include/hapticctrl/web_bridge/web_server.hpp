@@ -96,7 +96,6 @@ class WebServer {
     std::unique_ptr<PageSession> session;
   };
   std::map<const mg_connection*, Page> pages_;
-  std::uint64_t next_page_id_ = 1;
   ServerCounters counters_;
   mg_context* context_ = nullptr;
 };

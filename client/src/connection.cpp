@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "hapticctrl/protocol/codec.hpp"
+#include "hapticctrl/protocol/timing.hpp"
 #include "hapticctrl/protocol/udp_socket.hpp"
 #include "hapticctrl/protocol/values.hpp"
 #include "link_monitor.hpp"
@@ -317,6 +318,31 @@ struct Connection::Impl {
     }
   }
 
+  /// Protocol 1.1: the object state with an echo of the newest answer, from which the bridge
+  /// measures the link and the core the coupling loop (docs/protocol.md).
+  bool send_timed_object(const Pose7& pose, const Vector6& twist, std::int64_t now) noexcept {
+    bool have_answer = false;
+    std::uint64_t cycle = 0;
+    std::int64_t held = 0;
+    {
+      const std::lock_guard lock(state_mutex);
+      have_answer = latest.valid;
+      cycle = latest.cycle;
+      held = now - latest.received_ns;
+    }
+    hcp_frame f = protocol::make_frame(HCP_CONTROL_OBJECT_TIMED, token, next_control_sequence(), now);
+    hcp_control_object_timed& o = f.body.hcp_body_u.timed;
+    for (std::size_t i = 0; i < 3; ++i) {
+      o.position[i] = static_cast<float>(pose[i]);
+    }
+    const protocol::PackedRotation r = protocol::pack_rotation({pose[3], pose[4], pose[5], pose[6]});
+    o.rotation[0] = r[0];
+    o.rotation[1] = r[1];
+    protocol::to_wire(twist, o.twist);
+    o.answer_echo = protocol::pack_answer_echo(cycle, held, have_answer);
+    return send_control(f);
+  }
+
   void keep_alive(std::int64_t now) noexcept {
     const std::int64_t quiet_ns =
         static_cast<std::int64_t>(watchdog.load(std::memory_order_relaxed)) * 1'000'000 / 4;
@@ -511,6 +537,9 @@ void Connection::reset_emergency_stop() {
 
 bool Connection::send_object_state(const Pose7& pose, const Vector6& twist) noexcept {
   const std::int64_t now = monotonic_ns();
+  if ((impl_->features & HCP_FEATURE_TIMING) != 0) {
+    return impl_->send_timed_object(pose, twist, now);
+  }
   hcp_frame f =
       protocol::make_frame(HCP_CONTROL_OBJECT, impl_->token, impl_->next_control_sequence(), now);
   protocol::to_wire(pose, f.body.hcp_body_u.object.pose);

@@ -140,6 +140,9 @@ shm::StopReason Executive::run_slot(TimeNs scheduled, TimeNs woke) noexcept {
   if (shared_->counters.arm_faults.load(std::memory_order_relaxed) > 0) {
     return shm::StopReason::kArmFault;
   }
+  if (shared_->velocity_fault.load(std::memory_order_acquire)) {
+    return shm::StopReason::kVelocityLimit;
+  }
   if (shared_->stop_requested.load(std::memory_order_acquire)) {
     return shm::StopReason::kStopRequested;
   }

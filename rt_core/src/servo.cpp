@@ -35,6 +35,25 @@ bool client_sample_valid(const shm::VprPayload& s) noexcept {
          all_finite(s.gain_override) && all_finite(s.force_limits);
 }
 
+/// When the client computed the sample, on our clock: the bridge's estimate (protocol timing)
+/// when it is plausible (not in the future, not older than its arrival by more than 10 s),
+/// otherwise its arrival here.
+TimeNs sample_time_of(const shm::VprPayload& s, TimeNs arrival) noexcept {
+  constexpr TimeNs kMaxAge = 10'000 * kNsPerMs;
+  return s.sample_time_ns > 0 && s.sample_time_ns <= arrival &&
+                 arrival - s.sample_time_ns <= kMaxAge
+             ? s.sample_time_ns
+             : arrival;
+}
+
+/// The coupling loop's delay: cycles from the answer the client echoed to this one (0: none).
+TimeNs loop_delay_of(const shm::VprPayload& s, std::uint64_t cycle, TimeNs period) noexcept {
+  if (s.echo_cycle == 0 || s.echo_cycle > cycle) {
+    return 0;
+  }
+  return static_cast<TimeNs>(cycle - s.echo_cycle) * period;
+}
+
 void copy_to(const Vector6d& from, std::array<double, 6>& to) noexcept {
   for (std::size_t i = 0; i < 6; ++i) {
     to[i] = from(static_cast<Eigen::Index>(i));
@@ -110,6 +129,7 @@ void ServoTask::gather(std::uint64_t cycle, TimeNs now, TimeNs dt) noexcept {
 
 void ServoTask::exchange_client(TimeNs now) noexcept {
   ServoShared& s = *shared_;
+  inputs_.new_sample = false;
   if (s.regions.vpr != nullptr) {
     shm::VprPayload sample;
     const shm::ReadResult r = s.regions.vpr->read(sample);
@@ -121,6 +141,9 @@ void ServoTask::exchange_client(TimeNs now) noexcept {
         s.last_client = sample;
         s.client_valid = true;
         s.last_client_arrival = now;
+        s.last_client_time = sample_time_of(sample, now);
+        inputs_.new_sample = true;
+        inputs_.loop_delay = loop_delay_of(sample, inputs_.cycle, inputs_.dt);
       } else {
         s.counters.vpr_rejected.fetch_add(1, std::memory_order_relaxed);
       }
@@ -128,7 +151,8 @@ void ServoTask::exchange_client(TimeNs now) noexcept {
   }
   inputs_.client = s.last_client;
   inputs_.client_valid = s.client_valid;
-  inputs_.client_age = s.client_valid ? now - s.last_client_arrival : 0;
+  inputs_.client_age = s.client_valid ? now - s.last_client_time : 0;
+  inputs_.client_silence = s.client_valid ? now - s.last_client_arrival : 0;
 }
 
 void ServoTask::commit(std::uint64_t cycle, TimeNs now) noexcept {
@@ -140,6 +164,9 @@ void ServoTask::commit(std::uint64_t cycle, TimeNs now) noexcept {
     commands.torque.setZero();
   }
   s.arm->send_commands(commands, now, inputs_.dt);
+  if (outputs_.velocity_fault && commands.enable) {
+    s.velocity_fault.store(true, std::memory_order_release);  // the CLOCK fails safe
+  }
   s.rendered = commands.enable ? law_.memory() : RenderMemory{};
 
   std::uint32_t state_word =
@@ -174,6 +201,13 @@ void ServoTask::commit(std::uint64_t cycle, TimeNs now) noexcept {
     copy_to(outputs_.client_handle_twist, vp.handle_twist);
     copy_to(inputs_.measures.position, vp.joint_position);
     copy_to(inputs_.measures.velocity, vp.joint_velocity);
+    vp.sample_age_ns = inputs_.client_valid ? inputs_.client_age : 0;
+    vp.loop_delay_ns = outputs_.loop_delay;
+    vp.link_delay_ns = s.last_client.link_delay_ns;
+    vp.link_jitter_ns = s.last_client.link_jitter_ns;
+    vp.link_loss_ppm = s.last_client.link_loss_ppm;
+    const CouplingGains& g = outputs_.gains;
+    vp.gains = {g.k_linear, g.b_linear, g.k_angular, g.b_angular};
     s.regions.vp->publish(vp, now);  // the UDP bridge blocks on VP: notify
   }
   if (s.regions.position != nullptr) {

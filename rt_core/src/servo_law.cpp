@@ -10,8 +10,12 @@ namespace {
 /// stiffness, and the damping ratio of the derived damping.
 constexpr double kStiffnessFraction = 0.25;
 constexpr double kDampingRatio = 0.7;
-/// Per-sample gain of the link-delay average (about 20 samples).
-constexpr double kDelayFilterGain = 0.05;
+/// The loop-delay envelope follows a longer delay at once and a shorter one by this share per
+/// new sample (about 200 samples, 0.2 s at 1 kHz): the gains drop as soon as the link slows and
+/// rise back slowly, so that a jittery link does not pump them.
+constexpr double kLoopDelayRelease = 0.005;
+/// The loop delay is believed up to this; longer is a stale echo, not a loop.
+constexpr TimeNs kMaxLoopDelay = 2'000 * kNsPerMs;
 
 Vector6d to_vector(const std::array<double, 6>& a) noexcept {
   Vector6d v;
@@ -23,6 +27,25 @@ Vector6d to_vector(const std::array<double, 6>& a) noexcept {
 
 Eigen::Quaterniond to_quaternion(const std::array<double, 7>& pose) noexcept {
   return {pose[6], pose[3], pose[4], pose[5]};  // w, x, y, z
+}
+
+/// spring * s + damper with the largest s in [0, 1] whose norm stays within `limit`; the damper
+/// alone is clamped to `limit` first. The damper keeps its whole share of a saturated force.
+Vector3d saturate_keeping_damper(const Vector3d& spring, const Vector3d& damper,
+                                 double limit) noexcept {
+  const double d_norm = damper.norm();
+  if (d_norm >= limit) {
+    return d_norm > 0.0 ? Vector3d(damper * (limit / d_norm)) : Vector3d::Zero();
+  }
+  if ((spring + damper).norm() <= limit) {
+    return spring + damper;
+  }
+  // |s a + d| = limit: a.a s^2 + 2 a.d s + d.d - limit^2 = 0, the positive root (d inside).
+  const double aa = spring.squaredNorm();
+  const double ad = spring.dot(damper);
+  const double disc = ad * ad - aa * (damper.squaredNorm() - limit * limit);
+  const double s = std::clamp((-ad + std::sqrt(std::max(0.0, disc))) / aa, 0.0, 1.0);
+  return spring * s + damper;
 }
 
 /// Scales `v` down to norm `limit` if longer.
@@ -52,14 +75,15 @@ ClientFrame client_frame_of(const shm::VprPayload& c) noexcept {
 ServoLaw::ServoLaw(const ArmDynamics& dynamics, const LawConfig& config) noexcept
     : dynamics_(&dynamics), config_(config) {}
 
-CouplingGains ServoLaw::derive_gains(const shm::VprPayload& c, double link_delay) const noexcept {
+CouplingGains ServoLaw::derive_gains(const shm::VprPayload& c, double loop_delay) const noexcept {
   const ArmLimits& lim = dynamics_->model().limits;
   const double mass = c.object_mass > 0.0 ? c.object_mass : config_.default_object_mass;
-  // The object sees the coupling's answer to its own motion one client step plus a round trip
-  // of the link later: that whole lag bounds the stiffness it can take.
+  // The object sees the coupling's answer to its own motion a whole loop later (the answer's
+  // way out, the client's hold, the sample's way back and its wait for the cycle: measured),
+  // and its integration adds one client step: that lag bounds the stiffness it can take.
   const double client_step =
       c.client_time_step > 0.0 ? c.client_time_step : config_.default_time_step;
-  const double step = client_step + 2.0 * std::max(0.0, link_delay);
+  const double step = client_step + std::max(0.0, loop_delay);
   const double largest_inertia =
       std::max({c.object_inertia[0], c.object_inertia[1], c.object_inertia[2]});
   // Without a declared inertia: a solid 5 cm sphere of the object's mass.
@@ -87,40 +111,45 @@ CouplingGains ServoLaw::derive_gains(const shm::VprPayload& c, double link_delay
   return g;
 }
 
-Vector6d ServoLaw::client_wrench(const ServoInputs& in, const ClientFrame& frame,
-                                 const ChainState& chain, const Vector6d& twist,
-                                 ServoOutputs& out) noexcept {
+ServoLaw::Coupling ServoLaw::client_wrench(const ServoInputs& in, const ClientFrame& frame,
+                                           const ChainState& chain, const Vector6d& twist,
+                                           ServoOutputs& out) noexcept {
   const shm::VprPayload& c = in.client;
+  Coupling coupling;
   if (!in.client_valid || c.session_id == 0) {
-    return Vector6d::Zero();  // no session: the rate limiter ramps any previous wrench out
+    out.fade = 0.0;
+    return coupling;  // no session: released at release_rate
   }
+  // Freshness is the time since a new sample arrived (a long but live link is fresh); the force
+  // fades with it, spring and damper alike.
   const double fade =
-      in.client_age <= config_.fade_after
+      in.client_silence <= config_.fade_after
           ? 1.0
-          : std::clamp(1.0 - static_cast<double>(in.client_age - config_.fade_after) /
+          : std::clamp(1.0 - static_cast<double>(in.client_silence - config_.fade_after) /
                                  static_cast<double>(config_.fade_duration),
                        0.0, 1.0);
   out.fade = fade;
   if (fade <= 0.0) {
-    return Vector6d::Zero();
+    return coupling;
   }
   // Client poses are in its environment frame; base_frame is our base in that frame.
   const Matrix3d base_r = frame.rotation.toRotationMatrix();
   const double speed_factor = frame.speed_factor;
+  const double scale = fade * frame.force_factor;
 
   if (c.command_type == static_cast<std::uint32_t>(shm::CommandType::kImpedance)) {
     const Vector6d env = to_vector(c.impedance_wrench);
-    Vector6d w;
-    w << base_r.transpose() * env.head<3>(), base_r.transpose() * env.tail<3>();
-    return w * (fade * frame.force_factor);
+    coupling.spring << base_r.transpose() * env.head<3>(), base_r.transpose() * env.tail<3>();
+    coupling.spring *= scale;
+    return coupling;
   }
   if (c.command_type != static_cast<std::uint32_t>(shm::CommandType::kVirtmech) ||
       (c.flags & shm::vpr_flags::kObjectAttached) == 0) {
-    return Vector6d::Zero();  // VIRTMECH couples an attached object only
+    return coupling;  // VIRTMECH couples an attached object only
   }
   const Eigen::Quaterniond object_q_env = to_quaternion(c.object_pose);
   if (object_q_env.norm() < 0.5) {
-    return Vector6d::Zero();  // not a rotation: refuse rather than guess
+    return coupling;  // not a rotation: refuse rather than guess
   }
   // Object state in the base frame (positions de-scaled by the speed factor).
   const Vector3d object_p_env(c.object_pose[0], c.object_pose[1], c.object_pose[2]);
@@ -129,36 +158,69 @@ Vector6d ServoLaw::client_wrench(const ServoInputs& in, const ClientFrame& frame
   const Vector6d twist_env = to_vector(c.object_twist);
   const Vector3d object_v = base_r.transpose() * twist_env.head<3>() / speed_factor;
   const Vector3d object_w = base_r.transpose() * twist_env.tail<3>();
-  // Best estimate of where the object is now: extrapolate over the sample's age (bounded).
+  // Best estimate of where the object is now: extrapolate over the sample's true age (bounded).
   const double horizon =
-      static_cast<double>(std::min(in.client_age, config_.extrapolate_max)) * 1e-9;
+      static_cast<double>(std::clamp<TimeNs>(in.client_age, 0, config_.extrapolate_max)) * 1e-9;
   object_p += object_v * horizon;
   if (object_w.norm() * horizon > 1e-12) {
     object_r = Eigen::AngleAxisd(object_w.norm() * horizon, object_w.normalized()) * object_r;
   }
 
-  // Link delay estimate: average age of client samples at the moment they arrive (staleness
-  // after that is the fade's business, not the gains').
-  if (in.client_age < previous_age_) {
-    link_delay_ += (static_cast<double>(in.client_age) * 1e-9 - link_delay_) * kDelayFilterGain;
-  }
-  previous_age_ = in.client_age;
-  const CouplingGains g = derive_gains(c, link_delay_);
+  const CouplingGains g = derive_gains(c, static_cast<double>(memory_.loop_delay) * 1e-9);
+  out.gains = g;
   const Vector3d e_p = object_p - chain.handle_position;
   const Eigen::AngleAxisd e_rot(object_r * chain.handle_rotation.transpose());
   const Vector3d e_r = e_rot.axis() * e_rot.angle();
-  Vector6d e_rate;
-  e_rate << object_v - twist.head<3>(), object_w - twist.tail<3>();
-  Vector6d w;
-  w << g.k_linear * e_p + g.b_linear * e_rate.head<3>(),
-      g.k_angular * e_r + g.b_angular * e_rate.tail<3>();
-
+  coupling.spring << g.k_linear * e_p, g.k_angular * e_r;
+  coupling.damper << g.b_linear * (object_v - twist.head<3>()),
+      g.b_angular * (object_w - twist.tail<3>());
+  coupling.spring *= scale;
+  coupling.damper *= scale;
   out.coupled = true;
-  return w * (fade * frame.force_factor);
+  return coupling;
 }
 
-Vector6d ServoLaw::limit_wrench(const Vector6d& wrench, const shm::VprPayload& client,
-                                double dt) noexcept {
+void ServoLaw::track_loop_delay(const ServoInputs& in) noexcept {
+  if (!in.new_sample) {
+    return;
+  }
+  const TimeNs measured = in.loop_delay > 0 && in.loop_delay <= kMaxLoopDelay
+                              ? in.loop_delay
+                              : config_.assumed_loop_delay;
+  TimeNs& envelope = memory_.loop_delay;
+  if (measured >= envelope) {
+    envelope = measured;
+  } else {
+    envelope -= static_cast<TimeNs>(static_cast<double>(envelope - measured) * kLoopDelayRelease);
+  }
+}
+
+double ServoLaw::update_engagement(const ServoInputs& in, const Vector6d& twist, double fade,
+                                   ServoOutputs& out) noexcept {
+  const ArmLimits& lim = dynamics_->model().limits;
+  const double speed = twist.head<3>().norm();
+  RenderMemory& m = memory_;
+  if (in.client.session_id != m.session_id) {
+    m.session_id = in.client.session_id;
+    m.engage = 0.0;  // a new session (or none) starts from zero
+  }
+  // The brake comes on above max_speed and lets go below brake_release_ratio of it.
+  m.braking = speed > lim.max_speed || (m.braking && speed > config_.brake_release_ratio * lim.max_speed);
+  m.overspeed = speed > lim.max_speed ? m.overspeed + in.dt : 0;
+  out.velocity_fault = m.overspeed >= config_.overspeed_fault_after;
+  out.braking = m.braking;
+  const double step = static_cast<double>(in.dt) / static_cast<double>(config_.engage_duration);
+  if (m.braking || fade < 1.0) {
+    // Disengage (as fast as the release rate allows) and re-engage only through the ramp.
+    m.engage = std::min(m.engage, m.braking ? 0.0 : fade);
+  } else {
+    m.engage = std::min(1.0, m.engage + step);
+  }
+  out.engage = m.engage;
+  return m.engage;
+}
+
+Vector6d ServoLaw::saturate(const Coupling& c, const shm::VprPayload& client) const noexcept {
   const ArmLimits& lim = dynamics_->model().limits;
   const double force_limit = client.force_limits[0] > 0.0
                                  ? std::min(client.force_limits[0], lim.force_peak)
@@ -166,11 +228,19 @@ Vector6d ServoLaw::limit_wrench(const Vector6d& wrench, const shm::VprPayload& c
   const double torque_limit = client.force_limits[1] > 0.0
                                   ? std::min(client.force_limits[1], lim.torque_peak)
                                   : lim.torque_peak;
-  Vector6d target;
-  target << clamp_norm(wrench.head<3>(), force_limit), clamp_norm(wrench.tail<3>(), torque_limit);
-  // Rate limit: never a step larger than force_rate * dt (torque scaled like the peaks).
-  const double max_force_step = lim.force_rate * dt;
-  const double max_torque_step = lim.force_rate * (lim.torque_peak / lim.force_peak) * dt;
+  // The damper keeps its share: saturating the sum cut the damping of a heavy object that
+  // pulled the spring to the limit (a 3 kg object kept a +-1 m swing, H1).
+  Vector6d w;
+  w << saturate_keeping_damper(c.spring.head<3>(), c.damper.head<3>(), force_limit),
+      saturate_keeping_damper(c.spring.tail<3>(), c.damper.tail<3>(), torque_limit);
+  return w;
+}
+
+Vector6d ServoLaw::rate_limit(const Vector6d& target, double rate, double dt) noexcept {
+  const ArmLimits& lim = dynamics_->model().limits;
+  // Never a step larger than rate * dt (torque scaled like the peaks).
+  const double max_force_step = rate * dt;
+  const double max_torque_step = rate * (lim.torque_peak / lim.force_peak) * dt;
   const Vector6d& last = memory_.wrench;
   const Vector3d df = target.head<3>() - last.head<3>();
   const Vector3d dtau = target.tail<3>() - last.tail<3>();
@@ -243,8 +313,7 @@ Vector6d ServoLaw::guard_passivity(const Vector6d& wrench, const Vector6d& twist
   const ArmLimits& lim = dynamics_->model().limits;
   w.head<3>() = clamp_norm(w.head<3>(), lim.force_peak);
   w.tail<3>() = clamp_norm(w.tail<3>(), lim.torque_peak);
-  memory_.port_wrench = w;
-  memory_.wrench = w;
+  memory_.port_wrench = w;  // the rate limiter's memory keeps the wrench without this damping
   return w;
 }
 
@@ -272,25 +341,41 @@ void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) 
   out.handle_wrench.setZero();
   out.coupled = false;
   out.client_stale = in.client_valid && in.client.session_id != 0 &&
-                     in.client_age > config_.stale_after;  // link state, powered or not
+                     in.client_silence > config_.stale_after;  // link state, powered or not
   out.fade = 1.0;
   out.commands.enable = in.logical.powered && in.measures.supply_on;
+  out.engage = 0.0;
+  out.braking = false;
+  out.velocity_fault = false;
+  out.gains = CouplingGains{};
   if (!out.commands.enable || dt <= 0.0) {
     out.commands.torque.setZero();
-    memory_.wrench.setZero();  // power-on starts from zero force, never with a step
+    memory_.wrench.setZero();  // power-on starts from zero force, never with a step ...
+    memory_.engage = 0.0;      // ... and re-engages the coupling through the ramp
+    track_loop_delay(in);
+    out.loop_delay = memory_.loop_delay;
     return;
   }
 
-  Vector6d target = degraded ? Vector6d::Zero() : client_wrench(in, frame, chain_, twist, out);
+  track_loop_delay(in);
+  out.loop_delay = memory_.loop_delay;
+  const Coupling coupling =
+      degraded ? Coupling{} : client_wrench(in, frame, chain_, twist, out);
+  const double engage = update_engagement(in, twist, degraded ? 0.0 : out.fade, out);
+  const Vector6d object_side = saturate(coupling, in.client);
+  Vector6d target = object_side * engage;
   const ArmLimits& lim = dynamics_->model().limits;
-  if (twist.head<3>().norm() > lim.max_speed) {
-    // Speed safety (FD-style): drop the rendered wrench and brake the handle instead.
-    target << -lim.max_damping_linear * twist.head<3>(), Vector3d::Zero();
-    out.coupled = false;  // the object must not feel the brake
+  if (out.braking) {
+    // Speed safety: a damped brake on the handle while the coupling is disengaged; the object
+    // still feels its spring to the (braked) handle, so it stays with it, and the handle gets
+    // the coupling back through the engagement ramp.
+    target.head<3>() -= lim.max_damping_linear * twist.head<3>();
     ++counters_.speed_limited;
   }
-  const Vector6d coupling = limit_wrench(target, in.client, dt);
-  Vector6d wrench = coupling;
+  const bool fresh = out.fade >= 1.0 && !out.braking && out.coupled;
+  const Vector6d limited =
+      rate_limit(target, fresh ? lim.force_rate : std::min(lim.force_rate, config_.release_rate), dt);
+  Vector6d wrench = limited;
   if (out.coupled ||
       in.client.command_type == static_cast<std::uint32_t>(shm::CommandType::kImpedance)) {
     wrench = guard_passivity(wrench, twist, dt);
@@ -298,11 +383,11 @@ void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) 
     memory_.port_wrench.setZero();
   }
   if (out.coupled) {
-    // The object feels the opposite of the coupling, in the client's frame, unscaled. Not the
-    // passivity guard's damping: that brakes the handle, and mirrored onto the object it would
-    // push the object along with the handle's motion.
-    out.coupling_wrench << -(frame.rotation * coupling.head<3>()) / frame.force_factor,
-        -(frame.rotation * coupling.tail<3>()) / frame.force_factor;
+    // The object feels the opposite of the coupling, in the client's frame, unscaled: neither
+    // the brake nor the passivity guard's damping (they brake the handle; mirrored onto the
+    // object they would push it along with the handle's motion).
+    out.coupling_wrench << -(frame.rotation * object_side.head<3>()) / frame.force_factor,
+        -(frame.rotation * object_side.tail<3>()) / frame.force_factor;
   }
   out.handle_wrench = wrench;
 
@@ -317,6 +402,7 @@ void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) 
     tau.setZero();
     out.commands.enable = false;
     memory_.wrench.setZero();
+    memory_.engage = 0.0;
   }
   out.commands.torque = tau;
 }

@@ -50,7 +50,7 @@ struct Client {
       ASSERT_EQ(protocol::decode({out.data(), n}, reply), protocol::DecodeStatus::kOk);
     }
   }
-  void hello(std::uint32_t version = protocol::kVersion, std::uint32_t features = 3,
+  void hello(std::uint32_t version = protocol::kVersion, std::uint32_t features = protocol::kAllFeatures,
              std::uint32_t min_version = 0) {
     hcp_frame f = protocol::make_frame(HCP_HELLO, 0, 1, now);
     f.header.protocol = version;
@@ -136,7 +136,7 @@ TEST_F(SessionTest, AnotherMajorVersionIsRefusedWithBothVersions) {
   EXPECT_EQ(client.reply.body.hcp_body_u.refuse.code, HCP_REFUSE_VERSION);
   EXPECT_EQ(client.reply.body.hcp_body_u.refuse.peer_version, protocol::make_version(2, 1));
   EXPECT_EQ(std::string(protocol::text_of(client.reply.body.hcp_body_u.refuse.reason)),
-            "protocol version mismatch: client 2.1 (oldest 2.1), controller 1.0");
+            "protocol version mismatch: client 2.1 (oldest 2.1), controller 1.1");
   EXPECT_EQ(session.counters().refused_version.load(), 1U);
 }
 

@@ -192,7 +192,7 @@ TEST(Connection, VersionMismatchIsExplainedWithBothVersions) {
     EXPECT_EQ(e.code(), ErrorCode::kVersion);
     const std::string what = e.what();
     EXPECT_NE(what.find("client 2.3"), std::string::npos) << what;
-    EXPECT_NE(what.find("controller 1.0"), std::string::npos) << what;
+    EXPECT_NE(what.find("controller 1.1"), std::string::npos) << what;
   }
   EXPECT_TRUE(
       ControllerStack::eventually([&] { return stack.link_stats().refused_version == 1U; }, 1s));

@@ -45,7 +45,7 @@ hcp_frame object_frame() {
 
 TEST(Codec, KeepaliveGoldenBytes) {
   const auto bytes = encoded(make_frame(HCP_KEEPALIVE, kToken, 42, 1'000'000'000));
-  EXPECT_EQ(hex(bytes), "484354500001000001020304050607080000002a000000003b9aca0000000006216467ba");
+  EXPECT_EQ(hex(bytes), "484354500001000101020304050607080000002a000000003b9aca000000000684eff7b4");
 }
 
 TEST(Codec, ControlObjectGoldenBytesAndSize) {
@@ -53,9 +53,9 @@ TEST(Codec, ControlObjectGoldenBytesAndSize) {
   EXPECT_EQ(bytes.size(), 88U);
   EXPECT_LE(bytes.size(), kControlMaxBytes);
   EXPECT_EQ(hex(bytes),
-            "484354500001000001020304050607080000002b0000000077359400000000043dcccccd3e4ccccd3e"
+            "484354500001000101020304050607080000002b0000000077359400000000043dcccccd3e4ccccd3e"
             "99999a0000000000000000000000003f8000003f000000000000000000000000000000000000003e80"
-            "0000fc78fad9");
+            "00003d97a5c3");
 }
 
 TEST(Codec, ControlWrenchGoldenBytes) {
@@ -65,8 +65,8 @@ TEST(Codec, ControlWrenchGoldenBytes) {
   const auto bytes = encoded(f);
   EXPECT_EQ(bytes.size(), 60U);
   EXPECT_EQ(hex(bytes),
-            "484354500001000001020304050607080000002c0000000000000003000000053f800000c00000004040"
-            "000000000000000000003f000000a273ff07");
+            "484354500001000101020304050607080000002c0000000000000003000000053f800000c00000004040"
+            "000000000000000000003f0000002d2bd014");
 }
 
 TEST(Codec, ParamGoldenBytes) {
@@ -74,8 +74,8 @@ TEST(Codec, ParamGoldenBytes) {
   f.body.hcp_body_u.param.id = HCP_P_TIME_STEP;
   f.body.hcp_body_u.param.hcp_param_u.time_step = 0.001;
   EXPECT_EQ(hex(encoded(f)),
-            "4843545000010000010203040506070800000007000000000000000400000008000000013f50624dd2f1a9"
-            "fcde7c7ea2");
+            "4843545000010001010203040506070800000007000000000000000400000008000000013f50624dd2f1a9"
+            "fc5e8c69bd");
 }
 
 TEST(Codec, EveryControlFrameFitsTheSeedLimit) {

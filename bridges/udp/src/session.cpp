@@ -86,9 +86,11 @@ std::size_t Session::on_datagram(std::span<const std::uint8_t> bytes,
       }
       return on_hello(in, from, now, reply);
     case HCP_CONTROL_OBJECT:
+    case HCP_CONTROL_OBJECT_TIMED:
     case HCP_CONTROL_WRENCH:
     case HCP_KEEPALIVE:
-      if (!from_session(in, from)) {
+      if (!from_session(in, from) || (in.body.type == HCP_CONTROL_OBJECT_TIMED &&
+                                      (session_.features & HCP_FEATURE_TIMING) == 0)) {
         counters_.drop(LinkDrop::kToken);
         return 0;
       }
@@ -180,6 +182,7 @@ void Session::open(const hcp_frame& hello, const protocol::Endpoint& from, TimeN
   control_seq_high_ = 0;
   control_received_ = 0;
   control_received_shared_.store(0, std::memory_order_relaxed);
+  link_.reset();
   vpr_ = fresh_vpr(++session_number_);
   vpr_.watchdog_timeout_us = watchdog_ms_ * 1000U;
   publish_vpr(now);
@@ -222,7 +225,9 @@ void Session::on_control(const hcp_frame& in, TimeNs now) noexcept {
     return;
   }
   if (have_control_seq_) {
-    control_seq_high_ += static_cast<std::uint32_t>(seq - last_control_seq_);
+    const auto step = static_cast<std::uint32_t>(seq - last_control_seq_);
+    control_seq_high_ += step;
+    link_.add_arrival(step - 1);
   } else {
     control_seq_high_ = seq;
   }
@@ -232,18 +237,44 @@ void Session::on_control(const hcp_frame& in, TimeNs now) noexcept {
   if (in.body.type == HCP_KEEPALIVE) {
     return;  // feeds the watchdog only: the core keeps judging the freshness of client data
   }
+  vpr_.sample_time_ns = 0;
+  vpr_.echo_cycle = 0;
   if (in.body.type == HCP_CONTROL_OBJECT) {
     protocol::from_wire(in.body.hcp_body_u.object.pose, vpr_.object_pose);
     protocol::from_wire(in.body.hcp_body_u.object.twist, vpr_.object_twist);
+  } else if (in.body.type == HCP_CONTROL_OBJECT_TIMED) {
+    take_timed_object(in.body.hcp_body_u.timed, now);
   } else {
     protocol::from_wire(in.body.hcp_body_u.wrench.wrench, vpr_.impedance_wrench);
   }
+  vpr_.link_delay_ns = link_.delay();
+  vpr_.link_jitter_ns = link_.jitter();
+  vpr_.link_loss_ppm = link_.loss_ppm();
   vpr_.client_sequence = control_seq_high_;
   vpr_.client_time_ns = in.header.sender_time_ns;
   publish_vpr(now);
   ++control_received_;
   control_received_shared_.store(control_received_, std::memory_order_relaxed);
   counters_.control_accepted.fetch_add(1, std::memory_order_relaxed);
+}
+
+void Session::take_timed_object(const hcp_control_object_timed& o, TimeNs now) noexcept {
+  // The decoder checked the packed rotation (values.cpp): it unpacks.
+  const protocol::Quaternion q =
+      protocol::unpack_rotation({o.rotation[0], o.rotation[1]}).value_or(protocol::Quaternion{0, 0, 0, 1});
+  for (std::size_t i = 0; i < 3; ++i) {
+    vpr_.object_pose[i] = o.position[i];
+    vpr_.object_pose[i + 3] = q[i];
+  }
+  vpr_.object_pose[6] = q[3];
+  protocol::from_wire(o.twist, vpr_.object_twist);
+  const SampleTiming timing =
+      LinkEstimator::time_sample(protocol::unpack_answer_echo(o.answer_echo), answer_log_, now);
+  link_.add(timing);
+  if (timing.measured) {
+    vpr_.sample_time_ns = timing.sample_time;
+    vpr_.echo_cycle = timing.echo_cycle;
+  }
 }
 
 std::size_t Session::on_param(const hcp_frame& in, bool values_ok, TimeNs now,
@@ -396,6 +427,7 @@ std::size_t Session::answer(const shm::VpPayload& vp, TimeNs now, std::span<std:
     return 0;
   }
   to = view.peer;
+  answer_log_.record(vp.cycle, now);
   hcp_frame f = protocol::make_frame(HCP_ANSWER, view.token, ++answer_sequence_, now);
   hcp_answer& a = f.body.hcp_body_u.answer;
   a.cycle = vp.cycle;

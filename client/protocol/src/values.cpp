@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "hapticctrl/protocol/timing.hpp"
+
 namespace hapticctrl::protocol {
 namespace {
 
@@ -38,20 +40,35 @@ Problem check_pose(const T (&pose)[7]) noexcept {  // NOLINT(*-avoid-c-arrays)
 template Problem check_pose<float>(const float (&)[7]) noexcept;    // NOLINT(*-avoid-c-arrays)
 template Problem check_pose<double>(const double (&)[7]) noexcept;  // NOLINT(*-avoid-c-arrays)
 
+Problem check_twist(const float (&t)[6]) noexcept {  // NOLINT(*-avoid-c-arrays)
+  for (int i = 0; i < 6; ++i) {
+    const double bound = i < 3 ? kMaxLinearSpeed : kMaxAngularSpeed;
+    if (!std::isfinite(t[i]) || std::abs(static_cast<double>(t[i])) > bound) {
+      return "twist: finite, within 100 m/s and 1000 rad/s";
+    }
+  }
+  return std::nullopt;
+}
+
 Problem check_control(const hcp_body& body) noexcept {
   if (body.type == HCP_CONTROL_OBJECT) {
     const hcp_control_object& o = body.hcp_body_u.object;
     if (auto p = check_pose(o.pose)) {
       return p;
     }
-    const float(&t)[6] = o.twist;  // NOLINT(*-avoid-c-arrays)
-    for (int i = 0; i < 6; ++i) {
-      const double bound = i < 3 ? kMaxLinearSpeed : kMaxAngularSpeed;
-      if (!std::isfinite(t[i]) || std::abs(static_cast<double>(t[i])) > bound) {
-        return "twist: finite, within 100 m/s and 1000 rad/s";
-      }
+    return check_twist(o.twist);
+  }
+  if (body.type == HCP_CONTROL_OBJECT_TIMED) {
+    const hcp_control_object_timed& o = body.hcp_body_u.timed;
+    if (!all_within(o.position, kMaxPosition)) {
+      return "pose: every value must be finite and within 100 m";
     }
-  } else if (body.type == HCP_CONTROL_WRENCH) {
+    if (!unpack_rotation({o.rotation[0], o.rotation[1]})) {
+      return "pose: the packed rotation is not a unit quaternion";
+    }
+    return check_twist(o.twist);
+  }
+  if (body.type == HCP_CONTROL_WRENCH) {
     if (!all_within(body.hcp_body_u.wrench.wrench, kMaxWrench)) {
       return "wrench: finite, within 1000 N and 1000 N.m";
     }
@@ -133,6 +150,7 @@ Problem check_answer(const hcp_answer& a) noexcept {
 Problem check_body(const hcp_body& body) noexcept {
   switch (body.type) {
     case HCP_CONTROL_OBJECT:
+    case HCP_CONTROL_OBJECT_TIMED:
     case HCP_CONTROL_WRENCH:
       return check_control(body);
     case HCP_PARAM:

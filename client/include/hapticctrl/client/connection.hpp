@@ -37,8 +37,10 @@ struct ConnectOptions {
   std::uint32_t watchdog_ms = 0;                    ///< 0: the bridge's default
   bool keepalive = true;  ///< send KEEPALIVE when the application is silent for watchdog/4
   /// The session counts as closed when the bridge sends nothing for this long (killed, or
-  /// cut off); parameter calls then throw kClosed saying so. 0: never.
-  std::chrono::milliseconds answer_timeout{500};
+  /// cut off); parameter calls then throw kClosed saying so. 0: never. Longer than the bridge's
+  /// default session watchdog (3 s), so that a link blackout of a few seconds is survived: the
+  /// controller fades the coupling out meanwhile and ramps it back when frames flow again.
+  std::chrono::milliseconds answer_timeout{4000};
   std::string client_name = "hapticctrl-client";
   /// For compatibility testing only: the protocol version and oldest version to advertise
   /// (0: this library's).

@@ -67,6 +67,7 @@ struct ServoShared {
   bool client_valid = false;
   std::uint64_t last_client_sequence = 0;
   TimeNs last_client_arrival = 0;
+  TimeNs last_client_time = 0;  ///< when the client computed it, our clock (see VprPayload)
 
   /// The committed cycle's render memory; each task's law continues from it.
   RenderMemory rendered;
@@ -84,6 +85,8 @@ struct ServoShared {
   std::atomic<std::uint64_t> committed_session{0};
   /// Mirror of logical.stop_requested for the CLOCK.
   std::atomic<bool> stop_requested{false};
+  /// The handle stayed over the speed limit despite the brake (LawConfig::overspeed_fault_after).
+  std::atomic<bool> velocity_fault{false};
   /// Command-line fault injection: at this cycle, request an overrun of inject_cycles.
   std::uint64_t inject_at_cycle = 0;
   std::uint32_t inject_cycles = 0;

@@ -29,7 +29,22 @@ struct ServoInputs {
   LogicalState logical;
   shm::VprPayload client;     ///< last valid client sample
   bool client_valid = false;  ///< a valid client sample exists
-  TimeNs client_age = 0;      ///< now - arrival of that sample
+  /// True age of that sample: now - when the client computed it (network + bridge + waiting,
+  /// from the protocol's timing echo; since its arrival for a client without it).
+  TimeNs client_age = 0;
+  TimeNs client_silence = 0;  ///< now - arrival of the newest sample (link freshness)
+  bool new_sample = false;    ///< the sample arrived this cycle
+  /// Coupling loop delay measured with that sample: from the core's answer the client had to
+  /// this cycle (0: unknown, the law then assumes LawConfig::assumed_loop_delay).
+  TimeNs loop_delay = 0;
+};
+
+/// Coupling gains (base frame): linear N/m, N·s/m; angular N·m/rad, N·m·s/rad.
+struct CouplingGains {
+  double k_linear = 0.0;
+  double b_linear = 0.0;
+  double k_angular = 0.0;
+  double b_angular = 0.0;
 };
 
 struct ServoOutputs {
@@ -43,17 +58,14 @@ struct ServoOutputs {
   /// The same, in the client's environment frame (through its base frame and speed factor).
   std::array<double, 7> client_handle_pose{0, 0, 0, 0, 0, 0, 1};
   Vector6d client_handle_twist = Vector6d::Zero();
-  double fade = 1.0;  ///< 1: fresh client data, 0: faded out
+  double fade = 1.0;     ///< 1: fresh client data, 0: faded out
+  double engage = 1.0;   ///< share of the coupling the handle gets (re-engagement, brake)
   bool coupled = false;
   bool client_stale = false;
-};
-
-/// Coupling gains (base frame): linear N/m, N·s/m; angular N·m/rad, N·m·s/rad.
-struct CouplingGains {
-  double k_linear = 0.0;
-  double b_linear = 0.0;
-  double k_angular = 0.0;
-  double b_angular = 0.0;
+  bool braking = false;         ///< handle over the speed limit: the damped brake is on
+  bool velocity_fault = false;  ///< over the speed limit for LawConfig::overspeed_fault_after
+  CouplingGains gains;          ///< gains in force this cycle (zero when not coupled)
+  TimeNs loop_delay = 0;        ///< loop delay the gains were derived for
 };
 
 /// How the client's environment frame relates to ours, derived once per cycle from its sample:
@@ -70,10 +82,20 @@ struct ClientFrame {
 ClientFrame client_frame_of(const shm::VprPayload& client) noexcept;
 
 struct LawConfig {
-  TimeNs stale_after = 5 * kNsPerMs;       ///< older client data is extrapolated, flagged stale
-  TimeNs extrapolate_max = 50 * kNsPerMs;  ///< extrapolation horizon
-  TimeNs fade_after = 50 * kNsPerMs;       ///< then the coupling fades ...
-  TimeNs fade_duration = 100 * kNsPerMs;   ///< ... to zero over this ramp ("link lost")
+  TimeNs stale_after = 5 * kNsPerMs;       ///< no new sample for this long: flagged stale
+  TimeNs extrapolate_max = 50 * kNsPerMs;  ///< extrapolation horizon (sample age)
+  /// No new sample for fade_after: the coupling force fades out over fade_duration, so that it
+  /// is zero within 45 ms of the last fresh sample (H1: 50 ms), at most release_rate meanwhile.
+  TimeNs fade_after = 10 * kNsPerMs;
+  TimeNs fade_duration = 35 * kNsPerMs;
+  double release_rate = 1000.0;  ///< N/s: force change limit while fading, braking or released
+  /// Every re-engagement (fresh data after a fade, the end of a brake, a new session, power-on)
+  /// gives the handle its coupling back through a ramp this long.
+  TimeNs engage_duration = 50 * kNsPerMs;
+  TimeNs overspeed_fault_after = 250 * kNsPerMs;  ///< braking this long: kVelocityLimit
+  double brake_release_ratio = 0.8;  ///< the brake lets go below this share of max_speed
+  /// Loop delay assumed for a client that does not echo answers (protocol 1.0).
+  TimeNs assumed_loop_delay = 5 * kNsPerMs;
   double joint_damping = 0.02;             ///< N·m·s/rad, always when powered (degraded too)
   double wall_margin = 0.05;               ///< rad before a joint limit where the soft wall starts
   double wall_stiffness = 20.0;            ///< N·m/rad
@@ -89,9 +111,14 @@ struct LawConfig {
 /// wrench jump between the two laws' last values when degraded cycles interleaved: 17.8 N in one
 /// 4 ms cycle against an 8 N limit, found by the fault-injection test, 2026-12-01.)
 struct RenderMemory {
-  Vector6d wrench = Vector6d::Zero();       ///< handle wrench rendered last cycle
-  Vector6d port_wrench = Vector6d::Zero();  ///< what the passivity observer saw at the port
+  Vector6d wrench = Vector6d::Zero();       ///< rate-limited handle wrench of last cycle
+  Vector6d port_wrench = Vector6d::Zero();  ///< rendered at the port (with the guard's damping)
   double observed_energy = 0.0;             ///< J, see observed_energy()
+  double engage = 0.0;                      ///< see ServoOutputs::engage
+  TimeNs overspeed = 0;                     ///< how long the handle has been over the limit
+  bool braking = false;
+  std::uint64_t session_id = 0;             ///< the session the coupling is engaged with
+  TimeNs loop_delay = 0;                    ///< envelope of the measured loop delay
 };
 
 /// Counters of the law (cycle-safe reads).
@@ -111,12 +138,11 @@ class ServoLaw {
   void compute(const ServoInputs& in, bool degraded, ServoOutputs& out) noexcept;
 
   /// Gains the controller derives from the object's mass/inertia, the client's time step and
-  /// the link's one-way delay (s), bounded by the device (model limits), then overridden (within
-  /// the same bounds) by the client's non-zero overrides. Real-time contract: safe in the cycle.
+  /// the coupling loop's delay (s), bounded by the device (model limits), then overridden
+  /// (within the same bounds) by the client's non-zero overrides. Real-time contract: safe in
+  /// the cycle.
   [[nodiscard]] CouplingGains derive_gains(const shm::VprPayload& client,
-                                           double link_delay = 0.0) const noexcept;
-  /// Current estimate of the client link's one-way delay (s).
-  [[nodiscard]] double link_delay() const noexcept { return link_delay_; }
+                                           double loop_delay) const noexcept;
 
   /// Net energy the user has given the rendering port at the handle (J): negative means the port
   /// delivered more energy to the hand than it received (the guard then adds damping).
@@ -129,9 +155,18 @@ class ServoLaw {
   [[nodiscard]] const LawConfig& config() const noexcept { return config_; }
 
  private:
-  Vector6d client_wrench(const ServoInputs& in, const ClientFrame& frame, const ChainState& chain,
+  /// The coupling's spring and damper parts (base frame), before limits.
+  struct Coupling {
+    Vector6d spring = Vector6d::Zero();
+    Vector6d damper = Vector6d::Zero();
+  };
+  Coupling client_wrench(const ServoInputs& in, const ClientFrame& frame, const ChainState& chain,
                          const Vector6d& twist, ServoOutputs& out) noexcept;
-  Vector6d limit_wrench(const Vector6d& wrench, const shm::VprPayload& client, double dt) noexcept;
+  void track_loop_delay(const ServoInputs& in) noexcept;
+  double update_engagement(const ServoInputs& in, const Vector6d& twist, double fade,
+                           ServoOutputs& out) noexcept;
+  Vector6d saturate(const Coupling& c, const shm::VprPayload& client) const noexcept;
+  Vector6d rate_limit(const Vector6d& target, double rate, double dt) noexcept;
   Vector6d guard_passivity(const Vector6d& wrench, const Vector6d& twist, double dt) noexcept;
   Vector6d joint_walls(const Vector6d& q) const noexcept;
   Vector6d workspace_wall() noexcept;
@@ -142,8 +177,6 @@ class ServoLaw {
   LawConfig config_;
   ChainState chain_;
   RenderMemory memory_;
-  double link_delay_ = 0.0;
-  TimeNs previous_age_ = 0;
   LawCounters counters_;
 };
 

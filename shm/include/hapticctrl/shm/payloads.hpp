@@ -64,6 +64,17 @@ struct VprPayload {
   std::uint64_t client_sequence = 0;  ///< sequence number of the client frame this came from
   std::int64_t client_time_ns = 0;    ///< the client's sender timestamp (its own clock)
   std::int64_t received_time_ns = 0;  ///< bridge receive time, CLOCK_MONOTONIC
+  /// When the client computed this state, on this host's CLOCK_MONOTONIC: received_time_ns less
+  /// the link's one-way delay as the bridge measured it for this frame (protocol 1.1 timing);
+  /// 0 when unknown (a 1.0 client): the core then dates the sample at its arrival.
+  std::int64_t sample_time_ns = 0;
+  /// The core cycle whose ANSWER the client had received when it computed this state (0:
+  /// unknown). The core's cycle minus this is the coupling loop's delay in cycles.
+  std::uint64_t echo_cycle = 0;
+  std::int64_t link_delay_ns = 0;   ///< smoothed one-way delay of the client link (bridge's view)
+  std::int64_t link_jitter_ns = 0;  ///< smoothed |change| of the one-way delay between frames
+  std::uint32_t link_loss_ppm = 0;  ///< control frames lost on the way in (smoothed)
+  std::uint32_t reserved = 0;
   std::uint32_t command_type = 0;     ///< CommandType
   std::uint32_t indexing_mode = 0;
   std::uint32_t watchdog_timeout_us = 0;
@@ -96,6 +107,14 @@ struct VpPayload {
   Vector6 handle_twist{};
   Joints6 joint_position{};
   Joints6 joint_velocity{};
+  /// The coupling as the core ran it this cycle (telemetry and the client's statistics).
+  std::int64_t sample_age_ns = 0;   ///< age of the client sample used (network + bridge + wait)
+  std::int64_t loop_delay_ns = 0;   ///< coupling loop delay the gains were derived for
+  std::int64_t link_delay_ns = 0;   ///< one-way delay of the client link (from VPr)
+  std::int64_t link_jitter_ns = 0;
+  std::uint32_t link_loss_ppm = 0;
+  std::uint32_t reserved = 0;
+  std::array<double, 4> gains{};    ///< k_lin N/m, b_lin N.s/m, k_ang N.m/rad, b_ang N.m.s/rad
 };
 
 /// force: operator wrench on the simulated handle (written by the HMI side).
@@ -215,8 +234,8 @@ struct LinkStatsPayload {
 };
 
 // Layout pins: a change here is an ABI change (bump kAbiVersion in layout.hpp).
-static_assert(sizeof(VprPayload) == 416);
-static_assert(sizeof(VpPayload) == 288);
+static_assert(sizeof(VprPayload) == 456);
+static_assert(sizeof(VpPayload) == 360);
 static_assert(sizeof(ForcePayload) == 48);
 static_assert(sizeof(PositionPayload) == 360);
 static_assert(sizeof(LatencySummary) == 64);

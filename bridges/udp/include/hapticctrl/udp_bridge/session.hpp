@@ -20,6 +20,7 @@
 #include "hapticctrl/shm/seqlock.hpp"
 #include "hapticctrl/udp_bridge/client_allow_list.hpp"
 #include "hapticctrl/udp_bridge/hello_limiter.hpp"
+#include "hapticctrl/udp_bridge/link_timing.hpp"
 
 namespace hapticctrl::udp_bridge {
 
@@ -67,7 +68,9 @@ struct LinkCounters {
 
 /// Bridge-wide settings.
 struct SessionSettings {
-  std::uint32_t default_watchdog_ms = 100;
+  /// A session outlives a link blackout this long (the core fades the force out within 50 ms
+  /// of the last fresh sample whatever the watchdog; H1 asks for 2 s blackouts to be survived).
+  std::uint32_t default_watchdog_ms = 3000;
   ClientAllowList allowed_clients;  ///< empty: every source address
   HelloLimits hello_limits;
 };
@@ -125,6 +128,8 @@ class Session {
                        std::span<std::uint8_t> reply) noexcept;
   std::size_t on_bye(const hcp_frame& in, TimeNs now, std::span<std::uint8_t> reply) noexcept;
   void on_control(const hcp_frame& in, TimeNs now) noexcept;
+  /// CONTROL_OBJECT_TIMED: the pose, twist and the sample's timing into vpr_.
+  void take_timed_object(const hcp_control_object_timed& o, TimeNs now) noexcept;
   [[nodiscard]] bool from_session(const hcp_frame& in,
                                   const protocol::Endpoint& from) const noexcept;
   hcp_ack_status apply(const hcp_param& param, TimeNs now) noexcept;
@@ -156,10 +161,12 @@ class Session {
   std::uint32_t reply_sequence_ = 0;
   std::uint32_t control_received_ = 0;
   shm::VprPayload vpr_{};
+  LinkEstimator link_;
 
   // Shared with the answer thread.
   shm::SeqlockCell<SessionView> view_;
   std::atomic<std::uint32_t> control_received_shared_{0};
+  AnswerLog answer_log_;               ///< written by the answer thread
   std::uint32_t answer_sequence_ = 0;  ///< answer thread only
   HelloLimiter hello_limiter_;         ///< receive thread only
   LinkCounters counters_;

@@ -37,6 +37,9 @@ inline constexpr unsigned kMaxWatchdogMs = 60000;
 template <typename T>
 [[nodiscard]] Problem check_pose(const T (&pose)[7]) noexcept;  // NOLINT(*-avoid-c-arrays)
 
+/// A twist: finite, within kMaxLinearSpeed and kMaxAngularSpeed per component.
+[[nodiscard]] Problem check_twist(const float (&twist)[6]) noexcept;  // NOLINT(*-avoid-c-arrays)
+/// CONTROL_OBJECT, CONTROL_OBJECT_TIMED (position, packed rotation, twist) or CONTROL_WRENCH.
 [[nodiscard]] Problem check_control(const hcp_body& body) noexcept;
 [[nodiscard]] Problem check_param(const hcp_param& param) noexcept;
 [[nodiscard]] Problem check_hello(const hcp_hello& hello) noexcept;

@@ -1,0 +1,349 @@
+// hapticctrl-netem: a UDP relay that impairs the link between a client and hapticctrl-udp
+// (delay, jitter, loss, loss bursts, blackouts), for tests and the coupling benchmark. This
+// kernel has no netem qdisc (../shared/PITFALLS.md), so the impairment is done in user space.
+//
+//   client --> [--listen] hapticctrl-netem --> [--to] hapticctrl-udp
+//   client <-- (same socket)                <-- (its own socket)
+//
+// The client talks to the relay's address instead of the bridge's. Datagrams from the bridge go
+// back to the client that last sent one. SIGUSR1 switches a blackout on and off (both
+// directions); SIGINT/SIGTERM end it, and --json prints its counters. Loopback only unless
+// --allow-remote: a test tool never sends traffic off this machine by accident.
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cerrno>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+#include <queue>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "hapticctrl/netem/impairment.hpp"
+
+namespace {
+
+using hapticctrl::netem::Impairment;
+using hapticctrl::netem::LinkModel;
+using hapticctrl::netem::TimeNs;
+using hapticctrl::netem::Verdict;
+
+std::atomic<bool> g_stop{false};
+std::atomic<int> g_toggles{0};
+
+void on_stop(int /*signal*/) {
+  g_stop.store(true);
+}
+void on_toggle(int /*signal*/) {
+  g_toggles.fetch_add(1);
+}
+
+TimeNs monotonic_ns() {
+  timespec ts{};
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return static_cast<TimeNs>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
+}
+
+struct Options {
+  std::string listen = "127.0.0.1:0";
+  std::string to;
+  LinkModel link;
+  std::uint64_t seed = 1;
+  double duration_s = 0.0;
+  bool json = false;
+  bool allow_remote = false;
+};
+
+const char* usage() {
+  return "usage: hapticctrl-netem --to HOST:PORT [options]\n"
+         "  --listen HOST:PORT  where clients send (default 127.0.0.1:0: a free port, printed)\n"
+         "  --to HOST:PORT      the bridge (hapticctrl-udp) to relay to\n"
+         "  --delay-ms D        one-way delay added in each direction (default 0)\n"
+         "  --jitter-ms J       each datagram's delay varies uniformly within +-J (default 0)\n"
+         "  --loss P            fraction of datagrams lost in each direction, 0..1 (default 0)\n"
+         "  --burst N           mean loss-burst length in datagrams, >= 1 (default 1)\n"
+         "  --reorder           let jitter reorder datagrams (default: keep their order)\n"
+         "  --blackout AT:DUR   drop everything from AT s for DUR s (repeatable)\n"
+         "  --seed N            random seed (default 1)\n"
+         "  --duration S        exit after S seconds\n"
+         "  --allow-remote      allow addresses outside 127.0.0.0/8\n"
+         "  --json              print the counters as one JSON line at exit\n"
+         "  SIGUSR1 switches a blackout on and off.\n";
+}
+
+double number(const std::string& option, const std::string& text, double lo, double hi) {
+  std::size_t used = 0;
+  double v = 0.0;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size() || !std::isfinite(v) || v < lo || v > hi) {
+    throw std::invalid_argument(option + ": expected a number from " + std::to_string(lo) +
+                                " to " + std::to_string(hi) + ", got '" + text + "'");
+  }
+  return v;
+}
+
+Options parse(int argc, char** argv) {
+  Options o;
+  std::vector<std::string> args(argv + 1, argv + argc);
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    const auto value = [&]() -> const std::string& {
+      if (i + 1 >= args.size()) {
+        throw std::invalid_argument(a + ": missing value");
+      }
+      return args[++i];
+    };
+    if (a == "--listen") {
+      o.listen = value();
+    } else if (a == "--to") {
+      o.to = value();
+    } else if (a == "--delay-ms") {
+      o.link.delay = static_cast<TimeNs>(number(a, value(), 0, 10000) * 1e6);
+    } else if (a == "--jitter-ms") {
+      o.link.jitter = static_cast<TimeNs>(number(a, value(), 0, 10000) * 1e6);
+    } else if (a == "--loss") {
+      o.link.loss = number(a, value(), 0, 1);
+    } else if (a == "--burst") {
+      o.link.burst = number(a, value(), 1, 1e6);
+    } else if (a == "--reorder") {
+      o.link.reorder = true;
+    } else if (a == "--blackout") {
+      o.link.blackouts.push_back(LinkModel::parse_blackout(value()));
+    } else if (a == "--seed") {
+      o.seed = static_cast<std::uint64_t>(number(a, value(), 0, 9.0e15));
+    } else if (a == "--duration") {
+      o.duration_s = number(a, value(), 0, 1e6);
+    } else if (a == "--allow-remote") {
+      o.allow_remote = true;
+    } else if (a == "--json") {
+      o.json = true;
+    } else {
+      throw std::invalid_argument("unknown option '" + a + "'");
+    }
+  }
+  if (o.to.empty()) {
+    throw std::invalid_argument("--to HOST:PORT is required");
+  }
+  o.link.validate();
+  return o;
+}
+
+sockaddr_in endpoint(const std::string& text, bool allow_remote) {
+  const auto colon = text.rfind(':');
+  if (colon == std::string::npos) {
+    throw std::invalid_argument("'" + text + "': expected HOST:PORT (IPv4)");
+  }
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  const std::string host = text.substr(0, colon) == "localhost" ? "127.0.0.1" : text.substr(0, colon);
+  if (inet_pton(AF_INET, host.c_str(), &a.sin_addr) != 1) {
+    throw std::invalid_argument("'" + text + "': not an IPv4 address");
+  }
+  a.sin_port = htons(static_cast<std::uint16_t>(number(text, text.substr(colon + 1), 0, 65535)));
+  if (!allow_remote && (ntohl(a.sin_addr.s_addr) >> 24U) != 127U) {
+    throw std::invalid_argument("'" + text + "' is not on loopback (--allow-remote to allow)");
+  }
+  return a;
+}
+
+int bound_socket(const sockaddr_in& at) {
+  const int fd = socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
+  if (fd < 0 || bind(fd, reinterpret_cast<const sockaddr*>(&at), sizeof at) != 0) {
+    throw std::runtime_error(std::string("cannot bind the relay's socket: ") + std::strerror(errno));
+  }
+  return fd;
+}
+
+struct Counters {
+  std::uint64_t received = 0, delivered = 0, lost = 0, blackout = 0, overflow = 0;
+};
+
+struct Pending {
+  TimeNs at = 0;
+  std::uint64_t order = 0;
+  std::size_t direction = 0;  ///< 0: client -> bridge, 1: bridge -> client
+  std::uint16_t size = 0;
+  std::array<std::uint8_t, 1500> bytes{};
+  bool operator>(const Pending& other) const {
+    return at != other.at ? at > other.at : order > other.order;
+  }
+};
+
+/// Datagrams waiting for their delivery time; bounded (an overflow is counted, not queued).
+constexpr std::size_t kMaxPending = 65536;
+
+class Relay {
+ public:
+  explicit Relay(const Options& o)
+      : options_(o),
+        front_(bound_socket(endpoint(o.listen, o.allow_remote))),
+        back_(bound_socket(endpoint("127.0.0.1:0", true))),
+        bridge_(endpoint(o.to, o.allow_remote)),
+        links_{Impairment(o.link, o.seed), Impairment(o.link, o.seed * 7919 + 1)} {}
+  ~Relay() {
+    close(front_);
+    close(back_);
+  }
+  Relay(const Relay&) = delete;
+  Relay& operator=(const Relay&) = delete;
+
+  [[nodiscard]] std::uint16_t port() const {
+    sockaddr_in a{};
+    socklen_t n = sizeof a;
+    getsockname(front_, reinterpret_cast<sockaddr*>(&a), &n);
+    return ntohs(a.sin_port);
+  }
+
+  void run() {
+    const TimeNs start = monotonic_ns();
+    const TimeNs end = options_.duration_s > 0 ? start + static_cast<TimeNs>(options_.duration_s * 1e9) : 0;
+    int toggles_seen = 0;
+    while (!g_stop.load() && (end == 0 || monotonic_ns() < end)) {
+      const int toggles = g_toggles.load();
+      if (toggles != toggles_seen) {
+        toggles_seen = toggles;
+        for (Impairment& l : links_) {
+          l.set_manual_blackout(toggles % 2 == 1);
+        }
+        std::fprintf(stderr, "hapticctrl-netem: blackout %s\n", toggles % 2 == 1 ? "on" : "off");
+      }
+      wait_for_traffic();
+      const TimeNs now = monotonic_ns();
+      receive(front_, 0, now, now - start);
+      receive(back_, 1, now, now - start);
+      deliver_due(monotonic_ns());
+    }
+  }
+
+  void print_json() const {
+    const auto side = [](const Counters& c) {
+      char text[200];
+      std::snprintf(text, sizeof text,
+                    "{\"received\":%llu,\"delivered\":%llu,\"lost\":%llu,\"blackout\":%llu,"
+                    "\"overflow\":%llu}",
+                    static_cast<unsigned long long>(c.received),
+                    static_cast<unsigned long long>(c.delivered),
+                    static_cast<unsigned long long>(c.lost),
+                    static_cast<unsigned long long>(c.blackout),
+                    static_cast<unsigned long long>(c.overflow));
+      return std::string(text);
+    };
+    std::printf("{\"to_bridge\":%s,\"to_client\":%s}\n", side(counters_[0]).c_str(),
+                side(counters_[1]).c_str());
+  }
+
+ private:
+  void wait_for_traffic() {
+    std::array<pollfd, 2> fds{pollfd{front_, POLLIN, 0}, pollfd{back_, POLLIN, 0}};
+    TimeNs wait = 10'000'000;  // wake at least every 10 ms for signals and the duration
+    if (!queue_.empty()) {
+      wait = std::clamp<TimeNs>(queue_.top().at - monotonic_ns(), 0, wait);
+    }
+    const timespec ts{static_cast<time_t>(wait / 1'000'000'000), static_cast<long>(wait % 1'000'000'000)};
+    ppoll(fds.data(), fds.size(), &ts, nullptr);
+  }
+
+  void receive(int fd, std::size_t direction, TimeNs now, TimeNs since_start) {
+    for (;;) {
+      Pending p;
+      sockaddr_in from{};
+      socklen_t n = sizeof from;
+      const ssize_t got = recvfrom(fd, p.bytes.data(), p.bytes.size(), 0,
+                                   reinterpret_cast<sockaddr*>(&from), &n);
+      if (got < 0) {
+        return;  // EAGAIN: nothing more now
+      }
+      if (direction == 0) {
+        client_ = from;
+        have_client_ = true;
+      }
+      Counters& c = counters_[direction];
+      ++c.received;
+      const Verdict v = links_[direction].on_datagram(now, since_start);
+      if (v.fate == Verdict::Fate::kLost) {
+        ++c.lost;
+        continue;
+      }
+      if (v.fate == Verdict::Fate::kBlackout) {
+        ++c.blackout;
+        continue;
+      }
+      if (queue_.size() >= kMaxPending) {
+        ++c.overflow;
+        continue;
+      }
+      p.at = v.deliver_at;
+      p.order = ++order_;
+      p.direction = direction;
+      p.size = static_cast<std::uint16_t>(got);
+      queue_.push(p);
+    }
+  }
+
+  void deliver_due(TimeNs now) {
+    while (!queue_.empty() && queue_.top().at <= now) {
+      const Pending& p = queue_.top();
+      const bool to_bridge = p.direction == 0;
+      if (to_bridge || have_client_) {
+        const sockaddr_in& to = to_bridge ? bridge_ : client_;
+        if (sendto(to_bridge ? back_ : front_, p.bytes.data(), p.size, 0,
+                   reinterpret_cast<const sockaddr*>(&to), sizeof to) >= 0) {
+          ++counters_[p.direction].delivered;
+        }
+      }
+      queue_.pop();
+    }
+  }
+
+  Options options_;
+  int front_;
+  int back_;
+  sockaddr_in bridge_;
+  sockaddr_in client_{};
+  bool have_client_ = false;
+  std::array<Impairment, 2> links_;
+  std::priority_queue<Pending, std::vector<Pending>, std::greater<>> queue_;
+  std::uint64_t order_ = 0;
+  std::array<Counters, 2> counters_{};
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options options;
+  try {
+    if (argc > 1 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h")) {
+      std::printf("%s", usage());
+      return 0;
+    }
+    options = parse(argc, argv);
+    Relay relay(options);
+    std::signal(SIGINT, on_stop);
+    std::signal(SIGTERM, on_stop);
+    std::signal(SIGUSR1, on_toggle);
+    std::printf("hapticctrl-netem: listening on 127.0.0.1:%u\n", relay.port());
+    std::fflush(stdout);
+    relay.run();
+    if (options.json) {
+      relay.print_json();
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "hapticctrl-netem: %s\n%s", e.what(), usage());
+    return 64;
+  }
+  return 0;
+}

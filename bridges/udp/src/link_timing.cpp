@@ -1,0 +1,84 @@
+#include "hapticctrl/udp_bridge/link_timing.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace hapticctrl::udp_bridge {
+namespace {
+
+/// Averaging gains: the delay and jitter over about 16 frames (16 ms at 1 kHz), the loss rate
+/// over about 256 frames (enough to tell 10 % from 1 % within a quarter second).
+constexpr double kDelayGain = 1.0 / 16.0;
+constexpr double kLossGain = 1.0 / 256.0;
+
+}  // namespace
+
+void AnswerLog::record(std::uint64_t cycle, TimeNs sent) noexcept {
+  Entry& e = entries_[cycle % kSize];
+  e.cycle.store(0, std::memory_order_relaxed);  // readers never pair the old cycle and new time
+  std::atomic_thread_fence(std::memory_order_release);
+  e.sent.store(sent, std::memory_order_relaxed);
+  e.cycle.store(cycle, std::memory_order_release);
+  newest_.store(cycle, std::memory_order_release);
+}
+
+bool AnswerLog::sent_time(std::uint64_t cycle, TimeNs& sent) const noexcept {
+  if (cycle == 0) {
+    return false;
+  }
+  const Entry& e = entries_[cycle % kSize];
+  if (e.cycle.load(std::memory_order_acquire) != cycle) {
+    return false;
+  }
+  const TimeNs t = e.sent.load(std::memory_order_relaxed);
+  std::atomic_thread_fence(std::memory_order_acquire);
+  if (e.cycle.load(std::memory_order_relaxed) != cycle) {
+    return false;  // overwritten while read
+  }
+  sent = t;
+  return true;
+}
+
+SampleTiming LinkEstimator::time_sample(const protocol::AnswerEcho& echo, const AnswerLog& log,
+                                        TimeNs arrival) noexcept {
+  SampleTiming s;
+  if (!echo.valid) {
+    return s;
+  }
+  const std::uint64_t cycle = protocol::expand_cycle(echo.cycle_low, log.newest());
+  TimeNs sent = 0;
+  if (!log.sent_time(cycle, sent) || arrival < sent) {
+    return s;
+  }
+  s.measured = true;
+  s.echo_cycle = cycle;
+  // A client that claims a longer hold than the whole round trip lies or rounds: never below 0.
+  s.round_trip = std::max<TimeNs>(0, arrival - sent - echo.hold_ns);
+  s.sample_time = arrival - s.round_trip / 2;
+  return s;
+}
+
+void LinkEstimator::add(const SampleTiming& sample) noexcept {
+  if (!sample.measured) {
+    return;
+  }
+  const double one_way = static_cast<double>(sample.round_trip) / 2.0;
+  if (!have_delay_) {
+    have_delay_ = true;
+    delay_ = one_way;
+  } else {
+    delay_ += (one_way - delay_) * kDelayGain;
+    jitter_ += (std::abs(one_way - last_one_way_) - jitter_) * kDelayGain;
+  }
+  last_one_way_ = one_way;
+}
+
+void LinkEstimator::add_arrival(std::uint32_t lost) noexcept {
+  // Each missing sequence number is one lost frame, this arrival one delivered frame.
+  for (std::uint32_t i = 0; i < std::min<std::uint32_t>(lost, 1000); ++i) {
+    loss_ += (1.0 - loss_) * kLossGain;
+  }
+  loss_ += (0.0 - loss_) * kLossGain;
+}
+
+}  // namespace hapticctrl::udp_bridge

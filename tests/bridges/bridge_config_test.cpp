@@ -11,7 +11,7 @@ TEST(BridgeConfig, DefaultsAreLoopbackAndTheStandardPort) {
   const BridgeConfig c = BridgeConfig::parse({});
   EXPECT_EQ(c.bind_address, "127.0.0.1");
   EXPECT_EQ(c.port, 5125);
-  EXPECT_EQ(c.watchdog_ms, 100U);
+  EXPECT_EQ(c.watchdog_ms, 3000U);
 }
 
 TEST(BridgeConfig, ParsesEveryOption) {

@@ -36,10 +36,10 @@ TEST(Connection, HandshakeNegotiatesAndTheAnswerStreamFlows) {
   ControllerStack stack("handshake");
   ASSERT_TRUE(stack.ready()) << stack.diagnostics();
   Connection c(address_of(stack));
-  EXPECT_EQ(c.features(), 3U);
+  EXPECT_EQ(c.features(), 7U) << "joint state, link statistics, timing";
   EXPECT_EQ(c.controller_period_ns(), stack.period_us() * 1000);
-  EXPECT_EQ(c.watchdog_ms(), 100U);
-  EXPECT_EQ(c.controller_version(), 0x00010000U);
+  EXPECT_EQ(c.watchdog_ms(), 3000U);
+  EXPECT_EQ(c.controller_version(), 0x00010001U);
   StateSnapshot s;
   ASSERT_TRUE(c.wait_for_answer(0, 2s, s));
   EXPECT_TRUE(s.valid);

@@ -78,6 +78,9 @@ bool Impairment::lose() noexcept {
   if (model_.loss <= 0.0) {
     return false;
   }
+  if (model_.burst <= 1.0) {
+    return unit_(random_) < model_.loss;  // independent losses
+  }
   bad_state_ = bad_state_ ? unit_(random_) >= leave_burst_ : unit_(random_) < enter_burst_;
   return bad_state_;
 }

@@ -37,7 +37,7 @@ const char* BridgeConfig::usage() noexcept {
          "                      repeat for more (default: any address that reaches the port)\n"
          "  --hello-rate N      handshakes (HELLO) answered per second per source, and the\n"
          "                      burst allowed, 1..10000 (default: 20)\n"
-         "  --watchdog-ms N     default session watchdog, 10..60000 ms (default: 100)\n"
+         "  --watchdog-ms N     default session watchdog, 10..60000 ms (default: 3000)\n"
          "  --priority N        SCHED_FIFO priority 1..98 for both threads (below the core's)\n"
          "  --duration S        exit after S seconds (default: run until SIGINT/SIGTERM)\n"
          "  --json              print the final counters as one JSON line\n";

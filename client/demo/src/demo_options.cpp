@@ -29,13 +29,15 @@ const char* DemoOptions::usage() noexcept {
          "         [--mass KG] [--radius M] [--gap M] [--contact-stiffness N/M]\n"
          "         [--contact-damping NS/M] [--friction MU] [--gravity]\n"
          "         [--lcm-url URL] [--instance NAME] [--scene-rate HZ] [--no-lcm]\n"
+         "         [--no-reconnect]\n"
          "The seeds' test client: a mobile sphere coupled to the arm (VIRTMECH) next to a fixed\n"
          "one. Keys (with a terminal): x y z / X Y Z push the sphere along +/-, u v w / U V W\n"
          "twist it, 0 releases, q quits. Script lines: 't push fx fy fz', 't twist tx ty tz',\n"
          "'t release', 't quit'. The scene goes out on LCM (hapticctrl.<instance>.scene,\n"
-         "default 30 Hz, local-only URL) for the web view. Exit: 0 done, 1 error, 2 the controller "
-         "ended the session\n"
-         "abnormally (fail-safe), 64 usage.\n";
+         "default 30 Hz, local-only URL) for the web view. A lost session or a controller that\n"
+         "failed safe is reconnected (the sphere starts again at the handle) unless\n"
+         "--no-reconnect. Exit: 0 done (or the controller stopped), 1 error, 2 (--no-reconnect)\n"
+         "the controller ended the session abnormally (fail-safe), 64 usage.\n";
 }
 
 DemoOptions DemoOptions::parse(const std::vector<std::string>& args) {
@@ -89,6 +91,8 @@ DemoOptions DemoOptions::parse(const std::vector<std::string>& args) {
       }
     } else if (a == "--scene-rate") {
       o.scene_rate_hz = number_of(value(), a, 1.0, 1000.0);
+    } else if (a == "--no-reconnect") {
+      o.reconnect = false;
     } else if (a == "--no-lcm") {
       o.publish_scene = false;
     } else {

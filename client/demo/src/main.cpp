@@ -1,11 +1,14 @@
 // hapticctrl-demo: the seeds' test client. A mobile sphere, coupled to the arm through the
 // client library in VIRTMECH mode, next to a fixed sphere; the client integrates both at its
 // time step (one step per controller answer) and sends the mobile sphere's state back.
-// Exit: 0 done, 1 error, 2 the controller ended the session by failing safe, 64 usage.
+// A session lost with its link, or ended by a controller that failed safe, is opened again
+// (--no-reconnect: the demo exits instead).
+// Exit: 0 done, 1 error, 2 the controller failed safe (--no-reconnect), 64 usage.
 #include <fcntl.h>
 #include <termios.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -14,6 +17,7 @@
 #include <fstream>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "hapticctrl/client/connection.hpp"
@@ -149,18 +153,20 @@ void print_status(FILE* out, double t, const client::StateSnapshot& s,
 }
 
 void print_json(const client::StateSnapshot& s, const demo::SphereScene& scene,
-                const client::LinkStatistics& st, std::uint64_t steps, const char* ended) {
+                const client::LinkStatistics& st, std::uint64_t steps, std::uint64_t reconnects,
+                const char* ended) {
   const auto& p = scene.state().position;
   const auto& v = scene.state().velocity;
   const Eigen::Vector3d contact = scene.contact_force();
   std::printf(
-      "{\"steps\":%llu,\"ended\":\"%s\",\"powered\":%s,\"sphere_position\":[%.9g,%.9g,%.9g],"
+      "{\"steps\":%llu,\"reconnects\":%llu,\"ended\":\"%s\",\"powered\":%s,\"sphere_position\":[%.9g,%.9g,%.9g],"
       "\"sphere_velocity\":[%.9g,%.9g,%.9g],\"contact_force\":[%.9g,%.9g,%.9g],"
       "\"penetration\":%.9g,\"coupling_wrench\":[%.9g,%.9g,%.9g,%.9g,%.9g,%.9g],"
       "\"handle_position\":[%.9g,%.9g,%.9g],\"fixed_center\":[%.9g,%.9g,%.9g],"
       "\"answers_received\":%llu,\"answers_lost\":%llu,\"answers_late\":%llu,"
       "\"frames_invalid\":%llu,\"control_sent\":%llu,\"rtt_mean_us\":%.1f}\n",
-      static_cast<unsigned long long>(steps), ended, s.powered() ? "true" : "false", p.x(), p.y(),
+      static_cast<unsigned long long>(steps), static_cast<unsigned long long>(reconnects), ended,
+      s.powered() ? "true" : "false", p.x(), p.y(),
       p.z(), v.x(), v.y(), v.z(), contact.x(), contact.y(), contact.z(), scene.penetration(),
       s.coupling_wrench[0], s.coupling_wrench[1], s.coupling_wrench[2], s.coupling_wrench[3],
       s.coupling_wrench[4], s.coupling_wrench[5], s.handle_pose[0], s.handle_pose[1],
@@ -170,6 +176,53 @@ void print_json(const client::StateSnapshot& s, const demo::SphereScene& scene,
       static_cast<unsigned long long>(st.answers_late),
       static_cast<unsigned long long>(st.frames_invalid),
       static_cast<unsigned long long>(st.control_sent), st.rtt_mean_us);
+}
+
+/// At most this many steps are integrated for one answer (a longer gap pauses the world).
+constexpr std::uint64_t kMaxCatchUpSteps = 20;
+/// The first connection retries this long: a client that crashed holds the session until the
+/// bridge's watchdog (3 s) frees it. Reconnections retry until the demo's time is up.
+constexpr std::chrono::seconds kFirstConnectPatience{10};
+constexpr std::chrono::seconds kRetryForever{0};
+
+/// A session, initialised the seeds' way, or nothing when `may_continue` turns false or
+/// `patience` (0: unbounded) runs out. Refusals (busy, no controller, no answer) are retried
+/// every 0.5 s and said once each; other errors throw.
+template <typename MayContinue>
+std::optional<client::Connection> open_session(const demo::DemoOptions& o,
+                                               MayContinue may_continue,
+                                               std::chrono::seconds patience) {
+  const auto give_up = Clock::now() + patience;
+  client::ConnectOptions connect;
+  connect.client_name = "hapticctrl-demo";
+  std::string last_said;
+  for (;;) {
+    try {
+      std::optional<client::Connection> c;
+      c.emplace(client::Address::parse(o.server), connect);
+      initialise(*c, o, static_cast<double>(c->controller_period_ns()) / 1e9);
+      return c;
+    } catch (const client::ClientError& e) {
+      const bool retry = e.code() == client::ErrorCode::kBusy ||
+                         e.code() == client::ErrorCode::kNoController ||
+                         e.code() == client::ErrorCode::kTimeout ||
+                         e.code() == client::ErrorCode::kClosed;
+      const bool patient = patience.count() == 0 || Clock::now() < give_up;
+      if (!retry || !patient) {
+        throw;
+      }
+      if (last_said != e.what()) {
+        last_said = e.what();
+        std::fprintf(stderr, "hapticctrl-demo: %s; retrying\n", e.what());
+      }
+    }
+    for (int i = 0; i < 10 && may_continue(); ++i) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    if (!may_continue()) {
+      return std::nullopt;
+    }
+  }
 }
 
 int run(const demo::DemoOptions& o) {
@@ -190,22 +243,6 @@ int run(const demo::DemoOptions& o) {
   if (o.publish_scene) {
     scene_out.emplace(o.lcm_url, o.instance, o.scene_rate_hz);
   }
-  client::ConnectOptions connect;
-  connect.client_name = "hapticctrl-demo";
-  client::Connection c(client::Address::parse(o.server), connect);
-  const double dt = static_cast<double>(c.controller_period_ns()) / 1e9;
-  initialise(c, o, dt);
-  client::StateSnapshot s;
-  if (!c.wait_for_answer(0, std::chrono::seconds(2), s)) {
-    throw std::runtime_error("no answer from the controller within 2 s");
-  }
-  demo::SphereScene scene = scene_at(s, o);
-  std::fprintf(stderr,
-               "hapticctrl-demo: ready: VIRTMECH, %.3f kg sphere, time step %.3f ms, %s; fixed "
-               "sphere at (%.4f %.4f %.4f)\n",
-               o.scene.mass, dt * 1e3, o.power_on ? "power on requested" : "power left to the HMI",
-               scene.config().fixed_center.x(), scene.config().fixed_center.y(),
-               scene.config().fixed_center.z());
   const bool keyboard_wanted = !o.headless && isatty(STDIN_FILENO) != 0;
   std::optional<RawKeyboard> keyboard;
   if (keyboard_wanted) {
@@ -213,70 +250,132 @@ int run(const demo::DemoOptions& o) {
   }
   demo::AppliedWrench applied;
   const auto start = Clock::now();
+  const auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
+  const auto time_left = [&] {
+    return !g_stop.load() && (o.duration_s <= 0.0 || elapsed() < o.duration_s);
+  };
   auto next_status = start;
   std::uint64_t steps = 0;
+  std::uint64_t reconnects = 0;
   const char* ended = "duration";
   bool quit = false;
-  while (!quit) {
-    const double t = std::chrono::duration<double>(Clock::now() - start).count();
-    if (g_stop.load()) {
-      ended = "signal";
+  std::optional<client::Connection> c;
+  client::StateSnapshot s;
+  std::optional<demo::SphereScene> scene;
+  while (!quit && time_left()) {
+    c = open_session(o, time_left, reconnects > 0 ? kRetryForever : kFirstConnectPatience);
+    if (!c) {
+      ended = g_stop.load() ? "signal" : "duration";
       break;
     }
-    if (o.duration_s > 0.0 && t >= o.duration_s) {
-      break;
+    if (!c->wait_for_answer(0, std::chrono::seconds(2), s)) {
+      throw std::runtime_error("no answer from the controller within 2 s");
     }
-    const bool answered = c.wait_for_answer(s.cycle, std::chrono::milliseconds(100), s);
-    if (!c.is_open() || s.fail_safe() || s.core_state >= kCoreFailSafe) {
-      ended = ending_of(s);
-      break;
+    const double dt = static_cast<double>(c->controller_period_ns()) / 1e9;
+    scene.emplace(scene_at(s, o));  // a new session starts with the sphere at the handle
+    if (reconnects == 0) {
+      std::fprintf(stderr,
+                   "hapticctrl-demo: ready: VIRTMECH, %.3f kg sphere, time step %.3f ms, %s; "
+                   "fixed sphere at (%.4f %.4f %.4f)\n",
+                   o.scene.mass, dt * 1e3,
+                   o.power_on ? "power on requested" : "power left to the HMI",
+                   scene->config().fixed_center.x(), scene->config().fixed_center.y(),
+                   scene->config().fixed_center.z());
+    } else {
+      std::fprintf(stderr, "hapticctrl-demo: reconnected (%llu)\n",
+                   static_cast<unsigned long long>(reconnects));
     }
-    if (!answered) {
-      continue;
-    }
-    if (script && script->advance(t, applied) == demo::InputResult::kQuit) {
-      ended = "script";
-      quit = true;
-    }
-    for (int key = keyboard ? keyboard->poll() : -1; key >= 0; key = keyboard->poll()) {
-      if (demo::apply_demo_key(key, applied) == demo::InputResult::kQuit) {
-        ended = "quit";
+    std::uint64_t last_cycle = s.cycle;
+    ended = "duration";
+    while (!quit) {
+      if (g_stop.load()) {
+        ended = "signal";
+        quit = true;
+        break;
+      }
+      if (!time_left()) {
+        quit = true;
+        break;
+      }
+      const bool answered = c->wait_for_answer(s.cycle, std::chrono::milliseconds(100), s);
+      if (!c->is_open() || s.fail_safe() || s.core_state >= kCoreFailSafe) {
+        ended = ending_of(s);
+        break;
+      }
+      if (!answered) {
+        continue;
+      }
+      const double t = elapsed();
+      if (script && script->advance(t, applied) == demo::InputResult::kQuit) {
+        ended = "script";
         quit = true;
       }
+      for (int key = keyboard ? keyboard->poll() : -1; key >= 0; key = keyboard->poll()) {
+        if (demo::apply_demo_key(key, applied) == demo::InputResult::kQuit) {
+          ended = "quit";
+          quit = true;
+        }
+      }
+      // The controller's time that passed since the last answer: one step per cycle (answers
+      // lost or late do not slow the world down), at most kMaxCatchUpSteps (a longer gap
+      // pauses the world rather than integrating it blind).
+      const std::uint64_t cycles =
+          std::clamp<std::uint64_t>(s.cycle - last_cycle, 1, kMaxCatchUpSteps);
+      last_cycle = s.cycle;
+      for (std::uint64_t k = 0; k < cycles; ++k) {
+        scene->step(s.coupling_wrench, applied.wrench, dt);
+      }
+      (void)c->send_object_state(scene->pose(), scene->twist());
+      ++steps;
+      if (const std::int64_t now_us = monotonic_us(); scene_out && scene_out->due(now_us * 1000)) {
+        (void)scene_out->publish(
+            demo::to_scene_message(*scene, applied, c->statistics(), steps, now_us));
+      }
+      if (log.is_open()) {
+        log_row(log, t, s, *scene, applied);
+      }
+      if (o.status_ms > 0 && Clock::now() >= next_status) {
+        next_status += std::chrono::milliseconds(o.status_ms);
+        print_status(stderr, t, s, *scene, keyboard ? "\r" : "\n");
+      }
     }
-    scene.step(s.coupling_wrench, applied.wrench, dt);
-    (void)c.send_object_state(scene.pose(), scene.twist());
-    ++steps;
-    if (const std::int64_t now_us = monotonic_us(); scene_out && scene_out->due(now_us * 1000)) {
-      (void)scene_out->publish(
-          demo::to_scene_message(scene, applied, c.statistics(), steps, now_us));
+    const bool orderly_stop = !s.fail_safe() && s.core_state > kCoreFailSafe;
+    if (quit || orderly_stop || !o.reconnect || !time_left()) {
+      break;
     }
-    if (log.is_open()) {
-      log_row(log, t, s, scene, applied);
+    std::fprintf(stderr, "\nhapticctrl-demo: %s; connecting again\n", ended);
+    if (c->is_open()) {
+      try {
+        c->close();
+      } catch (const client::ClientError&) {
+        // The controller is going away: the session ends either way.
+      }
     }
-    if (o.status_ms > 0 && Clock::now() >= next_status) {
-      next_status += std::chrono::milliseconds(o.status_ms);
-      print_status(stderr, t, s, scene, keyboard ? "\r" : "\n");
-    }
+    ++reconnects;
   }
   if (keyboard) {
     std::fprintf(stderr, "\n");
   }
+  if (!c || !scene) {
+    std::fprintf(stderr, "hapticctrl-demo: ended (%s) before any session\n", ended);
+    return 1;
+  }
   const bool failed_safe = s.fail_safe();
-  if (c.is_open()) {
+  if (c->is_open()) {
     try {
-      c.close();
+      c->close();
     } catch (const client::ClientError&) {
       // The controller may be gone already: the session ends either way.
     }
   }
-  print_status(stderr, std::chrono::duration<double>(Clock::now() - start).count(), s, scene, "\n");
-  std::fprintf(stderr, "hapticctrl-demo: ended (%s) after %llu steps\n", ended,
-               static_cast<unsigned long long>(steps));
+  print_status(stderr, elapsed(), s, *scene, "\n");
+  std::fprintf(stderr, "hapticctrl-demo: ended (%s) after %llu steps, %llu reconnections\n",
+               ended, static_cast<unsigned long long>(steps),
+               static_cast<unsigned long long>(reconnects));
   if (o.json) {
-    print_json(s, scene, c.statistics(), steps, ended);
+    print_json(s, *scene, c->statistics(), steps, reconnects, ended);
   }
-  return failed_safe ? 2 : 0;
+  return failed_safe && !o.reconnect ? 2 : 0;
 }
 
 }  // namespace

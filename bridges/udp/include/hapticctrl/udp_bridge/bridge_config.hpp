@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "hapticctrl/udp_bridge/client_allow_list.hpp"
+#include "hapticctrl/udp_bridge/session.hpp"
 
 namespace hapticctrl::udp_bridge {
 
@@ -17,7 +18,7 @@ struct BridgeConfig {
   bool allow_remote = false;                 ///< required to bind anything but loopback
   std::vector<Ipv4Network> allowed_clients;  ///< --allow-client (empty: any source)
   double hello_rate = 20.0;                  ///< HELLOs per second and burst, per source
-  std::uint32_t watchdog_ms = 100;           ///< default session watchdog
+  std::uint32_t watchdog_ms = kDefaultWatchdogMs;  ///< default session watchdog
   int priority = 0;         ///< SCHED_FIFO priority of both threads; 0: SCHED_OTHER
   double duration_s = 0.0;  ///< 0: until SIGINT/SIGTERM
   bool json = false;        ///< final counters as one JSON line on stdout

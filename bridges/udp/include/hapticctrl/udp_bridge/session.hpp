@@ -66,11 +66,15 @@ struct LinkCounters {
   }
 };
 
+/// The session watchdog unless the client asks for another: a session outlives a link blackout
+/// this long (the core fades the force out within 50 ms of the last fresh sample whatever the
+/// watchdog, and ramps it back when samples flow again). It was 100 ms until 2026-12-02: a
+/// blackout longer than that decoupled the client for good (H1 asks for 2 s to be survived).
+inline constexpr std::uint32_t kDefaultWatchdogMs = 3000;
+
 /// Bridge-wide settings.
 struct SessionSettings {
-  /// A session outlives a link blackout this long (the core fades the force out within 50 ms
-  /// of the last fresh sample whatever the watchdog; H1 asks for 2 s blackouts to be survived).
-  std::uint32_t default_watchdog_ms = 3000;
+  std::uint32_t default_watchdog_ms = kDefaultWatchdogMs;
   ClientAllowList allowed_clients;  ///< empty: every source address
   HelloLimits hello_limits;
 };

@@ -23,6 +23,9 @@ struct DemoOptions {
   std::string lcm_url = lcmtypes::kDefaultLcmUrl;
   std::string instance = "default";
   double scene_rate_hz = 30.0;
+  /// A lost session (link down past the watchdog) or a controller that failed safe: connect
+  /// again (to the next controller) instead of exiting. --no-reconnect: exit as before.
+  bool reconnect = true;
   SceneConfig scene;  ///< mass, radii, contact, gravity (fixed centre set at start)
   bool help = false;
 

@@ -10,9 +10,11 @@ namespace {
 /// stiffness, and the damping ratio of the derived damping.
 constexpr double kStiffnessFraction = 0.25;
 constexpr double kDampingRatio = 0.7;
-/// The loop-delay envelope follows a longer delay at once and a shorter one by this share per
-/// new sample (about 200 samples, 0.2 s at 1 kHz): the gains drop as soon as the link slows and
-/// rise back slowly, so that a jittery link does not pump them.
+/// The loop-delay envelope follows the median of the recent samples up at once and down by this
+/// share per new sample (about 200 samples, 0.2 s at 1 kHz): the gains drop as soon as the link
+/// slows and rise back slowly. The median ignores single long loops (a lost answer makes the
+/// client echo an older one): following each of them changed the stiffness under load, and
+/// k * stretch stepped with it (the weighted sphere jiggled at 25 mm/s with 10 % loss, H1).
 constexpr double kLoopDelayRelease = 0.005;
 /// The loop delay is believed up to this; longer is a stale echo, not a loop.
 constexpr TimeNs kMaxLoopDelay = 2'000 * kNsPerMs;
@@ -184,10 +186,18 @@ void ServoLaw::track_loop_delay(const ServoInputs& in) noexcept {
   if (!in.new_sample) {
     return;
   }
-  const TimeNs measured = in.loop_delay > 0 && in.loop_delay <= kMaxLoopDelay
-                              ? in.loop_delay
-                              : config_.assumed_loop_delay;
-  TimeNs& envelope = memory_.loop_delay;
+  RenderMemory& m = memory_;
+  m.loop_samples[m.loop_next % m.loop_samples.size()] =
+      in.loop_delay > 0 && in.loop_delay <= kMaxLoopDelay ? in.loop_delay
+                                                          : config_.assumed_loop_delay;
+  ++m.loop_next;
+  const std::size_t n = std::min<std::size_t>(m.loop_next, m.loop_samples.size());
+  std::array<TimeNs, RenderMemory::kLoopSamples> sorted{};
+  std::copy_n(m.loop_samples.begin(), n, sorted.begin());
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(n / 2),
+                   sorted.begin() + static_cast<std::ptrdiff_t>(n));
+  const TimeNs measured = sorted[n / 2];
+  TimeNs& envelope = m.loop_delay;
   if (measured >= envelope) {
     envelope = measured;
   } else {
@@ -254,15 +264,23 @@ Vector6d ServoLaw::rate_limit(const Vector6d& target, double rate, double dt) no
   return limited;
 }
 
-Vector6d ServoLaw::workspace_wall() noexcept {
+Vector6d ServoLaw::workspace_wall(const Vector3d& velocity) noexcept {
   // A soft wall outside the workspace box pushes the handle back in; it starts at zero force on
-  // the box's faces, so it never steps.
+  // the box's faces, so it never steps. It damps the motion across it (never pulling the handle
+  // out): a handle resting on the undamped wall under a weighted object kept ringing (H1).
   const ArmLimits& lim = dynamics_->model().limits;
   const Vector3d offset = chain_.handle_position - lim.workspace_center;
   const Vector3d outside = (offset.cwiseAbs() - lim.workspace_half_size).cwiseMax(0.0);
   Vector6d wall = Vector6d::Zero();
+  for (int i = 0; i < 3; ++i) {
+    if (outside(i) > 0.0) {
+      const double outward = offset(i) > 0.0 ? 1.0 : -1.0;
+      const double push = lim.workspace_stiffness * outside(i) +
+                          lim.max_damping_linear * velocity(i) * outward;
+      wall(i) = -outward * std::max(0.0, push);
+    }
+  }
   if ((outside.array() > 0.0).any()) {
-    wall.head<3>() = -lim.workspace_stiffness * outside.cwiseProduct(offset.cwiseSign());
     ++counters_.workspace_walls;
   }
   return wall;
@@ -361,7 +379,9 @@ void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) 
   out.loop_delay = memory_.loop_delay;
   const Coupling coupling =
       degraded ? Coupling{} : client_wrench(in, frame, chain_, twist, out);
-  const double engage = update_engagement(in, twist, degraded ? 0.0 : out.fade, out);
+  // A degraded cycle renders no coupling but leaves the engagement as it was: one miss must not
+  // send the coupling back through the whole ramp.
+  const double engage = degraded ? memory_.engage : update_engagement(in, twist, out.fade, out);
   const Vector6d object_side = saturate(coupling, in.client);
   Vector6d target = object_side * engage;
   const ArmLimits& lim = dynamics_->model().limits;
@@ -371,6 +391,14 @@ void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) 
     // the coupling back through the engagement ramp.
     target.head<3>() -= lim.max_damping_linear * twist.head<3>();
     ++counters_.speed_limited;
+  } else if (in.client_valid && in.client.session_id != 0 && !degraded) {
+    // A session whose coupling is (partly) disengaged (link lost, ramping back) holds the handle
+    // in a viscous field instead of letting it drift: released from the wall that carried a
+    // weighted object, the handle coasted 3-5 cm during a 300 ms blackout and fell back at
+    // 0.44 m/s when the coupling returned (H1).
+    const double hold = 1.0 - engage;
+    target.head<3>() -= hold * lim.max_damping_linear * twist.head<3>();
+    target.tail<3>() -= hold * lim.max_damping_angular * twist.tail<3>();
   }
   const bool fresh = out.fade >= 1.0 && !out.braking && out.coupled;
   const Vector6d limited =
@@ -392,7 +420,7 @@ void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) 
   out.handle_wrench = wrench;
 
   Vector6d tau = dynamics_->gravity_torque(chain_) - config_.joint_damping * qd + joint_walls(q) +
-                 jac.transpose() * (workspace_wall() + wrench);
+                 jac.transpose() * (workspace_wall(twist.head<3>()) + wrench);
   for (int i = 0; i < kJoints; ++i) {
     const double limit = dynamics_->model().joints[static_cast<std::size_t>(i)].torque_peak;
     tau(i) = std::clamp(tau(i), -limit, limit);

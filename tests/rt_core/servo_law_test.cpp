@@ -78,9 +78,9 @@ TEST(ServoLaw, ImpedanceWrenchReachesTheJointsThroughTheJacobianAfterTheRamp) {
   in.client_valid = true;
   ServoOutputs out;
   law.compute(in, false, out);
-  EXPECT_NEAR(out.handle_wrench.head<3>().norm(), 10.0 * 0.02, 1e-9)
-      << "a new session engages through the 50 ms ramp: 2 % after 1 ms";
-  for (int k = 0; k < 60; ++k) {
+  EXPECT_NEAR(out.handle_wrench.head<3>().norm(), 10.0 / 150.0, 1e-9)
+      << "a new session engages through the 150 ms ramp";
+  for (int k = 0; k < 160; ++k) {
     law.compute(in, false, out);
   }
   const ChainState s = chain_at(kReady);
@@ -98,7 +98,7 @@ TEST(ServoLaw, WrenchIsSaturatedToTheDeviceAndClientLimits) {
   in.client.impedance_wrench = {500, 0, 0, 0, 0, 50};
   in.client_valid = true;
   ServoOutputs out;
-  for (int k = 0; k < 100; ++k) {
+  for (int k = 0; k < 200; ++k) {
     law.compute(in, false, out);
   }
   EXPECT_NEAR(out.handle_wrench.head<3>().norm(), 35.0, 1e-9);
@@ -146,30 +146,28 @@ TEST(ServoLaw, GainsFallWithTheMeasuredLoopDelay) {
   EXPECT_LT(slow.b_linear, fast.b_linear);
 }
 
-TEST(ServoLaw, TheLoopDelayEnvelopeRisesAtOnceAndFallsSlowly) {
+TEST(ServoLaw, TheLoopDelayEnvelopeFollowsTheMedianUpAtOnceAndDownSlowly) {
   ServoLaw law(default_dynamics());
   ServoInputs in = coupled_to_object_ahead(0.0);
   ServoOutputs out;
   in.new_sample = true;
-  in.loop_delay = 3 * kNsPerMs;
-  law.compute(in, false, out);
+  const auto feed = [&](TimeNs loop, int samples) {
+    in.loop_delay = loop;
+    for (int k = 0; k < samples; ++k) {
+      law.compute(in, false, out);
+    }
+  };
+  feed(3 * kNsPerMs, 15);
   EXPECT_EQ(out.loop_delay, 3 * kNsPerMs);
-  in.loop_delay = 40 * kNsPerMs;
-  law.compute(in, false, out);
+  feed(40 * kNsPerMs, 1);
+  EXPECT_EQ(out.loop_delay, 3 * kNsPerMs) << "one long loop (a lost answer) changes nothing";
+  feed(40 * kNsPerMs, 7);
   EXPECT_EQ(out.loop_delay, 40 * kNsPerMs) << "a slower link lowers the gains at once";
-  in.loop_delay = 3 * kNsPerMs;
-  for (int k = 0; k < 10; ++k) {
-    law.compute(in, false, out);
-  }
+  feed(3 * kNsPerMs, 18);
   EXPECT_GT(out.loop_delay, 35 * kNsPerMs) << "and they come back slowly";
-  for (int k = 0; k < 2000; ++k) {
-    law.compute(in, false, out);
-  }
+  feed(3 * kNsPerMs, 2000);
   EXPECT_LT(out.loop_delay, 4 * kNsPerMs);
-  in.loop_delay = 0;  // a client without the timing echo: the assumed loop
-  for (int k = 0; k < 2000; ++k) {
-    law.compute(in, false, out);
-  }
+  feed(0, 2000);  // a client without the timing echo: the assumed loop
   EXPECT_EQ(out.loop_delay, law.config().assumed_loop_delay);
 }
 
@@ -178,7 +176,7 @@ TEST(ServoLaw, VirtmechPullsTheHandleTowardTheObjectAndReturnsTheOpposite) {
   ServoInputs in = coupled_to_object_ahead(0.002);
   // The handle frame is the identity rotation at the ready pose (pitches cancel).
   ServoOutputs out;
-  for (int k = 0; k < 80; ++k) {  // through the engagement ramp
+  for (int k = 0; k < 200; ++k) {  // through the engagement ramp
     law.compute(in, false, out);
   }
   EXPECT_TRUE(out.coupled);
@@ -202,7 +200,7 @@ TEST(ServoLaw, ASilentLinkFadesTheForceOutWithin50msAtMost1NPerMs) {
   ServoLaw law(default_dynamics());
   ServoInputs in = coupled_to_object_ahead(0.0175);  // 35 N: the device's peak
   ServoOutputs out;
-  for (int k = 0; k < 100; ++k) {
+  for (int k = 0; k < 200; ++k) {
     law.compute(in, false, out);
   }
   ASSERT_NEAR(out.handle_wrench(0), 35.0, 1e-6);
@@ -228,20 +226,20 @@ TEST(ServoLaw, ASilentLinkFadesTheForceOutWithin50msAtMost1NPerMs) {
   in.client_silence = 0;
   previous = 0.0;
   max_step = 0.0;
-  for (int k = 0; k < 100; ++k) {
+  for (int k = 0; k < 200; ++k) {
     law.compute(in, false, out);
     max_step = std::max(max_step, std::abs(out.handle_wrench(0) - previous));
     previous = out.handle_wrench(0);
   }
   EXPECT_NEAR(out.handle_wrench(0), 35.0, 1e-6);
-  EXPECT_LE(max_step, 35.0 / 50.0 + 1e-9) << "the 50 ms ramp";
+  EXPECT_LE(max_step, 35.0 / 150.0 + 1e-9) << "the 150 ms ramp";
 }
 
 TEST(ServoLaw, AnEndedSessionReleasesTheForceAt1NPerMs) {
   ServoLaw law(default_dynamics());
   ServoInputs in = coupled_to_object_ahead(0.0175);
   ServoOutputs out;
-  for (int k = 0; k < 100; ++k) {
+  for (int k = 0; k < 200; ++k) {
     law.compute(in, false, out);
   }
   in.client.session_id = 0;  // the bridge ended the session
@@ -262,7 +260,7 @@ TEST(ServoLaw, SaturationKeepsTheCouplingsDamping) {
   in.client.object_mass = 3.0;
   in.client.object_twist = {-0.5, 0, 0, 0, 0, 0};  // closing in at 0.5 m/s
   ServoOutputs out;
-  for (int k = 0; k < 100; ++k) {
+  for (int k = 0; k < 200; ++k) {
     law.compute(in, false, out);
   }
   ASSERT_NEAR(out.handle_wrench.head<3>().norm(), 35.0, 1e-6);
@@ -313,7 +311,7 @@ TEST(ServoLaw, TheBrakeIsNeverPassedToTheObjectWhichKeepsItsSpring) {
   ServoLaw law(default_dynamics());
   ServoInputs in = coupled_to_object_ahead(0.002);
   ServoOutputs out;
-  for (int k = 0; k < 80; ++k) {
+  for (int k = 0; k < 200; ++k) {
     law.compute(in, false, out);
   }
   in.measures.velocity << 0, 2.0, 0, 0, 0, 0;  // 1.25 m/s at the handle
@@ -331,7 +329,7 @@ TEST(ServoLaw, AfterTheBrakeTheCouplingComesBackThroughTheRamp) {
   ServoLaw law(default_dynamics());
   ServoInputs in = coupled_to_object_ahead(0.005);
   ServoOutputs out;
-  for (int k = 0; k < 80; ++k) {
+  for (int k = 0; k < 200; ++k) {
     law.compute(in, false, out);
   }
   in.measures.velocity << 0, 3.0, 0, 0, 0, 0;
@@ -341,7 +339,7 @@ TEST(ServoLaw, AfterTheBrakeTheCouplingComesBackThroughTheRamp) {
   in.measures.velocity.setZero();
   double previous = out.handle_wrench(0);
   double max_step = 0.0;
-  for (int k = 0; k < 100; ++k) {
+  for (int k = 0; k < 200; ++k) {
     law.compute(in, false, out);
     max_step = std::max(max_step, std::abs(out.handle_wrench(0) - previous));
     previous = out.handle_wrench(0);
@@ -373,7 +371,7 @@ TEST(ServoLaw, ThePassivityGuardsDampingDoesNotCompoundInTheRateLimiter) {
   ServoLaw law(default_dynamics());
   ServoInputs in = coupled_to_object_ahead(0.002);
   ServoOutputs out;
-  for (int k = 0; k < 80; ++k) {
+  for (int k = 0; k < 200; ++k) {
     law.compute(in, false, out);
   }
   for (int k = 0; k < 200 && law.counters().passivity_active == 0; ++k) {
@@ -390,7 +388,7 @@ TEST(ServoLaw, TheObjectFeelsTheCouplingButNotThePassivityGuardsDamping) {
   ServoLaw law(default_dynamics());
   ServoInputs in = coupled_to_object_ahead(0.002);
   ServoOutputs out;
-  for (int k = 0; k < 80; ++k) {  // ramp the coupling up, handle at rest
+  for (int k = 0; k < 200; ++k) {  // ramp the coupling up, handle at rest
     law.compute(in, false, out);
   }
   // The handle now moves along the spring's pull, faster and faster: the port gives energy

@@ -144,11 +144,12 @@ TEST(Servo, MainAndDegradedServoContinueOneRateLimitedWrench) {
   double previous = 0.0;
   double largest_step = 0.0;
   double largest = 0.0;
-  for (std::uint64_t k = 1; k <= 80; ++k) {
+  for (std::uint64_t k = 1; k <= 240; ++k) {
     client.client_sequence = static_cast<std::uint32_t>(k);
     rig.vpr->publish(client, static_cast<TimeNs>(k) * kNsPerMs);
-    // From cycle 30 on, every other cycle is the degraded SERVO's (it renders no coupling).
-    ServoTask& task = (k >= 30 && k % 2 == 0) ? rig.degraded_task : rig.main_task;
+    // After the 150 ms engagement ramp, every other cycle is the degraded SERVO's (it renders
+    // no coupling).
+    ServoTask& task = (k >= 170 && k % 2 == 0) ? rig.degraded_task : rig.main_task;
     ASSERT_EQ(rig.cycle(task, k), StepResult::kDone);
     shm::PositionPayload p;
     ASSERT_TRUE(rig.regions.position->read(p).ok());

@@ -263,11 +263,13 @@ int run(const demo::DemoOptions& o) {
   client::StateSnapshot s;
   std::optional<demo::SphereScene> scene;
   while (!quit && time_left()) {
-    c = open_session(o, time_left, reconnects > 0 ? kRetryForever : kFirstConnectPatience);
-    if (!c) {
+    std::optional<client::Connection> next =
+        open_session(o, time_left, reconnects > 0 ? kRetryForever : kFirstConnectPatience);
+    if (!next) {
       ended = g_stop.load() ? "signal" : "duration";
       break;
     }
+    c = std::move(next);
     if (!c->wait_for_answer(0, std::chrono::seconds(2), s)) {
       throw std::runtime_error("no answer from the controller within 2 s");
     }

@@ -90,8 +90,9 @@ struct LawConfig {
   TimeNs fade_duration = 35 * kNsPerMs;
   double release_rate = 1000.0;  ///< N/s: force change limit while fading, braking or released
   /// Every re-engagement (fresh data after a fade, the end of a brake, a new session, power-on)
-  /// gives the handle its coupling back through a ramp this long.
-  TimeNs engage_duration = 50 * kNsPerMs;
+  /// gives the handle its coupling back through a ramp this long (50 ms let a handle that
+  /// drifted during a 300 ms blackout fall back at 0.16 m/s; 150 ms: 0.11 m/s, 2026-12-02).
+  TimeNs engage_duration = 150 * kNsPerMs;
   TimeNs overspeed_fault_after = 250 * kNsPerMs;  ///< braking this long: kVelocityLimit
   double brake_release_ratio = 0.8;  ///< the brake lets go below this share of max_speed
   /// Loop delay assumed for a client that does not echo answers (protocol 1.0).
@@ -119,6 +120,9 @@ struct RenderMemory {
   bool braking = false;
   std::uint64_t session_id = 0;             ///< the session the coupling is engaged with
   TimeNs loop_delay = 0;                    ///< envelope of the measured loop delay
+  static constexpr std::size_t kLoopSamples = 15;
+  std::array<TimeNs, kLoopSamples> loop_samples{};  ///< the newest measured loops (median)
+  std::uint64_t loop_next = 0;
 };
 
 /// Counters of the law (cycle-safe reads).
@@ -169,7 +173,7 @@ class ServoLaw {
   Vector6d rate_limit(const Vector6d& target, double rate, double dt) noexcept;
   Vector6d guard_passivity(const Vector6d& wrench, const Vector6d& twist, double dt) noexcept;
   Vector6d joint_walls(const Vector6d& q) const noexcept;
-  Vector6d workspace_wall() noexcept;
+  Vector6d workspace_wall(const Vector3d& velocity) noexcept;
   void express_for_client(const ClientFrame& frame, const Vector6d& twist,
                           ServoOutputs& out) const noexcept;
 

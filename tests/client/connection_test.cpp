@@ -207,11 +207,13 @@ TEST(Connection, WatchdogFadesTheCouplingWhenTheClientDiesAndARestartedClientRec
       [&] { return client.out().find("streaming") != std::string::npos; }, 10s))
       << client.err();
   const auto coupled = [&] { return std::abs(stack.position().coupling_wrench[0]); };
-  EXPECT_GT(coupled(), 0.5);
+  EXPECT_TRUE(ControllerStack::eventually([&] { return coupled() > 0.5; }, 2s))
+      << "coupled through the engagement ramp";
   client.signal(SIGKILL);
   client.wait();
-  EXPECT_TRUE(
-      ControllerStack::eventually([&] { return stack.link_stats().watchdog_expiries == 1; }));
+  EXPECT_TRUE(ControllerStack::eventually(
+      [&] { return stack.link_stats().watchdog_expiries == 1; }, 8s))
+      << "the bridge's 3 s watchdog";
   EXPECT_EQ(stack.vpr().session_id, 0U);
   EXPECT_TRUE(ControllerStack::eventually([&] { return coupled() < 1e-9; }, 1s))
       << "coupling faded out";

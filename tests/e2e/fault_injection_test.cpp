@@ -252,12 +252,15 @@ TEST(FaultInjection, SoftRealTimeProcessesKilledAtRandomMomentsComeBackWithoutAF
   ForceStepWatch watch(stack.segment(), arm_limits());
   const std::uint64_t misses_before = stack.telemetry().misses_total;
 
-  // Each victim comes back by being started again; the demo also when its bridge was killed
-  // (a client does not reconnect on its own: a new session re-couples the sphere wherever it is).
+  // Each victim comes back by being started again. The demo reconnects on its own when its
+  // bridge was killed (after its 4 s answer timeout: the new bridge does not know its session);
+  // a restarted demo waits for the dead one's session to expire (the bridge's 3 s watchdog).
+  const auto recoupled = [&] {
+    EXPECT_TRUE(ControllerStack::eventually([&] { return coupled(stack); }, 12s)) << demo->err();
+  };
   const auto restart_demo = [&] {
-    demo->wait(5s);  // it leaves once its bridge is silent for 500 ms
     start_demo(demo, stack);
-    EXPECT_TRUE(ControllerStack::eventually([&] { return coupled(stack); }, 10s)) << demo->err();
+    recoupled();
   };
   const std::array<const char*, 4> names{"hapticctrl-udp", "hapticctrl-lcm", "hapticctrl-demo",
                                          "hapticctrl-hmi play"};
@@ -275,7 +278,7 @@ TEST(FaultInjection, SoftRealTimeProcessesKilledAtRandomMomentsComeBackWithoutAF
         stack.bridge().signal(SIGKILL);
         stack.bridge().wait(5s);
         stack.start_bridge();
-        restart_demo();
+        recoupled();
         break;
       case 1: {
         lcm->signal(SIGKILL);
@@ -465,8 +468,12 @@ TEST(FaultInjection, AMisbehavingSharedMemoryWriterIsRefusedOrLimitedAndCountedA
   EXPECT_GT(strongest, 0.5 * limits.force_peak) << "the wrench was rendered";
   EXPECT_LE(strongest, limits.force_peak + limits.max_damping_linear * limits.max_speed);
   EXPECT_TRUE(ControllerStack::eventually([&] {
+    // What may remain while the (rogue) session lasts is the viscous hold of a disengaged
+    // coupling: 20 N.s/m on the handle's motion (docs/control.md).
     const shm::PositionPayload p = stack.position();
-    return std::hypot(p.coupling_wrench[0], p.coupling_wrench[1], p.coupling_wrench[2]) < 1e-9;
+    const double speed = std::hypot(p.handle_twist[0], p.handle_twist[1], p.handle_twist[2]);
+    return std::hypot(p.coupling_wrench[0], p.coupling_wrench[1], p.coupling_wrench[2]) <=
+           limits.max_damping_linear * speed + 1e-9;
   })) << "faded out once the writer fell silent";
 
   // A writer that dies in the middle of a write leaves the sequence odd: every read is torn,

@@ -330,12 +330,14 @@ struct Connection::Impl {
       cycle = latest.cycle;
       held = now - latest.received_ns;
     }
-    hcp_frame f = protocol::make_frame(HCP_CONTROL_OBJECT_TIMED, token, next_control_sequence(), now);
+    hcp_frame f =
+        protocol::make_frame(HCP_CONTROL_OBJECT_TIMED, token, next_control_sequence(), now);
     hcp_control_object_timed& o = f.body.hcp_body_u.timed;
     for (std::size_t i = 0; i < 3; ++i) {
       o.position[i] = static_cast<float>(pose[i]);
     }
-    const protocol::PackedRotation r = protocol::pack_rotation({pose[3], pose[4], pose[5], pose[6]});
+    const protocol::PackedRotation r =
+        protocol::pack_rotation({pose[3], pose[4], pose[5], pose[6]});
     o.rotation[0] = r[0];
     o.rotation[1] = r[1];
     protocol::to_wire(twist, o.twist);

@@ -215,7 +215,8 @@ double ServoLaw::update_engagement(const ServoInputs& in, const Vector6d& twist,
     m.engage = 0.0;  // a new session (or none) starts from zero
   }
   // The brake comes on above max_speed and lets go below brake_release_ratio of it.
-  m.braking = speed > lim.max_speed || (m.braking && speed > config_.brake_release_ratio * lim.max_speed);
+  m.braking =
+      speed > lim.max_speed || (m.braking && speed > config_.brake_release_ratio * lim.max_speed);
   m.overspeed = speed > lim.max_speed ? m.overspeed + in.dt : 0;
   out.velocity_fault = m.overspeed >= config_.overspeed_fault_after;
   out.braking = m.braking;
@@ -275,8 +276,8 @@ Vector6d ServoLaw::workspace_wall(const Vector3d& velocity) noexcept {
   for (int i = 0; i < 3; ++i) {
     if (outside(i) > 0.0) {
       const double outward = offset(i) > 0.0 ? 1.0 : -1.0;
-      const double push = lim.workspace_stiffness * outside(i) +
-                          lim.max_damping_linear * velocity(i) * outward;
+      const double push =
+          lim.workspace_stiffness * outside(i) + lim.max_damping_linear * velocity(i) * outward;
       wall(i) = -outward * std::max(0.0, push);
     }
   }
@@ -377,8 +378,7 @@ void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) 
 
   track_loop_delay(in);
   out.loop_delay = memory_.loop_delay;
-  const Coupling coupling =
-      degraded ? Coupling{} : client_wrench(in, frame, chain_, twist, out);
+  const Coupling coupling = degraded ? Coupling{} : client_wrench(in, frame, chain_, twist, out);
   // A degraded cycle renders no coupling but leaves the engagement as it was: one miss must not
   // send the coupling back through the whole ramp.
   const double engage = degraded ? memory_.engage : update_engagement(in, twist, out.fade, out);
@@ -401,8 +401,8 @@ void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) 
     target.tail<3>() -= hold * lim.max_damping_angular * twist.tail<3>();
   }
   const bool fresh = out.fade >= 1.0 && !out.braking && out.coupled;
-  const Vector6d limited =
-      rate_limit(target, fresh ? lim.force_rate : std::min(lim.force_rate, config_.release_rate), dt);
+  const Vector6d limited = rate_limit(
+      target, fresh ? lim.force_rate : std::min(lim.force_rate, config_.release_rate), dt);
   Vector6d wrench = limited;
   if (out.coupled ||
       in.client.command_type == static_cast<std::uint32_t>(shm::CommandType::kImpedance)) {

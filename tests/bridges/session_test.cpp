@@ -50,8 +50,8 @@ struct Client {
       ASSERT_EQ(protocol::decode({out.data(), n}, reply), protocol::DecodeStatus::kOk);
     }
   }
-  void hello(std::uint32_t version = protocol::kVersion, std::uint32_t features = protocol::kAllFeatures,
-             std::uint32_t min_version = 0) {
+  void hello(std::uint32_t version = protocol::kVersion,
+             std::uint32_t features = protocol::kAllFeatures, std::uint32_t min_version = 0) {
     hcp_frame f = protocol::make_frame(HCP_HELLO, 0, 1, now);
     f.header.protocol = version;
     f.body.hcp_body_u.hello.min_version = min_version != 0 ? min_version : version;

@@ -211,8 +211,8 @@ TEST(Connection, WatchdogFadesTheCouplingWhenTheClientDiesAndARestartedClientRec
       << "coupled through the engagement ramp";
   client.signal(SIGKILL);
   client.wait();
-  EXPECT_TRUE(ControllerStack::eventually(
-      [&] { return stack.link_stats().watchdog_expiries == 1; }, 8s))
+  EXPECT_TRUE(
+      ControllerStack::eventually([&] { return stack.link_stats().watchdog_expiries == 1; }, 8s))
       << "the bridge's 3 s watchdog";
   EXPECT_EQ(stack.vpr().session_id, 0U);
   EXPECT_TRUE(ControllerStack::eventually([&] { return coupled() < 1e-9; }, 1s))

@@ -72,8 +72,7 @@ struct Scenario {
       : stack(tag, kPeriodUs), relay(stack.port(), impairment) {
     if (stack.ready() && relay.port() != 0) {
       demo.emplace(HAPTICCTRL_DEMO_BINARY,
-                   std::vector<std::string>{"--server",
-                                            "127.0.0.1:" + std::to_string(relay.port()),
+                   std::vector<std::string>{"--server", "127.0.0.1:" + std::to_string(relay.port()),
                                             "--headless", "--no-lcm", "--json", "--gravity"});
       recorder.emplace(stack.segment());
     }
@@ -106,8 +105,8 @@ void with_retries(const std::string& name, const std::function<bool(int)>& body)
   int stalled = 0;
   for (int attempt = 0; attempt < kAttempts; ++attempt) {
     if (body(attempt)) {
-      std::printf("%s: %d attempt(s) lost to a core that failed safe on a VM stall\n",
-                  name.c_str(), stalled);
+      std::printf("%s: %d attempt(s) lost to a core that failed safe on a VM stall\n", name.c_str(),
+                  stalled);
       ::testing::Test::RecordProperty("attempts_lost_to_vm_stalls", stalled);
       return;
     }
@@ -146,9 +145,9 @@ double windowed_speed(const std::vector<CycleRecord>& r, std::size_t from, std::
       ++j;
     }
     if (r[i].cycle - r[j].cycle >= window / 2) {
-      const double d = std::hypot(r[i].position[0] - r[j].position[0],
-                                  r[i].position[1] - r[j].position[1],
-                                  r[i].position[2] - r[j].position[2]);
+      const double d =
+          std::hypot(r[i].position[0] - r[j].position[0], r[i].position[1] - r[j].position[1],
+                     r[i].position[2] - r[j].position[2]);
       fastest = std::max(fastest, d / (static_cast<double>(r[i].cycle - r[j].cycle) /
                                        static_cast<double>(kCyclesPerSecond)));
     }
@@ -280,25 +279,26 @@ TEST_P(CouplingOverImpairedLink, StaysStillWithoutSaturationOrSpeed) {
     const shm::TelemetryPayload tm = s.stack.telemetry();
     std::printf("%s: %.2f s recorded, ", c.name,
                 static_cast<double>(r.back().seen_ns - r.front().seen_ns) / 1e9);
-    std::printf("%s: %zu records, cycles %llu..%llu, core: %llu cycles, %llu skipped slots, "
-                "%llu misses, %llu degraded\n",
-                c.name, r.size(), static_cast<unsigned long long>(r.front().cycle),
-                static_cast<unsigned long long>(r.back().cycle),
-                static_cast<unsigned long long>(tm.cycle),
-                static_cast<unsigned long long>(tm.skipped_slots),
-                static_cast<unsigned long long>(tm.misses_total),
-                static_cast<unsigned long long>(tm.degraded_cycles));
-    std::printf("%s: loop %.1f ms, link one-way %.1f ms, jitter %.2f ms, loss %.1f %%, k %.0f N/m,"
-                " peak force %.1f N, peak speed %.3f m/s, last 2 s %.4f m/s (50 ms windows),"
-                " per cycle %.4f m/s\n",
-                c.name, static_cast<double>(vp.loop_delay_ns) / 1e6,
-                static_cast<double>(vp.link_delay_ns) / 1e6,
-                static_cast<double>(vp.link_jitter_ns) / 1e6, vp.link_loss_ppm / 1e4,
-                vp.gains[0], largest, max_speed(r, from, r.size()),
-                windowed_speed(r, last_two, r.size()), max_speed(r, last_two, r.size()));
+    std::printf(
+        "%s: %zu records, cycles %llu..%llu, core: %llu cycles, %llu skipped slots, "
+        "%llu misses, %llu degraded\n",
+        c.name, r.size(), static_cast<unsigned long long>(r.front().cycle),
+        static_cast<unsigned long long>(r.back().cycle), static_cast<unsigned long long>(tm.cycle),
+        static_cast<unsigned long long>(tm.skipped_slots),
+        static_cast<unsigned long long>(tm.misses_total),
+        static_cast<unsigned long long>(tm.degraded_cycles));
+    std::printf(
+        "%s: loop %.1f ms, link one-way %.1f ms, jitter %.2f ms, loss %.1f %%, k %.0f N/m,"
+        " peak force %.1f N, peak speed %.3f m/s, last 2 s %.4f m/s (50 ms windows),"
+        " per cycle %.4f m/s\n",
+        c.name, static_cast<double>(vp.loop_delay_ns) / 1e6,
+        static_cast<double>(vp.link_delay_ns) / 1e6, static_cast<double>(vp.link_jitter_ns) / 1e6,
+        vp.link_loss_ppm / 1e4, vp.gains[0], largest, max_speed(r, from, r.size()),
+        windowed_speed(r, last_two, r.size()), max_speed(r, last_two, r.size()));
     EXPECT_LT(largest, 34.0) << "never at the saturation";
     EXPECT_LT(windowed_speed(r, last_two, r.size()), c.still_below)
-        << "oscillation below " << c.still_below << " m/s:" << around_fastest(r, last_two, r.size());
+        << "oscillation below " << c.still_below
+        << " m/s:" << around_fastest(r, last_two, r.size());
     EXPECT_LT(max_speed(r, last_two, r.size()), 0.1) << "no speed excursion";
     EXPECT_EQ(coupling_toggles(r, from), 0);
     EXPECT_GT(vp.loop_delay_ns, 0) << "the loop was measured";

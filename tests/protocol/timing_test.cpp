@@ -36,9 +36,9 @@ TEST(RotationPacking, RoundTripsRandomRotationsWithin5Microradians) {
 }
 
 TEST(RotationPacking, EdgeCasesPackToValidRotations) {
-  for (const Quaternion& q : {Quaternion{0, 0, 0, 1}, Quaternion{0, 0, 0, -1},
-                              Quaternion{1, 0, 0, 0}, Quaternion{0.5, 0.5, 0.5, 0.5},
-                              Quaternion{0, 0, 0, 0}, Quaternion{NAN, 0, 0, 1}}) {
+  for (const Quaternion& q :
+       {Quaternion{0, 0, 0, 1}, Quaternion{0, 0, 0, -1}, Quaternion{1, 0, 0, 0},
+        Quaternion{0.5, 0.5, 0.5, 0.5}, Quaternion{0, 0, 0, 0}, Quaternion{NAN, 0, 0, 1}}) {
     const auto back = unpack_rotation(pack_rotation(q));
     ASSERT_TRUE(back.has_value());
     double n = 0.0;
@@ -58,9 +58,9 @@ TEST(RotationPacking, BitsThatNoPackingProducesAreRefused) {
   // Components near 0.7 each leave a largest one of 0 < 0.7: never packed that way.
   const std::uint32_t f = static_cast<std::uint32_t>(0.99 * ((1U << 20U) - 1U));
   const std::uint32_t g = static_cast<std::uint32_t>(0.5 * ((1U << 20U) - 1U));
-  EXPECT_FALSE(unpack_rotation({(3U << 30U) | (f << 10U) | (f >> 10U),
-                                ((f & 0x3FFU) << 22U) | (g << 2U)})
-                   .has_value());
+  EXPECT_FALSE(
+      unpack_rotation({(3U << 30U) | (f << 10U) | (f >> 10U), ((f & 0x3FFU) << 22U) | (g << 2U)})
+          .has_value());
 }
 
 TEST(AnswerEcho, PacksCycleAndHoldAndSaysWhenThereIsNone) {

@@ -105,9 +105,9 @@ inline double largest_force_step(const std::vector<CycleRecord>& r, std::size_t 
   double largest = 0.0;
   for (std::size_t i = std::max<std::size_t>(from, 1); i < std::min(to, r.size()); ++i) {
     const auto gap = static_cast<double>(r[i].cycle - r[i - 1].cycle);
-    const double step = std::hypot(r[i].wrench[0] - r[i - 1].wrench[0],
-                                   r[i].wrench[1] - r[i - 1].wrench[1],
-                                   r[i].wrench[2] - r[i - 1].wrench[2]);
+    const double step =
+        std::hypot(r[i].wrench[0] - r[i - 1].wrench[0], r[i].wrench[1] - r[i - 1].wrench[1],
+                   r[i].wrench[2] - r[i - 1].wrench[2]);
     largest = std::max(largest, step / gap);
   }
   return largest;

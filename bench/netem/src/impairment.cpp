@@ -56,8 +56,7 @@ Blackout LinkModel::parse_blackout(const std::string& text) {
   return b;
 }
 
-Impairment::Impairment(const LinkModel& model, std::uint64_t seed)
-    : model_(model), random_(seed) {
+Impairment::Impairment(const LinkModel& model, std::uint64_t seed) : model_(model), random_(seed) {
   model_.validate();
   // Gilbert model: a burst ends with probability 1/burst per datagram; bursts start so that the
   // long-run share of datagrams spent in bursts equals the loss rate.
@@ -98,7 +97,8 @@ Verdict Impairment::on_datagram(TimeNs now, TimeNs since_start) {
   TimeNs delay = model_.delay;
   if (model_.jitter > 0) {
     const double u = unit_(random_) * 2.0 - 1.0;
-    delay = std::max<TimeNs>(0, delay + static_cast<TimeNs>(u * static_cast<double>(model_.jitter)));
+    delay =
+        std::max<TimeNs>(0, delay + static_cast<TimeNs>(u * static_cast<double>(model_.jitter)));
   }
   v.deliver_at = now + delay;
   if (!model_.reorder) {

@@ -90,8 +90,8 @@ double number(const std::string& option, const std::string& text, double lo, dou
     used = 0;
   }
   if (used == 0 || used != text.size() || !std::isfinite(v) || v < lo || v > hi) {
-    throw std::invalid_argument(option + ": expected a number from " + std::to_string(lo) +
-                                " to " + std::to_string(hi) + ", got '" + text + "'");
+    throw std::invalid_argument(option + ": expected a number from " + std::to_string(lo) + " to " +
+                                std::to_string(hi) + ", got '" + text + "'");
   }
   return v;
 }
@@ -149,7 +149,8 @@ sockaddr_in endpoint(const std::string& text, bool allow_remote) {
   }
   sockaddr_in a{};
   a.sin_family = AF_INET;
-  const std::string host = text.substr(0, colon) == "localhost" ? "127.0.0.1" : text.substr(0, colon);
+  const std::string host =
+      text.substr(0, colon) == "localhost" ? "127.0.0.1" : text.substr(0, colon);
   if (inet_pton(AF_INET, host.c_str(), &a.sin_addr) != 1) {
     throw std::invalid_argument("'" + text + "': not an IPv4 address");
   }
@@ -163,7 +164,8 @@ sockaddr_in endpoint(const std::string& text, bool allow_remote) {
 int bound_socket(const sockaddr_in& at) {
   const int fd = socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
   if (fd < 0 || bind(fd, reinterpret_cast<const sockaddr*>(&at), sizeof at) != 0) {
-    throw std::runtime_error(std::string("cannot bind the relay's socket: ") + std::strerror(errno));
+    throw std::runtime_error(std::string("cannot bind the relay's socket: ") +
+                             std::strerror(errno));
   }
   return fd;
 }
@@ -210,7 +212,8 @@ class Relay {
 
   void run() {
     const TimeNs start = monotonic_ns();
-    const TimeNs end = options_.duration_s > 0 ? start + static_cast<TimeNs>(options_.duration_s * 1e9) : 0;
+    const TimeNs end =
+        options_.duration_s > 0 ? start + static_cast<TimeNs>(options_.duration_s * 1e9) : 0;
     int toggles_seen = 0;
     while (!g_stop.load() && (end == 0 || monotonic_ns() < end)) {
       const int toggles = g_toggles.load();
@@ -232,14 +235,13 @@ class Relay {
   void print_json() const {
     const auto side = [](const Counters& c) {
       char text[200];
-      std::snprintf(text, sizeof text,
-                    "{\"received\":%llu,\"delivered\":%llu,\"lost\":%llu,\"blackout\":%llu,"
-                    "\"overflow\":%llu}",
-                    static_cast<unsigned long long>(c.received),
-                    static_cast<unsigned long long>(c.delivered),
-                    static_cast<unsigned long long>(c.lost),
-                    static_cast<unsigned long long>(c.blackout),
-                    static_cast<unsigned long long>(c.overflow));
+      std::snprintf(
+          text, sizeof text,
+          "{\"received\":%llu,\"delivered\":%llu,\"lost\":%llu,\"blackout\":%llu,"
+          "\"overflow\":%llu}",
+          static_cast<unsigned long long>(c.received), static_cast<unsigned long long>(c.delivered),
+          static_cast<unsigned long long>(c.lost), static_cast<unsigned long long>(c.blackout),
+          static_cast<unsigned long long>(c.overflow));
       return std::string(text);
     };
     std::printf("{\"to_bridge\":%s,\"to_client\":%s}\n", side(counters_[0]).c_str(),
@@ -253,7 +255,8 @@ class Relay {
     if (!queue_.empty()) {
       wait = std::clamp<TimeNs>(queue_.top().at - monotonic_ns(), 0, wait);
     }
-    const timespec ts{static_cast<time_t>(wait / 1'000'000'000), static_cast<long>(wait % 1'000'000'000)};
+    const timespec ts{static_cast<time_t>(wait / 1'000'000'000),
+                      static_cast<long>(wait % 1'000'000'000)};
     ppoll(fds.data(), fds.size(), &ts, nullptr);
   }
 
@@ -262,8 +265,8 @@ class Relay {
       Pending p;
       sockaddr_in from{};
       socklen_t n = sizeof from;
-      const ssize_t got = recvfrom(fd, p.bytes.data(), p.bytes.size(), 0,
-                                   reinterpret_cast<sockaddr*>(&from), &n);
+      const ssize_t got =
+          recvfrom(fd, p.bytes.data(), p.bytes.size(), 0, reinterpret_cast<sockaddr*>(&from), &n);
       if (got < 0) {
         return;  // EAGAIN: nothing more now
       }

@@ -260,8 +260,8 @@ void Session::on_control(const hcp_frame& in, TimeNs now) noexcept {
 
 void Session::take_timed_object(const hcp_control_object_timed& o, TimeNs now) noexcept {
   // The decoder checked the packed rotation (values.cpp): it unpacks.
-  const protocol::Quaternion q =
-      protocol::unpack_rotation({o.rotation[0], o.rotation[1]}).value_or(protocol::Quaternion{0, 0, 0, 1});
+  const protocol::Quaternion q = protocol::unpack_rotation({o.rotation[0], o.rotation[1]})
+                                     .value_or(protocol::Quaternion{0, 0, 0, 1});
   for (std::size_t i = 0; i < 3; ++i) {
     vpr_.object_pose[i] = o.position[i];
     vpr_.object_pose[i + 3] = q[i];

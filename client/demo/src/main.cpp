@@ -159,19 +159,20 @@ void print_json(const client::StateSnapshot& s, const demo::SphereScene& scene,
   const auto& v = scene.state().velocity;
   const Eigen::Vector3d contact = scene.contact_force();
   std::printf(
-      "{\"steps\":%llu,\"reconnects\":%llu,\"ended\":\"%s\",\"powered\":%s,\"sphere_position\":[%.9g,%.9g,%.9g],"
+      "{\"steps\":%llu,\"reconnects\":%llu,\"ended\":\"%s\",\"powered\":%s,\"sphere_position\":[%."
+      "9g,%.9g,%.9g],"
       "\"sphere_velocity\":[%.9g,%.9g,%.9g],\"contact_force\":[%.9g,%.9g,%.9g],"
       "\"penetration\":%.9g,\"coupling_wrench\":[%.9g,%.9g,%.9g,%.9g,%.9g,%.9g],"
       "\"handle_position\":[%.9g,%.9g,%.9g],\"fixed_center\":[%.9g,%.9g,%.9g],"
       "\"answers_received\":%llu,\"answers_lost\":%llu,\"answers_late\":%llu,"
       "\"frames_invalid\":%llu,\"control_sent\":%llu,\"rtt_mean_us\":%.1f}\n",
       static_cast<unsigned long long>(steps), static_cast<unsigned long long>(reconnects), ended,
-      s.powered() ? "true" : "false", p.x(), p.y(),
-      p.z(), v.x(), v.y(), v.z(), contact.x(), contact.y(), contact.z(), scene.penetration(),
-      s.coupling_wrench[0], s.coupling_wrench[1], s.coupling_wrench[2], s.coupling_wrench[3],
-      s.coupling_wrench[4], s.coupling_wrench[5], s.handle_pose[0], s.handle_pose[1],
-      s.handle_pose[2], scene.config().fixed_center.x(), scene.config().fixed_center.y(),
-      scene.config().fixed_center.z(), static_cast<unsigned long long>(st.answers_received),
+      s.powered() ? "true" : "false", p.x(), p.y(), p.z(), v.x(), v.y(), v.z(), contact.x(),
+      contact.y(), contact.z(), scene.penetration(), s.coupling_wrench[0], s.coupling_wrench[1],
+      s.coupling_wrench[2], s.coupling_wrench[3], s.coupling_wrench[4], s.coupling_wrench[5],
+      s.handle_pose[0], s.handle_pose[1], s.handle_pose[2], scene.config().fixed_center.x(),
+      scene.config().fixed_center.y(), scene.config().fixed_center.z(),
+      static_cast<unsigned long long>(st.answers_received),
       static_cast<unsigned long long>(st.answers_lost),
       static_cast<unsigned long long>(st.answers_late),
       static_cast<unsigned long long>(st.frames_invalid),
@@ -189,8 +190,7 @@ constexpr std::chrono::seconds kRetryForever{0};
 /// `patience` (0: unbounded) runs out. Refusals (busy, no controller, no answer) are retried
 /// every 0.5 s and said once each; other errors throw.
 template <typename MayContinue>
-std::optional<client::Connection> open_session(const demo::DemoOptions& o,
-                                               MayContinue may_continue,
+std::optional<client::Connection> open_session(const demo::DemoOptions& o, MayContinue may_continue,
                                                std::chrono::seconds patience) {
   const auto give_up = Clock::now() + patience;
   client::ConnectOptions connect;
@@ -203,10 +203,9 @@ std::optional<client::Connection> open_session(const demo::DemoOptions& o,
       initialise(*c, o, static_cast<double>(c->controller_period_ns()) / 1e9);
       return c;
     } catch (const client::ClientError& e) {
-      const bool retry = e.code() == client::ErrorCode::kBusy ||
-                         e.code() == client::ErrorCode::kNoController ||
-                         e.code() == client::ErrorCode::kTimeout ||
-                         e.code() == client::ErrorCode::kClosed;
+      const bool retry =
+          e.code() == client::ErrorCode::kBusy || e.code() == client::ErrorCode::kNoController ||
+          e.code() == client::ErrorCode::kTimeout || e.code() == client::ErrorCode::kClosed;
       const bool patient = patience.count() == 0 || Clock::now() < give_up;
       if (!retry || !patient) {
         throw;
@@ -371,9 +370,8 @@ int run(const demo::DemoOptions& o) {
     }
   }
   print_status(stderr, elapsed(), s, *scene, "\n");
-  std::fprintf(stderr, "hapticctrl-demo: ended (%s) after %llu steps, %llu reconnections\n",
-               ended, static_cast<unsigned long long>(steps),
-               static_cast<unsigned long long>(reconnects));
+  std::fprintf(stderr, "hapticctrl-demo: ended (%s) after %llu steps, %llu reconnections\n", ended,
+               static_cast<unsigned long long>(steps), static_cast<unsigned long long>(reconnects));
   if (o.json) {
     print_json(s, *scene, c->statistics(), steps, reconnects, ended);
   }

@@ -58,8 +58,8 @@ struct ServoOutputs {
   /// The same, in the client's environment frame (through its base frame and speed factor).
   std::array<double, 7> client_handle_pose{0, 0, 0, 0, 0, 0, 1};
   Vector6d client_handle_twist = Vector6d::Zero();
-  double fade = 1.0;     ///< 1: fresh client data, 0: faded out
-  double engage = 1.0;   ///< share of the coupling the handle gets (re-engagement, brake)
+  double fade = 1.0;    ///< 1: fresh client data, 0: faded out
+  double engage = 1.0;  ///< share of the coupling the handle gets (re-engagement, brake)
   bool coupled = false;
   bool client_stale = false;
   bool braking = false;         ///< handle over the speed limit: the damped brake is on
@@ -97,9 +97,9 @@ struct LawConfig {
   double brake_release_ratio = 0.8;  ///< the brake lets go below this share of max_speed
   /// Loop delay assumed for a client that does not echo answers (protocol 1.0).
   TimeNs assumed_loop_delay = 5 * kNsPerMs;
-  double joint_damping = 0.02;             ///< N·m·s/rad, always when powered (degraded too)
-  double wall_margin = 0.05;               ///< rad before a joint limit where the soft wall starts
-  double wall_stiffness = 20.0;            ///< N·m/rad
+  double joint_damping = 0.02;   ///< N·m·s/rad, always when powered (degraded too)
+  double wall_margin = 0.05;     ///< rad before a joint limit where the soft wall starts
+  double wall_stiffness = 20.0;  ///< N·m/rad
   bool passivity_guard = true;
   double default_object_mass = 0.5;  ///< kg, when the client declares none
   double default_time_step = 1e-3;   ///< s, when the client declares none
@@ -118,8 +118,8 @@ struct RenderMemory {
   double engage = 0.0;                      ///< see ServoOutputs::engage
   TimeNs overspeed = 0;                     ///< how long the handle has been over the limit
   bool braking = false;
-  std::uint64_t session_id = 0;             ///< the session the coupling is engaged with
-  TimeNs loop_delay = 0;                    ///< envelope of the measured loop delay
+  std::uint64_t session_id = 0;  ///< the session the coupling is engaged with
+  TimeNs loop_delay = 0;         ///< envelope of the measured loop delay
   static constexpr std::size_t kLoopSamples = 15;
   std::array<TimeNs, kLoopSamples> loop_samples{};  ///< the newest measured loops (median)
   std::uint64_t loop_next = 0;

@@ -75,7 +75,7 @@ struct VprPayload {
   std::int64_t link_jitter_ns = 0;  ///< smoothed |change| of the one-way delay between frames
   std::uint32_t link_loss_ppm = 0;  ///< control frames lost on the way in (smoothed)
   std::uint32_t reserved = 0;
-  std::uint32_t command_type = 0;     ///< CommandType
+  std::uint32_t command_type = 0;  ///< CommandType
   std::uint32_t indexing_mode = 0;
   std::uint32_t watchdog_timeout_us = 0;
   std::uint32_t flags = 0;  ///< vpr_flags
@@ -108,13 +108,13 @@ struct VpPayload {
   Joints6 joint_position{};
   Joints6 joint_velocity{};
   /// The coupling as the core ran it this cycle (telemetry and the client's statistics).
-  std::int64_t sample_age_ns = 0;   ///< age of the client sample used (network + bridge + wait)
-  std::int64_t loop_delay_ns = 0;   ///< coupling loop delay the gains were derived for
-  std::int64_t link_delay_ns = 0;   ///< one-way delay of the client link (from VPr)
+  std::int64_t sample_age_ns = 0;  ///< age of the client sample used (network + bridge + wait)
+  std::int64_t loop_delay_ns = 0;  ///< coupling loop delay the gains were derived for
+  std::int64_t link_delay_ns = 0;  ///< one-way delay of the client link (from VPr)
   std::int64_t link_jitter_ns = 0;
   std::uint32_t link_loss_ppm = 0;
   std::uint32_t reserved = 0;
-  std::array<double, 4> gains{};    ///< k_lin N/m, b_lin N.s/m, k_ang N.m/rad, b_ang N.m.s/rad
+  std::array<double, 4> gains{};  ///< k_lin N/m, b_lin N.s/m, k_ang N.m/rad, b_ang N.m.s/rad
 };
 
 /// force: operator wrench on the simulated handle (written by the HMI side).

@@ -25,11 +25,11 @@ struct Blackout {
 
 /// What one direction of the link does to datagrams (the relay applies it to both directions).
 struct LinkModel {
-  TimeNs delay = 0;       ///< one-way delay added to every datagram
-  TimeNs jitter = 0;      ///< each datagram's delay varies uniformly within ±jitter (never < 0)
-  double loss = 0.0;      ///< long-run fraction of datagrams lost, 0..1
-  double burst = 1.0;     ///< mean length of a loss burst, in datagrams (1: independent losses)
-  bool reorder = false;   ///< let jitter reorder datagrams (false: first in, first out)
+  TimeNs delay = 0;      ///< one-way delay added to every datagram
+  TimeNs jitter = 0;     ///< each datagram's delay varies uniformly within ±jitter (never < 0)
+  double loss = 0.0;     ///< long-run fraction of datagrams lost, 0..1
+  double burst = 1.0;    ///< mean length of a loss burst, in datagrams (1: independent losses)
+  bool reorder = false;  ///< let jitter reorder datagrams (false: first in, first out)
   std::vector<Blackout> blackouts;
 
   /// Throws std::invalid_argument naming the first value out of range or non-finite.

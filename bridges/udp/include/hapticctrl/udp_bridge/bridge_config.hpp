@@ -14,10 +14,10 @@ namespace hapticctrl::udp_bridge {
 struct BridgeConfig {
   std::string instance = "default";
   std::string bind_address = "127.0.0.1";
-  std::uint16_t port = 5125;                 ///< 0: any free port (printed at start)
-  bool allow_remote = false;                 ///< required to bind anything but loopback
-  std::vector<Ipv4Network> allowed_clients;  ///< --allow-client (empty: any source)
-  double hello_rate = 20.0;                  ///< HELLOs per second and burst, per source
+  std::uint16_t port = 5125;                       ///< 0: any free port (printed at start)
+  bool allow_remote = false;                       ///< required to bind anything but loopback
+  std::vector<Ipv4Network> allowed_clients;        ///< --allow-client (empty: any source)
+  double hello_rate = 20.0;                        ///< HELLOs per second and burst, per source
   std::uint32_t watchdog_ms = kDefaultWatchdogMs;  ///< default session watchdog
   int priority = 0;         ///< SCHED_FIFO priority of both threads; 0: SCHED_OTHER
   double duration_s = 0.0;  ///< 0: until SIGINT/SIGTERM

@@ -94,25 +94,29 @@ std::map<std::string, Topic> topics() {
                       put(r, m.coupling_wrench);
                       return true;
                     }};
-  t["coupling"] = {"utime,cycle,session_id,command_type,object_attached" +
-                       columns("object_", kPose) + columns("object_twist_", kVec6) +
-                       columns("wrench_", kVec6) + columns("handle_", kPose) +
-                       ",client_sequence,client_age_ms,client_stale,vpr_stale_cycles",
-                   [](const void* d, int n, Row& r) {
-                     hapticctrl_lcm::coupling_t m{};
-                     if (!decode(d, n, m)) {
-                       return false;
-                     }
-                     r << m.utime << ',' << m.cycle << ',' << m.session_id << ',' << m.command_type
-                       << ',' << (m.object_attached ? 1 : 0);
-                     put(r, m.object_pose);
-                     put(r, m.object_twist);
-                     put(r, m.coupling_wrench);
-                     put(r, m.handle_pose);
-                     r << ',' << m.client_sequence << ',' << m.client_age_ms << ','
-                       << (m.client_stale ? 1 : 0) << ',' << m.vpr_stale_cycles;
-                     return true;
-                   }};
+  t["coupling"] = {
+      "utime,cycle,session_id,command_type,object_attached" + columns("object_", kPose) +
+          columns("object_twist_", kVec6) + columns("wrench_", kVec6) + columns("handle_", kPose) +
+          ",client_sequence,client_age_ms,client_stale,vpr_stale_cycles,"
+          "sample_age_ms,loop_delay_ms,link_delay_ms,link_jitter_ms,link_loss" +
+          columns("gain_", {"k_lin", "b_lin", "k_ang", "b_ang"}),
+      [](const void* d, int n, Row& r) {
+        hapticctrl_lcm::coupling_t m{};
+        if (!decode(d, n, m)) {
+          return false;
+        }
+        r << m.utime << ',' << m.cycle << ',' << m.session_id << ',' << m.command_type << ','
+          << (m.object_attached ? 1 : 0);
+        put(r, m.object_pose);
+        put(r, m.object_twist);
+        put(r, m.coupling_wrench);
+        put(r, m.handle_pose);
+        r << ',' << m.client_sequence << ',' << m.client_age_ms << ',' << (m.client_stale ? 1 : 0)
+          << ',' << m.vpr_stale_cycles << ',' << m.sample_age_ms << ',' << m.loop_delay_ms << ','
+          << m.link_delay_ms << ',' << m.link_jitter_ms << ',' << m.link_loss;
+        put(r, m.gains);
+        return true;
+      }};
   std::string histogram;
   std::int64_t lower = 0;
   for (const std::int64_t edge : shm::kLatencyBucketEdgesUs) {

@@ -63,6 +63,12 @@ hapticctrl_lcm::coupling_t to_coupling(const shm::VpPayload& vp, const shm::VprP
       vpr.session_id != 0 ? static_cast<double>(now_ns - vpr.received_time_ns) / 1e6 : 0.0;
   m.client_stale = (vp.state_word & shm::state_bits::kClientStale) != 0 ? 1 : 0;
   m.vpr_stale_cycles = static_cast<std::int64_t>(t.vpr_stale);
+  m.sample_age_ms = static_cast<double>(vp.sample_age_ns) / 1e6;
+  m.loop_delay_ms = static_cast<double>(vp.loop_delay_ns) / 1e6;
+  m.link_delay_ms = static_cast<double>(vp.link_delay_ns) / 1e6;
+  m.link_jitter_ms = static_cast<double>(vp.link_jitter_ns) / 1e6;
+  m.link_loss = static_cast<double>(vp.link_loss_ppm) / 1e6;
+  copy(vp.gains, m.gains);
   return m;
 }
 

@@ -263,7 +263,7 @@ void Session::take_timed_object(const hcp_control_object_timed& o, TimeNs now) n
   const protocol::Quaternion q = protocol::unpack_rotation({o.rotation[0], o.rotation[1]})
                                      .value_or(protocol::Quaternion{0, 0, 0, 1});
   for (std::size_t i = 0; i < 3; ++i) {
-    vpr_.object_pose[i] = o.position[i];
+    vpr_.object_pose[i] = static_cast<double>(o.position[i]);
     vpr_.object_pose[i + 3] = q[i];
   }
   vpr_.object_pose[6] = q[3];

@@ -11,6 +11,7 @@
 #include <string_view>
 #include <thread>
 
+#include "channel_passivity.hpp"
 #include "hapticctrl/protocol/codec.hpp"
 #include "hapticctrl/protocol/timing.hpp"
 #include "hapticctrl/protocol/udp_socket.hpp"
@@ -82,6 +83,9 @@ struct Connection::Impl {
   mutable std::condition_variable answer_cv;
   StateSnapshot latest;
   LinkMonitor monitor;
+  ChannelPassivity passivity;    // under state_mutex
+  hcp_coupling_report report{};  // the controller's, from the newest ANSWER_TIMED
+  std::int64_t last_object_send_ns = 0;
 
   std::mutex call_mutex;  // one reliable exchange at a time
   std::mutex ack_mutex;
@@ -271,7 +275,7 @@ struct Connection::Impl {
       return;
     }
     last_heard_ns.store(now, std::memory_order_relaxed);
-    if (frame.body.type == HCP_ANSWER) {
+    if (frame.body.type == HCP_ANSWER || frame.body.type == HCP_ANSWER_TIMED) {
       handle_answer(frame, now);
     } else if (frame.body.type == HCP_REFUSE) {  // the bridge ended the session, and says why
       close_session(protocol::text_of(frame.body.hcp_body_u.refuse.reason));
@@ -289,7 +293,9 @@ struct Connection::Impl {
   }
 
   void handle_answer(const hcp_frame& frame, std::int64_t now) noexcept {
-    const hcp_answer& a = frame.body.hcp_body_u.answer;
+    const bool timed = frame.body.type == HCP_ANSWER_TIMED;
+    const hcp_answer& a =
+        timed ? frame.body.hcp_body_u.answer_timed.answer : frame.body.hcp_body_u.answer;
     StateSnapshot s;
     {
       const std::lock_guard lock(state_mutex);
@@ -305,6 +311,12 @@ struct Connection::Impl {
       s.stop_reason = a.stop_reason;
       s.command_type = static_cast<CommandType>(a.command_type);
       protocol::from_wire(a.coupling_wrench, s.coupling_wrench);
+      if (timed) {
+        // Two-port passivity, this end: the application gets the wrench with the PC's damper.
+        report = frame.body.hcp_body_u.answer_timed.coupling;
+        passivity.on_controller_energy(report.energy_in);
+        s.coupling_wrench = passivity.render(s.coupling_wrench);
+      }
       protocol::from_wire(a.handle_pose, s.handle_pose);
       protocol::from_wire(a.handle_twist, s.handle_twist);
       protocol::from_wire(a.joint_position, s.joint_position);
@@ -324,11 +336,19 @@ struct Connection::Impl {
     bool have_answer = false;
     std::uint64_t cycle = 0;
     std::int64_t held = 0;
+    std::uint32_t energy = 0;
     {
       const std::lock_guard lock(state_mutex);
       have_answer = latest.valid;
       cycle = latest.cycle;
       held = now - latest.received_ns;
+      // The step the application just took, under the wrench it got (at most 0.1 s counted).
+      if (last_object_send_ns != 0) {
+        const double dt = std::min(0.1, static_cast<double>(now - last_object_send_ns) * 1e-9);
+        passivity.on_step(twist, dt);
+      }
+      last_object_send_ns = now;
+      energy = passivity.energy_in_uj();
     }
     hcp_frame f =
         protocol::make_frame(HCP_CONTROL_OBJECT_TIMED, token, next_control_sequence(), now);
@@ -342,6 +362,7 @@ struct Connection::Impl {
     o.rotation[1] = r[1];
     protocol::to_wire(twist, o.twist);
     o.answer_echo = protocol::pack_answer_echo(cycle, held, have_answer);
+    o.energy_in = energy;
     return send_control(f);
   }
 
@@ -505,6 +526,8 @@ void Connection::attach_object(double mass, const std::array<double, 3>& inertia
   p.hcp_param_u.object.mass = mass;
   protocol::to_wire(inertia, p.hcp_param_u.object.inertia);
   impl_->set_param(p, "attach_object");
+  const std::lock_guard lock(impl_->state_mutex);
+  impl_->passivity.set_object(mass, std::max({inertia[0], inertia[1], inertia[2]}));
 }
 void Connection::detach_object() {
   impl_->set_param(param_of(HCP_P_OBJECT), "detach_object");
@@ -573,7 +596,19 @@ bool Connection::wait_for_answer(std::uint64_t after_cycle, std::chrono::nanosec
 
 LinkStatistics Connection::statistics() const noexcept {
   const std::lock_guard lock(impl_->state_mutex);
-  return impl_->monitor.statistics(impl_->control_sent.load(std::memory_order_relaxed));
+  LinkStatistics st =
+      impl_->monitor.statistics(impl_->control_sent.load(std::memory_order_relaxed));
+  const hcp_coupling_report& r = impl_->report;
+  st.link_delay_us = r.link_delay_s * 1e6;
+  st.link_jitter_us = r.link_jitter_s * 1e6;
+  st.link_loss = r.link_loss;
+  st.loop_delay_us = r.loop_delay_s * 1e6;
+  st.sample_age_us = r.sample_age_s * 1e6;
+  st.channel_energy_in = impl_->passivity.energy_in();
+  st.channel_energy_out = impl_->passivity.energy_out();
+  st.controller_energy_in = r.energy_in;
+  st.passivity_active_steps = impl_->passivity.active_steps();
+  return st;
 }
 
 bool Connection::is_open() const noexcept {

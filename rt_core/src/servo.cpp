@@ -32,7 +32,8 @@ bool client_sample_valid(const shm::VprPayload& s) noexcept {
          std::isfinite(s.force_factor) && std::isfinite(s.speed_factor) &&
          all_finite(s.base_frame) && all_finite(s.observation_frame) &&
          unit_quaternion(s.base_frame) && unit_quaternion(s.observation_frame) &&
-         all_finite(s.gain_override) && all_finite(s.force_limits);
+         all_finite(s.gain_override) && all_finite(s.force_limits) &&
+         std::isfinite(s.client_energy_in);  // negative: not reported
 }
 
 /// When the client computed the sample, on our clock: the bridge's estimate (protocol timing)
@@ -208,6 +209,8 @@ void ServoTask::commit(std::uint64_t cycle, TimeNs now) noexcept {
     vp.link_loss_ppm = s.last_client.link_loss_ppm;
     const CouplingGains& g = outputs_.gains;
     vp.gains = {g.k_linear, g.b_linear, g.k_angular, g.b_angular};
+    vp.channel_energy_in = outputs_.channel_energy_in;
+    vp.channel_energy_out = outputs_.channel_energy_out;
     s.regions.vp->publish(vp, now);  // the UDP bridge blocks on VP: notify
   }
   if (s.regions.position != nullptr) {

@@ -163,9 +163,13 @@ ServoLaw::Coupling ServoLaw::client_wrench(const ServoInputs& in, const ClientFr
   // Best estimate of where the object is now: extrapolate over the sample's true age (bounded).
   const double horizon =
       static_cast<double>(std::clamp<TimeNs>(in.client_age, 0, config_.extrapolate_max)) * 1e-9;
-  object_p += object_v * horizon;
+  object_p += object_v * horizon + memory_.drift.head<3>();
   if (object_w.norm() * horizon > 1e-12) {
     object_r = Eigen::AngleAxisd(object_w.norm() * horizon, object_w.normalized()) * object_r;
+  }
+  const Vector3d turned = memory_.drift.tail<3>();  // the channel PC's share (guard_channel)
+  if (turned.norm() > 1e-12) {
+    object_r = Eigen::AngleAxisd(turned.norm(), turned.normalized()) * object_r;
   }
 
   const CouplingGains g = derive_gains(c, static_cast<double>(memory_.loop_delay) * 1e-9);
@@ -180,6 +184,68 @@ ServoLaw::Coupling ServoLaw::client_wrench(const ServoInputs& in, const ClientFr
   coupling.damper *= scale;
   out.coupled = true;
   return coupling;
+}
+
+void ServoLaw::follow_session(const ServoInputs& in) noexcept {
+  RenderMemory& m = memory_;
+  const std::uint64_t session = in.client_valid ? in.client.session_id : 0;
+  if (session != m.session_id) {
+    m.session_id = session;
+    m.engage = 0.0;      // a new session (or none) starts from zero ...
+    m.channel_in = 0.0;  // ... and so does its channel's energy account
+    m.channel_out = 0.0;
+    m.drift.setZero();
+    m.drift_rate.setZero();
+  }
+}
+
+void ServoLaw::guard_channel(const ServoInputs& in, const ClientFrame& frame,
+                             const Vector6d& object_force, double dt, ServoOutputs& out) noexcept {
+  // Two-port time-domain passivity (Ryu, Artigas, Preusche): the channel between the coupling
+  // and the client's object must not give either end more energy than the other end put in.
+  // Here the core's end: the coupling pushes the object image with `object_force` while the
+  // image moves with the client's twist (plus this PC's drift); the energy that came out of the
+  // channel may not exceed what the client reports having put in (VPr.client_energy_in, which
+  // arrives a link delay late). When it would, a series passivity controller lets the image
+  // give way along the force (it "drifts" towards the handle), dissipating exactly the excess;
+  // the drift is given back slowly while the budget allows. Energies in the client's units
+  // (speed and force factors), as the client counts them.
+  RenderMemory& m = memory_;
+  m.drift_rate.setZero();
+  if (!(in.client.client_energy_in >= 0.0) || !out.coupled) {
+    return;  // a 1.0 client reports no energy: the one-port guard at the handle remains
+  }
+  Vector6d image_twist;
+  image_twist << frame.rotation.conjugate() *
+                     Vector3d(in.client.object_twist[0], in.client.object_twist[1],
+                              in.client.object_twist[2]) /
+                     frame.speed_factor,
+      frame.rotation.conjugate() *
+          Vector3d(in.client.object_twist[3], in.client.object_twist[4], in.client.object_twist[5]);
+  image_twist += m.drift_rate;
+  Vector6d weight;  // power in the client's units: force / force factor, speed * speed factor
+  weight << Vector3d::Constant(frame.speed_factor / frame.force_factor),
+      Vector3d::Constant(1.0 / frame.force_factor);
+  const double power = object_force.cwiseProduct(weight).dot(image_twist);
+  (power >= 0.0 ? m.channel_in : m.channel_out) += std::abs(power) * dt;
+  const double excess = m.channel_out - in.client.client_energy_in;
+  const double force_sq = object_force.cwiseProduct(weight).dot(object_force);
+  Vector6d rate = Vector6d::Zero();
+  if (excess > 0.0 && force_sq > 1e-12) {
+    rate = object_force * (excess / (dt * force_sq));
+    // Bounded like everything the device renders: the image may give way at 0.5 m/s, 5 rad/s.
+    rate.head<3>() = clamp_norm(rate.head<3>(), 0.5);
+    rate.tail<3>() = clamp_norm(rate.tail<3>(), 5.0);
+    m.channel_out -= object_force.cwiseProduct(weight).dot(rate) * dt;
+    ++counters_.channel_pc_active;
+  } else if (excess < 0.0 && m.drift.squaredNorm() > 0.0) {
+    // Give the drift back, slowly (2 cm/s, 0.2 rad/s): what that costs shows in the next
+    // cycles' power through drift_rate, and stops when the budget is spent.
+    rate.head<3>() = -clamp_norm(m.drift.head<3>() / dt, 0.02);
+    rate.tail<3>() = -clamp_norm(m.drift.tail<3>() / dt, 0.2);
+  }
+  m.drift += rate * dt;
+  m.drift_rate = rate;
 }
 
 void ServoLaw::track_loop_delay(const ServoInputs& in) noexcept {
@@ -210,10 +276,6 @@ double ServoLaw::update_engagement(const ServoInputs& in, const Vector6d& twist,
   const ArmLimits& lim = dynamics_->model().limits;
   const double speed = twist.head<3>().norm();
   RenderMemory& m = memory_;
-  if (in.client.session_id != m.session_id) {
-    m.session_id = in.client.session_id;
-    m.engage = 0.0;  // a new session (or none) starts from zero
-  }
   // The brake comes on above max_speed and lets go below brake_release_ratio of it.
   m.braking =
       speed > lim.max_speed || (m.braking && speed > config_.brake_release_ratio * lim.max_speed);
@@ -356,6 +418,7 @@ void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) 
   out.handle_twist = twist;
   const ClientFrame frame = client_frame_of(in.client);
   express_for_client(frame, twist, out);
+  follow_session(in);
   out.coupling_wrench.setZero();
   out.handle_wrench.setZero();
   out.coupled = false;
@@ -383,6 +446,11 @@ void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) 
   // send the coupling back through the whole ramp.
   const double engage = degraded ? memory_.engage : update_engagement(in, twist, out.fade, out);
   const Vector6d object_side = saturate(coupling, in.client);
+  if (!degraded) {
+    guard_channel(in, frame, -object_side, dt, out);
+  }
+  out.channel_energy_in = memory_.channel_in;
+  out.channel_energy_out = memory_.channel_out;
   Vector6d target = object_side * engage;
   const ArmLimits& lim = dynamics_->model().limits;
   if (out.braking) {

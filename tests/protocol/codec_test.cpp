@@ -1,6 +1,7 @@
 // Codec: golden bytes (computed independently with Python's struct and zlib), round trips for
 // every frame type, the 90-byte control limit, and every rejection path.
 #include "hapticctrl/protocol/codec.hpp"
+#include "hapticctrl/protocol/timing.hpp"
 
 #include <gtest/gtest.h>
 #include <zlib.h>
@@ -121,6 +122,24 @@ std::vector<hcp_frame> one_of_each() {
   a.handle_pose[0] = 0.25;
   a.joint_position[5] = -0.5;
   frames.push_back(answer);
+  hcp_frame timed = make_frame(HCP_CONTROL_OBJECT_TIMED, kToken, 6, 15);
+  hcp_control_object_timed& t = timed.body.hcp_body_u.timed;
+  t.position[0] = 0.5F;
+  const auto packed = pack_rotation({0.1, 0.2, 0.3, 0.9});
+  t.rotation[0] = packed[0];
+  t.rotation[1] = packed[1];
+  t.twist[3] = 0.25F;
+  t.answer_echo = pack_answer_echo(1234, 300'000, true);
+  t.energy_in = 0xFFFFFFF0U;
+  frames.push_back(timed);
+  hcp_frame answer_timed = make_frame(HCP_ANSWER_TIMED, kToken, 7, 15);
+  answer_timed.body.hcp_body_u.answer_timed.answer = a;
+  hcp_coupling_report& c = answer_timed.body.hcp_body_u.answer_timed.coupling;
+  c.energy_in = 1.25;
+  c.loop_delay_s = 0.011;
+  c.link_loss = 0.1;
+  c.gains[0] = 868.0;
+  frames.push_back(answer_timed);
   for (int id = HCP_P_TIME_STEP; id <= HCP_P_EMERGENCY_RESET; ++id) {
     hcp_frame p = make_frame(HCP_PARAM, kToken, static_cast<std::uint32_t>(10 + id), 16);
     hcp_param& q = p.body.hcp_body_u.param;
@@ -169,6 +188,9 @@ TEST(Codec, FrameSizesAreAsDocumented) {  // docs/protocol.md, "Frames"
   EXPECT_EQ(largest[HCP_WELCOME], 60U);
   EXPECT_EQ(largest[HCP_REFUSE], 144U);
   EXPECT_EQ(largest[HCP_CONTROL_OBJECT], 88U);
+  EXPECT_EQ(largest[HCP_CONTROL_OBJECT_TIMED], 88U);
+  EXPECT_LE(largest[HCP_CONTROL_OBJECT_TIMED], kControlMaxBytes);
+  EXPECT_EQ(largest[HCP_ANSWER_TIMED], 404U);
   EXPECT_EQ(largest[HCP_CONTROL_WRENCH], 60U);
   EXPECT_EQ(largest[HCP_KEEPALIVE], 36U);
   EXPECT_EQ(largest[HCP_ANSWER], 324U);

@@ -278,6 +278,52 @@ TEST(ServoLaw, SaturationKeepsTheCouplingsDamping) {
   EXPECT_GT(spring_share, 35.0) << "the spring gave way to the damper, not the other way";
 }
 
+TEST(ServoLaw, TheChannelsPassivityControllerLetsTheImageGiveWayWhenTheClientGaveNothing) {
+  // The object runs away from the handle (+x) while the client reports no energy put into the
+  // channel: the coupling would draw energy out of the channel (its force on the object points
+  // back, -x, against the motion). The core's PC lets the image drift towards the handle so
+  // that what came out never exceeds what the client reported, and the spring softens.
+  const auto run = [](double client_energy) {
+    ServoLaw law(default_dynamics());
+    ServoInputs in = coupled_to_object_ahead(0.005);
+    in.client.object_twist = {0.2, 0, 0, 0, 0, 0};
+    in.client.client_energy_in = client_energy;
+    ServoOutputs out;
+    for (int k = 0; k < 300; ++k) {
+      law.compute(in, false, out);
+    }
+    return std::make_pair(out, law.counters().channel_pc_active);
+  };
+  const auto [guarded, active] = run(0.0);
+  EXPECT_GT(active, 0U);
+  EXPECT_LE(guarded.channel_energy_out, 1e-9) << "nothing out beyond the client's 0 J";
+  const auto [free, idle] = run(100.0);  // the client reports plenty: nothing to do
+  EXPECT_EQ(idle, 0U);
+  EXPECT_GT(free.channel_energy_out, 0.01);
+  EXPECT_LT(std::abs(guarded.handle_wrench(0)), std::abs(free.handle_wrench(0)))
+      << "the image gave way: less pull on the handle";
+  const auto [old_client, none] = run(-1.0);  // a 1.0 client reports nothing at all
+  EXPECT_EQ(none, 0U) << "no two-port PC without the client's energy";
+  EXPECT_EQ(old_client.channel_energy_out, 0.0) << "nor an account";
+  EXPECT_EQ(old_client.handle_wrench(0), free.handle_wrench(0));
+}
+
+TEST(ServoLaw, ANewSessionStartsItsChannelAccountAfresh) {
+  ServoLaw law(default_dynamics());
+  ServoInputs in = coupled_to_object_ahead(0.005);
+  in.client.object_twist = {0.2, 0, 0, 0, 0, 0};
+  in.client.client_energy_in = 100.0;
+  ServoOutputs out;
+  for (int k = 0; k < 300; ++k) {
+    law.compute(in, false, out);
+  }
+  const double before = out.channel_energy_out;
+  ASSERT_GT(before, 0.1);
+  in.client.session_id = 2;
+  law.compute(in, false, out);
+  EXPECT_LT(out.channel_energy_out, 0.01) << "one cycle's worth, not the old session's " << before;
+}
+
 TEST(ServoLaw, DegradedModeHasNoCoupling) {
   ServoLaw law(default_dynamics());
   ServoInputs in = powered_at(kReady);

@@ -117,6 +117,7 @@ std::size_t Session::on_datagram(std::span<const std::uint8_t> bytes,
       return 0;
     case HCP_WELCOME:
     case HCP_ANSWER:
+    case HCP_ANSWER_TIMED:
     case HCP_ACK:
       break;
   }
@@ -183,6 +184,8 @@ void Session::open(const hcp_frame& hello, const protocol::Endpoint& from, TimeN
   control_received_ = 0;
   control_received_shared_.store(0, std::memory_order_relaxed);
   link_.reset();
+  have_energy_ = false;
+  energy_in_total_ = 0.0;
   vpr_ = fresh_vpr(++session_number_);
   vpr_.watchdog_timeout_us = watchdog_ms_ * 1000U;
   publish_vpr(now);
@@ -268,6 +271,15 @@ void Session::take_timed_object(const hcp_control_object_timed& o, TimeNs now) n
   }
   vpr_.object_pose[6] = q[3];
   protocol::from_wire(o.twist, vpr_.object_twist);
+  // The client's cumulative energy, modulo 2^32 uJ: add up the differences. A difference beyond
+  // 4 J in one frame (35 N at 100 m/s for 1 ms is 3.5 J) is not physical: not counted.
+  const std::uint32_t step_uj = o.energy_in - energy_in_last_;
+  if (have_energy_ && step_uj <= kMaxEnergyStepUj) {
+    energy_in_total_ += static_cast<double>(step_uj) * 1e-6;
+  }
+  have_energy_ = true;
+  energy_in_last_ = o.energy_in;
+  vpr_.client_energy_in = energy_in_total_;
   const SampleTiming timing =
       LinkEstimator::time_sample(protocol::unpack_answer_echo(o.answer_echo), answer_log_, now);
   link_.add(timing);
@@ -428,8 +440,20 @@ std::size_t Session::answer(const shm::VpPayload& vp, TimeNs now, std::span<std:
   }
   to = view.peer;
   answer_log_.record(vp.cycle, now);
-  hcp_frame f = protocol::make_frame(HCP_ANSWER, view.token, ++answer_sequence_, now);
-  hcp_answer& a = f.body.hcp_body_u.answer;
+  const bool timed = (view.features & HCP_FEATURE_TIMING) != 0;
+  hcp_frame f = protocol::make_frame(timed ? HCP_ANSWER_TIMED : HCP_ANSWER, view.token,
+                                     ++answer_sequence_, now);
+  hcp_answer& a = timed ? f.body.hcp_body_u.answer_timed.answer : f.body.hcp_body_u.answer;
+  if (timed) {
+    hcp_coupling_report& c = f.body.hcp_body_u.answer_timed.coupling;
+    c.energy_in = vp.channel_energy_in;
+    c.sample_age_s = static_cast<double>(vp.sample_age_ns) * 1e-9;
+    c.loop_delay_s = static_cast<double>(vp.loop_delay_ns) * 1e-9;
+    c.link_delay_s = static_cast<double>(vp.link_delay_ns) * 1e-9;
+    c.link_jitter_s = static_cast<double>(vp.link_jitter_ns) * 1e-9;
+    c.link_loss = static_cast<double>(vp.link_loss_ppm) * 1e-6;
+    protocol::to_wire(vp.gains, c.gains);
+  }
   a.cycle = vp.cycle;
   a.echo_sequence = static_cast<std::uint32_t>(vp.echo_client_sequence);
   a.echo_time_ns = vp.echo_client_time_ns;

@@ -147,6 +147,15 @@ Problem check_answer(const hcp_answer& a) noexcept {
   return finite ? Problem{} : Problem{"answer: non-finite or out-of-range state"};
 }
 
+Problem check_coupling_report(const hcp_coupling_report& c) noexcept {
+  const bool ok = within(c.energy_in, 0.0, kMaxEnergy) && within(c.sample_age_s, -1.0, 1e3) &&
+                  within(c.loop_delay_s, 0.0, 1e3) && within(c.link_delay_s, 0.0, 1e3) &&
+                  within(c.link_jitter_s, 0.0, 1e3) && within(c.link_loss, 0.0, 1.0) &&
+                  all_within(c.gains, kMaxGain) && c.gains[0] >= 0.0 && c.gains[1] >= 0.0 &&
+                  c.gains[2] >= 0.0 && c.gains[3] >= 0.0;
+  return ok ? Problem{} : Problem{"answer: coupling report non-finite or out of range"};
+}
+
 Problem check_body(const hcp_body& body) noexcept {
   switch (body.type) {
     case HCP_CONTROL_OBJECT:
@@ -159,6 +168,11 @@ Problem check_body(const hcp_body& body) noexcept {
       return check_hello(body.hcp_body_u.hello);
     case HCP_ANSWER:
       return check_answer(body.hcp_body_u.answer);
+    case HCP_ANSWER_TIMED:
+      if (auto p = check_answer(body.hcp_body_u.answer_timed.answer)) {
+        return p;
+      }
+      return check_coupling_report(body.hcp_body_u.answer_timed.coupling);
     default:
       return std::nullopt;
   }

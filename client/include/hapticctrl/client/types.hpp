@@ -76,6 +76,19 @@ struct LinkStatistics {
   double interarrival_mean_us = 0.0;
   double interarrival_max_us = 0.0;
   double jitter_us = 0.0;  ///< RFC 3550 smoothed |inter-arrival - period|
+  /// What the controller measured of this link and its coupling (protocol 1.1; 0 before).
+  double link_delay_us = 0.0;   ///< one-way, client -> controller (smoothed)
+  double link_jitter_us = 0.0;  ///< of that one-way delay
+  double link_loss = 0.0;       ///< fraction of control frames lost on the way in
+  double loop_delay_us = 0.0;   ///< the coupling loop the controller's gains are derived for
+  double sample_age_us = 0.0;   ///< age of the object state the controller used last
+  /// Two-port passivity, this end of the channel (J since the session began): energy the
+  /// object put in and got out, the controller's reported input, and the steps the library's
+  /// passivity controller damped.
+  double channel_energy_in = 0.0;
+  double channel_energy_out = 0.0;
+  double controller_energy_in = 0.0;
+  std::uint64_t passivity_active_steps = 0;
 };
 
 /// Why a setup or blocking call failed.

@@ -66,6 +66,9 @@ struct ServoOutputs {
   bool velocity_fault = false;  ///< over the speed limit for LawConfig::overspeed_fault_after
   CouplingGains gains;          ///< gains in force this cycle (zero when not coupled)
   TimeNs loop_delay = 0;        ///< loop delay the gains were derived for
+  /// Two-port passivity, the core's end of the channel (J since the session began).
+  double channel_energy_in = 0.0;
+  double channel_energy_out = 0.0;
 };
 
 /// How the client's environment frame relates to ours, derived once per cycle from its sample:
@@ -118,8 +121,12 @@ struct RenderMemory {
   double engage = 0.0;                      ///< see ServoOutputs::engage
   TimeNs overspeed = 0;                     ///< how long the handle has been over the limit
   bool braking = false;
-  std::uint64_t session_id = 0;  ///< the session the coupling is engaged with
-  TimeNs loop_delay = 0;         ///< envelope of the measured loop delay
+  std::uint64_t session_id = 0;            ///< the session the coupling is engaged with
+  TimeNs loop_delay = 0;                   ///< envelope of the measured loop delay
+  double channel_in = 0.0;                 ///< J the coupling put into the channel
+  double channel_out = 0.0;                ///< J the channel gave the coupling
+  Vector6d drift = Vector6d::Zero();       ///< the channel PC's shift of the object image
+  Vector6d drift_rate = Vector6d::Zero();  ///< its rate last cycle (part of the image's motion)
   static constexpr std::size_t kLoopSamples = 15;
   std::array<TimeNs, kLoopSamples> loop_samples{};  ///< the newest measured loops (median)
   std::uint64_t loop_next = 0;
@@ -131,7 +138,8 @@ struct LawCounters {
   std::uint64_t speed_limited = 0;
   std::uint64_t passivity_active = 0;
   std::uint64_t rate_limited = 0;
-  std::uint64_t workspace_walls = 0;  ///< cycles with the handle outside the workspace box
+  std::uint64_t workspace_walls = 0;    ///< cycles with the handle outside the workspace box
+  std::uint64_t channel_pc_active = 0;  ///< cycles the two-port passivity controller acted
 };
 
 class ServoLaw {
@@ -167,6 +175,9 @@ class ServoLaw {
   Coupling client_wrench(const ServoInputs& in, const ClientFrame& frame, const ChainState& chain,
                          const Vector6d& twist, ServoOutputs& out) noexcept;
   void track_loop_delay(const ServoInputs& in) noexcept;
+  void follow_session(const ServoInputs& in) noexcept;
+  void guard_channel(const ServoInputs& in, const ClientFrame& frame, const Vector6d& object_force,
+                     double dt, ServoOutputs& out) noexcept;
   double update_engagement(const ServoInputs& in, const Vector6d& twist, double fade,
                            ServoOutputs& out) noexcept;
   Vector6d saturate(const Coupling& c, const shm::VprPayload& client) const noexcept;

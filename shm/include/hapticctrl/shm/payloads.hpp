@@ -75,6 +75,9 @@ struct VprPayload {
   std::int64_t link_jitter_ns = 0;  ///< smoothed |change| of the one-way delay between frames
   std::uint32_t link_loss_ppm = 0;  ///< control frames lost on the way in (smoothed)
   std::uint32_t reserved = 0;
+  /// Energy the client's object has put into the coupling channel since the session began (J;
+  /// protocol 1.1; negative: the client does not report it, no two-port passivity).
+  double client_energy_in = -1.0;
   std::uint32_t command_type = 0;  ///< CommandType
   std::uint32_t indexing_mode = 0;
   std::uint32_t watchdog_timeout_us = 0;
@@ -115,6 +118,10 @@ struct VpPayload {
   std::uint32_t link_loss_ppm = 0;
   std::uint32_t reserved = 0;
   std::array<double, 4> gains{};  ///< k_lin N/m, b_lin N.s/m, k_ang N.m/rad, b_ang N.m.s/rad
+  /// Two-port passivity, the core's end of the channel (J since the session began): energy the
+  /// core put in (sent to the client, which bounds its output by it) and took out.
+  double channel_energy_in = 0.0;
+  double channel_energy_out = 0.0;
 };
 
 /// force: operator wrench on the simulated handle (written by the HMI side).
@@ -234,8 +241,8 @@ struct LinkStatsPayload {
 };
 
 // Layout pins: a change here is an ABI change (bump kAbiVersion in layout.hpp).
-static_assert(sizeof(VprPayload) == 456);
-static_assert(sizeof(VpPayload) == 360);
+static_assert(sizeof(VprPayload) == 464);
+static_assert(sizeof(VpPayload) == 376);
 static_assert(sizeof(ForcePayload) == 48);
 static_assert(sizeof(PositionPayload) == 360);
 static_assert(sizeof(LatencySummary) == 64);

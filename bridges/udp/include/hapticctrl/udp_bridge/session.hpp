@@ -166,6 +166,10 @@ class Session {
   std::uint32_t control_received_ = 0;
   shm::VprPayload vpr_{};
   LinkEstimator link_;
+  static constexpr std::uint32_t kMaxEnergyStepUj = 4'000'000;
+  bool have_energy_ = false;
+  std::uint32_t energy_in_last_ = 0;
+  double energy_in_total_ = 0.0;
 
   // Shared with the answer thread.
   shm::SeqlockCell<SessionView> view_;

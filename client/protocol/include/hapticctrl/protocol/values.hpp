@@ -30,6 +30,7 @@ inline constexpr double kMaxMass = 1000.0;       ///< kg
 inline constexpr double kMaxInertia = 1000.0;    ///< kg.m^2
 inline constexpr double kMaxGain = 1e6;
 inline constexpr double kMaxForceLimit = 1e4;
+inline constexpr double kMaxEnergy = 1e12;  ///< J, a coupling channel's cumulative energy
 inline constexpr unsigned kMinWatchdogMs = 10;
 inline constexpr unsigned kMaxWatchdogMs = 60000;
 
@@ -44,6 +45,7 @@ template <typename T>
 [[nodiscard]] Problem check_param(const hcp_param& param) noexcept;
 [[nodiscard]] Problem check_hello(const hcp_hello& hello) noexcept;
 [[nodiscard]] Problem check_answer(const hcp_answer& answer) noexcept;
+[[nodiscard]] Problem check_coupling_report(const hcp_coupling_report& report) noexcept;
 
 /// Dispatches on the body's type: the rules above, or none for bodies without numbers.
 [[nodiscard]] Problem check_body(const hcp_body& body) noexcept;

@@ -1,0 +1,73 @@
+#include "channel_passivity.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace hapticctrl::client {
+namespace {
+
+constexpr double kDt = 1e-3;
+
+TEST(ChannelPassivity, ForwardsTheWrenchWhileTheControllersEnergyCoversTheOutput) {
+  ChannelPassivity pc;
+  pc.set_object(0.5, 1e-4);
+  pc.on_controller_energy(1.0);
+  for (int k = 0; k < 100; ++k) {
+    const Vector6 w = pc.render({1.0, 0, 0, 0, 0, 0});
+    EXPECT_EQ(w[0], 1.0);
+    pc.on_step({0.1, 0, 0, 0, 0, 0}, kDt);  // 0.1 W out of the channel into the object
+  }
+  EXPECT_NEAR(pc.energy_out(), 0.01, 1e-12);
+  EXPECT_EQ(pc.active_steps(), 0U);
+}
+
+TEST(ChannelPassivity, DampsTheObjectWhenTheChannelWouldGiveMoreThanItGot) {
+  ChannelPassivity pc;
+  pc.set_object(0.5, 1e-4);
+  (void)pc.render({1.0, 0, 0, 0, 0, 0});
+  pc.on_step({0.1, 0, 0, 0, 0, 0}, kDt);  // 1e-4 J out, nothing reported in
+  const Vector6 damped = pc.render({1.0, 0, 0, 0, 0, 0});
+  EXPECT_NEAR(damped[0], 0.0, 1e-9) << "a damper of 10 N.s/m at 0.1 m/s: the excess, no more";
+  pc.on_step({0.1, 0, 0, 0, 0, 0}, kDt);
+  EXPECT_NEAR(pc.energy_out(), 1e-4, 1e-12) << "no further energy given";
+  EXPECT_GT(pc.active_steps(), 0U);
+  pc.on_controller_energy(1e-3);  // the controller's report catches up
+  pc.on_step({0.1, 0, 0, 0, 0, 0}, kDt);
+  EXPECT_EQ(pc.render({1.0, 0, 0, 0, 0, 0})[0], 1.0) << "transparent again";
+}
+
+TEST(ChannelPassivity, TheDamperStaysWithinWhatTheObjectsIntegrationBears) {
+  ChannelPassivity pc;
+  pc.set_object(0.2, 1e-5);
+  (void)pc.render({500.0, 0, 0, 0, 0, 0});
+  pc.on_step({1.0, 0, 0, 0, 0, 0}, kDt);  // 0.5 J out: alpha 500 N.s/m would take it at once
+  const Vector6 damped = pc.render({500.0, 0, 0, 0, 0, 0});
+  EXPECT_NEAR(damped[0], 500.0 - 0.5 * 0.2 / kDt * 1.0, 1e-9) << "alpha <= m / (2 dt)";
+}
+
+TEST(ChannelPassivity, EnergyInGoesOnTheWireInMicrojoulesModulo2To32) {
+  ChannelPassivity pc;
+  (void)pc.render({-2.0, 0, 0, 0, 0, 0});
+  pc.on_step({1.0, 0, 0, 0, 0, 0}, kDt);  // the object pushes the channel: 2 mJ in
+  EXPECT_NEAR(pc.energy_in(), 2e-3, 1e-15);
+  EXPECT_EQ(pc.energy_in_uj(), 2000U);
+  for (int k = 0; k < 2500; ++k) {  // 5000 J: past 2^32 uJ = 4295 J
+    (void)pc.render({-2000.0, 0, 0, 0, 0, 0});
+    pc.on_step({1.0, 0, 0, 0, 0, 0}, kDt);
+  }
+  const double uj = std::fmod(std::floor(pc.energy_in() * 1e6), 4294967296.0);
+  EXPECT_EQ(pc.energy_in_uj(), static_cast<std::uint32_t>(uj));
+}
+
+TEST(ChannelPassivity, IgnoresNonFiniteSteps) {
+  ChannelPassivity pc;
+  (void)pc.render({1.0, 0, 0, 0, 0, 0});
+  pc.on_step({NAN, 0, 0, 0, 0, 0}, kDt);
+  pc.on_step({0.1, 0, 0, 0, 0, 0}, -1.0);
+  EXPECT_EQ(pc.energy_out(), 0.0);
+  EXPECT_EQ(pc.energy_in(), 0.0);
+}
+
+}  // namespace
+}  // namespace hapticctrl::client

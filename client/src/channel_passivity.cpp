@@ -24,11 +24,27 @@ void ChannelPassivity::on_controller_energy(double joules) noexcept {
 }
 
 Vector6 ChannelPassivity::render(const Vector6& wrench) noexcept {
+  raw_ = wrench;
   Vector6 out = wrench;
-  for (std::size_t i = 0; i < 3; ++i) {
-    out[i] -= alpha_linear_ * twist_[i];
-    out[i + 3] -= alpha_angular_ * twist_[i + 3];
-  }
+  // The damper removes at most the share of the wrench that does work on the object's motion:
+  // it stops the channel's output without ever pushing against the motion itself. A full damper
+  // held over the application's catch-up steps (the demo integrates several cycles with one
+  // wrench after a lost answer) drove the weighted sphere to 77 m/s at 20 ms with 10 % loss.
+  const auto limited = [&](std::size_t from, double alpha) {
+    double along = 0.0;
+    double v_sq = 0.0;
+    for (std::size_t i = from; i < from + 3; ++i) {
+      along += wrench[i] * twist_[i];
+      v_sq += twist_[i] * twist_[i];
+    }
+    const double working = v_sq > 1e-15 ? std::max(0.0, along / v_sq) : 0.0;
+    const double a = std::min(alpha, working);
+    for (std::size_t i = from; i < from + 3; ++i) {
+      out[i] -= a * twist_[i];
+    }
+  };
+  limited(0, alpha_linear_);
+  limited(3, alpha_angular_);
   rendered_ = out;
   return out;
 }
@@ -37,24 +53,27 @@ void ChannelPassivity::on_step(const Vector6& twist, double dt) noexcept {
   if (!(dt > 0.0) || !std::isfinite(dt)) {
     return;
   }
-  double power = 0.0;  // from the channel into the object
+  // The channel's power into the object, with the controller's wrench (Ryu's observer); the
+  // PC's damper is booked apart: what it took leaves the output account.
+  double power = 0.0;
+  double damped = 0.0;
   double v_sq = 0.0;
   double w_sq = 0.0;
-  for (std::size_t i = 0; i < 3; ++i) {
-    power += rendered_[i] * twist[i] + rendered_[i + 3] * twist[i + 3];
-    v_sq += twist[i] * twist[i];
-    w_sq += twist[i + 3] * twist[i + 3];
+  for (std::size_t i = 0; i < 6; ++i) {
+    power += raw_[i] * twist[i];
+    damped += (raw_[i] - rendered_[i]) * twist[i];
+    (i < 3 ? v_sq : w_sq) += twist[i] * twist[i];
   }
-  if (!std::isfinite(power)) {
+  if (!std::isfinite(power) || !std::isfinite(damped)) {
     return;
   }
   (power >= 0.0 ? energy_out_ : energy_in_) += std::abs(power) * dt;
+  energy_out_ -= damped * dt;
   twist_ = twist;
   alpha_linear_ = 0.0;
   alpha_angular_ = 0.0;
-  // The damper the next step adds would dissipate (alpha_l v^2 + alpha_a w^2) dt at this
-  // motion: enough for the excess, within the stable bounds. Its real effect is counted by the
-  // next step's power, which includes it (rendered_).
+  // The damper for the next step: enough to dissipate the excess at this motion, within the
+  // bounds the object's integration bears.
   const double excess = energy_out_ - controller_in_;
   const double motion = (v_sq + w_sq) * dt;
   if (excess > 0.0 && motion > 1e-15) {

@@ -38,7 +38,8 @@ class ChannelPassivity {
   double controller_in_ = 0.0;
   double energy_in_ = 0.0;   ///< J the object put into the channel
   double energy_out_ = 0.0;  ///< J the channel gave the object
-  Vector6 rendered_{};       ///< the wrench render() returned last
+  Vector6 raw_{};            ///< the controller's wrench at the last render(): the channel's
+  Vector6 rendered_{};       ///< the wrench render() returned last (with the PC's damper)
   Vector6 twist_{};          ///< the object's twist at the last step
   double alpha_linear_ = 0.0;
   double alpha_angular_ = 0.0;

@@ -215,6 +215,9 @@ void ServoLaw::guard_channel(const ServoInputs& in, const ClientFrame& frame,
   if (!(in.client.client_energy_in >= 0.0) || !out.coupled) {
     return;  // a 1.0 client reports no energy: the one-port guard at the handle remains
   }
+  // The channel's own flow (the client's twist, in the base frame) and the power in the
+  // client's units (force / force factor, speed * speed factor). The PC's drift is not part of
+  // the channel: what it takes or gives back is booked separately below (Ryu's observer).
   Vector6d image_twist;
   image_twist << frame.rotation.conjugate() *
                      Vector3d(in.client.object_twist[0], in.client.object_twist[1],
@@ -222,29 +225,38 @@ void ServoLaw::guard_channel(const ServoInputs& in, const ClientFrame& frame,
                      frame.speed_factor,
       frame.rotation.conjugate() *
           Vector3d(in.client.object_twist[3], in.client.object_twist[4], in.client.object_twist[5]);
-  image_twist += m.drift_rate;
-  Vector6d weight;  // power in the client's units: force / force factor, speed * speed factor
+  Vector6d weight;
   weight << Vector3d::Constant(frame.speed_factor / frame.force_factor),
       Vector3d::Constant(1.0 / frame.force_factor);
-  const double power = object_force.cwiseProduct(weight).dot(image_twist);
+  const Vector6d force = object_force.cwiseProduct(weight);
+  const double power = force.dot(image_twist);
   (power >= 0.0 ? m.channel_in : m.channel_out) += std::abs(power) * dt;
   const double excess = m.channel_out - in.client.client_energy_in;
-  const double force_sq = object_force.cwiseProduct(weight).dot(object_force);
+  const double force_sq = force.dot(object_force);
   Vector6d rate = Vector6d::Zero();
   if (excess > 0.0 && force_sq > 1e-12) {
     rate = object_force * (excess / (dt * force_sq));
-    // Bounded like everything the device renders: the image may give way at 0.5 m/s, 5 rad/s.
+    // Bounded like everything the device renders: the image gives way at 0.5 m/s, 5 rad/s.
     rate.head<3>() = clamp_norm(rate.head<3>(), 0.5);
     rate.tail<3>() = clamp_norm(rate.tail<3>(), 5.0);
-    m.channel_out -= object_force.cwiseProduct(weight).dot(rate) * dt;
     ++counters_.channel_pc_active;
   } else if (excess < 0.0 && m.drift.squaredNorm() > 0.0) {
-    // Give the drift back, slowly (2 cm/s, 0.2 rad/s): what that costs shows in the next
-    // cycles' power through drift_rate, and stops when the budget is spent.
+    // Give the drift back, slowly (2 cm/s, 0.2 rad/s), within the budget: it costs energy.
     rate.head<3>() = -clamp_norm(m.drift.head<3>() / dt, 0.02);
     rate.tail<3>() = -clamp_norm(m.drift.tail<3>() / dt, 0.2);
+    const double cost = -force.dot(rate) * dt;
+    if (cost > -excess) {
+      rate *= -excess / cost;
+    }
   }
-  m.drift += rate * dt;
+  // The drift never exceeds 5 cm / 0.5 rad: beyond, the PC is saturated and the one-port guard
+  // at the handle is what remains.
+  Vector6d drift = m.drift + rate * dt;
+  drift.head<3>() = clamp_norm(drift.head<3>(), 0.05);
+  drift.tail<3>() = clamp_norm(drift.tail<3>(), 0.5);
+  rate = (drift - m.drift) / dt;
+  m.channel_out -= force.dot(rate) * dt;  // dissipated by the PC (> 0), or given back (< 0)
+  m.drift = drift;
   m.drift_rate = rate;
 }
 

@@ -8,21 +8,24 @@
 #  2. SERVO start delay after the CLOCK release, against a bare futex hand-off floor;
 #  3. end to end at 1 kHz: client -> hapticctrl-udp -> core -> client round trips and answer
 #     jitter, against a raw UDP ping-pong on the same loopback, idle and under load;
-#  4. micro-benchmarks: seqlock publish/read, XDR encode/decode, one full cycle.
+#  4. micro-benchmarks: seqlock publish/read, XDR encode/decode, one full cycle;
+#  5. the coupling over an impaired link (bench/coupling.sh, H1): per one-way delay and loss,
+#     the demo's weighted sphere, an operator's force steps and a blackout through
+#     hapticctrl-netem, against the sampled-data stiffness bound (coupling.md).
 #
 # usage: scripts/bench.sh [--out DIR] [--build DIR] [--seconds N] [--long] [--smoke]
 #   default about 3 minutes (8 s per latency run, 15 s per link run); --long: 60 s and 120 s;
 #   --smoke: 1 s runs (checks the pipeline, not the machine).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-OUT=bench-report BUILD=build LAT_S=8 LINK_S=15 MIN_TIME=0.2 PINGS=20000
+OUT=bench-report BUILD=build LAT_S=8 LINK_S=15 MIN_TIME=0.2 PINGS=20000 SMOKE=
 while [[ $# -gt 0 ]]; do
   case $1 in
     --out) OUT=$2; shift 2 ;;
     --build) BUILD=$2; shift 2 ;;
     --seconds) LAT_S=$2; LINK_S=$2; shift 2 ;;
     --long) LAT_S=60 LINK_S=120 MIN_TIME=1; shift ;;
-    --smoke) LAT_S=1 LINK_S=1 MIN_TIME=0.001 PINGS=300; shift ;;
+    --smoke) LAT_S=1 LINK_S=1 MIN_TIME=0.001 PINGS=300 SMOKE=--smoke; shift ;;
     *) echo "bench: unknown option $1 (see the header of $0)" >&2; exit 64 ;;
   esac
 done
@@ -36,7 +39,7 @@ if [[ ! -f $BUILD/build.ninja ]]; then
   cmake -S . -B "$BUILD" -G Ninja >/dev/null
 fi
 cmake --build "$BUILD" -j "$(nproc)" --target hapticctrl-core hapticctrl-udp hapticctrl-hmi \
-  hapticctrl-bench-link \
+  hapticctrl-bench-link hapticctrl-netem hapticctrl-demo \
   hapticctrl-bench-handoff hapticctrl-bench-shm hapticctrl-bench-protocol hapticctrl-bench-rt-core \
   >/dev/null
 rm -rf "$RAW"
@@ -148,5 +151,11 @@ for b in shm protocol rt-core; do
     2>"$RAW/micro-$b.err"
 done
 
+# 5: the coupling over an impaired link.
+echo "bench: the coupling over an impaired link (hapticctrl-netem)" >&2
+bench/coupling.sh "$OUT" "$BUILD" $SMOKE
+
 python3 bench/report.py "$OUT"
+python3 bench/coupling_report.py "$OUT" >/dev/null
+{ echo; cat "$OUT/coupling.md"; } >>"$OUT/report.md"
 echo "bench: report in $OUT/report.md" >&2

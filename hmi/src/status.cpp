@@ -101,7 +101,14 @@ std::string status_json(const ControllerStatus& s) {
     out << ",\"peer\":\"" << ipv4_text(s.link.peer_ipv4) << ":" << s.link.peer_port
         << "\",\"session_id\":" << s.link.session_id << ",\"sample_age_ms\":" << s.client_age_ms()
         << ",\"control_accepted\":" << s.link.control_accepted
-        << ",\"stale\":" << s.has_state_bit(shm::state_bits::kClientStale);
+        << ",\"stale\":" << s.has_state_bit(shm::state_bits::kClientStale)
+        << ",\"loop_delay_ms\":" << static_cast<double>(s.vp.loop_delay_ns) / 1e6
+        << ",\"link_delay_ms\":" << static_cast<double>(s.vp.link_delay_ns) / 1e6
+        << ",\"link_jitter_ms\":" << static_cast<double>(s.vp.link_jitter_ns) / 1e6
+        << ",\"link_loss\":" << static_cast<double>(s.vp.link_loss_ppm) / 1e6
+        << ",\"channel_energy_in\":" << s.vp.channel_energy_in
+        << ",\"channel_energy_out\":" << s.vp.channel_energy_out << ",";
+    json_array(out, "gains", s.vp.gains);
   }
   std::uint64_t dropped = 0;
   for (const auto d : s.link.dropped) {

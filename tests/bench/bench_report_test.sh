@@ -14,7 +14,8 @@ import json, os, sys
 out = sys.argv[1]
 report = open(os.path.join(out, "report.md"), encoding="utf-8").read()
 for heading in ("## The seeds' requirements", "## 1. Wake-up latency", "## 2. SERVO start delay",
-                "## 3. End to end at 1 kHz", "## 4. Micro-benchmarks"):
+                "## 3. End to end at 1 kHz", "## 4. Micro-benchmarks",
+                "## Coupling over an impaired link (H1)"):
     assert heading in report, f"report.md lacks '{heading}'"
 for period in (1000, 250, 100):
     assert report.count(f"| {period} us | ") >= 4, f"report.md lacks the {period} us rows"
@@ -38,6 +39,13 @@ assert r["servo_start_floor"].get("samples", 0) > 0
 for name in ("BM_SeqlockRead", "BM_EncodeAnswer", "BM_DecodeAnswer", "BM_FullCycle1ms"):
     assert r["micro_ns"].get(name, 0) > 0, f"micro-benchmark {name} missing"
 assert len(r["requirements"]) == 4 and all(isinstance(q["met"], bool) for q in r["requirements"])
+cases = json.load(open(os.path.join(out, "coupling.json"), encoding="utf-8"))
+assert len(cases) == 2, f"the smoke run has two coupling cases, not {len(cases)}"
+for c in cases:
+    # A case the VM failed safe in every attempt is reported as not judged, not invented.
+    if c["judged"]:
+        assert c["loop_delay_ms"] > 0 and c["k_derived"] > 0, c
+        assert c["speed_after_settling"] is not None and c["port_energy_j"] is not None, c
 assert len(r["plots"]) == 4
 for png in r["plots"]:
     with open(os.path.join(out, png), "rb") as f:

@@ -190,36 +190,35 @@ int coupling_toggles(const std::vector<CycleRecord>& r, std::size_t from) {
   return n;
 }
 
-/// Waits until the demo coupled and the weighted sphere and the handle came to rest (3 s).
-bool couple_and_settle(Scenario& s) {
+/// Waits for the coupling, notes its cycle in `coupled_at`, and records for `duration`. Nothing:
+/// go on and judge; true: done (a failure was recorded); false: a VM stall, try again.
+std::optional<bool> couple_and_record(Scenario& s, std::chrono::seconds duration,
+                                      std::uint64_t& coupled_at) {
+  if (!s.started()) {
+    ADD_FAILURE() << "the stack did not start: " << s.diagnostics();
+    return true;
+  }
   if (!ControllerStack::eventually([&] { return s.coupled(); }, 10s)) {
-    if (!s.core_failed_safe()) {
-      ADD_FAILURE() << "never coupled: " << s.diagnostics();
+    if (s.core_failed_safe()) {
+      return false;
     }
+    ADD_FAILURE() << "never coupled: " << s.diagnostics();
+    return true;
+  }
+  coupled_at = s.recorder->newest_cycle();
+  std::this_thread::sleep_for(duration);
+  if (s.core_failed_safe()) {
     return false;
   }
-  std::this_thread::sleep_for(3s);
-  return !s.core_failed_safe();
+  return std::nullopt;
 }
 
 TEST(CouplingOverNetwork, AWeightedSphereComesToRestAndStaysThereWithoutChatter) {
   with_retries("rest", [](int attempt) {
     Scenario s("h1-rest-" + std::to_string(attempt), {});
-    if (!s.started()) {
-      ADD_FAILURE() << "the stack did not start: " << s.diagnostics();
-      return true;
-    }
-    if (!ControllerStack::eventually([&] { return s.coupled(); }, 10s)) {
-      if (s.core_failed_safe()) {
-        return false;
-      }
-      ADD_FAILURE() << "never coupled: " << s.diagnostics();
-      return true;
-    }
-    const std::uint64_t coupled_at = s.recorder->newest_cycle();
-    std::this_thread::sleep_for(10s);
-    if (s.core_failed_safe()) {
-      return false;
+    std::uint64_t coupled_at = 0;
+    if (const auto done = couple_and_record(s, 10s, coupled_at)) {
+      return *done;
     }
     const auto r = s.recorder->records();
     const std::size_t settled = index_of(r, coupled_at + 3 * kCyclesPerSecond);
@@ -251,21 +250,9 @@ TEST_P(CouplingOverImpairedLink, StaysStillWithoutSaturationOrSpeed) {
   const LinkCase& c = GetParam();
   with_retries(c.name, [&](int attempt) {
     Scenario s("h1-link-" + std::to_string(attempt), c.impairment);
-    if (!s.started()) {
-      ADD_FAILURE() << "the stack did not start: " << s.diagnostics();
-      return true;
-    }
-    if (!ControllerStack::eventually([&] { return s.coupled(); }, 10s)) {
-      if (s.core_failed_safe()) {
-        return false;
-      }
-      ADD_FAILURE() << "never coupled: " << s.diagnostics();
-      return true;
-    }
-    const std::uint64_t coupled_at = s.recorder->newest_cycle();
-    std::this_thread::sleep_for(8s);
-    if (s.core_failed_safe()) {
-      return false;
+    std::uint64_t coupled_at = 0;
+    if (const auto done = couple_and_record(s, 8s, coupled_at)) {
+      return *done;
     }
     const auto r = s.recorder->records();
     const std::size_t from = index_of(r, coupled_at);
@@ -376,12 +363,9 @@ TEST_P(Blackout, FadesTheForceAndTheSameSessionRecouplesAfterIt) {
   with_retries("blackout " + std::to_string(blackout_ms), [&](int attempt) {
     Scenario s("h1-bo" + std::to_string(blackout_ms) + "-" + std::to_string(attempt),
                {"--delay-ms", "1"});
-    if (!s.started()) {
-      ADD_FAILURE() << "the stack did not start: " << s.diagnostics();
-      return true;
-    }
-    if (!couple_and_settle(s)) {
-      return false;
+    std::uint64_t coupled_at = 0;  // then 3 s for the sphere and the handle to come to rest
+    if (const auto done = couple_and_record(s, 3s, coupled_at)) {
+      return *done;
     }
     const std::uint64_t cut = s.recorder->newest_cycle();
     s.relay.toggle_blackout();
@@ -404,12 +388,9 @@ INSTANTIATE_TEST_SUITE_P(H1, Blackout, ::testing::Values(100, 300, 2000));
 TEST(LinkLoss, AKilledClientsForceFadesWithin50msWithoutAStep) {
   with_retries("client killed", [](int attempt) {
     Scenario s("h1-kill-" + std::to_string(attempt), {});
-    if (!s.started()) {
-      ADD_FAILURE() << "the stack did not start: " << s.diagnostics();
-      return true;
-    }
-    if (!couple_and_settle(s)) {
-      return false;
+    std::uint64_t coupled_at = 0;  // then 3 s for the sphere and the handle to come to rest
+    if (const auto done = couple_and_record(s, 3s, coupled_at)) {
+      return *done;
     }
     const std::uint64_t cut = s.recorder->newest_cycle();
     s.demo->signal(SIGKILL);
@@ -434,12 +415,9 @@ TEST_P(FrozenBridge, FadesTheForceAndRecouplesWhenItThaws) {
   const int frozen_ms = GetParam();
   with_retries("bridge frozen " + std::to_string(frozen_ms), [&](int attempt) {
     Scenario s("h1-stop" + std::to_string(frozen_ms) + "-" + std::to_string(attempt), {});
-    if (!s.started()) {
-      ADD_FAILURE() << "the stack did not start: " << s.diagnostics();
-      return true;
-    }
-    if (!couple_and_settle(s)) {
-      return false;
+    std::uint64_t coupled_at = 0;  // then 3 s for the sphere and the handle to come to rest
+    if (const auto done = couple_and_record(s, 3s, coupled_at)) {
+      return *done;
     }
     const std::uint64_t cut = s.recorder->newest_cycle();
     s.stack.bridge().signal(SIGSTOP);

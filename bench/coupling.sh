@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The coupling benchmark (H1): the demo's weighted sphere coupled to the arm through
+# The coupling benchmark (H1): the demo's sphere (0.5 kg, a free body) coupled to the arm through
 # hapticctrl-netem, for each one-way delay and loss rate, with a scripted operator (force steps
 # of 3 N along y, played by hapticctrl-hmi) and a 0.3 s blackout. Per case: the core's per-cycle
 # log (hmi play) and the demo's per-step log, the measured link and loop (hmi status), a retry
@@ -18,9 +18,9 @@ if [[ $SMOKE == --smoke ]]; then
   DELAYS=(1 10)
   LOSSES=(0.1)
 fi
-ATTEMPTS=3
+ATTEMPTS=5
 
-# The operator: nothing for 1.5 s (settle under the weight), +3 N along y for 2 s, release,
+# The operator: nothing for 1.5 s, +3 N along y for 2 s, release,
 # -3 N for 2 s, release; the sequence ends at 11 s. The relay blacks out at 10.5 s for 0.3 s
 # (counted from its own start, about 1 s before the sequence).
 SEQ=$RAW/steps.seq
@@ -76,7 +76,7 @@ case_run() {  # name delay_ms loss jitter_ms
     PIDS+=($!)
     relay=$(port_of "$dir/netem.out")
     "$BUILD/client/demo/hapticctrl-demo" --server "127.0.0.1:$relay" --headless --no-lcm \
-      --json --gravity --no-reconnect --log "$dir/demo.csv" >"$dir/demo.json" 2>"$dir/demo.err" &
+      --json --no-reconnect --log "$dir/demo.csv" >"$dir/demo.json" 2>"$dir/demo.err" &
     PIDS+=($!)
     for _ in $(seq 1 200); do
       grep -q "ready:" "$dir/demo.err" 2>/dev/null && break

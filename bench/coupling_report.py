@@ -2,15 +2,15 @@
 """The coupling benchmark's report (H1): reads OUT_DIR/raw/coupling/*/ (bench/coupling.sh) and
 writes OUT_DIR/coupling.md, coupling.json and coupling.png (gnuplot).
 
-Per case (one-way delay, loss, jitter through hapticctrl-netem; the demo's weighted sphere; an
+Per case (one-way delay, loss, jitter through hapticctrl-netem; the demo's sphere, a free body; an
 operator's 3 N force steps along y; a 0.3 s blackout):
 - speed after settling: the handle's displacement over 50 ms windows, 1 s after each release,
-- energy the coupling port put out: the time integral of the wrench the coupling rendered on the
-  handle times the handle's velocity (positive: the port gave the hand energy),
-- rendered stiffness: the coupling force along y over the sphere-handle offset along y, in the
-  last 0.5 s of each push (median), beside the derived k and the sampled-data bound
+- energy the coupling port put out: the time integral, from 1 s on, of the wrench the coupling
+  rendered on the handle times the handle's velocity (positive: the port gave the hand energy),
+- the stiffness the core derived for the measured loop, beside the sampled-data bound
   K_max = 2 (b + B) / (T (1 + 2 d)) for T = 1 ms, b + B the coupling's damping, d the measured
-  loop in cycles (../shared/HAPTICS_REFERENCE.md),
+  loop in cycles (../shared/HAPTICS_REFERENCE.md); the stiffness actually rendered against an
+  obstacle is not measured yet,
 - time to fade after the link is lost: from the last fresh sample (5 ms before the core flags
   the link stale) to the first cycle without coupling force, and the largest force step then.
 Only figures measured in this run; a case whose core failed safe on every attempt says so.
@@ -62,33 +62,22 @@ def port_energy(rows):
     return energy
 
 
-def cycle_at(rows, t):
-    return next((int(r["cycle"]) for r in rows if float(r["t_s"]) >= t), None)
-
-
-def rendered_stiffness(demo, windows):
-    """windows: (first, last) controller cycles; the demo's rows carry the cycle they answer."""
-    ratios = []
-    for c0, c1 in windows:
-        if c0 is None or c1 is None:
-            continue
-        for r in demo:
-            if c0 <= int(r["cycle"]) < c1:
-                offset = float(r["y"]) - float(r["handle_y"])
-                if abs(offset) > 1e-4:
-                    ratios.append(abs(float(r["cpl_fy"]) / offset))
-    if not ratios:
-        return None
-    ratios.sort()
-    return ratios[len(ratios) // 2]
-
-
 def fade(rows, after_t):
-    stale = [i for i, r in enumerate(rows)
-             if float(r["t_s"]) >= after_t and int(r["state_word"]) & (1 << 5)]
-    if not stale:
+    """From the last fresh sample before the longest stale run after `after_t` (the blackout;
+    a lost frame or two can flag a cycle stale too) to the first cycle without coupling force."""
+    runs, start = [], None
+    for i, r in enumerate(rows):
+        stale = float(r["t_s"]) >= after_t and int(r["state_word"]) & (1 << 5)
+        if stale and start is None:
+            start = i
+        if not stale and start is not None:
+            runs.append((i - start, start))
+            start = None
+    if start is not None:
+        runs.append((len(rows) - start, start))
+    if not runs:
         return None, None
-    first = stale[0]
+    first = max(runs)[1]
     last_fresh = int(rows[first]["cycle"]) - 5
     start = next((i for i, r in enumerate(rows) if int(r["cycle"]) >= last_fresh), first)
     for i in range(start, len(rows)):
@@ -107,7 +96,6 @@ def fade(rows, after_t):
 def analyse(case_dir):
     case = json.load(open(os.path.join(case_dir, "case.json")))
     rows = read_csv(os.path.join(case_dir, "cycles.csv"))
-    demo = read_csv(os.path.join(case_dir, "demo.csv"))
     try:
         status = json.load(open(os.path.join(case_dir, "status.json")))
         client = status.get("client", {})
@@ -122,8 +110,6 @@ def analyse(case_dir):
     loop_ms = client.get("loop_delay_ms", 0.0)
     d = loop_ms * 1e-3 / PERIOD_S
     b = gains[1]
-    # The last 0.5 s of each push, as controller cycles (the demo's clock started earlier).
-    pushes = [(cycle_at(rows, 3.0), cycle_at(rows, 3.5)), (cycle_at(rows, 7.0), cycle_at(rows, 7.5))]
     out.update({
         "loop_delay_ms": loop_ms,
         "link_delay_ms": client.get("link_delay_ms"),
@@ -131,9 +117,8 @@ def analyse(case_dir):
         "k_derived": gains[0],
         "b_derived": b,
         "k_max_bound": 2 * b / (PERIOD_S * (1 + 2 * d)) if b > 0 else None,
-        "k_rendered": rendered_stiffness(demo, pushes),
         "speed_after_settling": max(windowed_speed(rows, 4.5, 5.5), windowed_speed(rows, 8.5, 9.4)),
-        "port_energy_j": port_energy(rows),
+        "port_energy_j": port_energy([r for r in rows if float(r["t_s"]) >= 1.0]),
         "channel_energy_out_j": client.get("channel_energy_out"),
     })
     out["fade_ms"], out["fade_largest_step_n"] = fade(rows, 9.0)
@@ -152,24 +137,24 @@ def main(out):
     lines = [
         "## Coupling over an impaired link (H1)",
         "",
-        "The demo's 0.5 kg weighted sphere through hapticctrl-netem, 1 ms core, an operator's 3 N",
+        "The demo's 0.5 kg sphere (a free body) through hapticctrl-netem, 1 ms core, an operator's 3 N",
         "steps along y (hapticctrl-hmi play), a 0.3 s blackout. K_max = 2(b+B)/(T(1+2d)) with",
         "T = 1 ms, b+B the coupling's damping, d the measured loop in cycles.",
         "",
-        "| one way | loss | jitter | loop | k derived | K_max | k rendered | speed after settling "
+        "| one way | loss | jitter | loop | k derived | K_max | speed after settling "
         "| port energy out | fade after loss | largest step while fading | VM-stall retries |",
-        "|---|---|---|---|---|---|---|---|---|---|---|---|",
+        "|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     for c in cases:
         if not c["judged"]:
             lines.append(f"| {c['delay_ms']} ms | {c['loss']:.0%} | ±{c['jitter_ms']} ms | "
                          f"the core failed safe on VM stalls in every attempt: not judged |"
-                         + " |" * 8 + f" {c['attempts_lost']} |")
+                         + " |" * 7 + f" {c['attempts_lost']} |")
             continue
         lines.append(
             f"| {c['delay_ms']} ms | {c['loss']:.0%} | ±{c['jitter_ms']} ms | "
             f"{fmt(c['loop_delay_ms'], '.1f')} ms | {fmt(c['k_derived'], '.0f')} N/m | "
-            f"{fmt(c['k_max_bound'], '.0f')} N/m | {fmt(c['k_rendered'], '.0f')} N/m | "
+            f"{fmt(c['k_max_bound'], '.0f')} N/m | "
             f"{fmt(c['speed_after_settling'] * 1e3, '.1f')} mm/s | "
             f"{fmt(c['port_energy_j'] * 1e3, '.1f')} mJ | {fmt(c['fade_ms'], '.0f')} ms | "
             f"{fmt(c['fade_largest_step_n'], '.2f')} N | {c['attempts_lost']} |")
@@ -186,8 +171,7 @@ def plot(out, cases):
     data = os.path.join(out, "raw", "coupling", "stiffness.dat")
     with open(data, "w") as f:
         for c in judged:
-            f.write(f"{max(c['loop_delay_ms'], 0.1)} {c['k_derived']} {c['k_max_bound'] or 0} "
-                    f"{c['k_rendered'] or 0}\n")
+            f.write(f"{max(c['loop_delay_ms'], 0.1)} {c['k_derived']} {c['k_max_bound'] or 0}\n")
     script = "\n".join([
         "set terminal png size 900,500",
         f"set output '{os.path.join(out, 'coupling.png')}'",
@@ -195,8 +179,7 @@ def plot(out, cases):
         "set xlabel 'coupling loop delay (ms)'", "set ylabel 'stiffness (N/m)'",
         "set logscale xy", "set grid", "set key top right",
         f"plot '{data}' using 1:3 with linespoints title 'K_max = 2(b+B)/(T(1+2d))', "
-        f"'{data}' using 1:2 with points pt 7 title 'k derived', "
-        f"'{data}' using 1:4 with points pt 5 title 'k rendered'",
+        f"'{data}' using 1:2 with points pt 7 title 'k derived'",
     ])
     subprocess.run(["gnuplot"], input=script, text=True, check=False)
 

@@ -173,7 +173,7 @@ def plot(out, cases):
         for c in judged:
             f.write(f"{max(c['loop_delay_ms'], 0.1)} {c['k_derived']} {c['k_max_bound'] or 0}\n")
     script = "\n".join([
-        "set terminal png size 900,500",
+        "set terminal png size 900,500 noenhanced",
         f"set output '{os.path.join(out, 'coupling.png')}'",
         "set title 'Coupling stiffness against the measured loop delay'",
         "set xlabel 'coupling loop delay (ms)'", "set ylabel 'stiffness (N/m)'",

@@ -6,9 +6,11 @@
 ///
 /// Per cycle: forward kinematics, Jacobian and handle twist; gravity compensation (always when
 /// powered); the client's command (NONE, IMPEDANCE wrench, or VIRTMECH spring-damper coupling to
-/// the virtual object, with stale-data extrapolation and fade); passivity guard on the coupling
-/// port; saturation and rate limit of the handle wrench; speed safety; soft joint-limit walls;
-/// joint torque saturation. The degraded SERVO runs the same code with `degraded = true`:
+/// the virtual object, with gains from the measured coupling loop, extrapolation over the
+/// sample's true age and a fade on silence); saturation that keeps the damper; the channel's
+/// two-port passivity controller; engagement ramp, viscous hold and speed brake; rate limit;
+/// passivity guard on the handle port; workspace and soft joint-limit walls; joint torque
+/// saturation. The degraded SERVO runs the same code with `degraded = true`:
 /// coupling off, gravity compensation and joint damping only.
 
 #include <cstdint>

@@ -231,6 +231,14 @@ TEST(CouplingOverNetwork, AWeightedSphereComesToRestAndStaysThereWithoutChatter)
       largest = std::max(largest, r[i].force);
     }
     EXPECT_LT(largest, 34.0) << "never at the saturation: nobody pushes";
+    // Transparency: at rest the handle carries the sphere's weight, 0.5 kg x 9.81 m/s^2.
+    double weight = 0.0;
+    const std::size_t last_two = index_of(r, r.back().cycle - 2 * kCyclesPerSecond);
+    for (std::size_t i = last_two; i < r.size(); ++i) {
+      weight += r[i].force / static_cast<double>(r.size() - last_two);
+    }
+    std::printf("rest: the handle carries %.3f N (m g = %.3f N)\n", weight, 0.5 * 9.81);
+    EXPECT_NEAR(weight, 0.5 * 9.81, 0.02 * 0.5 * 9.81) << "the weight within 2 %";
     return true;
   });
 }

@@ -14,10 +14,12 @@ constexpr double kLossGain = 1.0 / 256.0;
 }  // namespace
 
 void AnswerLog::record(std::uint64_t cycle, TimeNs sent) noexcept {
+  // Without fences (ThreadSanitizer does not model them): the entry's cycle is cleared before
+  // the time changes and set after it, all release; a reader that saw the new time sees the
+  // cleared or the new cycle on its second look, never the old one.
   Entry& e = entries_[cycle % kSize];
-  e.cycle.store(0, std::memory_order_relaxed);  // readers never pair the old cycle and new time
-  std::atomic_thread_fence(std::memory_order_release);
-  e.sent.store(sent, std::memory_order_relaxed);
+  e.cycle.store(0, std::memory_order_release);
+  e.sent.store(sent, std::memory_order_release);
   e.cycle.store(cycle, std::memory_order_release);
   newest_.store(cycle, std::memory_order_release);
 }
@@ -30,9 +32,8 @@ bool AnswerLog::sent_time(std::uint64_t cycle, TimeNs& sent) const noexcept {
   if (e.cycle.load(std::memory_order_acquire) != cycle) {
     return false;
   }
-  const TimeNs t = e.sent.load(std::memory_order_relaxed);
-  std::atomic_thread_fence(std::memory_order_acquire);
-  if (e.cycle.load(std::memory_order_relaxed) != cycle) {
+  const TimeNs t = e.sent.load(std::memory_order_acquire);
+  if (e.cycle.load(std::memory_order_acquire) != cycle) {
     return false;  // overwritten while read
   }
   sent = t;

@@ -8,7 +8,7 @@
 //
 // A 1 ms core on this 2-vCPU VM can fail safe on a whole-VM stall (5 consecutive misses, seen
 // within seconds: ../shared/PITFALLS.md). Such an attempt says nothing about the coupling: it
-// is retried (up to 4 attempts) and counted in the test's output.
+// is retried (up to 3 attempts) and counted in the test's output.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -37,7 +37,7 @@ constexpr std::int64_t kCyclesPerSecond = 1'000'000 / kPeriodUs;
 /// Force steps allowed while the link is lost, N per cycle: 1 N/ms (H1), and at least the
 /// 1 N of one cycle for cycles longer than 1 ms.
 constexpr double kReleaseStep = 1.0 * kPeriodUs / 1000.0 < 1.0 ? 1.0 : 1.0 * kPeriodUs / 1000.0;
-constexpr int kAttempts = 4;
+constexpr int kAttempts = 3;
 
 /// hapticctrl-netem in front of a bridge.
 class Relay {

@@ -43,6 +43,9 @@ TEST(Messages, CouplingCarriesLinkQuality) {
   vp.link_jitter_ns = 250'000;
   vp.link_loss_ppm = 100'000;
   vp.gains = {868.0, 20.0, 0.3, 0.01};
+  vp.channel_energy_in = 0.25;
+  vp.channel_energy_out = 1.5;
+  vpr.client_energy_in = 1.75;
   const auto m = to_coupling(vp, vpr, t, 3'500'000, 0);
   EXPECT_DOUBLE_EQ(m.sample_age_ms, 7.5);
   EXPECT_DOUBLE_EQ(m.loop_delay_ms, 12.0);
@@ -50,6 +53,9 @@ TEST(Messages, CouplingCarriesLinkQuality) {
   EXPECT_DOUBLE_EQ(m.link_jitter_ms, 0.25);
   EXPECT_DOUBLE_EQ(m.link_loss, 0.1);
   EXPECT_EQ(m.gains[0], 868.0);
+  EXPECT_EQ(m.channel_energy_in, 0.25);
+  EXPECT_EQ(m.channel_energy_out, 1.5);
+  EXPECT_EQ(m.client_energy_in, 1.75);
   EXPECT_EQ(m.session_id, 3);
   EXPECT_TRUE(m.object_attached);
   EXPECT_TRUE(m.client_stale);

@@ -69,6 +69,9 @@ hapticctrl_lcm::coupling_t to_coupling(const shm::VpPayload& vp, const shm::VprP
   m.link_jitter_ms = static_cast<double>(vp.link_jitter_ns) / 1e6;
   m.link_loss = static_cast<double>(vp.link_loss_ppm) / 1e6;
   copy(vp.gains, m.gains);
+  m.channel_energy_in = vp.channel_energy_in;
+  m.channel_energy_out = vp.channel_energy_out;
+  m.client_energy_in = vpr.client_energy_in;
   return m;
 }
 

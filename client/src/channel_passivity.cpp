@@ -89,12 +89,4 @@ std::uint32_t ChannelPassivity::energy_in_uj() const noexcept {
   return static_cast<std::uint32_t>(uj);
 }
 
-void ChannelPassivity::reset() noexcept {
-  const double mass = mass_;
-  const double inertia = inertia_;
-  *this = ChannelPassivity{};
-  mass_ = mass;
-  inertia_ = inertia;
-}
-
 }  // namespace hapticctrl::client

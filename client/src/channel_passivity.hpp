@@ -30,7 +30,6 @@ class ChannelPassivity {
   [[nodiscard]] double energy_in() const noexcept { return energy_in_; }
   [[nodiscard]] double energy_out() const noexcept { return energy_out_; }
   [[nodiscard]] std::uint64_t active_steps() const noexcept { return active_steps_; }
-  void reset() noexcept;
 
  private:
   double mass_ = 0.5;

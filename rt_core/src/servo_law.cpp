@@ -60,6 +60,15 @@ double bounded(double value, double upper) noexcept {
   return std::clamp(value, 0.0, upper);
 }
 
+/// The client object's twist in our base frame (linear de-scaled by the speed factor).
+Vector6d object_twist_in_base(const shm::VprPayload& c, const ClientFrame& frame) noexcept {
+  const Vector6d env = to_vector(c.object_twist);
+  Vector6d base;
+  base << frame.rotation.conjugate() * env.head<3>() / frame.speed_factor,
+      frame.rotation.conjugate() * env.tail<3>();
+  return base;
+}
+
 }  // namespace
 
 ClientFrame client_frame_of(const shm::VprPayload& c) noexcept {
@@ -157,9 +166,9 @@ ServoLaw::Coupling ServoLaw::client_wrench(const ServoInputs& in, const ClientFr
   const Vector3d object_p_env(c.object_pose[0], c.object_pose[1], c.object_pose[2]);
   Vector3d object_p = base_r.transpose() * (object_p_env - frame.origin) / speed_factor;
   Matrix3d object_r = base_r.transpose() * object_q_env.normalized().toRotationMatrix();
-  const Vector6d twist_env = to_vector(c.object_twist);
-  const Vector3d object_v = base_r.transpose() * twist_env.head<3>() / speed_factor;
-  const Vector3d object_w = base_r.transpose() * twist_env.tail<3>();
+  const Vector6d object_twist = object_twist_in_base(c, frame);
+  const Vector3d object_v = object_twist.head<3>();
+  const Vector3d object_w = object_twist.tail<3>();
   // Best estimate of where the object is now: extrapolate over the sample's true age (bounded).
   const double horizon =
       static_cast<double>(std::clamp<TimeNs>(in.client_age, 0, config_.extrapolate_max)) * 1e-9;
@@ -195,7 +204,6 @@ void ServoLaw::follow_session(const ServoInputs& in) noexcept {
     m.channel_in = 0.0;  // ... and so does its channel's energy account
     m.channel_out = 0.0;
     m.drift.setZero();
-    m.drift_rate.setZero();
   }
 }
 
@@ -204,27 +212,20 @@ void ServoLaw::guard_channel(const ServoInputs& in, const ClientFrame& frame,
   // Two-port time-domain passivity (Ryu, Artigas, Preusche): the channel between the coupling
   // and the client's object must not give either end more energy than the other end put in.
   // Here the core's end: the coupling pushes the object image with `object_force` while the
-  // image moves with the client's twist (plus this PC's drift); the energy that came out of the
+  // image moves with the client's twist; the energy that came out of the
   // channel may not exceed what the client reports having put in (VPr.client_energy_in, which
   // arrives a link delay late). When it would, a series passivity controller lets the image
   // give way along the force (it "drifts" towards the handle), dissipating exactly the excess;
   // the drift is given back slowly while the budget allows. Energies in the client's units
   // (speed and force factors), as the client counts them.
   RenderMemory& m = memory_;
-  m.drift_rate.setZero();
   if (!(in.client.client_energy_in >= 0.0) || !out.coupled) {
     return;  // a 1.0 client reports no energy: the one-port guard at the handle remains
   }
   // The channel's own flow (the client's twist, in the base frame) and the power in the
   // client's units (force / force factor, speed * speed factor). The PC's drift is not part of
   // the channel: what it takes or gives back is booked separately below (Ryu's observer).
-  Vector6d image_twist;
-  image_twist << frame.rotation.conjugate() *
-                     Vector3d(in.client.object_twist[0], in.client.object_twist[1],
-                              in.client.object_twist[2]) /
-                     frame.speed_factor,
-      frame.rotation.conjugate() *
-          Vector3d(in.client.object_twist[3], in.client.object_twist[4], in.client.object_twist[5]);
+  const Vector6d image_twist = object_twist_in_base(in.client, frame);
   Vector6d weight;
   weight << Vector3d::Constant(frame.speed_factor / frame.force_factor),
       Vector3d::Constant(1.0 / frame.force_factor);
@@ -257,7 +258,6 @@ void ServoLaw::guard_channel(const ServoInputs& in, const ClientFrame& frame,
   rate = (drift - m.drift) / dt;
   m.channel_out -= force.dot(rate) * dt;  // dissipated by the PC (> 0), or given back (< 0)
   m.drift = drift;
-  m.drift_rate = rate;
 }
 
 void ServoLaw::track_loop_delay(const ServoInputs& in) noexcept {
@@ -442,17 +442,15 @@ void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) 
   out.braking = false;
   out.velocity_fault = false;
   out.gains = CouplingGains{};
+  track_loop_delay(in);
+  out.loop_delay = memory_.loop_delay;
   if (!out.commands.enable || dt <= 0.0) {
     out.commands.torque.setZero();
     memory_.wrench.setZero();  // power-on starts from zero force, never with a step ...
     memory_.engage = 0.0;      // ... and re-engages the coupling through the ramp
-    track_loop_delay(in);
-    out.loop_delay = memory_.loop_delay;
     return;
   }
 
-  track_loop_delay(in);
-  out.loop_delay = memory_.loop_delay;
   const Coupling coupling = degraded ? Coupling{} : client_wrench(in, frame, chain_, twist, out);
   // A degraded cycle renders no coupling but leaves the engagement as it was: one miss must not
   // send the coupling back through the whole ramp.

@@ -123,12 +123,11 @@ struct RenderMemory {
   double engage = 0.0;                      ///< see ServoOutputs::engage
   TimeNs overspeed = 0;                     ///< how long the handle has been over the limit
   bool braking = false;
-  std::uint64_t session_id = 0;            ///< the session the coupling is engaged with
-  TimeNs loop_delay = 0;                   ///< envelope of the measured loop delay
-  double channel_in = 0.0;                 ///< J the coupling put into the channel
-  double channel_out = 0.0;                ///< J the channel gave the coupling
-  Vector6d drift = Vector6d::Zero();       ///< the channel PC's shift of the object image
-  Vector6d drift_rate = Vector6d::Zero();  ///< its rate last cycle (part of the image's motion)
+  std::uint64_t session_id = 0;       ///< the session the coupling is engaged with
+  TimeNs loop_delay = 0;              ///< envelope of the measured loop delay
+  double channel_in = 0.0;            ///< J the coupling put into the channel
+  double channel_out = 0.0;           ///< J the channel gave the coupling
+  Vector6d drift = Vector6d::Zero();  ///< the channel PC's shift of the object image
   static constexpr std::size_t kLoopSamples = 15;
   std::array<TimeNs, kLoopSamples> loop_samples{};  ///< the newest measured loops (median)
   std::uint64_t loop_next = 0;

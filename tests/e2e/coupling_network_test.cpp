@@ -270,17 +270,6 @@ TEST_P(CouplingOverImpairedLink, StaysStillWithoutSaturationOrSpeed) {
       largest = std::max(largest, r[i].force);
     }
     const shm::VpPayload vp = s.stack.vp();
-    const shm::TelemetryPayload tm = s.stack.telemetry();
-    std::printf("%s: %.2f s recorded, ", c.name,
-                static_cast<double>(r.back().seen_ns - r.front().seen_ns) / 1e9);
-    std::printf(
-        "%s: %zu records, cycles %llu..%llu, core: %llu cycles, %llu skipped slots, "
-        "%llu misses, %llu degraded\n",
-        c.name, r.size(), static_cast<unsigned long long>(r.front().cycle),
-        static_cast<unsigned long long>(r.back().cycle), static_cast<unsigned long long>(tm.cycle),
-        static_cast<unsigned long long>(tm.skipped_slots),
-        static_cast<unsigned long long>(tm.misses_total),
-        static_cast<unsigned long long>(tm.degraded_cycles));
     std::printf(
         "%s: loop %.1f ms, link one-way %.1f ms, jitter %.2f ms, loss %.1f %%, k %.0f N/m,"
         " peak force %.1f N, peak speed %.3f m/s, last 2 s %.4f m/s (50 ms windows),"

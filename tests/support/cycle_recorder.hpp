@@ -13,14 +13,12 @@
 #include <thread>
 #include <vector>
 
-#include "hapticctrl/shm/monotonic_clock.hpp"
 #include "hapticctrl/shm/segment.hpp"
 
 namespace hapticctrl::test {
 
 struct CycleRecord {
   std::uint64_t cycle = 0;
-  std::int64_t seen_ns = 0;  ///< CLOCK_MONOTONIC when the recorder read it
   std::uint32_t state_word = 0;
   std::uint32_t core_state = 0;
   double speed = 0.0;  ///< handle linear speed, m/s
@@ -80,7 +78,6 @@ class CycleRecorder {
   void add(const shm::PositionPayload& p) {
     CycleRecord r;
     r.cycle = p.cycle;
-    r.seen_ns = shm::monotonic_now_ns();
     r.state_word = p.state_word;
     r.core_state = p.core_state;
     r.speed = std::hypot(p.handle_twist[0], p.handle_twist[1], p.handle_twist[2]);

@@ -75,11 +75,11 @@ void LinkEstimator::add(const SampleTiming& sample) noexcept {
 }
 
 void LinkEstimator::add_arrival(std::uint32_t lost) noexcept {
-  // Each missing sequence number is one lost frame, this arrival one delivered frame.
-  for (std::uint32_t i = 0; i < std::min<std::uint32_t>(lost, 1000); ++i) {
-    loss_ += (1.0 - loss_) * kLossGain;
-  }
-  loss_ += (0.0 - loss_) * kLossGain;
+  // Each missing sequence number is one lost frame (n steps of the average towards 1 leave
+  // (1 - gain)^n of the distance), this arrival one delivered frame.
+  const double lost_steps = static_cast<double>(std::min<std::uint32_t>(lost, 1000));
+  loss_ = 1.0 - (1.0 - loss_) * std::pow(1.0 - kLossGain, lost_steps);
+  loss_ -= loss_ * kLossGain;
 }
 
 }  // namespace hapticctrl::udp_bridge

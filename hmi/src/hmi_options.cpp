@@ -1,5 +1,7 @@
 #include "hapticctrl/hmi/hmi_options.hpp"
 
+#include <algorithm>
+#include <cstdint>
 #include <map>
 #include <stdexcept>
 
@@ -41,11 +43,14 @@ const char* HmiOptions::usage() noexcept {
          "  estop | reset           latch / reset the emergency stop\n"
          "  stop                    stop the controller (fail-safe order) and wait for it\n"
          "  force FX FY FZ TX TY TZ operator wrench on the handle [N, N.m], base frame, ramped\n"
-         "  zero-force              release the handle\n"
-         "  play FILE [--log CSV|-] [--power-on]\n"
+         "  zero-force              release the handle (and let go of a simulated hand)\n"
+         "  play FILE [--log CSV|-] [--power-on] [--hand K,B] [--wander M] [--seed N]\n"
          "                          play a force sequence (t fx fy fz tx ty tz per line) and log\n"
          "                          the arm's response per cycle (default "
-         "hapticctrl-sequence.csv)\n"
+         "hapticctrl-sequence.csv);\n"
+         "                          --hand: a spring-damper hand (K N/m, B N.s/m) grips the\n"
+         "                          handle meanwhile, its anchor wandering at random up to M m\n"
+         "                          per axis (0.2-2 Hz, seeded)\n"
          "Exit status: 0 done, 1 error or no effect within the timeout, 64 usage.\n";
 }
 
@@ -77,6 +82,23 @@ HmiOptions HmiOptions::parse(const std::vector<std::string>& args) {
       o.log_path = value();
     } else if (a == "--power-on") {
       o.power_on = true;
+    } else if (a == "--hand") {
+      const std::string text = value();
+      const auto comma = text.find(',');
+      if (comma == std::string::npos) {
+        throw std::invalid_argument("--hand needs K,B (stiffness N/m, damping N.s/m)");
+      }
+      o.hand.stiffness = number_of(text.substr(0, comma), "--hand stiffness");
+      o.hand.damping = number_of(text.substr(comma + 1), "--hand damping");
+      o.with_hand = true;
+    } else if (a == "--wander") {
+      o.hand.wander = number_of(value(), "--wander");
+    } else if (a == "--seed") {
+      const double seed = number_of(value(), "--seed");
+      if (seed < 0 || seed > 1e15 || seed != static_cast<double>(static_cast<std::int64_t>(seed))) {
+        throw std::invalid_argument("--seed must be a whole number within 0..1e15");
+      }
+      o.hand.seed = static_cast<std::uint64_t>(seed);
     } else if (!a.empty() && a[0] == '-' && !(have_command && o.command == HmiCommand::kForce)) {
       throw std::invalid_argument("unknown option '" + a + "'");
     } else if (!have_command) {
@@ -105,8 +127,21 @@ HmiOptions HmiOptions::parse(const std::vector<std::string>& args) {
     if (o.log_path.empty()) {
       o.log_path = "hapticctrl-sequence.csv";
     }
+    if (o.with_hand) {
+      HandMotion(o.hand, {});  // range check now, with the operator's words, not mid-run
+    }
   } else if (!positional.empty()) {
     throw std::invalid_argument("unexpected argument '" + positional[0] + "'");
+  }
+  if (o.command != HmiCommand::kPlay &&
+      std::any_of(args.begin(), args.end(), [](const std::string& a) {
+        return a == "--hand" || a == "--wander" || a == "--seed";
+      })) {
+    throw std::invalid_argument("--hand, --wander and --seed go with the play command");
+  }
+  if (!o.with_hand &&
+      (o.hand.wander != HandOptions{}.wander || o.hand.seed != HandOptions{}.seed)) {
+    throw std::invalid_argument("--wander and --seed need --hand K,B");
   }
   if (o.json && o.command != HmiCommand::kStatus) {
     throw std::invalid_argument("--json goes with the status command");

@@ -6,6 +6,7 @@
 #include <exception>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -111,7 +112,8 @@ int play(hmi::Operator& op, const hmi::HmiOptions& o) {
   std::ostream& log = o.log_path == "-" ? std::cout : file;
   std::fprintf(stderr, "hapticctrl-hmi: playing %zu samples over %.3f s\n",
                sequence.samples().size(), sequence.duration());
-  const hmi::PlayResult r = hmi::play_sequence(op, sequence, log);
+  const hmi::PlayResult r = hmi::play_sequence(
+      op, sequence, log, o.with_hand ? std::optional<hmi::HandOptions>(o.hand) : std::nullopt);
   std::fprintf(stderr, "hapticctrl-hmi: played %.3f s of %zu samples, %llu cycles logged to %s%s\n",
                r.played_s, sequence.samples().size(), static_cast<unsigned long long>(r.rows),
                o.log_path == "-" ? "stdout" : o.log_path.c_str(),
@@ -148,6 +150,7 @@ int run(const hmi::HmiOptions& o) {
     case HmiCommand::kForce:
       return set_force(op, o.wrench);
     case HmiCommand::kZeroForce:
+      op.release_hand();  // a hand a killed `play --hand` left gripping
       return set_force(op, {});
     case HmiCommand::kPlay:
       return play(op, o);

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <thread>
 
+#include "hapticctrl/hmi/hand_motion.hpp"
+
 namespace hapticctrl::hmi {
 namespace {
 
@@ -85,11 +87,13 @@ Operator::Operator(const std::string& instance, bool want_force) {
     force_unavailable_ = "this command does not write the operator force";
   }
   if (force_available()) {
-    // Start from what the handle feels now: a new panel must not make the force jump.
+    // Start from what the handle feels now: a new panel must not make the force jump (nor
+    // drop a hand a killed player left gripping).
     shm::ForcePayload current;
     if (segment_->region<shm::RegionId::kForce>().read(current).ok() &&
-        slew_.acceptable(current.wrench)) {
+        slew_.acceptable(current.wrench) && shm::hand_acceptable(current.hand)) {
       slew_ = shm::ForceSlew(shm::ForceLimits{}, current.wrench);
+      hand_ = current.hand;
     }
   }
 }
@@ -129,10 +133,42 @@ void Operator::tick(std::int64_t now_ns) {
                         ? 0.0
                         : std::min(static_cast<double>(now_ns - last_tick_ns_) / 1e9, kMaxTickStep);
   last_tick_ns_ = now_ns;
-  if (force_available() && slew_.step(dt)) {
-    segment_->writable<shm::RegionId::kForce>().publish_quietly(shm::ForcePayload{slew_.applied()},
-                                                                now_ns);
+  const bool moved = force_available() && slew_.step(dt);
+  if (moved || (force_available() && hand_changed_)) {
+    segment_->writable<shm::RegionId::kForce>().publish_quietly(
+        shm::ForcePayload{slew_.applied(), hand_}, now_ns);
+    hand_changed_ = false;
   }
+}
+
+void Operator::release_hand() {
+  if (!force_available() || (hand_.stiffness == 0.0 && hand_.damping == 0.0)) {
+    return;
+  }
+  const shm::HandGrip held = hand_;
+  const std::int64_t start = monotonic_now_ns();
+  for (double since = 0.0; since < HandMotion::kGripRamp;
+       since = static_cast<double>(monotonic_now_ns() - start) / 1e9) {
+    const double grip = 1.0 - since / HandMotion::kGripRamp;
+    shm::HandGrip g = held;
+    g.anchor_velocity = {};
+    g.stiffness *= grip;
+    g.damping *= grip;
+    (void)set_hand(g);  // within the held grip's range
+    tick(monotonic_now_ns());
+    std::this_thread::sleep_for(kPoll);
+  }
+  (void)set_hand({});
+  tick(monotonic_now_ns());
+}
+
+bool Operator::set_hand(const shm::HandGrip& hand) {
+  if (!force_available() || !shm::hand_acceptable(hand)) {
+    return false;
+  }
+  hand_ = hand;
+  hand_changed_ = true;
+  return true;
 }
 
 void Operator::settle_force() {

@@ -1,6 +1,7 @@
 #include "hapticctrl/hmi/sequence_player.hpp"
 
 #include <chrono>
+#include <optional>
 
 namespace hapticctrl::hmi {
 namespace {
@@ -13,14 +14,19 @@ void csv(std::ostream& out, const std::array<double, N>& values) {
 }
 
 void write_row(std::ostream& log, double t, const shm::Vector6& requested,
-               const ControllerStatus& s) {
+               const ControllerStatus& s, const shm::HandGrip& hand) {
   log << t << ',' << s.position.cycle << ',' << s.position.state_word;
   csv(log, requested);
   csv(log, s.position.operator_wrench);
   csv(log, s.position.handle_pose);
   csv(log, s.position.joint_position);
   csv(log, s.vp.coupling_wrench);
-  log << '\n';
+  csv(log, hand.anchor);
+  log << ',' << hand.stiffness << '\n';
+}
+
+std::array<double, 3> handle_point(const ControllerStatus& s) {
+  return {s.position.handle_pose[0], s.position.handle_pose[1], s.position.handle_pose[2]};
 }
 
 bool still_running(const ControllerStatus& s) {
@@ -32,12 +38,21 @@ bool still_running(const ControllerStatus& s) {
 const char* sequence_log_header() noexcept {
   return "t_s,cycle,state_word,req_fx,req_fy,req_fz,req_tx,req_ty,req_tz,"
          "op_fx,op_fy,op_fz,op_tx,op_ty,op_tz,x,y,z,qx,qy,qz,qw,"
-         "q1,q2,q3,q4,q5,q6,cpl_fx,cpl_fy,cpl_fz,cpl_tx,cpl_ty,cpl_tz";
+         "q1,q2,q3,q4,q5,q6,cpl_fx,cpl_fy,cpl_fz,cpl_tx,cpl_ty,cpl_tz,hand_x,hand_y,hand_z,hand_k";
 }
 
-PlayResult play_sequence(Operator& op, const WrenchSequence& sequence, std::ostream& log) {
+PlayResult play_sequence(Operator& op, const WrenchSequence& sequence, std::ostream& log,
+                         const std::optional<HandOptions>& hand) {
   if (!op.force_available()) {
     throw HmiError("cannot play a sequence: " + op.force_unavailable());
+  }
+  std::optional<HandMotion> motion;
+  if (hand) {
+    const ControllerStatus s = op.status();
+    if (!s.position_ok) {
+      throw HmiError("cannot grip the handle: the controller publishes no position");
+    }
+    motion.emplace(*hand, handle_point(s));  // throws std::invalid_argument out of range
   }
   log << sequence_log_header() << '\n';
   PlayResult result;
@@ -53,6 +68,9 @@ PlayResult play_sequence(Operator& op, const WrenchSequence& sequence, std::ostr
     const double t = static_cast<double>(now - start) / 1e9;
     const shm::Vector6 requested = sequence.at(t);
     (void)op.request_force(requested);  // validated at load: cannot be refused
+    if (motion) {
+      (void)op.set_hand(motion->at(t));  // within the limits checked at construction
+    }
     op.tick(now);
     const ControllerStatus s = op.status();
     if (!still_running(s)) {
@@ -61,12 +79,13 @@ PlayResult play_sequence(Operator& op, const WrenchSequence& sequence, std::ostr
     }
     if (s.position_ok && s.position.cycle != last_cycle) {
       last_cycle = s.position.cycle;
-      write_row(log, t, requested, s);
+      write_row(log, t, requested, s, op.hand());
       ++result.rows;
     }
     result.played_s = t;
   }
   if (!result.controller_stopped) {
+    op.release_hand();
     (void)op.request_force({});
     op.settle_force();
   }

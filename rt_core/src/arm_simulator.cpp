@@ -14,8 +14,22 @@ namespace {
 /// Velocity filter time constant of the measured velocity (s): a 1st-order low-pass on the
 /// encoder finite difference, as ARM_REFERENCE proposes.
 constexpr double kVelocityFilterTau = 0.002;
+/// The operator's largest force per axis (shm::ForceLimits::max_force): a hand pulled far from
+/// its anchor pulls no harder than the operator could push.
+constexpr double kMaxHandForce = 100.0;
+
+Vector3d to_vector(const std::array<double, 3>& a) noexcept {
+  return {a[0], a[1], a[2]};
+}
 
 }  // namespace
+
+Vector3d HandModel::force(const Vector3d& position, const Vector3d& velocity,
+                          double elapsed) const noexcept {
+  const Vector3d target = anchor + anchor_velocity * elapsed;
+  const Vector3d f = stiffness * (target - position) + damping * (anchor_velocity - velocity);
+  return f.cwiseMax(-kMaxHandForce).cwiseMin(kMaxHandForce);
+}
 
 ArmSimulator::ArmSimulator(const ArmDynamics& dynamics, const SimulatorOptions& options,
                            const Vector6d& start) noexcept
@@ -62,7 +76,8 @@ Vector6d ArmSimulator::passive_torques() const noexcept {
 }
 
 void ArmSimulator::step(const Vector6d& motor_torque, const Vector6d& operator_wrench, double dt,
-                        bool brakes) noexcept {
+                        bool brakes, const HandModel& hand) noexcept {
+  hand_force_.setZero();
   if (brakes) {
     qd_.setZero();
     return;
@@ -72,7 +87,14 @@ void ArmSimulator::step(const Vector6d& motor_torque, const Vector6d& operator_w
   for (int n = 0; n < substeps; ++n) {
     const Matrix6d inertia_matrix = dynamics_->mass_matrix(chain_);
     const Vector6d bias = dynamics_->bias_torque(chain_, qd_);
-    const Vector6d external = dynamics_->jacobian(chain_).transpose() * operator_wrench;
+    const Matrix6d jacobian = dynamics_->jacobian(chain_);
+    Vector6d wrench = operator_wrench;
+    if (hand.gripping()) {
+      const Vector3d handle_velocity = jacobian.topRows<3>() * qd_;
+      hand_force_ = hand.force(chain_.handle_position, handle_velocity, n * h);
+      wrench.head<3>() += hand_force_;
+    }
+    const Vector6d external = jacobian.transpose() * wrench;
     const Vector6d qdd =
         inertia_matrix.ldlt().solve(motor_torque + external + passive_torques() - bias);
     qd_ += qdd * h;  // semi-implicit Euler: new velocity, then position
@@ -122,7 +144,7 @@ bool SimulatedArm::get_measures(ArmMeasures& out) noexcept {
   out.velocity = measured_velocity_;
   out.torque = applied_torque_;
   out.supply_on = supply_on_;
-  out.operator_wrench = operator_wrench_;
+  out.operator_wrench = operator_wrench();
   out.operator_wrench_rejected = rejected_;
   return out.position.allFinite() && out.velocity.allFinite();
 }
@@ -141,9 +163,23 @@ void SimulatedArm::read_operator_wrench() noexcept {
     ++rejected_;
     return;
   }
+  if (!shm::hand_acceptable(sample.hand)) {  // a refused sample changes neither wrench nor hand
+    ++rejected_;
+    return;
+  }
   for (int i = 0; i < 6; ++i) {
     operator_wrench_(i) = sample.wrench[static_cast<std::size_t>(i)];
   }
+  hand_.anchor = to_vector(sample.hand.anchor);
+  hand_.anchor_velocity = to_vector(sample.hand.anchor_velocity);
+  hand_.stiffness = sample.hand.stiffness;
+  hand_.damping = sample.hand.damping;
+}
+
+Vector6d SimulatedArm::operator_wrench() const noexcept {
+  Vector6d w = operator_wrench_;
+  w.head<3>() += sim_.hand_force();
+  return w;
 }
 
 void SimulatedArm::send_commands(const ArmCommands& commands, TimeNs /*now*/, TimeNs dt) noexcept {
@@ -157,7 +193,7 @@ void SimulatedArm::send_commands(const ArmCommands& commands, TimeNs /*now*/, Ti
     }
   }
   const double h = static_cast<double>(dt) * 1e-9;
-  sim_.step(applied_torque_, operator_wrench_, h, /*brakes=*/!enabled);
+  sim_.step(applied_torque_, operator_wrench_, h, /*brakes=*/!enabled, hand_);
   const Vector6d previous = measured_position_;
   measured_position_ = quantised(sim_.position());
   const Vector6d raw_velocity = (measured_position_ - previous) / h;

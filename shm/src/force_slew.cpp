@@ -15,6 +15,18 @@ bool wrench_acceptable(const Vector6& wrench, const ForceLimits& limits) noexcep
   return true;
 }
 
+bool hand_acceptable(const HandGrip& hand, const ForceLimits& limits) noexcept {
+  const auto norm = [](const std::array<double, 3>& v) {
+    return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  };
+  const double distance = norm(hand.anchor);
+  const double speed = norm(hand.anchor_velocity);
+  // Written so that a NaN anywhere fails a comparison and refuses the grip.
+  return hand.stiffness >= 0.0 && hand.stiffness <= limits.max_hand_stiffness &&
+         hand.damping >= 0.0 && hand.damping <= limits.max_hand_damping &&
+         distance <= limits.max_anchor_distance && speed <= limits.max_anchor_speed;
+}
+
 bool ForceSlew::set_target(const Vector6& wrench) noexcept {
   if (!acceptable(wrench)) {
     return false;

@@ -27,6 +27,14 @@ TEST(HmiOptions, ParsesOneShotCommandsWithTheirArguments) {
   EXPECT_EQ(play.log_path, "-");
   EXPECT_TRUE(play.power_on);
   EXPECT_EQ(HmiOptions::parse({"play", "s.txt"}).log_path, "hapticctrl-sequence.csv");
+  const HmiOptions hand =
+      HmiOptions::parse({"play", "s.txt", "--hand", "400,8", "--wander", "0.02", "--seed", "9"});
+  EXPECT_TRUE(hand.with_hand);
+  EXPECT_EQ(hand.hand.stiffness, 400.0);
+  EXPECT_EQ(hand.hand.damping, 8.0);
+  EXPECT_EQ(hand.hand.wander, 0.02);
+  EXPECT_EQ(hand.hand.seed, 9U);
+  EXPECT_FALSE(play.with_hand);
   EXPECT_EQ(HmiOptions::parse({"--timeout-ms", "250", "reset"}).timeout.count(), 250);
 }
 
@@ -46,6 +54,16 @@ TEST(HmiOptions, RefusesWhatItCannotDoWithAClearMessage) {
   EXPECT_NE(message({"force", "nan", "0", "0", "0", "0", "0"}).find("finite"), std::string::npos);
   EXPECT_EQ(message({"play"}), "play needs one sequence file");
   EXPECT_EQ(message({"power-on", "now"}), "unexpected argument 'now'");
+  EXPECT_EQ(message({"play", "s", "--hand", "400"}),
+            "--hand needs K,B (stiffness N/m, damping N.s/m)");
+  EXPECT_NE(message({"play", "s", "--hand", "9000,5"}).find("0..3000 N/m"), std::string::npos);
+  EXPECT_NE(message({"play", "s", "--hand", "400,5", "--wander", "1"}).find("0..0.1 m"),
+            std::string::npos);
+  EXPECT_EQ(message({"play", "s", "--wander", "0.01"}), "--wander and --seed need --hand K,B");
+  EXPECT_EQ(message({"status", "--hand", "1,1"}),
+            "--hand, --wander and --seed go with the play command");
+  EXPECT_NE(message({"play", "s", "--hand", "4,1", "--seed", "1.5"}).find("whole number"),
+            std::string::npos);
   EXPECT_EQ(message({"power-on", "--json"}), "--json goes with the status command");
   EXPECT_EQ(message({"--instance"}), "--instance needs a value");
   EXPECT_EQ(message({"--verbose"}), "unknown option '--verbose'");

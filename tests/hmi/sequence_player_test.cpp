@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <sstream>
 
 #include "support/controller_stack.hpp"
@@ -45,7 +46,7 @@ TEST(SequencePlayer, PlaysTheWrenchAndLogsTheHandleMovingAlongIt) {
   std::size_t columns = 0;
   const auto rows = rows_of(log.str(), columns);
   EXPECT_EQ(log.str().rfind(sequence_log_header(), 0), 0U);
-  EXPECT_EQ(columns, 34U);
+  EXPECT_EQ(columns, 38U);
   const auto cycles = static_cast<std::size_t>(800'000 / stack.period_us());
   ASSERT_GT(rows.size(), cycles / 2) << "about one row per controller cycle";
   for (const auto& row : rows) {
@@ -57,6 +58,44 @@ TEST(SequencePlayer, PlaysTheWrenchAndLogsTheHandleMovingAlongIt) {
   EXPECT_GT(last[15] - rows.front()[15], 0.003) << "the handle moved along +x";
   EXPECT_TRUE(op.force().settled());
   EXPECT_EQ(op.force().applied(), shm::Vector6{}) << "released at the end";
+}
+
+TEST(SequencePlayer, AWanderingHandMovesTheCoreSimulatedHandleAndLetsGoWithoutAStep) {
+  // The hand (the core's simulator evaluates it) drags the powered, gravity-compensated handle
+  // after its wandering anchor: the handle follows within centimetres, the logged operator force
+  // is the hand's, and at the end the grip ramps out instead of dropping.
+  ControllerStack stack("seqhand");
+  ASSERT_TRUE(stack.ready()) << stack.diagnostics();
+  Operator op(stack.instance(), true);
+  ASSERT_TRUE(op.send_and_wait(
+      shm::CtrlCode::kPowerOn, [](const ControllerStatus& s) { return s.powered(); }, 2s));
+  const WrenchSequence seq = WrenchSequence::parse("0 0 0 0 0 0 0\n2.5 0 0 0 0 0 0\n", "test");
+  std::ostringstream log;
+  const PlayResult r = play_sequence(op, seq, log, HandOptions{400.0, 8.0, 0.02, 3});
+  ASSERT_FALSE(r.controller_stopped) << "a VM stall failed the core safe; rerun";
+  std::size_t columns = 0;
+  const auto rows = rows_of(log.str(), columns);
+  ASSERT_GT(rows.size(), 100U);
+  double anchor_travel = 0.0;
+  double worst_lag = 0.0;
+  double hand_force = 0.0;
+  for (const auto& row : rows) {
+    if (row[0] < 1.5) {
+      continue;  // gripping and fading the wander in
+    }
+    const double lag = std::hypot(row[15] - row[34], row[16] - row[35], row[17] - row[36]);
+    worst_lag = std::max(worst_lag, lag);
+    anchor_travel =
+        std::max(anchor_travel, std::hypot(row[34] - rows.front()[15], row[35] - rows.front()[16],
+                                           row[36] - rows.front()[17]));
+    hand_force = std::max(hand_force, std::hypot(row[9], row[10], row[11]));
+    EXPECT_EQ(row[37], 400.0);
+  }
+  EXPECT_GT(anchor_travel, 0.003) << "the anchor wandered";
+  EXPECT_LT(worst_lag, 0.02) << "the handle follows the hand";
+  EXPECT_GT(hand_force, 0.1) << "the logged operator force is the hand's";
+  EXPECT_EQ(op.hand().stiffness, 0.0) << "let go at the end";
+  EXPECT_EQ(op.hand().damping, 0.0);
 }
 
 TEST(SequencePlayer, NeedsTheForceRegion) {

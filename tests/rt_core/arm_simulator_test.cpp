@@ -111,5 +111,68 @@ TEST_F(ArmSimulatorTest, InvalidOperatorWrenchIsRejected) {
   EXPECT_TRUE(arm.operator_wrench().isZero());
 }
 
+TEST(HandModel, PullsTowardsTheMovingAnchorDampsTheRelativeSpeedAndIsBounded) {
+  HandModel hand;
+  hand.anchor = Vector3d(0.5, 0.0, 0.2);
+  hand.anchor_velocity = Vector3d(0.1, 0.0, 0.0);
+  hand.stiffness = 400.0;
+  hand.damping = 10.0;
+  // 10 ms after the sample the anchor is 1 mm further along x.
+  const Vector3d f = hand.force(Vector3d(0.5, 0.01, 0.2), Vector3d(0.0, 0.0, 0.3), 0.01);
+  EXPECT_NEAR(f.x(), 400.0 * 0.001 + 10.0 * 0.1, 1e-9);
+  EXPECT_NEAR(f.y(), -400.0 * 0.01, 1e-9);
+  EXPECT_NEAR(f.z(), -10.0 * 0.3, 1e-9);
+  EXPECT_DOUBLE_EQ(hand.force(Vector3d(0.5, 1.0, 0.2), Vector3d::Zero(), 0.0).y(), -100.0);
+  EXPECT_FALSE(HandModel{}.gripping());
+}
+
+TEST_F(ArmSimulatorTest, AHandHoldsTheUnpoweredButReleasedArmNearItsAnchor) {
+  // Motors off but no brakes (the pure simulator): gravity pulls the handle down, the hand
+  // (1000 N/m) holds it where its anchor is, within the sag weight / stiffness, and the wrench
+  // the arm reports as the operator's is the hand's.
+  ArmSimulator sim(dynamics_, SimulatorOptions{}, kReady);
+  HandModel hand;
+  hand.anchor = sim.chain().handle_position;
+  hand.stiffness = 1000.0;
+  hand.damping = 20.0;
+  for (int k = 0; k < 3000; ++k) {
+    sim.step(Vector6d::Zero(), Vector6d::Zero(), 1e-3, false, hand);
+  }
+  const double sag = (sim.chain().handle_position - hand.anchor).norm();
+  EXPECT_GT(sag, 1e-4);
+  EXPECT_LT(sag, 0.05);
+  EXPECT_GT(sim.hand_force().z(), 0.5);  // holding the arm up
+  EXPECT_LT(sim.velocity().norm(), 0.05);
+}
+
+TEST_F(ArmSimulatorTest, TheSimulatedArmReadsTheHandAndRefusesOneOutOfRange) {
+  auto force = std::make_unique<shm::SeqlockCell<shm::ForcePayload>>();
+  SimulatedArm arm(dynamics_, SimulatorOptions{}, kReady, force.get());
+  arm.set_supply(true);
+  ArmCommands hold;
+  hold.enable = true;  // zero torque: gravity pulls, the hand holds
+  shm::ForcePayload grip;
+  const Vector3d start = arm.simulator().chain().handle_position;
+  grip.hand.anchor = {start.x(), start.y(), start.z()};
+  grip.hand.stiffness = 800.0;
+  grip.hand.damping = 15.0;
+  force->publish(grip, 0);
+  for (int k = 0; k < 2000; ++k) {
+    arm.send_commands(hold, 0, kNsPerMs);
+  }
+  EXPECT_LT((arm.simulator().chain().handle_position - start).norm(), 0.05);
+  EXPECT_GT(arm.operator_wrench()(2), 0.5);
+  ArmMeasures m;
+  arm.get_measures(m);
+  EXPECT_DOUBLE_EQ(m.operator_wrench(2), arm.operator_wrench()(2));
+
+  shm::ForcePayload bad = grip;
+  bad.hand.stiffness = 1e6;
+  force->publish(bad, 0);
+  arm.send_commands(hold, 0, kNsPerMs);
+  EXPECT_EQ(arm.rejected_force_samples(), 1U);
+  EXPECT_GT(arm.operator_wrench()(2), 0.5) << "the last valid hand keeps holding";
+}
+
 }  // namespace
 }  // namespace hapticctrl::rt_core

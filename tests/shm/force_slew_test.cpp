@@ -42,5 +42,25 @@ TEST(ForceSlew, IgnoresNegativeAndNonFiniteTimeSteps) {
   EXPECT_EQ(slew.applied(), Vector6{});
 }
 
+TEST(HandAcceptable, RefusesNonFiniteAndOutOfRangeGrips) {
+  HandGrip g;
+  EXPECT_TRUE(hand_acceptable(g)) << "no hand";
+  g.anchor = {0.6, 0.0, 0.2};
+  g.anchor_velocity = {0.1, 0.0, 0.0};
+  g.stiffness = 500.0;
+  g.damping = 10.0;
+  EXPECT_TRUE(hand_acceptable(g));
+  for (auto bad :
+       {+[](HandGrip& h) { h.stiffness = 3001.0; }, +[](HandGrip& h) { h.stiffness = -1.0; },
+        +[](HandGrip& h) { h.damping = 101.0; }, +[](HandGrip& h) { h.damping = std::nan(""); },
+        +[](HandGrip& h) { h.anchor[1] = 2.5; },
+        +[](HandGrip& h) { h.anchor[2] = std::numeric_limits<double>::infinity(); },
+        +[](HandGrip& h) { h.anchor_velocity[0] = 6.0; }}) {
+    HandGrip h = g;
+    bad(h);
+    EXPECT_FALSE(hand_acceptable(h));
+  }
+}
+
 }  // namespace
 }  // namespace hapticctrl::shm

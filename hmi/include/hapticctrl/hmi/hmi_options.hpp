@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "hapticctrl/hmi/hand_motion.hpp"
 #include "hapticctrl/shm/payloads.hpp"
 
 namespace hapticctrl::hmi {
@@ -30,6 +31,8 @@ struct HmiOptions {
   std::string log_path;       ///< kPlay: CSV log ("-": stdout; empty: hapticctrl-sequence.csv)
   bool json = false;          ///< kStatus
   bool power_on = false;      ///< kPlay: power on first
+  bool with_hand = false;     ///< kPlay: a simulated hand grips the handle (--hand)
+  HandOptions hand;           ///< kPlay with_hand: grip and wander
   std::chrono::milliseconds timeout{2000};  ///< how long a command waits for its effect
   bool help = false;
 

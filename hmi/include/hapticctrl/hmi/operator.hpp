@@ -54,6 +54,14 @@ class Operator {
   void tick(std::int64_t now_ns);
   /// Ticks until the applied wrench reaches the request (bounded by the rate limit).
   void settle_force();
+  /// Sets the simulated hand on the handle (shm::HandGrip; stiffness and damping 0: none),
+  /// published with the wrench at the next tick(). Ramp it in and out (HandMotion): the core
+  /// applies it as given. False if refused (out of range, or force not available).
+  bool set_hand(const shm::HandGrip& hand);
+  [[nodiscard]] const shm::HandGrip& hand() const noexcept { return hand_; }
+  /// Lets go of the hand: its anchor stops, its stiffness and damping ramp to zero over
+  /// HandMotion::kGripRamp (no force step). Blocks for the ramp; nothing to do without a hand.
+  void release_hand();
   [[nodiscard]] const shm::ForceSlew& force() const noexcept { return slew_; }
   [[nodiscard]] bool force_available() const noexcept { return force_unavailable_.empty(); }
   [[nodiscard]] const std::string& force_unavailable() const noexcept { return force_unavailable_; }
@@ -67,6 +75,8 @@ class Operator {
   std::optional<shm::Segment> segment_;
   std::string force_unavailable_;
   shm::ForceSlew slew_;
+  shm::HandGrip hand_{};
+  bool hand_changed_ = false;
   std::int64_t last_tick_ns_ = 0;
 };
 

@@ -5,7 +5,8 @@
 /// fixed-size Eigen only; takes dt, never reads a clock.
 ///
 /// SimulatedArm wraps it behind the ArmIo seam: motor torque saturation, brakes while the supply
-/// is off (the arm is held), the operator wrench read from the `force` region (validated), and
+/// is off (the arm is held), the operator wrench and hand read from the `force` region
+/// (validated), and
 /// measures quantised to the encoder resolution with a filtered finite-difference velocity.
 
 #include <cstdint>
@@ -28,6 +29,22 @@ struct SimulatorOptions {
   double stop_damping = 3.0;       ///< N·m·s/rad
 };
 
+/// The operator's hand on the handle: a spring-damper pulling the handle point towards a moving
+/// anchor (translation; shm::HandGrip in the `force` region). Stiffness and damping 0: no hand.
+struct HandModel {
+  Vector3d anchor = Vector3d::Zero();
+  Vector3d anchor_velocity = Vector3d::Zero();
+  double stiffness = 0.0;  ///< N/m
+  double damping = 0.0;    ///< N.s/m
+
+  [[nodiscard]] bool gripping() const noexcept { return stiffness > 0.0 || damping > 0.0; }
+  /// Force the hand puts on a handle point at `position` moving at `velocity`, `elapsed`
+  /// seconds after the anchor was given (it moves on at anchor_velocity); each axis bounded to
+  /// the operator's 100 N. Real-time contract: noexcept, no allocation.
+  [[nodiscard]] Vector3d force(const Vector3d& position, const Vector3d& velocity,
+                               double elapsed) const noexcept;
+};
+
 /// The pure simulator. Real-time contract of every method: noexcept, no allocation.
 class ArmSimulator {
  public:
@@ -35,9 +52,12 @@ class ArmSimulator {
                const Vector6d& start) noexcept;
 
   /// Advances by `dt` seconds. `motor_torque` is applied as given (saturate before), the
-  /// operator wrench acts on the handle (base frame). With `brakes` the arm does not move.
-  void step(const Vector6d& motor_torque, const Vector6d& operator_wrench, double dt,
-            bool brakes) noexcept;
+  /// operator wrench acts on the handle (base frame), and so does `hand`, evaluated at every
+  /// sub-step. With `brakes` the arm does not move.
+  void step(const Vector6d& motor_torque, const Vector6d& operator_wrench, double dt, bool brakes,
+            const HandModel& hand = {}) noexcept;
+  /// The hand's force at the end of the last step (zero without a hand or with brakes).
+  [[nodiscard]] const Vector3d& hand_force() const noexcept { return hand_force_; }
 
   [[nodiscard]] const Vector6d& position() const noexcept { return q_; }
   [[nodiscard]] const Vector6d& velocity() const noexcept { return qd_; }
@@ -54,6 +74,7 @@ class ArmSimulator {
   Vector6d q_;
   Vector6d qd_ = Vector6d::Zero();
   ChainState chain_;
+  Vector3d hand_force_ = Vector3d::Zero();
 };
 
 /// ArmIo over the simulator.
@@ -68,7 +89,8 @@ class SimulatedArm final : public ArmIo {
 
   [[nodiscard]] const ArmSimulator& simulator() const noexcept { return sim_; }
   [[nodiscard]] ArmSimulator& simulator() noexcept { return sim_; }
-  [[nodiscard]] const Vector6d& operator_wrench() const noexcept { return operator_wrench_; }
+  /// The operator's wrench on the handle last cycle: the `force` region's wrench plus the hand's.
+  [[nodiscard]] Vector6d operator_wrench() const noexcept;
   [[nodiscard]] std::uint64_t rejected_force_samples() const noexcept { return rejected_; }
 
  private:
@@ -79,6 +101,7 @@ class SimulatedArm final : public ArmIo {
   ArmSimulator sim_;
   const shm::SeqlockCell<shm::ForcePayload>* force_;
   Vector6d operator_wrench_ = Vector6d::Zero();
+  HandModel hand_;
   Vector6d applied_torque_ = Vector6d::Zero();
   Vector6d measured_position_;
   Vector6d measured_velocity_ = Vector6d::Zero();

@@ -13,6 +13,12 @@ struct ForceLimits {
   double max_torque = 10.0;   ///< N.m per axis
   double force_rate = 500.0;  ///< N/s: how fast the applied force may change
   double torque_rate = 50.0;  ///< N.m/s
+  /// A simulated hand: stiffer than any grip (~1000 N/m) or than the sub-step keeps stable
+  /// on the handle's ~0.3 kg, and no anchor beyond the arm's reach or faster than a hand moves.
+  double max_hand_stiffness = 3000.0;  ///< N/m
+  double max_hand_damping = 100.0;     ///< N.s/m
+  double max_anchor_distance = 2.0;    ///< m from the base
+  double max_anchor_speed = 5.0;       ///< m/s
 };
 
 /// Whether every component of an operator wrench is finite and within `limits`' magnitudes:
@@ -20,6 +26,11 @@ struct ForceLimits {
 /// Real-time contract: noexcept, allocation-free; safe in the cycle.
 [[nodiscard]] bool wrench_acceptable(const Vector6& wrench,
                                      const ForceLimits& limits = {}) noexcept;
+
+/// Whether a hand grip is finite and within `limits` (stiffness, damping, anchor distance and
+/// speed); the acceptance test of the hand in the `force` region, applied by its writer and the
+/// core. Real-time contract: noexcept, allocation-free; safe in the cycle.
+[[nodiscard]] bool hand_acceptable(const HandGrip& hand, const ForceLimits& limits = {}) noexcept;
 
 /// Rate-limited operator wrench. Real-time contract: every member is noexcept, allocation-free
 /// and constant-time; safe anywhere.

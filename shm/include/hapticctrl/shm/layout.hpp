@@ -35,8 +35,9 @@ namespace hapticctrl::shm {
 /// Bumped on any change to payloads.hpp, ctrl.hpp or this file.
 // 2: link_stats (F4); 3: events, histogram (F5); 4: telemetry vpr_rejected, link drops
 // not_allowed and rate_limited (F8); 5: VPr sample time, echo cycle, link figures, client
-// channel energy; VP the coupling loop figures, gains and channel energies (H1)
-inline constexpr std::uint32_t kAbiVersion = 5;
+// channel energy; VP the coupling loop figures, gains and channel energies (H1); 6: force
+// carries a spring-damper hand (H1's operator model)
+inline constexpr std::uint32_t kAbiVersion = 6;
 /// "HAPTICC1" as a little-endian word; stored last when the segment is ready, cleared at exit.
 inline constexpr std::uint64_t kSegmentMagic = 0x3143434954504148ULL;
 inline constexpr std::size_t kPageSize = 4096;

@@ -124,9 +124,23 @@ struct VpPayload {
   double channel_energy_out = 0.0;
 };
 
-/// force: operator wrench on the simulated handle (written by the HMI side).
+/// A spring-damper hand gripping the simulated handle: it pulls the handle point towards
+/// `anchor` (which moves at `anchor_velocity`) with `stiffness` and resists the handle's speed
+/// relative to the anchor with `damping`; translation only. Stiffness and damping 0: no hand.
+/// The operator model of the coupling benchmark and tests (a person's grip is 100-1000 N/m,
+/// 2-20 N.s/m; ../shared/HAPTICS_REFERENCE.md).
+struct HandGrip {
+  std::array<double, 3> anchor{};           ///< base frame [m]
+  std::array<double, 3> anchor_velocity{};  ///< base frame [m/s]
+  double stiffness = 0.0;                   ///< N/m
+  double damping = 0.0;                     ///< N.s/m
+};
+
+/// force: the operator on the simulated handle (written by the HMI side): a wrench, plus an
+/// optional spring-damper hand the simulator evaluates at every integration sub-step.
 struct ForcePayload {
   Vector6 wrench{};  ///< base frame, at the handle point [N, N·m]
+  HandGrip hand{};
 };
 
 /// position: arm state for the HMI and monitors.
@@ -243,7 +257,7 @@ struct LinkStatsPayload {
 // Layout pins: a change here is an ABI change (bump kAbiVersion in layout.hpp).
 static_assert(sizeof(VprPayload) == 464);
 static_assert(sizeof(VpPayload) == 376);
-static_assert(sizeof(ForcePayload) == 48);
+static_assert(sizeof(ForcePayload) == 112);
 static_assert(sizeof(PositionPayload) == 360);
 static_assert(sizeof(LatencySummary) == 64);
 static_assert(sizeof(TelemetryPayload) == 480);

@@ -95,6 +95,7 @@ std::string status_json(const ControllerStatus& s) {
       << ",\"servo_execution_p99_ns\":" << t.servo_execution.p99_ns
       << ",\"misses_total\":" << t.misses_total
       << ",\"consecutive_misses\":" << t.consecutive_misses
+      << ",\"would_fail_safe\":" << t.would_fail_safe
       << ",\"degraded_cycles\":" << t.degraded_cycles
       << "},\"client\":{\"connected\":" << s.client_connected();
   if (s.client_connected()) {

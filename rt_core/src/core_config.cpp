@@ -44,6 +44,10 @@ std::string core_usage() {
   --sim-substep-us N       simulator's longest integration sub-step, 10..1000 µs (default 125:
                            0.28 % energy drift in 10 s); longer steps cost less CPU, for
                            slow or instrumented builds, and are less accurate
+  --benchmark-mode         simulated arm only: a tripped miss rule (5 consecutive misses,
+                           chronic misses) is counted as a would-be fail-safe and the core
+                           runs on (a stall pauses the simulated arm); for measurements on
+                           machines that stall, never for an arm that moves
   --help                   this text
 )";
 }
@@ -101,6 +105,8 @@ CoreConfig parse_core_args(const std::vector<std::string>& args) {
       c.chronic.trip_window_ppm = parse_number<std::uint32_t>(opt, value(), 0, 1'000'000);
     } else if (opt == "--sim-substep-us") {
       c.sim_substep = parse_number<TimeNs>(opt, value(), 10, 1000) * kNsPerUs;
+    } else if (opt == "--benchmark-mode") {
+      c.benchmark_mode = true;
     } else if (opt == "--trip-bucket") {
       c.chronic.trip_bucket = parse_number<std::uint32_t>(opt, value(), 0, 1U << 30);
     } else {

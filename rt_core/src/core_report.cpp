@@ -24,6 +24,8 @@ std::string telemetry_json(const shm::TelemetryPayload& t) {
       << ",\"misses_total\":" << t.misses_total
       << ",\"consecutive_misses\":" << t.consecutive_misses
       << ",\"degraded_cycles\":" << t.degraded_cycles << ",\"skipped_slots\":" << t.skipped_slots
+      << ",\"would_fail_safe\":" << t.would_fail_safe
+      << ",\"first_would_fail_safe_cycle\":" << t.first_would_fail_safe_cycle
       << ",\"late_servo_discarded\":" << t.late_servo_discarded
       << ",\"window_miss_ppm\":" << t.window_miss_ppm
       << ",\"leaky_bucket_score\":" << t.leaky_bucket_score << ",";

@@ -53,11 +53,11 @@ ExecutiveResult Executive::run(const std::atomic<bool>* external_stop) noexcept 
       skipped_slots_ += skip;
       pending_skipped_ += static_cast<std::uint32_t>(skip);
       const MonitorVerdict verdict = monitor_.on_skipped(static_cast<std::uint32_t>(skip));
-      if (verdict == MonitorVerdict::kFailSafe) {
-        return stop_sequence(shm::StopReason::kConsecutiveMisses, true);
-      }
-      if (verdict == MonitorVerdict::kChronicMisses) {
-        return stop_sequence(shm::StopReason::kChronicMisses, true);
+      if (trips(verdict)) {
+        return stop_sequence(verdict == MonitorVerdict::kFailSafe
+                                 ? shm::StopReason::kConsecutiveMisses
+                                 : shm::StopReason::kChronicMisses,
+                             true);
       }
       slot += skip;
       if (skip == passed) {
@@ -128,7 +128,7 @@ shm::StopReason Executive::run_slot(TimeNs scheduled, TimeNs woke) noexcept {
     publish_telemetry(times.checked);
   }
 
-  switch (verdict) {
+  switch (trips(verdict) ? verdict : MonitorVerdict::kMiss) {
     case MonitorVerdict::kFailSafe:
       return shm::StopReason::kConsecutiveMisses;
     case MonitorVerdict::kChronicMisses:
@@ -186,6 +186,19 @@ void Executive::record(const CycleTimes& times, bool miss, std::uint32_t skipped
   black_box_->record(r);
 }
 
+bool Executive::trips(MonitorVerdict verdict) noexcept {
+  if (verdict != MonitorVerdict::kFailSafe && verdict != MonitorVerdict::kChronicMisses) {
+    return false;
+  }
+  if (!config_.ride_through_misses) {
+    return true;
+  }
+  if (would_fail_safe_++ == 0) {
+    first_would_fail_safe_cycle_ = cycle_;
+  }
+  return false;
+}
+
 shm::TelemetryPayload Executive::telemetry() const noexcept {
   shm::TelemetryPayload t;
   t.cycle = cycle_;
@@ -197,6 +210,8 @@ shm::TelemetryPayload Executive::telemetry() const noexcept {
   t.misses_total = monitor_.total_misses();
   t.degraded_cycles = degraded_cycles_;
   t.skipped_slots = skipped_slots_;
+  t.would_fail_safe = would_fail_safe_;
+  t.first_would_fail_safe_cycle = first_would_fail_safe_cycle_;
   t.late_servo_discarded = shared_->counters.late_discarded.load(std::memory_order_relaxed);
   t.window_miss_ppm = monitor_.window_miss_ppm();
   t.leaky_bucket_score = monitor_.leaky_bucket_score();

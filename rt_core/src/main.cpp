@@ -96,6 +96,7 @@ int run_core(const CoreConfig& config) {
       static_cast<std::uint32_t>(std::max<TimeNs>(1, 20 * kNsPerMs / config.period));
   exec_config.chronic = config.chronic;
   exec_config.rt_mode = rt.mode();
+  exec_config.ride_through_misses = config.benchmark_mode;
   Executive executive(exec_config, clock, tasks, shared, arm,
                       ExecutiveOutputs{&segment.header_for_writing(),
                                        &segment.writable<shm::RegionId::kTelemetry>(),
@@ -105,6 +106,10 @@ int run_core(const CoreConfig& config) {
   std::cerr << "hapticctrl-core: instance '" << config.instance << "' running, period "
             << config.period / kNsPerUs << " us, rt mode "
             << shm::rt_mode_name(static_cast<std::uint32_t>(rt.mode())) << ", cpu " << cpu << "\n";
+  if (config.benchmark_mode) {
+    std::cerr << "hapticctrl-core: BENCHMARK MODE: missed deadlines are counted as would-be "
+                 "fail-safes and never stop the core (simulated arm only)\n";
+  }
 
   const ExecutiveResult result = executive.run(&g_signal_stop);
   const shm::TelemetryPayload final_figures = executive.telemetry();

@@ -6,9 +6,11 @@
 // the saturation, a blackout longer than 100 ms ended the session, and a lost client dropped
 // ~5 N in one cycle.
 //
-// A 1 ms core on this 2-vCPU VM can fail safe on a whole-VM stall (5 consecutive misses, seen
-// within seconds: ../shared/PITFALLS.md). Such an attempt says nothing about the coupling: it
-// is retried (up to 3 attempts) and counted in the test's output.
+// A 1 ms core on this 2-vCPU VM fails safe on a whole-VM stall (5 consecutive misses) every few
+// seconds (an idle core alone: 5.8-6.3 s, 2026-12-02; ../shared/PITFALLS.md), so the core runs in
+// benchmark mode: the simulated arm pauses through a stall, which the core counts as a would-be
+// fail-safe (printed per scenario) and rides through. An attempt whose core stopped anyway is
+// retried (up to 3 attempts) and counted in the test's output.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -69,7 +71,7 @@ class Relay {
 /// Core, bridge, relay, the demo with a weighted sphere, and the recorder.
 struct Scenario {
   explicit Scenario(const std::string& tag, const std::vector<std::string>& impairment)
-      : stack(tag, kPeriodUs), relay(stack.port(), impairment) {
+      : stack(tag, kPeriodUs, {}, {"--benchmark-mode"}), relay(stack.port(), impairment) {
     if (stack.ready() && relay.port() != 0) {
       demo.emplace(HAPTICCTRL_DEMO_BINARY,
                    std::vector<std::string>{"--server", "127.0.0.1:" + std::to_string(relay.port()),
@@ -86,6 +88,16 @@ struct Scenario {
   [[nodiscard]] bool core_failed_safe() const {
     return stack.segment().header().core_state.load() !=
            static_cast<std::uint32_t>(shm::CoreState::kRunning);
+  }
+  Scenario(const Scenario&) = delete;
+  Scenario& operator=(const Scenario&) = delete;
+  /// Says how many stalls the core rode through (each would have failed it safe).
+  ~Scenario() {
+    if (started()) {
+      std::printf("%s: the core rode through %llu VM stall(s) (benchmark mode)\n",
+                  stack.instance().c_str(),
+                  static_cast<unsigned long long>(stack.telemetry().would_fail_safe));
+    }
   }
   [[nodiscard]] std::string diagnostics() {
     return stack.diagnostics() + "\ndemo: " + (demo ? demo->err() : "not started");

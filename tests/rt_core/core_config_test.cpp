@@ -24,6 +24,7 @@ TEST(CoreConfig, Defaults) {
   EXPECT_EQ(c.period, kNsPerMs);
   EXPECT_EQ(c.rt_policy, RtPolicy::kWarn);
   EXPECT_EQ(c.duration, 0);
+  EXPECT_FALSE(c.benchmark_mode);
 }
 
 TEST(CoreConfig, ParsesEveryOption) {
@@ -38,7 +39,7 @@ TEST(CoreConfig, ParsesEveryOption) {
                               "100:5",       "--trip-miss-ppm",
                               "1000",        "--miss-window",
                               "500",         "--sim-substep-us",
-                              "400"});
+                              "400",         "--benchmark-mode"});
   EXPECT_EQ(c.instance, "a1");
   EXPECT_EQ(c.period, 250 * kNsPerUs);
   EXPECT_EQ(c.duration, 1'500'000'000);
@@ -53,6 +54,7 @@ TEST(CoreConfig, ParsesEveryOption) {
   EXPECT_EQ(c.chronic.trip_window_ppm, 1000U);
   EXPECT_EQ(c.chronic.window_cycles, 500U);
   EXPECT_EQ(c.sim_substep, 400 * kNsPerUs);
+  EXPECT_TRUE(c.benchmark_mode);
 }
 
 TEST(CoreConfig, RejectsBadInputWithTheOptionName) {

@@ -190,6 +190,28 @@ TEST(Executive, ChronicMissesTripWhenAThresholdIsConfigured) {
   EXPECT_EQ(rig.executive.cycles(), 1002U) << "trips at the first miss once the window is full";
 }
 
+TEST(Executive, BenchmarkModeCountsWouldBeFailSafesAndRunsOn) {
+  // A 12-period stall of the clock (a VM stall) and, later, five overruns of the SERVO: each
+  // would fail the core safe; in benchmark mode both are counted and the run goes on.
+  ExecutiveConfig config;
+  config.ride_through_misses = true;
+  Rig rig(slow_for(100, 104, kPeriod * 9 / 10), config);
+  rig.clock.oversleep_at(Rig::slot(40), kPeriod * 12);
+  const ExecutiveResult r = rig.executive.run();
+  EXPECT_FALSE(r.fail_safe);
+  EXPECT_EQ(r.reason, shm::StopReason::kDurationElapsed);
+  const shm::TelemetryPayload t = rig.executive.telemetry();
+  EXPECT_EQ(t.would_fail_safe, 2U);
+  EXPECT_EQ(t.first_would_fail_safe_cycle, 40U);
+  EXPECT_GT(rig.executive.cycles(), 180U);
+
+  // The same stall without benchmark mode fails safe, and counts nothing as would-be.
+  Rig strict(slow_for(0, 0, 0));
+  strict.clock.oversleep_at(Rig::slot(40), kPeriod * 12);
+  EXPECT_TRUE(strict.executive.run().fail_safe);
+  EXPECT_EQ(strict.executive.telemetry().would_fail_safe, 0U);
+}
+
 TEST(Executive, ServoOverrunOf2Point7PeriodsMissesThreeSlotsRunsTwoDegraded) {
   Rig rig(slow_for(10, 10, kPeriod * 27 / 10));
   const ExecutiveResult r = rig.executive.run();

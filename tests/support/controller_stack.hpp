@@ -35,10 +35,12 @@ class ControllerStack {
 #endif
 
   explicit ControllerStack(const std::string& tag, int period_us = kDefaultPeriodUs,
-                           std::vector<std::string> bridge_extra = {})
+                           std::vector<std::string> bridge_extra = {},
+                           std::vector<std::string> core_extra = {})
       : instance_(unique_instance(tag)),
         period_us_(period_us),
-        bridge_extra_(std::move(bridge_extra)) {
+        bridge_extra_(std::move(bridge_extra)),
+        core_extra_(std::move(core_extra)) {
     start_core();
     start_bridge();
   }
@@ -48,10 +50,11 @@ class ControllerStack {
   void start_core() {
     using namespace std::chrono_literals;
     segment_.reset();
-    core_.emplace(HAPTICCTRL_CORE_BINARY,
-                  std::vector<std::string>{
-                      "--instance", instance_, "--period-us", std::to_string(period_us_), "--rt",
-                      kRtMode, "--sim-substep-us", kSimSubstepUs, "--blackbox-dir", "/tmp"});
+    std::vector<std::string> args{
+        "--instance", instance_,          "--period-us", std::to_string(period_us_), "--rt",
+        kRtMode,      "--sim-substep-us", kSimSubstepUs, "--blackbox-dir",           "/tmp"};
+    args.insert(args.end(), core_extra_.begin(), core_extra_.end());
+    core_.emplace(HAPTICCTRL_CORE_BINARY, args);
     for (int i = 0; i < 1000 && !segment_; ++i) {
       try {
         segment_.emplace(shm::Segment::attach(instance_));
@@ -164,6 +167,7 @@ class ControllerStack {
   std::string instance_;
   int period_us_ = 0;
   std::vector<std::string> bridge_extra_;
+  std::vector<std::string> core_extra_;
   std::optional<SpawnedProcess> core_;
   std::optional<SpawnedProcess> bridge_;
   std::optional<shm::Segment> segment_;

@@ -30,6 +30,7 @@ struct CoreConfig {
   std::uint32_t inject_cycles = 0;
   ChronicMissConfig chronic;
   TimeNs sim_substep = 125 * kNsPerUs;  ///< simulator's longest integration sub-step
+  bool benchmark_mode = false;          ///< miss rules counted, not acted on (simulated arm)
   bool show_help = false;
 };
 

@@ -60,6 +60,12 @@ struct ExecutiveConfig {
   std::uint32_t telemetry_every = 20;  ///< publish telemetry every N cycles
   ChronicMissConfig chronic;
   shm::RtMode rt_mode = shm::RtMode::kNone;
+  /// Benchmark mode (simulated arm only): the miss rules (5 consecutive, chronic) are evaluated
+  /// and each trip is counted as a would-be fail-safe, but the core runs on. The simulated arm
+  /// does not move while the core is stalled (its time is the cycles it runs), so a stall only
+  /// pauses it; hardware would be uncontrolled. Lets a run on a VM that stalls every few seconds
+  /// last as long as a measurement needs, and say how often it would have failed safe.
+  bool ride_through_misses = false;
 };
 
 /// Where the CLOCK publishes (any may be null in tests).
@@ -104,6 +110,8 @@ class Executive {
   /// Turns changes of the committed state word and client session into events.
   void report_state_changes(TimeNs now) noexcept;
   ExecutiveResult stop_sequence(shm::StopReason reason, bool fail_safe) noexcept;
+  /// Whether a monitor verdict stops the core; in benchmark mode a trip is only counted.
+  bool trips(MonitorVerdict verdict) noexcept;
   static bool is_fault(shm::StopReason reason) noexcept;
 
   ExecutiveConfig config_;
@@ -123,6 +131,8 @@ class Executive {
   std::uint64_t degraded_cycles_ = 0;
   std::uint64_t skipped_slots_ = 0;
   std::uint32_t pending_skipped_ = 0;
+  std::uint64_t would_fail_safe_ = 0;  ///< benchmark mode: miss-rule trips ridden through
+  std::uint64_t first_would_fail_safe_cycle_ = 0;
   TimeNs last_woke_ = -1;
   bool degraded_this_cycle_ = false;
   shm::StopReason stop_reason_ = shm::StopReason::kNone;

@@ -36,7 +36,8 @@ namespace hapticctrl::shm {
 // 2: link_stats (F4); 3: events, histogram (F5); 4: telemetry vpr_rejected, link drops
 // not_allowed and rate_limited (F8); 5: VPr sample time, echo cycle, link figures, client
 // channel energy; VP the coupling loop figures, gains and channel energies (H1); 6: force
-// carries a spring-damper hand (H1's operator model)
+// carries a spring-damper hand (H1's operator model); telemetry would-be fail-safes (benchmark
+// mode)
 inline constexpr std::uint32_t kAbiVersion = 6;
 /// "HAPTICC1" as a little-endian word; stored last when the segment is ready, cleared at exit.
 inline constexpr std::uint64_t kSegmentMagic = 0x3143434954504148ULL;

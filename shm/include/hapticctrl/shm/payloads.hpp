@@ -207,6 +207,10 @@ struct TelemetryPayload {
   std::uint64_t force_rejected = 0;    ///< force samples rejected (non-finite, out of range)
   std::uint64_t ctrl_accepted = 0;
   std::uint64_t ctrl_rejected = 0;
+  /// Benchmark mode (--benchmark-mode): how often, and first at which cycle, a miss rule would
+  /// have failed the core safe; always 0 otherwise.
+  std::uint64_t would_fail_safe = 0;
+  std::uint64_t first_would_fail_safe_cycle = 0;
   /// CLOCK wake latency since start, in the kLatencyBucketEdgesUs bins (offline histograms).
   std::array<std::uint64_t, kLatencyBuckets> wake_histogram{};
 };
@@ -260,7 +264,7 @@ static_assert(sizeof(VpPayload) == 376);
 static_assert(sizeof(ForcePayload) == 112);
 static_assert(sizeof(PositionPayload) == 360);
 static_assert(sizeof(LatencySummary) == 64);
-static_assert(sizeof(TelemetryPayload) == 480);
+static_assert(sizeof(TelemetryPayload) == 496);
 static_assert(sizeof(LinkStatsPayload) == 208);
 
 }  // namespace hapticctrl::shm

@@ -4,10 +4,12 @@
 # hapticctrl-hmi in four phases, each logged per core cycle:
 #   contact  pushes the handle, and the sphere, onto the fixed sphere (+x) with 2 N then 4 N:
 #            the penetration and the stiffness rendered, against F/K_series;
+#   blackout a hand (300 N/m, 5 N.s/m) holds the handle and presses 2 N onto the fixed sphere
+#            while the relay drops everything for 0.3 s (SIGUSR1): the fade, the re-coupling
+#            and the handle's speed after the link returns;
 #   steps    force steps of 3 N along y and releases: the handle's speed after settling;
-#   hand     a spring-damper hand (300 N/m, 5 N.s/m) grips the handle and wanders at random
-#            (2 cm per axis, 0.2-2 Hz): the energy the coupling port puts out;
-#   blackout the relay drops everything for 0.3 s (SIGUSR1): the fade and the re-coupling.
+#   hand     the hand grips the handle and wanders at random (2 cm per axis, 0.2-2 Hz): the
+#            energy the coupling port puts out.
 # Per case also the measured link and loop (hmi status). The core runs in benchmark mode: this
 # VM stalls the whole machine for 5-50 ms every few seconds (../shared/PITFALLS.md), which fails
 # a 1 ms core safe long before a case's ~90 s are over; the simulated arm pauses through a stall
@@ -51,9 +53,11 @@ sequence "$RAW/contact.seq" "0 0 0 0 0 0 0" "0.5 0 0 0 0 0 0" "0.501 2 0 0 0 0 0
 sequence "$RAW/steps.seq" "0 0 0 0 0 0 0" "1.5 0 0 0 0 0 0" "1.501 0 3 0 0 0 0" \
   "3.5 0 3 0 0 0 0" "3.501 0 0 0 0 0 0" "5.5 0 0 0 0 0 0" "5.501 0 -3 0 0 0 0" \
   "7.5 0 -3 0 0 0 0" "7.501 0 0 0 0 0 0" "9.5 0 0 0 0 0 0"
-# The hand and the blackout phases apply no wrench of their own.
+# Blackout: 2 N along +x from 0.3 s to the end at 2.5 s (the link is cut from 1.2 to 1.5 s).
+sequence "$RAW/press.seq" "0 0 0 0 0 0 0" "0.3 0 0 0 0 0 0" "0.301 2 0 0 0 0 0" \
+  "2.5 2 0 0 0 0 0"
+# Hand: no wrench of its own.
 sequence "$RAW/hand.seq" "0 0 0 0 0 0 0" "$HAND_S 0 0 0 0 0 0"
-sequence "$RAW/quiet.seq" "0 0 0 0 0 0 0" "2.5 0 0 0 0 0 0"
 
 PIDS=()
 stop_all() {
@@ -103,16 +107,17 @@ case_run() {  # name delay_ms loss jitter_ms
   local hmi=("$BUILD/hmi/hapticctrl-hmi" --instance "$inst")
   "${hmi[@]}" play "$RAW/contact.seq" --log "$dir/contact.csv" >"$dir/hmi.out" 2>&1 || true
   "${hmi[@]}" status --json >"$dir/status_contact.json" 2>&1 || true
-  "${hmi[@]}" play "$RAW/steps.seq" --log "$dir/steps.csv" >>"$dir/hmi.out" 2>&1 || true
-  "${hmi[@]}" play "$RAW/hand.seq" --log "$dir/hand.csv" --hand 300,5 --wander 0.02 --seed 7 \
-    >>"$dir/hmi.out" 2>&1 || true
-  "${hmi[@]}" play "$RAW/quiet.seq" --log "$dir/blackout.csv" >>"$dir/hmi.out" 2>&1 &
+  "${hmi[@]}" play "$RAW/press.seq" --log "$dir/blackout.csv" --hand 300,5 \
+    >>"$dir/hmi.out" 2>&1 &
   local player=$!
-  sleep 1
+  sleep 1.2
   kill -USR1 "$relay_pid"  # blackout on
   sleep 0.3
   kill -USR1 "$relay_pid"  # and off
   wait "$player" || true
+  "${hmi[@]}" play "$RAW/steps.seq" --log "$dir/steps.csv" >>"$dir/hmi.out" 2>&1 || true
+  "${hmi[@]}" play "$RAW/hand.seq" --log "$dir/hand.csv" --hand 300,5 --wander 0.02 --seed 7 \
+    >>"$dir/hmi.out" 2>&1 || true
   "${hmi[@]}" status --json >"$dir/status.json" 2>&1 || true
   stop_all
   echo "{\"name\":\"$name\",\"delay_ms\":$delay,\"loss\":$loss,\"jitter_ms\":$jitter}" \

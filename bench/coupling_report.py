@@ -12,10 +12,12 @@ Per case (one-way delay, loss, jitter through hapticctrl-netem; the demo's spher
 - hand (a spring-damper hand wandering at random): the energy the coupling port put out, the
   time integral of the wrench the coupling rendered on the handle times the handle's twist
   (positive: the port gave the hand energy),
-- blackout (0.3 s): the time to fade, from the last fresh sample (5 ms before the core flags
-  the link stale) to the first cycle without coupling force, the largest force step then, the
-  time from the first fresh sample to the first cycle with coupling force again, and the
-  handle's peak speed (20 ms windows) in the second after,
+- blackout (0.3 s, a hand holding the handle and pressing 2 N onto the fixed sphere): the time
+  to fade, from the last fresh sample (5 ms before the core flags the link stale) to the first
+  cycle of the main SERVO without coupling force, the largest step of the wrench rendered on
+  the handle then, the time from the first fresh sample until that wrench is back to 90 % of
+  what it was before, and the handle's peak speed (20 ms windows) in the second after the link
+  returned,
 - beside them the sampled-data bound K_max = 2 (b + B) / (T (1 + 2 d)) for T = 1 ms, b + B the
   coupling's damping, d the measured loop in cycles (../shared/HAPTICS_REFERENCE.md).
 The core runs in benchmark mode (this VM stalls every few seconds): the stalls it rode through,
@@ -74,9 +76,13 @@ def angular_velocity(qa, qb, dt):
     return [2.0 * sign * c / dt for c in v]
 
 
+RENDERED = ("ren_fx", "ren_fy", "ren_fz", "ren_tx", "ren_ty", "ren_tz")
+
+
 def port_energy(rows):
-    """Integral of the coupling's wrench on the handle (minus its wrench on the object, which the
-    log holds) times the handle's twist, in J: positive, the port gave the hand energy."""
+    """Integral of the wrench the controller rendered on the handle (coupling, guards, walls;
+    gravity compensation apart) times the handle's twist, in J: positive, the port gave the hand
+    energy."""
     energy = 0.0
     for a, b in zip(rows, rows[1:]):
         gap = int(b["cycle"]) - int(a["cycle"])
@@ -85,18 +91,18 @@ def port_energy(rows):
         dt = gap * PERIOD_S
         v = [(float(b[k]) - float(a[k])) / dt for k in ("x", "y", "z")]
         v += angular_velocity(quaternion(a), quaternion(b), dt)
-        w = [-float(b[k]) for k in ("cpl_fx", "cpl_fy", "cpl_fz", "cpl_tx", "cpl_ty", "cpl_tz")]
+        w = [float(b[k]) for k in RENDERED]
         energy += sum(wi * vi for wi, vi in zip(w, v)) * dt
     return energy
 
 
 def plateau(rows, t0, t1):
-    """Mean handle x and mean force the coupling puts on the handle along x over t0 <= t < t1."""
+    """Mean handle x and mean force the handle renders against the push along x, t0 <= t < t1."""
     sel = [r for r in rows if t0 <= float(r["t_s"]) < t1]
     if not sel:
         return None, None
     x = sum(float(r["x"]) for r in sel) / len(sel)
-    f = sum(float(r["cpl_fx"]) for r in sel) / len(sel)  # on the object: the operator's push
+    f = -sum(float(r["ren_fx"]) for r in sel) / len(sel)
     return x, f
 
 
@@ -134,8 +140,15 @@ def longest_stale_run(rows, after_t):
     return first, end
 
 
-def force_of(r):
-    return math.hypot(*(float(r[k]) for k in ("cpl_fx", "cpl_fy", "cpl_fz")))
+def force_of(r, keys=RENDERED[:3]):
+    return math.hypot(*(float(r[k]) for k in keys))
+
+
+COUPLING = ("cpl_fx", "cpl_fy", "cpl_fz")  # the coupling's force (logged on the object)
+
+
+def degraded(r):
+    return int(r["state_word"]) & (1 << 3)
 
 
 def blackout(rows, after_t):
@@ -148,18 +161,22 @@ def blackout(rows, after_t):
     out = {}
     last_fresh = int(rows[first]["cycle"]) - 5
     start = next((i for i, r in enumerate(rows) if int(r["cycle"]) >= last_fresh), first)
+    before = [force_of(r) for r in rows[max(0, start - 200):start] if not degraded(r)]
+    held = sum(before) / len(before) if before else 0.0
+    out["force_before_n"] = held
     for i in range(start, end):
-        if force_of(rows[i]) < 1e-6:
-            steps = [math.dist([float(a[k]) for k in ("cpl_fx", "cpl_fy", "cpl_fz")],
-                               [float(b[k]) for k in ("cpl_fx", "cpl_fy", "cpl_fz")])
+        if force_of(rows[i], COUPLING) < 1e-6 and not degraded(rows[i]):
+            steps = [math.dist([float(a[k]) for k in RENDERED[:3]],
+                               [float(b[k]) for k in RENDERED[:3]])
                      / max(1, int(b["cycle"]) - int(a["cycle"]))
-                     for a, b in zip(rows[start:i + 1], rows[start + 1:i + 1])]
+                     for a, b in zip(rows[start:i + 1], rows[start + 1:i + 1])
+                     if not degraded(a) and not degraded(b)]
             out["fade_ms"] = (int(rows[i]["cycle"]) - last_fresh) * PERIOD_S * 1e3
             out["fade_largest_step_n"] = max(steps, default=0.0)
             break
     if end < len(rows):
-        back = next((r for r in rows[end:] if force_of(r) > 1e-6), None)
-        if back is not None:
+        back = next((r for r in rows[end:] if force_of(r) >= 0.9 * held), None)
+        if back is not None and held > 0.1:
             out["recouple_ms"] = (int(back["cycle"]) - int(rows[end]["cycle"])) * PERIOD_S * 1e3
         t_back = float(rows[end]["t_s"])
         out["speed_after_return"] = windowed_speed(rows, t_back, t_back + 1.0, window=20)
@@ -217,7 +234,7 @@ def analyse(case_dir):
                        .get("client", {}).get("gains", [0])[0])
     out.update(contact(phases["contact"], fixed_sphere_x(os.path.join(case_dir, "demo.err")),
                        k_contact_phase, K_CONTACT, RADII))
-    out.update(blackout(phases["blackout"], 0.5))
+    out.update(blackout(phases["blackout"], 0.8))
     return out
 
 
@@ -264,17 +281,18 @@ def main(out):
             f"{fmt(c['stalls_ridden'], 'd')} |")
     lines += [
         "",
-        "| one way | loss | jitter | fade after loss | largest step while fading "
-        "| re-coupling after the link returns | peak speed in the second after |",
-        "|---|---|---|---|---|---|---|",
+        "| one way | loss | jitter | force held | fade after loss | largest step while fading "
+        "| force back to 90 % after the link returns | peak speed in the second after |",
+        "|---|---|---|---|---|---|---|---|",
     ]
     for c in cases:
         if not c["judged"]:
-            lines.append(row_head(c) + f" {lost}" + " |" * 3)
+            lines.append(row_head(c) + f" {lost}" + " |" * 4)
             continue
         speed = c.get("speed_after_return")
         lines.append(
-            row_head(c) + f" {fmt(c.get('fade_ms'), '.0f')} ms | "
+            row_head(c) + f" {fmt(c.get('force_before_n'), '.2f')} N | "
+            f"{fmt(c.get('fade_ms'), '.0f')} ms | "
             f"{fmt(c.get('fade_largest_step_n'), '.2f')} N/ms | "
             f"{fmt(c.get('recouple_ms'), '.0f')} ms | "
             f"{fmt(None if speed is None else speed * 1e3, '.1f')} mm/s |")

@@ -21,6 +21,7 @@ void write_row(std::ostream& log, double t, const shm::Vector6& requested,
   csv(log, s.position.handle_pose);
   csv(log, s.position.joint_position);
   csv(log, s.vp.coupling_wrench);
+  csv(log, s.position.coupling_wrench);
   csv(log, hand.anchor);
   log << ',' << hand.stiffness << '\n';
 }
@@ -38,7 +39,8 @@ bool still_running(const ControllerStatus& s) {
 const char* sequence_log_header() noexcept {
   return "t_s,cycle,state_word,req_fx,req_fy,req_fz,req_tx,req_ty,req_tz,"
          "op_fx,op_fy,op_fz,op_tx,op_ty,op_tz,x,y,z,qx,qy,qz,qw,"
-         "q1,q2,q3,q4,q5,q6,cpl_fx,cpl_fy,cpl_fz,cpl_tx,cpl_ty,cpl_tz,hand_x,hand_y,hand_z,hand_k";
+         "q1,q2,q3,q4,q5,q6,cpl_fx,cpl_fy,cpl_fz,cpl_tx,cpl_ty,cpl_tz,"
+         "ren_fx,ren_fy,ren_fz,ren_tx,ren_ty,ren_tz,hand_x,hand_y,hand_z,hand_k";
 }
 
 PlayResult play_sequence(Operator& op, const WrenchSequence& sequence, std::ostream& log,

@@ -46,7 +46,7 @@ TEST(SequencePlayer, PlaysTheWrenchAndLogsTheHandleMovingAlongIt) {
   std::size_t columns = 0;
   const auto rows = rows_of(log.str(), columns);
   EXPECT_EQ(log.str().rfind(sequence_log_header(), 0), 0U);
-  EXPECT_EQ(columns, 38U);
+  EXPECT_EQ(columns, 44U);
   const auto cycles = static_cast<std::size_t>(800'000 / stack.period_us());
   ASSERT_GT(rows.size(), cycles / 2) << "about one row per controller cycle";
   for (const auto& row : rows) {
@@ -83,13 +83,13 @@ TEST(SequencePlayer, AWanderingHandMovesTheCoreSimulatedHandleAndLetsGoWithoutAS
     if (row[0] < 1.5) {
       continue;  // gripping and fading the wander in
     }
-    const double lag = std::hypot(row[15] - row[34], row[16] - row[35], row[17] - row[36]);
+    const double lag = std::hypot(row[15] - row[40], row[16] - row[41], row[17] - row[42]);
     worst_lag = std::max(worst_lag, lag);
     anchor_travel =
-        std::max(anchor_travel, std::hypot(row[34] - rows.front()[15], row[35] - rows.front()[16],
-                                           row[36] - rows.front()[17]));
+        std::max(anchor_travel, std::hypot(row[40] - rows.front()[15], row[41] - rows.front()[16],
+                                           row[42] - rows.front()[17]));
     hand_force = std::max(hand_force, std::hypot(row[9], row[10], row[11]));
-    EXPECT_EQ(row[37], 400.0);
+    EXPECT_EQ(row[43], 400.0);
   }
   EXPECT_GT(anchor_travel, 0.003) << "the anchor wandered";
   EXPECT_LT(worst_lag, 0.02) << "the handle follows the hand";

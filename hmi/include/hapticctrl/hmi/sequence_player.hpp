@@ -20,7 +20,9 @@ struct PlayResult {
 
 /// CSV header of the log (t_s, cycle, state_word, the requested and applied operator wrench -
 /// the applied one includes the hand's force -, the handle pose, the joint angles, the coupling
-/// wrench, and the hand's anchor and stiffness, 0 without a hand).
+/// wrench on the client's object (cpl_*), the wrench the controller renders on the handle
+/// (ren_*: coupling, guards and walls; gravity compensation apart), and the hand's anchor and
+/// stiffness, 0 without a hand).
 [[nodiscard]] const char* sequence_log_header() noexcept;
 
 /// Plays `sequence` through `op` (which must hold the force region), then ramps the force back

@@ -7,7 +7,8 @@
 #   blackout a hand (300 N/m, 5 N.s/m) holds the handle and presses 2 N onto the fixed sphere
 #            while the relay drops everything for 0.3 s (SIGUSR1): the fade, the re-coupling
 #            and the handle's speed after the link returns;
-#   steps    force steps of 3 N along y and releases: the handle's speed after settling;
+#   steps    the hand holds the handle while the operator pushes 3 N along y and releases:
+#            the handle's speed after settling;
 #   hand     the hand grips the handle and wanders at random (2 cm per axis, 0.2-2 Hz): the
 #            energy the coupling port puts out.
 # Per case also the measured link and loop (hmi status). The core runs in benchmark mode: this
@@ -49,7 +50,8 @@ sequence() {  # file, then "t fx fy fz tx ty tz" lines
 # Contact: 2 N along +x from 0.5 s, 4 N from 3.5 s, released at 6.5 s; ends at 8 s.
 sequence "$RAW/contact.seq" "0 0 0 0 0 0 0" "0.5 0 0 0 0 0 0" "0.501 2 0 0 0 0 0" \
   "3.5 2 0 0 0 0 0" "3.501 4 0 0 0 0 0" "6.5 4 0 0 0 0 0" "6.501 0 0 0 0 0 0" "8 0 0 0 0 0 0"
-# Steps: nothing for 1.5 s, +3 N along y for 2 s, release, -3 N for 2 s, release; ends at 9.5 s.
+# Steps (the hand holding): nothing for 1.5 s, +3 N along y for 2 s, release, -3 N for 2 s,
+# release; ends at 9.5 s.
 sequence "$RAW/steps.seq" "0 0 0 0 0 0 0" "1.5 0 0 0 0 0 0" "1.501 0 3 0 0 0 0" \
   "3.5 0 3 0 0 0 0" "3.501 0 0 0 0 0 0" "5.5 0 0 0 0 0 0" "5.501 0 -3 0 0 0 0" \
   "7.5 0 -3 0 0 0 0" "7.501 0 0 0 0 0 0" "9.5 0 0 0 0 0 0"
@@ -59,36 +61,14 @@ sequence "$RAW/press.seq" "0 0 0 0 0 0 0" "0.3 0 0 0 0 0 0" "0.301 2 0 0 0 0 0" 
 # Hand: no wrench of its own.
 sequence "$RAW/hand.seq" "0 0 0 0 0 0 0" "$HAND_S 0 0 0 0 0 0"
 
-PIDS=()
-stop_all() {
-  for pid in "${PIDS[@]}"; do kill -TERM "$pid" 2>/dev/null || true; done
-  wait "${PIDS[@]}" 2>/dev/null || true
-  PIDS=()
-}
-trap stop_all EXIT
-
-port_of() {  # file: the port a program printed after "listening on 127.0.0.1:"
-  for _ in $(seq 1 200); do
-    local p
-    p=$(sed -n 's/.*listening on 127.0.0.1:\([0-9]*\).*/\1/p' "$1")
-    if [[ -n $p ]]; then echo "$p"; return 0; fi
-    sleep 0.05
-  done
-  return 1
-}
+source "$(dirname "$0")/processes.sh"
 
 case_run() {  # name delay_ms loss jitter_ms
   local name=$1 delay=$2 loss=$3 jitter=$4 dir=$RAW/$1
   rm -rf "$dir"
   mkdir -p "$dir"
-  local inst="benchcpl$$"
-  "$BUILD/rt_core/hapticctrl-core" --instance "$inst" --rt warn --priority 80 --benchmark-mode \
-    --blackbox-dir "$dir" 2>"$dir/core.err" &
-  PIDS+=($!)
-  "$BUILD/bridges/udp/hapticctrl-udp" --instance "$inst" --port 0 >"$dir/udp.out" \
-    2>"$dir/udp.err" &
-  PIDS+=($!)
-  local port relay
+  local inst="benchcpl$$" port relay
+  start_core_and_bridge "$inst" "$dir"
   port=$(port_of "$dir/udp.out")
   "$BUILD/bench/netem/hapticctrl-netem" --to "127.0.0.1:$port" --delay-ms "$delay" \
     --loss "$loss" --jitter-ms "$jitter" --seed 7 --json >"$dir/netem.out" 2>"$dir/netem.err" &
@@ -115,7 +95,8 @@ case_run() {  # name delay_ms loss jitter_ms
   sleep 0.3
   kill -USR1 "$relay_pid"  # and off
   wait "$player" || true
-  "${hmi[@]}" play "$RAW/steps.seq" --log "$dir/steps.csv" >>"$dir/hmi.out" 2>&1 || true
+  "${hmi[@]}" play "$RAW/steps.seq" --log "$dir/steps.csv" --hand 300,5 >>"$dir/hmi.out" 2>&1 ||
+    true
   "${hmi[@]}" play "$RAW/hand.seq" --log "$dir/hand.csv" --hand 300,5 --wander 0.02 --seed 7 \
     >>"$dir/hmi.out" 2>&1 || true
   "${hmi[@]}" status --json >"$dir/status.json" 2>&1 || true

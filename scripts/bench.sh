@@ -10,12 +10,17 @@
 #     jitter, against a raw UDP ping-pong on the same loopback, idle and under load;
 #  4. micro-benchmarks: seqlock publish/read, XDR encode/decode, one full cycle;
 #  5. the coupling over an impaired link (bench/coupling.sh, H1): per one-way delay and loss,
-#     the demo's weighted sphere, an operator's force steps and a blackout through
-#     hapticctrl-netem, against the sampled-data stiffness bound (coupling.md).
+#     the demo's sphere through hapticctrl-netem with a scripted operator (contact, a blackout
+#     while pressing, force steps, a wandering spring-damper hand), against the sampled-data
+#     stiffness bound and F / K_series (coupling.md);
+#  6. the weighted sphere at rest (bench/gravity_rest.sh, H1): `hapticctrl-demo --gravity`,
+#     nobody touching, 10 minutes (gravity.md).
 #
 # usage: scripts/bench.sh [--out DIR] [--build DIR] [--seconds N] [--long] [--smoke]
-#   default about 3 minutes (8 s per latency run, 15 s per link run); --long: 60 s and 120 s;
-#   --smoke: 1 s runs (checks the pipeline, not the machine).
+#   default about 35 minutes (8 s per latency run, 15 s per link run, 14 coupling cases of
+#   ~90 s, 10 minutes at rest); --long: 60 s and 120 s latency and link runs; --smoke: 1 s runs,
+#   2 coupling cases with 8 s of hand motion, 20 s at rest (checks the pipeline, not the
+#   machine).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 OUT=bench-report BUILD=build LAT_S=8 LINK_S=15 MIN_TIME=0.2 PINGS=20000 SMOKE=
@@ -155,7 +160,12 @@ done
 echo "bench: the coupling over an impaired link (hapticctrl-netem)" >&2
 bench/coupling.sh "$OUT" "$BUILD" $SMOKE
 
+# 6: the weighted sphere at rest.
+echo "bench: the weighted sphere at rest (hapticctrl-demo --gravity)" >&2
+bench/gravity_rest.sh "$OUT" "$BUILD" $SMOKE
+
 python3 bench/report.py "$OUT"
 python3 bench/coupling_report.py "$OUT" >/dev/null
-{ echo; cat "$OUT/coupling.md"; } >>"$OUT/report.md"
+python3 bench/gravity_report.py "$OUT" >/dev/null
+{ echo; cat "$OUT/coupling.md"; echo; cat "$OUT/gravity.md"; } >>"$OUT/report.md"
 echo "bench: report in $OUT/report.md" >&2

@@ -23,7 +23,7 @@ void BlackBox::write_csv(const std::string& path) const {
     throw std::runtime_error("cannot write black box to '" + path + "'");
   }
   out << "cycle,scheduled_ns,wake_latency_ns,servo_start_delay_ns,servo_execution_ns,miss,"
-         "degraded,skipped_before,consecutive_misses,state_word";
+         "degraded,stall,skipped,consecutive_misses,state_word";
   for (int j = 1; j <= 6; ++j) {
     out << ",q" << j;
   }
@@ -35,8 +35,8 @@ void BlackBox::write_csv(const std::string& path) const {
     const CycleRecord& r = at(i);
     out << r.cycle << ',' << r.scheduled << ',' << r.wake_latency << ',' << r.servo_start_delay
         << ',' << r.servo_execution << ',' << ((r.flags & kRecordMiss) ? 1 : 0) << ','
-        << ((r.flags & kRecordDegraded) ? 1 : 0) << ',' << r.skipped << ',' << r.consecutive_misses
-        << ',' << r.state_word;
+        << ((r.flags & kRecordDegraded) ? 1 : 0) << ',' << ((r.flags & kRecordStall) ? 1 : 0) << ','
+        << r.skipped << ',' << r.consecutive_misses << ',' << r.state_word;
     for (const double q : r.joint_position) {
       out << ',' << q;
     }

@@ -51,8 +51,12 @@ ExecutiveResult Executive::run(const std::atomic<bool>* external_stop) noexcept 
       const std::uint64_t skip =
           passed + 1 - ((lateness_in_last <= static_cast<std::uint64_t>(period / 2)) ? 1U : 0U);
       skipped_slots_ += skip;
-      pending_skipped_ += static_cast<std::uint32_t>(skip);
       const MonitorVerdict verdict = monitor_.on_skipped(static_cast<std::uint32_t>(skip));
+      // The stall itself goes into the black box (before a fail-safe writes it out).
+      CycleTimes stall;
+      stall.scheduled = scheduled;
+      stall.woke = woke;
+      record(stall, kRecordMiss | kRecordStall, static_cast<std::uint32_t>(skip));
       if (trips(verdict)) {
         return stop_sequence(verdict == MonitorVerdict::kFailSafe
                                  ? shm::StopReason::kConsecutiveMisses
@@ -121,8 +125,7 @@ shm::StopReason Executive::run_slot(TimeNs scheduled, TimeNs woke) noexcept {
       servo_execution_.add(times.finished - times.servo_started);
     }
   }
-  record(times, miss, pending_skipped_);
-  pending_skipped_ = 0;
+  record(times, (miss ? kRecordMiss : 0U) | (times.degraded ? kRecordDegraded : 0U), 0);
   report_state_changes(times.checked);
   if (cycle_ % config_.telemetry_every == 0) {
     publish_telemetry(times.checked);
@@ -164,7 +167,8 @@ void Executive::release_servo(TimeNs now) noexcept {
   }
 }
 
-void Executive::record(const CycleTimes& times, bool miss, std::uint32_t skipped) noexcept {
+void Executive::record(const CycleTimes& times, std::uint32_t flags,
+                       std::uint32_t skipped) noexcept {
   CycleRecord r;
   r.cycle = cycle_;
   r.scheduled = times.scheduled;
@@ -172,7 +176,7 @@ void Executive::record(const CycleTimes& times, bool miss, std::uint32_t skipped
   r.servo_start_delay = times.servo_started >= 0 ? times.servo_started - times.released : -1;
   r.servo_execution =
       (times.finished >= 0 && times.servo_started >= 0) ? times.finished - times.servo_started : -1;
-  r.flags = (miss ? kRecordMiss : 0U) | (times.degraded ? kRecordDegraded : 0U);
+  r.flags = flags;
   r.consecutive_misses = monitor_.consecutive_misses();
   r.skipped = skipped;
   if (outputs_.position != nullptr) {

@@ -15,7 +15,7 @@ out = sys.argv[1]
 report = open(os.path.join(out, "report.md"), encoding="utf-8").read()
 for heading in ("## The seeds' requirements", "## 1. Wake-up latency", "## 2. SERVO start delay",
                 "## 3. End to end at 1 kHz", "## 4. Micro-benchmarks",
-                "## Coupling over an impaired link (H1)"):
+                "## Coupling over an impaired link (H1)", "## The weighted sphere at rest (H1)"):
     assert heading in report, f"report.md lacks '{heading}'"
 for period in (1000, 250, 100):
     assert report.count(f"| {period} us | ") >= 4, f"report.md lacks the {period} us rows"
@@ -45,9 +45,13 @@ for c in cases:
     # The core runs in benchmark mode: every case is judged, with the stalls it rode through.
     assert c["judged"], c
     assert c["stalls_ridden"] is not None and c["loop_delay_ms"] > 0 and c["k_derived"] > 0, c
-    for key in ("speed_after_settling", "port_energy_j", "k_rendered", "penetration_mm",
-                "fade_ms", "recouple_ms", "speed_after_return"):
+    for key in ("speed_after_settling", "port_energy_j", "contact_held", "fade_ms",
+                "recouple_ms", "speed_after_return"):
         assert c.get(key) is not None, (key, c)
+    assert not c["contact_held"] or c["k_rendered"] > 0 and c["penetration_mm"] > 0, c
+rest = json.load(open(os.path.join(out, "gravity.json"), encoding="utf-8"))
+assert rest["judged"] and rest["seconds"] > 15 and rest["stalls_ridden"] is not None, rest
+assert rest["chatter"] is not None and rest["weight_n"] > 0, rest
 assert len(r["plots"]) == 4
 for png in r["plots"]:
     with open(os.path.join(out, png), "rb") as f:

@@ -14,11 +14,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "support/controller_stack.hpp"
@@ -68,14 +71,16 @@ class Relay {
   std::uint16_t port_ = 0;
 };
 
-/// Core, bridge, relay, the demo with a weighted sphere, and the recorder.
+/// Core, bridge, relay, the demo (by default with a weighted sphere), and the recorder.
 struct Scenario {
-  explicit Scenario(const std::string& tag, const std::vector<std::string>& impairment)
+  explicit Scenario(const std::string& tag, const std::vector<std::string>& impairment,
+                    const std::vector<std::string>& demo_extra = {"--gravity"})
       : stack(tag, kPeriodUs, {}, {"--benchmark-mode"}), relay(stack.port(), impairment) {
     if (stack.ready() && relay.port() != 0) {
-      demo.emplace(HAPTICCTRL_DEMO_BINARY,
-                   std::vector<std::string>{"--server", "127.0.0.1:" + std::to_string(relay.port()),
-                                            "--headless", "--no-lcm", "--json", "--gravity"});
+      std::vector<std::string> args{"--server", "127.0.0.1:" + std::to_string(relay.port()),
+                                    "--headless", "--no-lcm", "--json"};
+      args.insert(args.end(), demo_extra.begin(), demo_extra.end());
+      demo.emplace(HAPTICCTRL_DEMO_BINARY, args);
       recorder.emplace(stack.segment());
     }
   }
@@ -251,6 +256,124 @@ TEST(CouplingOverNetwork, AWeightedSphereComesToRestAndStaysThereWithoutChatter)
     }
     std::printf("rest: the handle carries %.3f N (m g = %.3f N)\n", weight, 0.5 * 9.81);
     EXPECT_NEAR(weight, 0.5 * 9.81, 0.02 * 0.5 * 9.81) << "the weight within 2 %";
+    return true;
+  });
+}
+
+/// hapticctrl-hmi on the scenario's instance, run to its end (bounded).
+int run_hmi(const Scenario& s, std::vector<std::string> args, std::chrono::seconds bound) {
+  args.insert(args.begin(), {"--instance", s.stack.instance()});
+  SpawnedProcess hmi(HAPTICCTRL_HMI_BINARY, args);
+  return hmi.wait(bound);
+}
+
+/// Mean handle x and mean wrench the handle renders along x over the last `cycles` records.
+std::pair<double, double> at_rest(const std::vector<CycleRecord>& r, std::size_t cycles) {
+  double x = 0.0;
+  double f = 0.0;
+  const std::size_t from = r.size() > cycles ? r.size() - cycles : 0;
+  for (std::size_t i = from; i < r.size(); ++i) {
+    x += r[i].position[0] / static_cast<double>(r.size() - from);
+    f += r[i].wrench[0] / static_cast<double>(r.size() - from);
+  }
+  return {x, f};
+}
+
+/// The demo's fixed sphere's centre x, as it printed it ("fixed sphere at (x y z)").
+double fixed_sphere_x(const std::string& demo_err) {
+  const std::string marker = "fixed sphere at (";
+  const auto at = demo_err.find(marker);
+  return at == std::string::npos ? std::nan("") : std::stod(demo_err.substr(at + marker.size()));
+}
+
+TEST(CouplingOverNetwork, ContactPenetrationIsForceOverTheSeriesStiffness) {
+  // H1's transparency where the network is good (2 ms one way): the operator pushes the handle,
+  // and the demo's free sphere with it, onto the fixed sphere (1 cm away along +x) with 2 N then
+  // 4 N; at rest the handle is past the contact surface by F / K_series, K_series = 1 / (1 /
+  // K_contact + 1 / k) with the demo's 2000 N/m and the coupling's k, within 10 %.
+  with_retries("contact", [](int attempt) {
+    Scenario s("h1-contact-" + std::to_string(attempt), {"--delay-ms", "2"}, {});
+    std::uint64_t coupled_at = 0;
+    if (const auto done = couple_and_record(s, 1s, coupled_at)) {
+      return *done;
+    }
+    const double surface = fixed_sphere_x(s.demo->err()) - 0.06;  // the two radii
+    std::array<std::pair<double, double>, 2> rest{};
+    for (std::size_t k = 0; k < 2; ++k) {
+      const std::string push = k == 0 ? "2" : "4";
+      EXPECT_EQ(run_hmi(s, {"force", push, "0", "0", "0", "0", "0"}, 10s), 0);
+      std::this_thread::sleep_for(2500ms);
+      rest[k] = at_rest(s.recorder->records(), static_cast<std::size_t>(kCyclesPerSecond / 2));
+    }
+    EXPECT_EQ(run_hmi(s, {"zero-force"}, 10s), 0);
+    if (s.core_failed_safe()) {
+      return false;
+    }
+    const double k = s.stack.vp().gains[0];
+    const double k_series = 1.0 / (1.0 / 2000.0 + 1.0 / k);
+    const double pushed = -rest[1].second;
+    const double penetration = rest[1].first - surface;
+    const double rendered = (rest[1].second - rest[0].second) / (rest[0].first - rest[1].first);
+    std::printf(
+        "contact: k %.0f N/m, K_series %.0f N/m; under %.3f N the handle is %.3f mm past the "
+        "surface (F / K_series %.3f mm); stiffness rendered between 2 and 4 N: %.0f N/m\n",
+        k, k_series, pushed, penetration * 1e3, pushed / k_series * 1e3, rendered);
+    EXPECT_NEAR(pushed, 4.0, 0.2) << "at rest, the handle renders the push";
+    EXPECT_NEAR(penetration, pushed / k_series, 0.1 * pushed / k_series);
+    EXPECT_NEAR(rendered, k_series, 0.1 * k_series);
+    return true;
+  });
+}
+
+TEST(CouplingOverNetwork, AWanderingHandGetsNoEnergyFromTheCouplingPort) {
+  // A spring-damper hand (300 N/m, 5 N.s/m; the core's simulator) holds the handle and wanders
+  // at random (2 cm per axis, 0.2-2 Hz) for 8 s, dragging the demo's free sphere, through 5 ms
+  // one way with 10 % loss and +-2 ms jitter: the port between the controller and the hand puts
+  // out no more than 1 mJ (H1; translation, the hand holds no torque), and nothing reaches the
+  // saturation.
+  with_retries("hand", [](int attempt) {
+    Scenario s("h1-hand-" + std::to_string(attempt),
+               {"--delay-ms", "5", "--loss", "0.1", "--jitter-ms", "2"}, {});
+    std::uint64_t coupled_at = 0;
+    if (const auto done = couple_and_record(s, 1s, coupled_at)) {
+      return *done;
+    }
+    const std::string sequence = testing::TempDir() + "hand-" + s.stack.instance() + ".seq";
+    { std::ofstream(sequence) << "0 0 0 0 0 0 0\n8 0 0 0 0 0 0\n"; }
+    const std::uint64_t from_cycle = s.recorder->newest_cycle();
+    EXPECT_EQ(run_hmi(s,
+                      {"play", sequence, "--log", "-", "--hand", "300,5", "--wander", "0.02",
+                       "--seed", "5"},
+                      20s),
+              0);
+    std::remove(sequence.c_str());
+    if (s.core_failed_safe()) {
+      return false;
+    }
+    const auto r = s.recorder->records();
+    double energy = 0.0;
+    double largest = 0.0;
+    double travel = 0.0;
+    const std::size_t first = index_of(r, from_cycle);
+    if (first >= r.size()) {
+      ADD_FAILURE() << "nothing recorded while the hand played: " << s.diagnostics();
+      return true;
+    }
+    const std::array<double, 3> origin = r[first].position;
+    for (std::size_t i = first + 1; i < r.size(); ++i) {
+      for (std::size_t axis = 0; axis < 3; ++axis) {
+        energy += r[i].wrench[axis] * (r[i].position[axis] - r[i - 1].position[axis]);
+      }
+      largest = std::max(largest, r[i].force);
+      travel =
+          std::max(travel, std::hypot(r[i].position[0] - origin[0], r[i].position[1] - origin[1],
+                                      r[i].position[2] - origin[2]));
+    }
+    std::printf("hand: the handle travelled up to %.1f mm; the port put out %.3f mJ; peak %.2f N\n",
+                travel * 1e3, energy * 1e3, largest);
+    EXPECT_GT(travel, 0.005) << "the hand moved the handle";
+    EXPECT_LE(energy, 1e-3) << "the coupling port gave the hand at most 1 mJ";
+    EXPECT_LT(largest, 34.0) << "never at the saturation";
     return true;
   });
 }

@@ -22,7 +22,7 @@ TEST(BlackBox, KeepsOnlyTheNewestRecordsOldestFirst) {
 TEST(BlackBox, WritesCsvWithHeaderAndOneLinePerRecord) {
   BlackBox box(10);
   box.record(CycleRecord{.cycle = 7, .wake_latency = 1234, .flags = kRecordMiss | kRecordDegraded});
-  box.record(CycleRecord{.cycle = 8});
+  box.record(CycleRecord{.cycle = 8, .flags = kRecordMiss | kRecordStall, .skipped = 12});
   const std::string path = "/tmp/hapticctrl-bb-test-" + std::to_string(getpid()) + ".csv";
   box.write_csv(path);
   std::ifstream in(path);
@@ -33,8 +33,10 @@ TEST(BlackBox, WritesCsvWithHeaderAndOneLinePerRecord) {
   std::getline(in, first);
   std::getline(in, second);
   EXPECT_EQ(header.rfind("cycle,scheduled_ns,wake_latency_ns", 0), 0U);
-  EXPECT_EQ(first.rfind("7,0,1234,-1,-1,1,1,", 0), 0U) << first;
-  EXPECT_EQ(second.rfind("8,", 0), 0U);
+  EXPECT_NE(header.find(",miss,degraded,stall,skipped,consecutive_misses,"), std::string::npos)
+      << header;
+  EXPECT_EQ(first.rfind("7,0,1234,-1,-1,1,1,0,0,", 0), 0U) << first;
+  EXPECT_EQ(second.rfind("8,0,0,-1,-1,1,0,1,12,", 0), 0U) << second;
   std::remove(path.c_str());
 }
 

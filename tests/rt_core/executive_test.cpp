@@ -310,6 +310,26 @@ TEST(Executive, FaultInjectionOfFiveCyclesTripsAndOfFourDoesNot) {
   }
 }
 
+TEST(Executive, TheBlackBoxOfAStallThatFailedSafeEndsWithTheStall) {
+  // H5: the cause of a fail-safe is in its black box. A clock that wakes 12 periods late skips
+  // 12 slots; the fail-safe follows, and the last record is that late wake-up, after the
+  // ordinary cycle before it.
+  Rig rig(slow_for(0, 0, 0));
+  rig.clock.oversleep_at(Rig::slot(40), kPeriod * 12);
+  EXPECT_TRUE(rig.executive.run().fail_safe);
+  ASSERT_GE(rig.box.size(), 2U);
+  const CycleRecord& stall = rig.box.at(rig.box.size() - 1);
+  EXPECT_EQ(stall.flags, kRecordMiss | kRecordStall);
+  EXPECT_EQ(stall.skipped, 12U);
+  EXPECT_EQ(stall.wake_latency, kPeriod * 12);
+  EXPECT_EQ(stall.scheduled, Rig::slot(40));
+  EXPECT_EQ(stall.servo_start_delay, -1);
+  EXPECT_EQ(stall.cycle, 40U) << "the last cycle that ran";
+  const CycleRecord& before = rig.box.at(rig.box.size() - 2);
+  EXPECT_EQ(before.flags, 0U);
+  EXPECT_EQ(before.cycle, 40U);
+}
+
 TEST(Executive, BlackBoxHoldsTheLastCycles) {
   Rig rig(slow_for(0, 0, 0));
   rig.executive.run();

@@ -224,158 +224,198 @@ std::optional<client::Connection> open_session(const demo::DemoOptions& o, MayCo
   }
 }
 
-int run(const demo::DemoOptions& o) {
-  o.scene.validate();
-  std::optional<demo::DemoScript> script;
-  if (!o.script_path.empty()) {
-    script.emplace(demo::DemoScript::load(o.script_path));
-  }
-  std::ofstream log;
-  if (!o.log_path.empty()) {
-    log.open(o.log_path);
-    if (!log) {
-      throw std::runtime_error("cannot write the log '" + o.log_path + "'");
-    }
-    log_header(log);
-  }
-  std::optional<demo::ScenePublisher> scene_out;
-  if (o.publish_scene) {
-    scene_out.emplace(o.lcm_url, o.instance, o.scene_rate_hz);
-  }
-  const bool keyboard_wanted = !o.headless && isatty(STDIN_FILENO) != 0;
-  std::optional<RawKeyboard> keyboard;
-  if (keyboard_wanted) {
-    keyboard.emplace();
-  }
-  demo::AppliedWrench applied;
-  const auto start = Clock::now();
-  const auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
-  const auto time_left = [&] {
-    return !g_stop.load() && (o.duration_s <= 0.0 || elapsed() < o.duration_s);
-  };
-  auto next_status = start;
-  std::uint64_t steps = 0;
-  std::uint64_t reconnects = 0;
-  const char* ended = "duration";
-  bool quit = false;
-  std::optional<client::Connection> c;
-  client::StateSnapshot s;
-  std::optional<demo::SphereScene> scene;
-  while (!quit && time_left()) {
-    std::optional<client::Connection> next =
-        open_session(o, time_left, reconnects > 0 ? kRetryForever : kFirstConnectPatience);
-    if (!next) {
-      ended = g_stop.load() ? "signal" : "duration";
-      break;
-    }
-    c = std::move(next);
-    if (!c->wait_for_answer(0, std::chrono::seconds(2), s)) {
-      throw std::runtime_error("no answer from the controller within 2 s");
-    }
-    const double dt = static_cast<double>(c->controller_period_ns()) / 1e9;
-    scene.emplace(scene_at(s, o));  // a new session starts with the sphere at the handle
-    if (reconnects == 0) {
-      std::fprintf(stderr,
-                   "hapticctrl-demo: ready: VIRTMECH, %.3f kg sphere, time step %.3f ms, %s; "
-                   "fixed sphere at (%.4f %.4f %.4f)\n",
-                   o.scene.mass, dt * 1e3,
-                   o.power_on ? "power on requested" : "power left to the HMI",
-                   scene->config().fixed_center.x(), scene->config().fixed_center.y(),
-                   scene->config().fixed_center.z());
-    } else {
-      std::fprintf(stderr, "hapticctrl-demo: reconnected (%llu)\n",
-                   static_cast<unsigned long long>(reconnects));
-    }
-    std::uint64_t last_cycle = s.cycle;
-    ended = "duration";
-    while (!quit) {
-      if (g_stop.load()) {
-        ended = "signal";
-        quit = true;
-        break;
-      }
-      if (!time_left()) {
-        quit = true;
-        break;
-      }
-      const bool answered = c->wait_for_answer(s.cycle, std::chrono::milliseconds(100), s);
-      if (!c->is_open() || s.fail_safe() || s.core_state >= kCoreFailSafe) {
-        ended = ending_of(s);
-        break;
-      }
-      if (!answered) {
-        continue;
-      }
-      const double t = elapsed();
-      if (script && script->advance(t, applied) == demo::InputResult::kQuit) {
-        ended = "script";
-        quit = true;
-      }
-      for (int key = keyboard ? keyboard->poll() : -1; key >= 0; key = keyboard->poll()) {
-        if (demo::apply_demo_key(key, applied) == demo::InputResult::kQuit) {
-          ended = "quit";
-          quit = true;
-        }
-      }
-      // The controller's time that passed since the last answer: one step per cycle (answers
-      // lost or late do not slow the world down), at most kMaxCatchUpSteps (a longer gap
-      // pauses the world rather than integrating it blind).
-      const std::uint64_t cycles =
-          std::clamp<std::uint64_t>(s.cycle - last_cycle, 1, kMaxCatchUpSteps);
-      last_cycle = s.cycle;
-      for (std::uint64_t k = 0; k < cycles; ++k) {
-        scene->step(s.coupling_wrench, applied.wrench, dt);
-      }
-      (void)c->send_object_state(scene->pose(), scene->twist());
-      ++steps;
-      if (const std::int64_t now_us = monotonic_us(); scene_out && scene_out->due(now_us * 1000)) {
-        (void)scene_out->publish(
-            demo::to_scene_message(*scene, applied, c->statistics(), steps, now_us));
-      }
-      if (log.is_open()) {
-        log_row(log, t, s, *scene, applied);
-      }
-      if (o.status_ms > 0 && Clock::now() >= next_status) {
-        next_status += std::chrono::milliseconds(o.status_ms);
-        print_status(stderr, t, s, *scene, keyboard ? "\r" : "\n");
-      }
-    }
-    const bool orderly_stop = !s.fail_safe() && s.core_state > kCoreFailSafe;
-    if (quit || orderly_stop || !o.reconnect || !time_left()) {
-      break;
-    }
-    std::fprintf(stderr, "\nhapticctrl-demo: %s; connecting again\n", ended);
-    if (c->is_open()) {
-      try {
-        c->close();
-      } catch (const client::ClientError&) {
-        // The controller is going away: the session ends either way.
-      }
-    }
-    ++reconnects;
-  }
-  if (keyboard) {
-    std::fprintf(stderr, "\n");
-  }
-  if (!c || !scene) {
-    std::fprintf(stderr, "hapticctrl-demo: ended (%s) before any session\n", ended);
-    return 1;
-  }
-  const bool failed_safe = s.fail_safe();
-  if (c->is_open()) {
+/// Ends a session; a controller that is going away ends it anyway.
+void close_quietly(client::Connection& c) {
+  if (c.is_open()) {
     try {
-      c->close();
+      c.close();
     } catch (const client::ClientError&) {
       // The controller may be gone already: the session ends either way.
     }
   }
-  print_status(stderr, elapsed(), s, *scene, "\n");
-  std::fprintf(stderr, "hapticctrl-demo: ended (%s) after %llu steps, %llu reconnections\n", ended,
-               static_cast<unsigned long long>(steps), static_cast<unsigned long long>(reconnects));
-  if (o.json) {
-    print_json(s, *scene, c->statistics(), steps, reconnects, ended);
+}
+
+/// One run of the demo: its inputs and outputs (script, keyboard, log, scene channel), the
+/// sessions it opens one after the other, and their steps.
+class DemoRun {
+ public:
+  explicit DemoRun(const demo::DemoOptions& o) : o_(o), start_(Clock::now()) {
+    o.scene.validate();
+    if (!o.script_path.empty()) {
+      script_.emplace(demo::DemoScript::load(o.script_path));
+    }
+    if (!o.log_path.empty()) {
+      log_.open(o.log_path);
+      if (!log_) {
+        throw std::runtime_error("cannot write the log '" + o.log_path + "'");
+      }
+      log_header(log_);
+    }
+    if (o.publish_scene) {
+      scene_out_.emplace(o.lcm_url, o.instance, o.scene_rate_hz);
+    }
+    if (!o.headless && isatty(STDIN_FILENO) != 0) {
+      keyboard_.emplace();
+    }
+    next_status_ = start_;
   }
-  return failed_safe && !o.reconnect ? 2 : 0;
+
+  /// Sessions until the duration, a signal, a quit, an orderly stop or (without reconnection)
+  /// a session that ends abnormally. Returns the exit status.
+  int run() {
+    while (!quit_ && time_left()) {
+      std::optional<client::Connection> next = open_session(
+          o_, [this] { return time_left(); },
+          reconnects_ > 0 ? kRetryForever : kFirstConnectPatience);
+      if (!next) {
+        ended_ = g_stop.load() ? "signal" : "duration";
+        break;
+      }
+      c_ = std::move(next);
+      if (!c_->wait_for_answer(0, std::chrono::seconds(2), s_)) {
+        throw std::runtime_error("no answer from the controller within 2 s");
+      }
+      scene_.emplace(scene_at(s_, o_));  // a new session starts with the sphere at the handle
+      announce();
+      run_session();
+      const bool orderly_stop = !s_.fail_safe() && s_.core_state > kCoreFailSafe;
+      if (quit_ || orderly_stop || !o_.reconnect || !time_left()) {
+        break;
+      }
+      std::fprintf(stderr, "\nhapticctrl-demo: %s; connecting again\n", ended_);
+      close_quietly(*c_);
+      ++reconnects_;
+    }
+    return finish();
+  }
+
+ private:
+  [[nodiscard]] double elapsed() const {
+    return std::chrono::duration<double>(Clock::now() - start_).count();
+  }
+  [[nodiscard]] bool time_left() const {
+    return !g_stop.load() && (o_.duration_s <= 0.0 || elapsed() < o_.duration_s);
+  }
+
+  void announce() const {
+    const double dt = static_cast<double>(c_->controller_period_ns()) / 1e9;
+    if (reconnects_ == 0) {
+      std::fprintf(stderr,
+                   "hapticctrl-demo: ready: VIRTMECH, %.3f kg sphere, time step %.3f ms, %s; "
+                   "fixed sphere at (%.4f %.4f %.4f)\n",
+                   o_.scene.mass, dt * 1e3,
+                   o_.power_on ? "power on requested" : "power left to the HMI",
+                   scene_->config().fixed_center.x(), scene_->config().fixed_center.y(),
+                   scene_->config().fixed_center.z());
+    } else {
+      std::fprintf(stderr, "hapticctrl-demo: reconnected (%llu)\n",
+                   static_cast<unsigned long long>(reconnects_));
+    }
+  }
+
+  /// Steps the scene on every answer until the session ends or the run does.
+  void run_session() {
+    const double dt = static_cast<double>(c_->controller_period_ns()) / 1e9;
+    std::uint64_t last_cycle = s_.cycle;
+    ended_ = "duration";
+    while (!quit_) {
+      if (g_stop.load()) {
+        ended_ = "signal";
+        quit_ = true;
+        break;
+      }
+      if (!time_left()) {
+        quit_ = true;
+        break;
+      }
+      const bool answered = c_->wait_for_answer(s_.cycle, std::chrono::milliseconds(100), s_);
+      if (!c_->is_open() || s_.fail_safe() || s_.core_state >= kCoreFailSafe) {
+        ended_ = ending_of(s_);
+        break;
+      }
+      if (answered) {
+        step(dt, last_cycle);
+      }
+    }
+  }
+
+  /// One answer: inputs, the scene advanced by the controller's time since the last answer,
+  /// the object state sent back, the outputs.
+  void step(double dt, std::uint64_t& last_cycle) {
+    const double t = elapsed();
+    if (script_ && script_->advance(t, applied_) == demo::InputResult::kQuit) {
+      ended_ = "script";
+      quit_ = true;
+    }
+    for (int key = keyboard_ ? keyboard_->poll() : -1; key >= 0; key = keyboard_->poll()) {
+      if (demo::apply_demo_key(key, applied_) == demo::InputResult::kQuit) {
+        ended_ = "quit";
+        quit_ = true;
+      }
+    }
+    // One step per controller cycle since the last answer (answers lost or late do not slow the
+    // world down), at most kMaxCatchUpSteps (a longer gap pauses the world rather than
+    // integrating it blind).
+    const std::uint64_t cycles =
+        std::clamp<std::uint64_t>(s_.cycle - last_cycle, 1, kMaxCatchUpSteps);
+    last_cycle = s_.cycle;
+    for (std::uint64_t k = 0; k < cycles; ++k) {
+      scene_->step(s_.coupling_wrench, applied_.wrench, dt);
+    }
+    (void)c_->send_object_state(scene_->pose(), scene_->twist());
+    ++steps_;
+    if (const std::int64_t now_us = monotonic_us(); scene_out_ && scene_out_->due(now_us * 1000)) {
+      (void)scene_out_->publish(
+          demo::to_scene_message(*scene_, applied_, c_->statistics(), steps_, now_us));
+    }
+    if (log_.is_open()) {
+      log_row(log_, t, s_, *scene_, applied_);
+    }
+    if (o_.status_ms > 0 && Clock::now() >= next_status_) {
+      next_status_ += std::chrono::milliseconds(o_.status_ms);
+      print_status(stderr, t, s_, *scene_, keyboard_ ? "\r" : "\n");
+    }
+  }
+
+  int finish() {
+    if (keyboard_) {
+      std::fprintf(stderr, "\n");
+    }
+    if (!c_ || !scene_) {
+      std::fprintf(stderr, "hapticctrl-demo: ended (%s) before any session\n", ended_);
+      return 1;
+    }
+    const bool failed_safe = s_.fail_safe();
+    close_quietly(*c_);
+    print_status(stderr, elapsed(), s_, *scene_, "\n");
+    std::fprintf(stderr, "hapticctrl-demo: ended (%s) after %llu steps, %llu reconnections\n",
+                 ended_, static_cast<unsigned long long>(steps_),
+                 static_cast<unsigned long long>(reconnects_));
+    if (o_.json) {
+      print_json(s_, *scene_, c_->statistics(), steps_, reconnects_, ended_);
+    }
+    return failed_safe && !o_.reconnect ? 2 : 0;
+  }
+
+  const demo::DemoOptions& o_;
+  const Clock::time_point start_;
+  std::optional<demo::DemoScript> script_;
+  std::ofstream log_;
+  std::optional<demo::ScenePublisher> scene_out_;
+  std::optional<RawKeyboard> keyboard_;
+  demo::AppliedWrench applied_;
+  Clock::time_point next_status_;
+  std::uint64_t steps_ = 0;
+  std::uint64_t reconnects_ = 0;
+  const char* ended_ = "duration";
+  bool quit_ = false;
+  std::optional<client::Connection> c_;
+  client::StateSnapshot s_;
+  std::optional<demo::SphereScene> scene_;
+};
+
+int run(const demo::DemoOptions& o) {
+  return DemoRun(o).run();
 }
 
 }  // namespace

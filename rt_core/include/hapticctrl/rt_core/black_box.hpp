@@ -22,13 +22,16 @@ struct CycleRecord {
   std::uint32_t flags = 0;        ///< kRecord* bits
   std::uint32_t state_word = 0;
   std::uint32_t consecutive_misses = 0;
-  std::uint32_t skipped = 0;  ///< slots skipped right before this cycle
+  std::uint32_t skipped = 0;  ///< a stall record (kRecordStall): the slots it skipped; else 0
   std::array<double, 6> joint_position{};
   std::array<double, 6> joint_torque{};
 };
 
 inline constexpr std::uint32_t kRecordMiss = 1U << 0;
 inline constexpr std::uint32_t kRecordDegraded = 1U << 1;
+/// A late wake-up of the CLOCK that skipped slots (a stall): no SERVO ran; `skipped` slots were
+/// counted as misses, `wake_latency` is how late it woke, `cycle` the last cycle that ran.
+inline constexpr std::uint32_t kRecordStall = 1U << 2;
 
 class BlackBox {
  public:

@@ -104,7 +104,8 @@ class Executive {
   /// Runs one slot; returns a stop reason when the cycle must end.
   shm::StopReason run_slot(TimeNs scheduled, TimeNs woke) noexcept;
   void release_servo(TimeNs now) noexcept;
-  void record(const CycleTimes& times, bool miss, std::uint32_t skipped) noexcept;
+  /// One black-box record: a cycle, or a stall (kRecordStall) that skipped `skipped` slots.
+  void record(const CycleTimes& times, std::uint32_t flags, std::uint32_t skipped) noexcept;
   void publish_telemetry(TimeNs now) noexcept;
   void emit(shm::EventKind kind, std::uint32_t code, std::uint64_t value, TimeNs now) noexcept;
   /// Turns changes of the committed state word and client session into events.
@@ -130,7 +131,6 @@ class Executive {
   std::uint64_t cycle_ = 0;
   std::uint64_t degraded_cycles_ = 0;
   std::uint64_t skipped_slots_ = 0;
-  std::uint32_t pending_skipped_ = 0;
   std::uint64_t would_fail_safe_ = 0;  ///< benchmark mode: miss-rule trips ridden through
   std::uint64_t first_would_fail_safe_cycle_ = 0;
   TimeNs last_woke_ = -1;

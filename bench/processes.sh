@@ -1,0 +1,28 @@
+# Sourced by the benchmark scripts that start the product's processes: PIDS, stop_all (also on
+# exit), start_core_and_bridge and port_of. Expects BUILD.
+PIDS=()
+stop_all() {  # TERM every started process and wait for it
+  for pid in "${PIDS[@]}"; do kill -TERM "$pid" 2>/dev/null || true; done
+  wait "${PIDS[@]}" 2>/dev/null || true
+  PIDS=()
+}
+trap stop_all EXIT
+
+port_of() {  # file: the port a program printed after "listening on 127.0.0.1:" (10 s at most)
+  for _ in $(seq 1 200); do
+    local p
+    p=$(sed -n 's/.*listening on 127.0.0.1:\([0-9]*\).*/\1/p' "$1")
+    if [[ -n $p ]]; then echo "$p"; return 0; fi
+    sleep 0.05
+  done
+  return 1
+}
+
+start_core_and_bridge() {  # instance dir: a 1 ms core in benchmark mode and a UDP bridge on a
+  # free port (DIR/udp.out says which), their logs in DIR
+  "$BUILD/rt_core/hapticctrl-core" --instance "$1" --rt warn --priority 80 --benchmark-mode \
+    --blackbox-dir "$2" 2>"$2/core.err" &
+  PIDS+=($!)
+  "$BUILD/bridges/udp/hapticctrl-udp" --instance "$1" --port 0 >"$2/udp.out" 2>"$2/udp.err" &
+  PIDS+=($!)
+}

@@ -7,7 +7,8 @@ writes OUT_DIR/gravity.md and gravity.json.
   velocity), and the largest speed of each after 3 s;
 - coupling on/off chatter: changes of the coupled bit between cycles of the main SERVO on fresh
   client data (a degraded cycle never couples; a stale link is not chatter);
-- where the handle rested, how far it crept after 3 s, and the stalls the core rode through.
+- where the handle rested, how far it crept after 3 s, the weight it carried (mean of the last
+  2 s of the wrench rendered on it), and the stalls the core rode through.
 Only figures measured in this run.
 """
 import csv
@@ -42,11 +43,13 @@ def handle_speeds(rows, window=50):
 
 
 def chatter(rows):
-    n, prev = 0, None
+    """Coupled-bit changes after the coupling first engaged, main SERVO on fresh data only."""
+    n, prev, engaged = 0, None, False
     for r in rows:
         word = int(r["state_word"])
-        if prev is not None and not (word | prev) & (DEGRADED | STALE):
+        if engaged and not (word | prev) & (DEGRADED | STALE):
             n += (word & COUPLED) != (prev & COUPLED)
+        engaged = engaged or bool(word & COUPLED)
         prev = word
     return n
 
@@ -67,6 +70,7 @@ def analyse(raw):
     sphere = [(float(r["t_s"]), math.sqrt(sum(float(r[k]) ** 2 for k in ("vx", "vy", "vz"))))
               for r in demo]
     settled = next((r for r in rows if float(r["t_s"]) >= 3.0), rows[-1])
+    last_two = [r for r in rows if int(r["cycle"]) > int(rows[-1]["cycle"]) - 2000]
     start = [float(settled[k]) for k in ("x", "y", "z")]
     end = [float(rows[-1][k]) for k in ("x", "y", "z")]
     out.update({
@@ -78,7 +82,7 @@ def analyse(raw):
         "chatter": chatter(rows),
         "rest_z": end[2],
         "creep_mm": math.dist(start, end) * 1e3,
-        "weight_n": -float(rows[-1]["ren_fz"]),
+        "weight_n": -sum(float(r["ren_fz"]) for r in last_two) / len(last_two),
     })
     return out
 

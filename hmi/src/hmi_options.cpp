@@ -83,7 +83,7 @@ HmiOptions HmiOptions::parse(const std::vector<std::string>& args) {
     } else if (a == "--power-on") {
       o.power_on = true;
     } else if (a == "--hand") {
-      const std::string text = value();
+      const std::string& text = value();
       const auto comma = text.find(',');
       if (comma == std::string::npos) {
         throw std::invalid_argument("--hand needs K,B (stiffness N/m, damping N.s/m)");

@@ -77,9 +77,9 @@ Vector6d ArmSimulator::passive_torques() const noexcept {
 
 void ArmSimulator::step(const Vector6d& motor_torque, const Vector6d& operator_wrench, double dt,
                         bool brakes, const HandModel& hand) noexcept {
-  hand_force_.setZero();
   if (brakes) {
     qd_.setZero();
+    limit_operator(operator_wrench, dt);  // a held handle: the hand is not evaluated
     return;
   }
   const int substeps = std::max(1, static_cast<int>(std::ceil(dt / options_.max_substep - 1e-9)));
@@ -88,18 +88,28 @@ void ArmSimulator::step(const Vector6d& motor_torque, const Vector6d& operator_w
     const Matrix6d inertia_matrix = dynamics_->mass_matrix(chain_);
     const Vector6d bias = dynamics_->bias_torque(chain_, qd_);
     const Matrix6d jacobian = dynamics_->jacobian(chain_);
-    Vector6d wrench = operator_wrench;
+    Vector6d target = operator_wrench;
     if (hand.gripping()) {
       const Vector3d handle_velocity = jacobian.topRows<3>() * qd_;
-      hand_force_ = hand.force(chain_.handle_position, handle_velocity, n * h);
-      wrench.head<3>() += hand_force_;
+      target.head<3>() += hand.force(chain_.handle_position, handle_velocity, n * h);
     }
-    const Vector6d external = jacobian.transpose() * wrench;
+    limit_operator(target, h);
+    const Vector6d external = jacobian.transpose() * operator_applied_;
     const Vector6d qdd =
         inertia_matrix.ldlt().solve(motor_torque + external + passive_torques() - bias);
     qd_ += qdd * h;  // semi-implicit Euler: new velocity, then position
     q_ += qd_ * h;
     dynamics_->forward_kinematics(q_, chain_);
+  }
+}
+
+void ArmSimulator::limit_operator(const Vector6d& target, double h) noexcept {
+  const shm::ForceLimits& l = options_.operator_limits;
+  for (int i = 0; i < 6; ++i) {
+    const double peak = i < 3 ? l.max_force : l.max_torque;
+    const double step = (i < 3 ? l.force_rate : l.torque_rate) * h;
+    const double wanted = std::clamp(target(i), -peak, peak);
+    operator_applied_(i) += std::clamp(wanted - operator_applied_(i), -step, step);
   }
 }
 
@@ -174,12 +184,6 @@ void SimulatedArm::read_operator_wrench() noexcept {
   hand_.anchor_velocity = to_vector(sample.hand.anchor_velocity);
   hand_.stiffness = sample.hand.stiffness;
   hand_.damping = sample.hand.damping;
-}
-
-Vector6d SimulatedArm::operator_wrench() const noexcept {
-  Vector6d w = operator_wrench_;
-  w.head<3>() += sim_.hand_force();
-  return w;
 }
 
 void SimulatedArm::send_commands(const ArmCommands& commands, TimeNs /*now*/, TimeNs dt) noexcept {

@@ -490,6 +490,27 @@ TEST(FaultInjection, AMisbehavingSharedMemoryWriterIsRefusedOrLimitedAndCountedA
   EXPECT_TRUE(ControllerStack::eventually([&] { return stack.telemetry().force_rejected == 2; }));
   EXPECT_EQ(stack.position().operator_wrench, shm::Vector6{});
 
+  // An acceptable wrench written at once, skipping the ramp its writers promise (H3: it went
+  // 0 -> 173 N in one cycle before): the core takes it to the handle at 500 N/s at most.
+  force.publish(shm::ForcePayload{{100, 100, 100, 0, 0, 0}}, shm::monotonic_now_ns());
+  double largest_step = 0.0;
+  std::uint64_t last_cycle = 0;
+  shm::Vector6 last{};
+  for (int i = 0; i < 400 && last[0] < 99.0; ++i) {
+    const shm::PositionPayload p = stack.position();
+    if (p.cycle != last_cycle && last_cycle != 0) {
+      largest_step = std::max(largest_step, (p.operator_wrench[0] - last[0]) /
+                                                static_cast<double>(p.cycle - last_cycle));
+    }
+    last_cycle = p.cycle;
+    last = p.operator_wrench;
+    std::this_thread::sleep_for(std::chrono::microseconds(kPeriodUs / 2));
+  }
+  const double per_cycle = 500.0 * kPeriodUs * 1e-6;
+  EXPECT_LE(largest_step, per_cycle + 1e-9) << "N per cycle";
+  EXPECT_GT(last[0], 5.0) << "and it does arrive";
+  force.publish(shm::ForcePayload{}, shm::monotonic_now_ns());
+
   watch.stop();
   EXPECT_LE(watch.largest_coupling_excess(), kRounding);
   EXPECT_FALSE(watch.left_running()) << stack.diagnostics();

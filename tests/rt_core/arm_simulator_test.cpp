@@ -141,8 +141,48 @@ TEST_F(ArmSimulatorTest, AHandHoldsTheUnpoweredButReleasedArmNearItsAnchor) {
   const double sag = (sim.chain().handle_position - hand.anchor).norm();
   EXPECT_GT(sag, 1e-4);
   EXPECT_LT(sag, 0.05);
-  EXPECT_GT(sim.hand_force().z(), 0.5);  // holding the arm up
+  EXPECT_GT(sim.operator_applied().z(), 0.5);  // the hand holds the arm up
   EXPECT_LT(sim.velocity().norm(), 0.05);
+}
+
+TEST_F(ArmSimulatorTest, TheOperatorWrenchIsSaturatedAndRateLimitedWhateverTheRegionSays) {
+  // H3: a writer that skips the HMI's ramp (a wrench of 100 N per axis written at once), or a
+  // hand anchored a metre away, reaches the handle at 500 N/s at most and never beyond 100 N
+  // per axis; torques at 50 N.m/s.
+  auto force = std::make_unique<shm::SeqlockCell<shm::ForcePayload>>();
+  SimulatedArm arm(dynamics_, SimulatorOptions{}, kReady, force.get());
+  arm.set_supply(true);
+  ArmCommands hold;
+  hold.enable = true;
+  shm::ForcePayload blow;
+  blow.wrench = {100, -100, 0, 0, 0, 10};
+  force->publish(blow, 0);
+  Vector6d before = Vector6d::Zero();
+  for (int k = 0; k < 20; ++k) {
+    arm.send_commands(hold, 0, kNsPerMs);
+    const Vector6d now = arm.operator_wrench();
+    EXPECT_LE((now - before).head<3>().cwiseAbs().maxCoeff(), 0.5 + 1e-9) << "cycle " << k;
+    EXPECT_LE((now - before).tail<3>().cwiseAbs().maxCoeff(), 0.05 + 1e-9) << "cycle " << k;
+    before = now;
+  }
+  EXPECT_NEAR(arm.operator_wrench()(0), 10.0, 1e-9) << "20 ms at 500 N/s";
+
+  auto hand_force = std::make_unique<shm::SeqlockCell<shm::ForcePayload>>();
+  SimulatedArm held(dynamics_, SimulatorOptions{}, kReady, hand_force.get());
+  held.set_supply(true);
+  shm::ForcePayload far;
+  const Vector3d p = held.simulator().chain().handle_position;
+  far.hand.anchor = {p.x() + 1.0, p.y(), p.z()};  // 3000 N/m x 1 m: 3000 N asked
+  far.hand.stiffness = 3000.0;
+  hand_force->publish(far, 0);
+  double largest = 0.0;
+  for (int k = 0; k < 400; ++k) {
+    held.send_commands(hold, 0, kNsPerMs);
+    largest = std::max(largest, held.operator_wrench()(0));
+    ASSERT_LE(held.operator_wrench()(0), 0.5 * (k + 1) + 1e-9);
+  }
+  EXPECT_LE(largest, 100.0 + 1e-9);
+  EXPECT_GT(largest, 50.0);
 }
 
 TEST_F(ArmSimulatorTest, TheSimulatedArmReadsTheHandAndRefusesOneOutOfRange) {

@@ -13,6 +13,7 @@
 
 #include "hapticctrl/rt_core/arm_dynamics.hpp"
 #include "hapticctrl/rt_core/arm_io.hpp"
+#include "hapticctrl/shm/force_slew.hpp"
 #include "hapticctrl/shm/payloads.hpp"
 #include "hapticctrl/shm/seqlock.hpp"
 
@@ -27,6 +28,11 @@ struct SimulatorOptions {
   double coulomb_velocity = 0.01;  ///< rad/s, tanh smoothing of Coulomb friction
   double stop_stiffness = 300.0;   ///< N·m/rad, joint-limit stops
   double stop_damping = 3.0;       ///< N·m·s/rad
+  /// The operator's wrench on the handle (region wrench + hand) is saturated and rate-limited
+  /// to these, per sub-step, whatever the `force` region says: the limits its writers promise
+  /// (shm::ForceLimits), enforced again by the core (a wrench written straight into the region
+  /// went 0 -> 173 N in one cycle, 2026-12-02). Real hands stay far below the rates.
+  shm::ForceLimits operator_limits{};
 };
 
 /// The operator's hand on the handle: a spring-damper pulling the handle point towards a moving
@@ -51,13 +57,13 @@ class ArmSimulator {
   ArmSimulator(const ArmDynamics& dynamics, const SimulatorOptions& options,
                const Vector6d& start) noexcept;
 
-  /// Advances by `dt` seconds. `motor_torque` is applied as given (saturate before), the
-  /// operator wrench acts on the handle (base frame), and so does `hand`, evaluated at every
-  /// sub-step. With `brakes` the arm does not move.
+  /// Advances by `dt` seconds. `motor_torque` is applied as given (saturate before); the
+  /// operator wrench plus the force of `hand`, evaluated at every sub-step, act on the handle
+  /// (base frame), within options' operator_limits. With `brakes` the arm does not move.
   void step(const Vector6d& motor_torque, const Vector6d& operator_wrench, double dt, bool brakes,
             const HandModel& hand = {}) noexcept;
-  /// The hand's force at the end of the last step (zero without a hand or with brakes).
-  [[nodiscard]] const Vector3d& hand_force() const noexcept { return hand_force_; }
+  /// The operator's wrench on the handle at the end of the last step (hand included, limited).
+  [[nodiscard]] const Vector6d& operator_applied() const noexcept { return operator_applied_; }
 
   [[nodiscard]] const Vector6d& position() const noexcept { return q_; }
   [[nodiscard]] const Vector6d& velocity() const noexcept { return qd_; }
@@ -68,13 +74,15 @@ class ArmSimulator {
 
  private:
   [[nodiscard]] Vector6d passive_torques() const noexcept;
+  /// Moves the applied operator wrench towards `target` over `h` within operator_limits.
+  void limit_operator(const Vector6d& target, double h) noexcept;
 
   const ArmDynamics* dynamics_;
   SimulatorOptions options_;
   Vector6d q_;
   Vector6d qd_ = Vector6d::Zero();
   ChainState chain_;
-  Vector3d hand_force_ = Vector3d::Zero();
+  Vector6d operator_applied_ = Vector6d::Zero();
 };
 
 /// ArmIo over the simulator.
@@ -89,8 +97,9 @@ class SimulatedArm final : public ArmIo {
 
   [[nodiscard]] const ArmSimulator& simulator() const noexcept { return sim_; }
   [[nodiscard]] ArmSimulator& simulator() noexcept { return sim_; }
-  /// The operator's wrench on the handle last cycle: the `force` region's wrench plus the hand's.
-  [[nodiscard]] Vector6d operator_wrench() const noexcept;
+  /// The operator's wrench on the handle last cycle: the `force` region's wrench plus the hand's,
+  /// as limited.
+  [[nodiscard]] const Vector6d& operator_wrench() const noexcept { return sim_.operator_applied(); }
   [[nodiscard]] std::uint64_t rejected_force_samples() const noexcept { return rejected_; }
 
  private:

@@ -14,7 +14,7 @@ T parse_number(const std::string& option, const std::string& text, T min, T max)
   if (ec != std::errc() || ptr != end) {
     throw std::invalid_argument(option + ": '" + text + "' is not a number");
   }
-  if (value < min || value > max) {
+  if (!(value >= min && value <= max)) {  // written so that NaN is out of range too
     throw std::invalid_argument(option + ": " + text + " is out of range [" + std::to_string(min) +
                                 ", " + std::to_string(max) + "]");
   }

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -42,13 +43,18 @@ void install_signal_handlers() {
   sigaction(SIGTERM, &action, nullptr);
 }
 
-/// auto: the last CPU (CLOCK and SERVO share it; see docs/rt_core.md for the measurement).
+/// auto: the last CPU (CLOCK and SERVO share it; see docs/rt_core.md for the measurement). A
+/// CPU the machine does not have is a usage error (it was ignored, while the log said "cpu 64").
 int resolve_cpu(int requested) {
-  if (requested != -2) {
-    return requested;
-  }
   const long cpus = sysconf(_SC_NPROCESSORS_ONLN);
-  return cpus >= 2 ? static_cast<int>(cpus - 1) : -1;
+  if (requested == -2) {
+    return cpus >= 2 ? static_cast<int>(cpus - 1) : -1;
+  }
+  if (requested >= cpus) {
+    throw std::invalid_argument("--cpu " + std::to_string(requested) + ": this machine has " +
+                                std::to_string(cpus) + " CPU(s), 0.." + std::to_string(cpus - 1));
+  }
+  return requested;
 }
 
 int run_core(const CoreConfig& config) {
@@ -61,6 +67,13 @@ int run_core(const CoreConfig& config) {
   }
   const bool fifo = rt.fifo_granted;
   const int cpu = resolve_cpu(config.cpu);
+  std::ofstream histogram;  // opened now: a path that cannot be written fails before the run
+  if (!config.histogram_path.empty()) {
+    histogram.open(config.histogram_path);
+    if (!histogram) {
+      throw std::runtime_error("cannot write the histogram '" + config.histogram_path + "'");
+    }
+  }
 
   const ArmDynamics dynamics(
       load_arm_model(config.model_path.empty() ? default_arm_model_path() : config.model_path));
@@ -87,7 +100,18 @@ int run_core(const CoreConfig& config) {
   ThreadedServoTasks tasks(clock, main_task, degraded_task, shared, config.period,
                            ThreadPlacement{fifo ? config.priority - 1 : 0, cpu},
                            ThreadPlacement{fifo ? config.priority - 2 : 0, -1});
-  place_current_thread(ThreadPlacement{fifo ? config.priority : 0, cpu});
+  const bool placed = place_current_thread(ThreadPlacement{fifo ? config.priority : 0, cpu}) &&
+                      tasks.placement_applied(ServoRole::kMain) &&
+                      tasks.placement_applied(ServoRole::kDegraded);
+  if (!placed) {
+    const std::string what = "the real-time threads could not all be placed (CPU " +
+                             std::to_string(cpu) + ", SCHED_FIFO " +
+                             (fifo ? std::to_string(config.priority) : std::string("off")) + ")";
+    if (config.rt_policy == RtPolicy::kEnforce) {
+      throw std::runtime_error(what);
+    }
+    std::cerr << "hapticctrl-core: warning: " << what << "\n";
+  }
 
   ExecutiveConfig exec_config;
   exec_config.period = config.period;
@@ -125,9 +149,13 @@ int run_core(const CoreConfig& config) {
       black_box_path.clear();
     }
   }
-  if (!config.histogram_path.empty()) {
-    std::ofstream histogram(config.histogram_path);
+  if (histogram.is_open()) {
     executive.wake_latency().write_cyclictest_format(histogram);
+    histogram.flush();
+    if (!histogram) {
+      std::cerr << "hapticctrl-core: could not write the histogram '" << config.histogram_path
+                << "'\n";
+    }
   }
   segment.close();  // fail-safe step 5: release the regions
   if (config.json) {
@@ -162,6 +190,9 @@ int main(int argc, char** argv) {
   }
   try {
     return run_core(config);
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "hapticctrl-core: " << e.what() << "\n";
+    return 64;
   } catch (const std::exception& e) {
     std::cerr << "hapticctrl-core: error: " << e.what() << "\n";
     return 1;

@@ -41,6 +41,9 @@ TEST(BridgeConfig, AllowListAndHandshakeRate) {
   }
   EXPECT_THROW(BridgeConfig::parse({"--allow-client", "lab-pc"}), std::invalid_argument);
   EXPECT_THROW(BridgeConfig::parse({"--hello-rate", "0"}), std::invalid_argument);
+  // NaN used to pass the range check and switch the limiter off (H3).
+  EXPECT_THROW(BridgeConfig::parse({"--hello-rate", "nan"}), std::invalid_argument);
+  EXPECT_THROW(BridgeConfig::parse({"--duration", "nan"}), std::invalid_argument);
 }
 
 TEST(BridgeConfig, OtherInterfacesNeedAnExplicitChoice) {

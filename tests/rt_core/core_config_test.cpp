@@ -65,6 +65,8 @@ TEST(CoreConfig, RejectsBadInputWithTheOptionName) {
   expect_error({"--priority", "99"}, "--priority");
   expect_error({"--inject-overrun", "5"}, "CYCLE:K");
   expect_error({"--sim-substep-us", "2000"}, "--sim-substep-us: 2000 is out of range [10, 1000]");
+  expect_error({"--duration", "nan"}, "--duration: nan is out of range");
+  expect_error({"--duration", "inf"}, "--duration: inf is out of range");
   expect_error({"--instance"}, "--instance needs a value");
   expect_error({"--frobnicate"}, "unknown option '--frobnicate'");
 }

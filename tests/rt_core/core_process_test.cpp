@@ -160,5 +160,24 @@ TEST(CoreProcess, BadArgumentsAreExplained) {
   EXPECT_NE(core.err().find("--period-us: 5 is out of range"), std::string::npos) << core.err();
 }
 
+TEST(CoreProcess, AnImpossibleCpuAHistogramItCannotWriteAndNaNAreRefusedBeforeAnyRun) {
+  // H3: each used to be accepted (a NaN duration ran, CPU 64 was logged as pinned, the
+  // histogram was lost at the end without a word).
+  const std::string instance = test::unique_instance("refuse");
+  SpawnedProcess cpu(HAPTICCTRL_CORE_BINARY, core_args(instance, {"--cpu", "64"}));
+  EXPECT_EQ(cpu.wait(), 64);
+  EXPECT_NE(cpu.err().find("--cpu 64: this machine has"), std::string::npos) << cpu.err();
+  SpawnedProcess nan(HAPTICCTRL_CORE_BINARY, core_args(instance, {"--duration", "nan"}));
+  EXPECT_EQ(nan.wait(), 64);
+  EXPECT_NE(nan.err().find("--duration: nan is out of range"), std::string::npos) << nan.err();
+  SpawnedProcess histogram(HAPTICCTRL_CORE_BINARY,
+                           core_args(instance, {"--histogram", "/nonexistent-dir/h.txt"}));
+  EXPECT_EQ(histogram.wait(), 1);
+  EXPECT_NE(histogram.err().find("cannot write the histogram '/nonexistent-dir/h.txt'"),
+            std::string::npos)
+      << histogram.err();
+  EXPECT_FALSE(segment_exists(instance));
+}
+
 }  // namespace
 }  // namespace hapticctrl

@@ -12,7 +12,7 @@ template <typename T>
 T number(const std::string& option, const std::string& text, T lo, T hi) {
   T value{};
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (ec != std::errc{} || end != text.data() + text.size() || value < lo || value > hi) {
+  if (ec != std::errc{} || end != text.data() + text.size() || !(value >= lo && value <= hi)) {
     throw std::invalid_argument(option + ": expected a number from " + std::to_string(lo) + " to " +
                                 std::to_string(hi) + ", got '" + text + "'");
   }

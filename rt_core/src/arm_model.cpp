@@ -1,8 +1,10 @@
 #include "hapticctrl/rt_core/arm_model.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <numbers>
 #include <set>
 #include <sstream>
 #include <tuple>
@@ -15,6 +17,10 @@
 
 namespace hapticctrl::rt_core {
 namespace {
+
+/// Longest length any part of a desktop haptic arm can have (m): a link, an offset, the
+/// workspace's half size or centre.
+constexpr double kMaxLength = 2.0;
 
 struct Entry {
   std::vector<double> numbers;
@@ -106,6 +112,7 @@ class Parser {
   }
 
   const Entry& get(const Sections& s, const std::string& section, const std::string& key) const {
+    used_.emplace(section, key);
     const auto sec = s.find(section);
     if (sec == s.end()) {
       fail(0, "[" + section + "]", "section missing");
@@ -168,6 +175,34 @@ class Parser {
     return {v[0], v[1], v[2]};
   }
 
+  /// A value that must also lie within what such an arm can physically be (H3: a gravity of
+  /// 1000 m/s^2 was accepted and powered the handle to 41 m/s).
+  double at_most(const Sections& s, const std::string& section, const std::string& key,
+                 double value, double bound, const char* unit) const {
+    if (value > bound) {
+      fail(get(s, section, key).line, where(section, key),
+           "must be at most " + number_text(bound) + " " + unit + ", got " +
+               get(s, section, key).text);
+    }
+    return value;
+  }
+
+  /// Every key read, every section known: anything else is a typo or another format.
+  void reject_unknown(const Sections& s) const {
+    for (const auto& [section, keys] : s) {
+      const bool known = std::any_of(used_.begin(), used_.end(),
+                                     [&name = section](const auto& u) { return u.first == name; });
+      if (!known) {
+        fail(keys.empty() ? 0 : keys.begin()->second.line, "[" + section + "]", "unknown section");
+      }
+      for (const auto& [key, entry] : keys) {
+        if (used_.count({section, key}) == 0) {
+          fail(entry.line, where(section, key), "unknown key");
+        }
+      }
+    }
+  }
+
   Vector3d axis(const Sections& s, const std::string& section) const {
     const Entry& e = get(s, section, "axis");
     if (e.text == "x" || e.text == "X") {
@@ -188,7 +223,14 @@ class Parser {
   }
 
  private:
+  static std::string number_text(double v) {
+    std::ostringstream out;
+    out << v;
+    return out.str();
+  }
+
   std::string source_;
+  mutable std::set<std::pair<std::string, std::string>> used_;
 };
 
 }  // namespace
@@ -203,24 +245,32 @@ ArmModel parse_arm_model(const std::string& text, const std::string& source) {
   }
   m.name = p.get(s, "model", "name").text;
   m.gravity = p.vec3(s, "model", "gravity");
+  p.at_most(s, "model", "gravity", m.gravity.norm(), 20.0, "m/s^2 in magnitude");
   for (int i = 0; i < kJoints; ++i) {
     const std::string sec = "joint " + std::to_string(i + 1);
     JointModel& j = m.joints[static_cast<std::size_t>(i)];
     j.origin = p.vec3(s, sec, "origin");
+    p.at_most(s, sec, "origin", j.origin.norm(), kMaxLength, "m from the previous joint");
     j.axis = p.axis(s, sec);
-    j.mass = p.positive(s, sec, "mass");
+    j.mass = p.at_most(s, sec, "mass", p.positive(s, sec, "mass"), 20.0, "kg");
     j.com = p.vec3(s, sec, "com");
+    p.at_most(s, sec, "com", j.com.norm(), kMaxLength, "m from the joint");
     const Vector3d principal = p.vec3(s, sec, "inertia");
+    p.at_most(s, sec, "inertia", principal.maxCoeff(), 5.0, "kg.m^2");
     if ((principal.array() < 0.0).any()) {
       p.fail(p.get(s, sec, "inertia").line, "[" + sec + "] inertia",
              "principal moments must be >= 0");
     }
     j.inertia = principal.asDiagonal();
     std::tie(j.q_min, j.q_max) = p.range(s, sec, "limits");
-    j.viscous = p.positive(s, sec, "viscous", true);
-    j.coulomb = p.positive(s, sec, "coulomb", true);
-    j.rotor_inertia = p.positive(s, sec, "rotor_inertia", true);
-    j.torque_peak = p.positive(s, sec, "torque_peak");
+    p.at_most(s, sec, "limits", std::max(-j.q_min, j.q_max), 2.0 * std::numbers::pi, "rad");
+    j.viscous =
+        p.at_most(s, sec, "viscous", p.positive(s, sec, "viscous", true), 10.0, "N.m.s/rad");
+    j.coulomb = p.at_most(s, sec, "coulomb", p.positive(s, sec, "coulomb", true), 10.0, "N.m");
+    j.rotor_inertia = p.at_most(s, sec, "rotor_inertia", p.positive(s, sec, "rotor_inertia", true),
+                                1.0, "kg.m^2");
+    j.torque_peak =
+        p.at_most(s, sec, "torque_peak", p.positive(s, sec, "torque_peak"), 200.0, "N.m");
     j.torque_continuous = p.positive(s, sec, "torque_continuous");
     if (j.torque_continuous > j.torque_peak) {
       p.fail(p.get(s, sec, "torque_continuous").line, "[" + sec + "] torque_continuous",
@@ -234,28 +284,44 @@ ArmModel parse_arm_model(const std::string& text, const std::string& source) {
     j.encoder_counts = static_cast<int>(counts);
   }
   m.handle = p.vec3(s, "handle", "origin");
+  p.at_most(s, "handle", "origin", m.handle.norm(), kMaxLength, "m from joint 6");
   std::tie(m.limits.coupled_j23_min, m.limits.coupled_j23_max) =
       p.range(s, "limits", "coupled_j2_j3");
-  m.limits.force_peak = p.positive(s, "limits", "force_peak");
+  m.limits.force_peak = p.at_most(s, "limits", "force_peak", p.positive(s, "limits", "force_peak"),
+                                  100.0, "N (the operator's own limit)");
   m.limits.force_continuous = p.positive(s, "limits", "force_continuous");
-  m.limits.torque_peak = p.positive(s, "limits", "torque_peak");
+  m.limits.torque_peak =
+      p.at_most(s, "limits", "torque_peak", p.positive(s, "limits", "torque_peak"), 10.0, "N.m");
   m.limits.torque_continuous = p.positive(s, "limits", "torque_continuous");
   std::tie(m.limits.max_stiffness_linear, m.limits.max_stiffness_angular) =
       p.positive_pair(s, "limits", "max_stiffness");
+  p.at_most(s, "limits", "max_stiffness", m.limits.max_stiffness_linear, 1e4, "N/m (linear)");
+  p.at_most(s, "limits", "max_stiffness", m.limits.max_stiffness_angular, 100.0,
+            "N.m/rad (angular)");
   std::tie(m.limits.max_damping_linear, m.limits.max_damping_angular) =
       p.positive_pair(s, "limits", "max_damping");
-  m.limits.max_speed = p.positive(s, "limits", "max_speed");
-  m.limits.force_rate = p.positive(s, "limits", "force_rate");
+  p.at_most(s, "limits", "max_damping", m.limits.max_damping_linear, 200.0, "N.s/m (linear)");
+  p.at_most(s, "limits", "max_damping", m.limits.max_damping_angular, 2.0, "N.m.s/rad (angular)");
+  m.limits.max_speed =
+      p.at_most(s, "limits", "max_speed", p.positive(s, "limits", "max_speed"), 5.0, "m/s");
+  m.limits.force_rate =
+      p.at_most(s, "limits", "force_rate", p.positive(s, "limits", "force_rate"), 1e5, "N/s");
   m.limits.workspace_center = p.vec3(s, "limits", "workspace_center");
+  p.at_most(s, "limits", "workspace_center", m.limits.workspace_center.norm(), kMaxLength, "m");
   m.limits.workspace_half_size = p.vec3(s, "limits", "workspace_half_size");
+  p.at_most(s, "limits", "workspace_half_size", m.limits.workspace_half_size.maxCoeff(), kMaxLength,
+            "m");
   if ((m.limits.workspace_half_size.array() <= 0.0).any()) {
     p.fail(p.get(s, "limits", "workspace_half_size").line, "[limits] workspace_half_size",
            "must be > 0 on every axis");
   }
-  m.limits.workspace_stiffness = p.positive(s, "limits", "workspace_stiffness", true);
+  m.limits.workspace_stiffness =
+      p.at_most(s, "limits", "workspace_stiffness",
+                p.positive(s, "limits", "workspace_stiffness", true), 1e4, "N/m");
   if (m.limits.force_continuous > m.limits.force_peak) {
     p.fail(0, "[limits] force_continuous", "must not exceed force_peak");
   }
+  p.reject_unknown(s);
   return m;
 }
 

@@ -66,6 +66,28 @@ TEST(ArmModel, ErrorsNameTheFileLineAndField) {
   expect_error("format = 1\nthis is not a key value line\n", "test.arm:2");
 }
 
+TEST(ArmModel, ValuesBeyondAPhysicalArmAndUnknownKeysAreRefusedWithTheLine) {
+  // H3: a gravity of 1000 m/s^2 was accepted (and powered the handle to 41 m/s); so were
+  // unknown keys and sections, where a typo silently kept a default.
+  const std::string text = default_text();
+  expect_error(edit(text, "model", "gravity", "gravity = 0 0 -1000"),
+               "[model] gravity: must be at most 20 m/s^2 in magnitude");
+  expect_error(edit(text, "joint 2", "mass", "mass = 500"),
+               "[joint 2] mass: must be at most 20 kg");
+  expect_error(edit(text, "joint 3", "origin", "origin = 30 0 0"), "[joint 3] origin");
+  expect_error(edit(text, "joint 1", "limits", "limits = -20 20"),
+               "[joint 1] limits: must be at most 6.28319 rad");
+  expect_error(edit(text, "limits", "max_speed", "max_speed = 50"),
+               "[limits] max_speed: must be at most 5 m/s");
+  expect_error(edit(text, "limits", "force_peak", "force_peak = 500"), "[limits] force_peak");
+  expect_error(edit(text, "limits", "max_stiffness", "max_stiffness = 1e6 20"),
+               "[limits] max_stiffness: must be at most 10000 N/m");
+  expect_error(edit(text, "joint 4", "viscous", "viscous = 0.005\nviscosity = 0.1"),
+               "[joint 4] viscosity: unknown key");
+  expect_error(text + "\n[joint 7]\nmass = 1\n", "[joint 7]: unknown section");
+  expect_error(text + "\n[joint 7]\nmass = 1\n", "test.arm:");
+}
+
 TEST(ArmModel, UnreadableFileIsAClearError) {
   EXPECT_THROW(load_arm_model("/nonexistent/model.arm"), ArmModelError);
 }

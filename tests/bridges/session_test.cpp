@@ -37,6 +37,7 @@ struct Client {
   std::int64_t now = 1000 * kMs;
   hcp_frame reply{};
   bool replied = false;
+  std::uint32_t asked_watchdog_ms = 0;  ///< in the HELLO (0: the bridge's default)
 
   std::vector<std::uint8_t> bytes(hcp_frame f) const {
     FrameBuffer b{};
@@ -57,6 +58,7 @@ struct Client {
     f.header.protocol = version;
     f.body.hcp_body_u.hello.min_version = min_version != 0 ? min_version : version;
     f.body.hcp_body_u.hello.features = features;
+    f.body.hcp_body_u.hello.watchdog_ms = asked_watchdog_ms;
     feed(bytes(f));
     if (replied && reply.body.type == HCP_WELCOME) {
       token = reply.header.token;
@@ -456,7 +458,7 @@ TEST_F(SessionTest, ClosingTellsTheClientWhyWithItsToken) {
 
 TEST(SessionSecurity, ASourceOffTheAllowListIsDroppedUndecodedAndCounted) {
   test::InMemoryController controller;
-  Session session({100, ClientAllowList({Ipv4Network::parse("127.0.0.2")}), {}},
+  Session session({100, kMaxWatchdogMs, ClientAllowList({Ipv4Network::parse("127.0.0.2")}), {}},
                   [] { return std::uint64_t{7}; });
   session.set_controller(&controller.ports, 0);
   Client stranger{&session};  // 127.0.0.1
@@ -472,7 +474,7 @@ TEST(SessionSecurity, ASourceOffTheAllowListIsDroppedUndecodedAndCounted) {
 
 TEST(SessionSecurity, AHandshakeFloodIsAnsweredOnlyAtItsRate) {
   test::InMemoryController controller;
-  Session session({100, {}, {10.0, 4.0}}, [] { return std::uint64_t{7}; });
+  Session session({100, kMaxWatchdogMs, {}, {10.0, 4.0}}, [] { return std::uint64_t{7}; });
   session.set_controller(&controller.ports, 0);
   Client flood{&session};
   int answered = 0;
@@ -480,8 +482,22 @@ TEST(SessionSecurity, AHandshakeFloodIsAnsweredOnlyAtItsRate) {
     flood.hello();
     answered += flood.replied ? 1 : 0;
   }
-  EXPECT_EQ(answered, 4) << "the burst, then nothing within the same instant";
-  EXPECT_EQ(session.counters().dropped_for(LinkDrop::kRateLimited), 96U);
+  EXPECT_EQ(answered, 2) << "kFirstHellos for a new source, then nothing within the same instant";
+  EXPECT_EQ(session.counters().dropped_for(LinkDrop::kRateLimited), 98U);
+}
+
+TEST(SessionSecurity, AClientCannotHoldAnIdleSessionBeyondTheDefaultNorAskForMoreThanTheCap) {
+  // H3: one HELLO asking for a 60 s watchdog held the session for 60 s.
+  test::InMemoryController controller;
+  Session session({100, 500, {}, {}}, [] { return std::uint64_t{7}; });
+  session.set_controller(&controller.ports, 0);
+  Client greedy{&session};
+  greedy.asked_watchdog_ms = 60'000;
+  greedy.hello();
+  ASSERT_EQ(greedy.reply.body.type, HCP_WELCOME);
+  EXPECT_EQ(greedy.reply.body.hcp_body_u.welcome.watchdog_ms, 500U) << "capped";
+  EXPECT_FALSE(session.check_watchdog(greedy.now + 100 * kMs));
+  EXPECT_TRUE(session.check_watchdog(greedy.now + 101 * kMs)) << "idle: the default holds";
 }
 
 TEST_F(SessionTest, StatsReflectTheSessionAndCounters) {

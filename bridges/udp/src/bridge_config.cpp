@@ -36,8 +36,11 @@ const char* BridgeConfig::usage() noexcept {
          "  --allow-client NET  serve only this client address or network (a.b.c.d[/n]);\n"
          "                      repeat for more (default: any address that reaches the port)\n"
          "  --hello-rate N      handshakes (HELLO) answered per second per source, and the\n"
-         "                      burst allowed, 1..10000 (default: 20)\n"
+         "                      burst allowed, 1..10000 (default: 20); 5 times that from\n"
+         "                      all sources together\n"
          "  --watchdog-ms N     default session watchdog, 10..60000 ms (default: 3000)\n"
+         "  --max-watchdog-ms N the longest watchdog a client may ask for, 10..600000 ms\n"
+         "                      (default: 10000, at least --watchdog-ms)\n"
          "  --priority N        SCHED_FIFO priority 1..98 for both threads (below the core's)\n"
          "  --duration S        exit after S seconds (default: run until SIGINT/SIGTERM)\n"
          "  --json              print the final counters as one JSON line\n";
@@ -69,6 +72,8 @@ BridgeConfig BridgeConfig::parse(const std::vector<std::string>& args) {
       }
     } else if (a == "--hello-rate") {
       c.hello_rate = number<double>(a, value(), 1.0, 10000.0);
+    } else if (a == "--max-watchdog-ms") {
+      c.max_watchdog_ms = number<std::uint32_t>(a, value(), 10, 600000);
     } else if (a == "--watchdog-ms") {
       c.watchdog_ms = number<std::uint32_t>(a, value(), 10, 60000);
     } else if (a == "--priority") {
@@ -87,6 +92,10 @@ BridgeConfig BridgeConfig::parse(const std::vector<std::string>& args) {
     throw std::invalid_argument("--bind " + c.bind_address +
                                 ": not a loopback address; a client elsewhere could then command "
                                 "forces, so say so with --allow-remote");
+  }
+  if (c.max_watchdog_ms < c.watchdog_ms) {
+    throw std::invalid_argument("--max-watchdog-ms " + std::to_string(c.max_watchdog_ms) +
+                                " is below the default watchdog " + std::to_string(c.watchdog_ms));
   }
   return c;
 }

@@ -36,6 +36,9 @@ using hapticctrl::protocol::Received;
 using hapticctrl::protocol::UdpSocket;
 using hapticctrl::udp_bridge::BridgeConfig;
 using hapticctrl::udp_bridge::Session;
+
+/// HELLOs answered from all sources together, in multiples of the per-source rate.
+constexpr double kTotalHellos = 5.0;
 namespace shm = hapticctrl::shm;
 
 std::atomic<bool> g_stop{false};
@@ -231,8 +234,10 @@ int run(const BridgeConfig& config) {
               socket.local_endpoint().to_string().c_str(), config.instance.c_str());
   std::fflush(stdout);
   Session session({config.watchdog_ms,
+                   config.max_watchdog_ms,
                    hapticctrl::udp_bridge::ClientAllowList(config.allowed_clients),
-                   {config.hello_rate, config.hello_rate}},
+                   {config.hello_rate, config.hello_rate, kTotalHellos * config.hello_rate,
+                    kTotalHellos * config.hello_rate / 2.0}},
                   random_token);
   const std::int64_t end_ns =
       config.duration_s > 0.0 ? monotonic_ns() + static_cast<std::int64_t>(config.duration_s * 1e9)

@@ -176,8 +176,10 @@ void Session::open(const hcp_frame& hello, const protocol::Endpoint& from, TimeN
   session_.peer = from;
   session_.features = hello.body.hcp_body_u.hello.features & protocol::kAllFeatures;
   const std::uint32_t asked = hello.body.hcp_body_u.hello.watchdog_ms;
-  watchdog_ms_ = asked != 0 ? asked : settings_.default_watchdog_ms;
+  watchdog_ms_ =
+      std::min(asked != 0 ? asked : settings_.default_watchdog_ms, settings_.max_watchdog_ms);
   last_heard_ = now;
+  engaged_ = false;
   have_control_seq_ = false;
   have_param_seq_ = false;
   control_seq_high_ = 0;
@@ -213,7 +215,10 @@ std::size_t Session::close(TimeNs now, std::string_view why, std::span<std::uint
 }
 
 bool Session::check_watchdog(TimeNs now) noexcept {
-  if (session_.token == 0 || now - last_heard_ <= static_cast<TimeNs>(watchdog_ms_) * 1'000'000) {
+  // A session that sent nothing since its HELLO is held no longer than the default.
+  const std::uint32_t limit_ms =
+      engaged_ ? watchdog_ms_ : std::min(watchdog_ms_, settings_.default_watchdog_ms);
+  if (session_.token == 0 || now - last_heard_ <= static_cast<TimeNs>(limit_ms) * 1'000'000) {
     return false;
   }
   counters_.watchdog_expiries.fetch_add(1, std::memory_order_relaxed);
@@ -237,6 +242,7 @@ void Session::on_control(const hcp_frame& in, TimeNs now) noexcept {
   have_control_seq_ = true;
   last_control_seq_ = seq;
   last_heard_ = now;
+  engaged_ = true;
   if (in.body.type == HCP_KEEPALIVE) {
     return;  // feeds the watchdog only: the core keeps judging the freshness of client data
   }
@@ -293,6 +299,7 @@ std::size_t Session::on_param(const hcp_frame& in, bool values_ok, TimeNs now,
                               std::span<std::uint8_t> reply) noexcept {
   const std::uint32_t seq = in.header.sequence;
   last_heard_ = now;
+  engaged_ = true;
   if (have_param_seq_ && seq == last_ack_.sequence) {  // our ACK was lost: say it again
     counters_.param_duplicates.fetch_add(1, std::memory_order_relaxed);
     return ack(last_ack_, now, reply);
@@ -358,7 +365,7 @@ hcp_ack_status Session::apply(const hcp_param& param, TimeNs now) noexcept {
       protocol::from_wire(u.force_limits, vpr_.force_limits);
       break;
     case HCP_P_WATCHDOG:
-      watchdog_ms_ = u.watchdog_ms;
+      watchdog_ms_ = std::min(u.watchdog_ms, settings_.max_watchdog_ms);
       vpr_.watchdog_timeout_us = watchdog_ms_ * 1000U;
       break;
     case HCP_P_POWER:

@@ -19,6 +19,7 @@ struct BridgeConfig {
   std::vector<Ipv4Network> allowed_clients;        ///< --allow-client (empty: any source)
   double hello_rate = 20.0;                        ///< HELLOs per second and burst, per source
   std::uint32_t watchdog_ms = kDefaultWatchdogMs;  ///< default session watchdog
+  std::uint32_t max_watchdog_ms = kMaxWatchdogMs;  ///< the longest a client may ask for
   int priority = 0;         ///< SCHED_FIFO priority of both threads; 0: SCHED_OTHER
   double duration_s = 0.0;  ///< 0: until SIGINT/SIGTERM
   bool json = false;        ///< final counters as one JSON line on stdout

@@ -71,10 +71,16 @@ struct LinkCounters {
 /// watchdog, and ramps it back when samples flow again). It was 100 ms until 2026-12-02: a
 /// blackout longer than that decoupled the client for good (H1 asks for 2 s to be survived).
 inline constexpr std::uint32_t kDefaultWatchdogMs = 3000;
+/// The longest watchdog a client may ask for unless the bridge is told otherwise.
+inline constexpr std::uint32_t kMaxWatchdogMs = 10000;
 
 /// Bridge-wide settings.
 struct SessionSettings {
   std::uint32_t default_watchdog_ms = kDefaultWatchdogMs;
+  /// The longest watchdog a client may ask for (HELLO or a WATCHDOG parameter); until its
+  /// first control frame a session is held no longer than the default (one HELLO held the
+  /// session for 60 s before, 2026-12-02).
+  std::uint32_t max_watchdog_ms = kMaxWatchdogMs;
   ClientAllowList allowed_clients;  ///< empty: every source address
   HelloLimits hello_limits;
 };
@@ -157,6 +163,7 @@ class Session {
   std::uint64_t session_number_ = 0;
   std::uint32_t watchdog_ms_ = 0;
   TimeNs last_heard_ = 0;
+  bool engaged_ = false;  ///< a control or parameter frame since the HELLO
   bool have_control_seq_ = false;
   std::uint32_t last_control_seq_ = 0;
   std::uint64_t control_seq_high_ = 0;  ///< 64-bit extension of the control sequence

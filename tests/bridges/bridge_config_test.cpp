@@ -41,6 +41,10 @@ TEST(BridgeConfig, AllowListAndHandshakeRate) {
   }
   EXPECT_THROW(BridgeConfig::parse({"--allow-client", "lab-pc"}), std::invalid_argument);
   EXPECT_THROW(BridgeConfig::parse({"--hello-rate", "0"}), std::invalid_argument);
+  EXPECT_EQ(BridgeConfig::parse({}).max_watchdog_ms, 10000U);
+  EXPECT_EQ(BridgeConfig::parse({"--max-watchdog-ms", "20000"}).max_watchdog_ms, 20000U);
+  EXPECT_THROW(BridgeConfig::parse({"--max-watchdog-ms", "1000"}), std::invalid_argument)
+      << "below the default watchdog";
   // NaN used to pass the range check and switch the limiter off (H3).
   EXPECT_THROW(BridgeConfig::parse({"--hello-rate", "nan"}), std::invalid_argument);
   EXPECT_THROW(BridgeConfig::parse({"--duration", "nan"}), std::invalid_argument);

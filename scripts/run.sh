@@ -10,7 +10,12 @@
 # Quitting the panel (q), or Ctrl-C, stops everything: the controller in its fail-safe order,
 # then the others; no process and no /dev/shm segment is left. Without a terminal it plays a
 # short scenario instead (power on, push the handle into the fixed sphere, read the contact
-# force) and prints the outcome.
+# force) and prints the outcome. Extra arguments go to hapticctrl-core.
+#
+# Exit status: 0 the controller stopped in order; 10 + the stop reason's code when it failed
+# safe (11: 5 consecutive deadline misses, 14: chronic misses, 15: arm fault, 17: velocity
+# limit; docs/rt_core.md), with the reason printed; 1 anything else that went wrong; 130
+# interrupted.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
@@ -28,7 +33,6 @@ HMI=(build/hmi/hapticctrl-hmi --instance "$INSTANCE")
 PIDS=()
 
 stop_all() {
-  trap - EXIT INT TERM
   # The controller first, by the operator's stop (fail-safe order: motors inhibited, supply off,
   # client told, tasks stopped); then the processes that served it.
   if [[ -n "${CORE_PID:-}" ]] && kill -0 "$CORE_PID" 2>/dev/null; then
@@ -37,14 +41,34 @@ stop_all() {
   for pid in "${PIDS[@]}"; do
     kill -TERM "$pid" 2>/dev/null || true
   done
-  for pid in "${PIDS[@]}" ${CORE_PID:-}; do
+  for pid in "${PIDS[@]}"; do
     wait "$pid" 2>/dev/null || true
   done
+  if [[ -n "${CORE_PID:-}" ]]; then
+    CORE_RC=0
+    wait "$CORE_PID" 2>/dev/null || CORE_RC=$?
+    CORE_PID=
+  fi
   if [[ -e /dev/shm/hapticctrl.$INSTANCE ]]; then
     echo "run: warning: /dev/shm/hapticctrl.$INSTANCE is still there" >&2
   fi
 }
-trap stop_all EXIT
+# On every way out: stop everything, then say how the controller ended. A controller that
+# failed safe makes the run fail, with its reason, whatever the script was doing.
+on_exit() {
+  local status=$?
+  trap - EXIT INT TERM
+  stop_all
+  if [[ ${CORE_RC:-0} -eq 3 ]]; then
+    local code
+    code=$(sed -n 's/.*"stop_reason_code":\([0-9]*\).*/\1/p' "$RUN_DIR/core.json")
+    echo "run: the controller FAILED SAFE: $(grep -m1 'FAIL-SAFE' "$RUN_DIR/core.log" |
+      sed 's/^hapticctrl-core: FAIL-SAFE //')" >&2
+    exit $((10 + ${code:-0}))
+  fi
+  exit "$status"
+}
+trap on_exit EXIT
 trap 'exit 130' INT TERM
 
 build/rt_core/hapticctrl-core --instance "$INSTANCE" --json "$@" >"$RUN_DIR/core.json" \
@@ -55,7 +79,7 @@ for _ in $(seq 100); do
   kill -0 "$CORE_PID" 2>/dev/null || { echo "run: hapticctrl-core did not start" >&2; exit 1; }
   sleep 0.05
 done
-build/bridges/udp/hapticctrl-udp --instance "$INSTANCE" --port "$PORT" 2>"$RUN_DIR/udp.log" &
+build/bridges/udp/hapticctrl-udp --instance "$INSTANCE" --port "$PORT" >"$RUN_DIR/udp.log" 2>&1 &
 PIDS+=($!)
 # The web page watches, and its emergency stop always acts. With HAPTICCTRL_WEB_CONTROL=1 (and
 # a terminal) the page is the operator panel instead of this terminal: the LCM bridge then takes
@@ -87,7 +111,9 @@ fi
 
 if [[ ${#REMOTE[@]} -gt 0 ]]; then
   echo "run: the web page is the operator panel; Ctrl-C stops everything"
-  wait "$CORE_PID" || true
+  CORE_RC=0
+  wait "$CORE_PID" || CORE_RC=$?
+  CORE_PID=
   exit 0
 fi
 if [[ -t 0 && -t 1 ]]; then
@@ -111,7 +137,9 @@ awk -v operator=5 'match($0, /"contact_force":\[[^]]*\]/) {
            -f[1], operator, 100 * -f[1] / operator
   }' "$RUN_DIR/demo.json"
 "${HMI[@]}" stop
-wait "$CORE_PID" || true
+CORE_RC=0
+wait "$CORE_PID" || CORE_RC=$?
+CORE_PID=
 cat "$RUN_DIR/core.log"
 echo "core figures: $(cat "$RUN_DIR/core.json")"
 echo "logs in $RUN_DIR/ (demo.csv: the scene per step)"

@@ -13,7 +13,7 @@ namespace {
 
 constexpr double kLowestHz = 0.2;
 constexpr double kHighestHz = 2.0;
-constexpr double kMaxWander = 0.1;  ///< m: a hand's wander, well inside the workspace
+constexpr double kMaxWander = 0.1;     ///< m: a hand's wander, well inside the workspace
 constexpr double kWanderFadeIn = 1.0;  ///< s
 
 /// Smooth 0 -> 1 over [0, 1] (and its derivative): the wander starts at rest.
@@ -21,7 +21,9 @@ double smoothstep(double x) noexcept {
   x = std::clamp(x, 0.0, 1.0);
   return x * x * (3.0 - 2.0 * x);
 }
-double smoothstep_rate(double x) noexcept { return x <= 0.0 || x >= 1.0 ? 0.0 : 6.0 * x * (1.0 - x); }
+double smoothstep_rate(double x) noexcept {
+  return x <= 0.0 || x >= 1.0 ? 0.0 : 6.0 * x * (1.0 - x);
+}
 
 }  // namespace
 

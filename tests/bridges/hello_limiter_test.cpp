@@ -47,7 +47,10 @@ TEST(HelloLimiter, ManySourcesShareOneTotalBudget) {
   HelloLimiter limiter({20.0, 20.0, 100.0, 50.0});
   int answered = 0;
   for (int i = 0; i < 20'000; ++i) {  // 20 000 HELLOs over 1 s from 40 addresses
-    answered += limiter.admit(static_cast<std::uint32_t>(i % 40), i * 50'000) ? 1 : 0;
+    answered +=
+        limiter.admit(static_cast<std::uint32_t>(i % 40), static_cast<std::int64_t>(i) * 50'000)
+            ? 1
+            : 0;
   }
   EXPECT_LE(answered, 50 + 100 + 1) << "the total burst plus one second at the total rate";
   EXPECT_GE(answered, 100);

@@ -1,5 +1,6 @@
 #include "hapticctrl/rt_core/executive.hpp"
 
+#include <algorithm>
 #include <array>
 
 namespace hapticctrl::rt_core {
@@ -7,6 +8,8 @@ namespace {
 
 /// Bound on waiting for a task to leave the gate during the stop sequence.
 constexpr int kGateCloseAttempts = 2000;
+/// How long client data must stay stale (or fresh) before the change is an event.
+constexpr TimeNs kStaleEventHold = 20 * kNsPerMs;
 
 }  // namespace
 
@@ -20,7 +23,8 @@ Executive::Executive(const ExecutiveConfig& config, Clock& clock, ServoTasks& ta
       arm_(&arm),
       outputs_(outputs),
       black_box_(&black_box),
-      monitor_(config.chronic) {}
+      monitor_(config.chronic),
+      stale_(static_cast<std::uint64_t>(kStaleEventHold / std::max<TimeNs>(1, config.period))) {}
 
 bool Executive::is_fault(shm::StopReason reason) noexcept {
   return reason != shm::StopReason::kStopRequested && reason != shm::StopReason::kSignal &&
@@ -245,11 +249,10 @@ void Executive::report_state_changes(TimeNs now) noexcept {
     std::uint32_t bit;
     shm::EventKind kind;
   };
-  static constexpr std::array<BitEvent, 5> kBitEvents{{
+  static constexpr std::array<BitEvent, 4> kBitEvents{{
       {shm::state_bits::kPowered, shm::EventKind::kPower},
       {shm::state_bits::kEmergencyStop, shm::EventKind::kEmergencyStop},
       {shm::state_bits::kDegraded, shm::EventKind::kDegraded},
-      {shm::state_bits::kClientStale, shm::EventKind::kClientStale},
       {shm::state_bits::kCoupled, shm::EventKind::kCoupling},
   }};
   const std::uint32_t word = shared_->committed_state_word.load(std::memory_order_relaxed);
@@ -257,9 +260,12 @@ void Executive::report_state_changes(TimeNs now) noexcept {
   for (const BitEvent& b : kBitEvents) {
     if ((changed & b.bit) != 0) {
       emit(b.kind, (word & b.bit) != 0 ? 1U : 0U, 0, now);
+      reported_state_word_ ^= b.bit;
     }
   }
-  reported_state_word_ = word;
+  if (stale_.update((word & shm::state_bits::kClientStale) != 0, cycle_)) {
+    emit(shm::EventKind::kClientStale, stale_.reported() ? 1U : 0U, stale_.lapses(), now);
+  }
   const std::uint64_t session = shared_->committed_session.load(std::memory_order_relaxed);
   if (session != reported_session_) {
     emit(shm::EventKind::kClientSession, 0, session, now);

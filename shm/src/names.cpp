@@ -77,8 +77,12 @@ std::string describe_event(const Event& e) {
     case EventKind::kClientSession:
       return e.value != 0 ? "client session " + std::to_string(e.value) + " started"
                           : "no client session";
-    case EventKind::kClientStale:
-      return on ? "client data stale (extrapolating, fading)" : "client data fresh";
+    case EventKind::kClientStale: {
+      std::string text = on ? "client data stale (extrapolating, fading)" : "client data fresh";
+      return e.value == 0
+                 ? text
+                 : text + " (" + std::to_string(e.value) + " shorter lapses since the last)";
+    }
     case EventKind::kCoupling:
       return on ? "coupling active" : "coupling inactive";
     case EventKind::kNone:

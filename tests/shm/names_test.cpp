@@ -40,6 +40,12 @@ TEST(Names, EventsDescribeThemselves) {
   e.kind = EventKind::kClientSession;
   e.value = 0;
   EXPECT_EQ(describe_event(e), "no client session");
+  e.kind = EventKind::kClientStale;
+  e.code = 1;
+  EXPECT_EQ(describe_event(e), "client data stale (extrapolating, fading)");
+  e.code = 0;
+  e.value = 12;
+  EXPECT_EQ(describe_event(e), "client data fresh (12 shorter lapses since the last)");
   e.kind = static_cast<EventKind>(77);
   EXPECT_EQ(describe_event(e), "unknown event");
 }

@@ -21,6 +21,7 @@
 #include "hapticctrl/rt_core/black_box.hpp"
 #include "hapticctrl/rt_core/clock.hpp"
 #include "hapticctrl/rt_core/deadline_monitor.hpp"
+#include "hapticctrl/rt_core/debounced_flag.hpp"
 #include "hapticctrl/rt_core/latency_histogram.hpp"
 #include "hapticctrl/rt_core/servo.hpp"
 #include "hapticctrl/shm/events.hpp"
@@ -138,6 +139,8 @@ class Executive {
   shm::StopReason stop_reason_ = shm::StopReason::kNone;
   shm::CoreState core_state_ = shm::CoreState::kRunning;
   std::uint32_t reported_state_word_ = 0;
+  /// Client stale/fresh is an event once it has held 20 ms (DebouncedFlag).
+  DebouncedFlag stale_;
   std::uint64_t reported_session_ = 0;
 };
 

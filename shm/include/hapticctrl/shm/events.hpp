@@ -21,7 +21,9 @@ enum class EventKind : std::uint32_t {
   kEmergencyStop = 3,  ///< code: 1 latched, 0 reset
   kDegraded = 4,       ///< code: 1 the degraded SERVO ran this cycle, 0 the main one is back
   kClientSession = 5,  ///< value: the new session id (0: no session)
-  kClientStale = 6,    ///< code: 1 client data stale (extrapolating/fading), 0 fresh again
+  kClientStale = 6,    ///< code: 1 client data stale (extrapolating/fading), 0 fresh again;
+                       ///< debounced: reported once the state has held 20 ms, value: how
+                       ///< many shorter lapses (a lost sample or two) came since the last
   kCoupling = 7,       ///< code: 1 coupling active, 0 inactive
 };
 

@@ -14,9 +14,6 @@ namespace {
 /// Velocity filter time constant of the measured velocity (s): a 1st-order low-pass on the
 /// encoder finite difference, as ARM_REFERENCE proposes.
 constexpr double kVelocityFilterTau = 0.002;
-/// The operator's largest force per axis (shm::ForceLimits::max_force): a hand pulled far from
-/// its anchor pulls no harder than the operator could push.
-constexpr double kMaxHandForce = 100.0;
 
 Vector3d to_vector(const std::array<double, 3>& a) noexcept {
   return {a[0], a[1], a[2]};
@@ -27,8 +24,7 @@ Vector3d to_vector(const std::array<double, 3>& a) noexcept {
 Vector3d HandModel::force(const Vector3d& position, const Vector3d& velocity,
                           double elapsed) const noexcept {
   const Vector3d target = anchor + anchor_velocity * elapsed;
-  const Vector3d f = stiffness * (target - position) + damping * (anchor_velocity - velocity);
-  return f.cwiseMax(-kMaxHandForce).cwiseMin(kMaxHandForce);
+  return stiffness * (target - position) + damping * (anchor_velocity - velocity);
 }
 
 ArmSimulator::ArmSimulator(const ArmDynamics& dynamics, const SimulatorOptions& options,

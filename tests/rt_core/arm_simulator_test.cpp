@@ -111,7 +111,7 @@ TEST_F(ArmSimulatorTest, InvalidOperatorWrenchIsRejected) {
   EXPECT_TRUE(arm.operator_wrench().isZero());
 }
 
-TEST(HandModel, PullsTowardsTheMovingAnchorDampsTheRelativeSpeedAndIsBounded) {
+TEST(HandModel, PullsTowardsTheMovingAnchorAndDampsTheRelativeSpeed) {
   HandModel hand;
   hand.anchor = Vector3d(0.5, 0.0, 0.2);
   hand.anchor_velocity = Vector3d(0.1, 0.0, 0.0);
@@ -122,7 +122,6 @@ TEST(HandModel, PullsTowardsTheMovingAnchorDampsTheRelativeSpeedAndIsBounded) {
   EXPECT_NEAR(f.x(), 400.0 * 0.001 + 10.0 * 0.1, 1e-9);
   EXPECT_NEAR(f.y(), -400.0 * 0.01, 1e-9);
   EXPECT_NEAR(f.z(), -10.0 * 0.3, 1e-9);
-  EXPECT_DOUBLE_EQ(hand.force(Vector3d(0.5, 1.0, 0.2), Vector3d::Zero(), 0.0).y(), -100.0);
   EXPECT_FALSE(HandModel{}.gripping());
 }
 

@@ -44,9 +44,10 @@ struct HandModel {
   double damping = 0.0;    ///< N.s/m
 
   [[nodiscard]] bool gripping() const noexcept { return stiffness > 0.0 || damping > 0.0; }
-  /// Force the hand puts on a handle point at `position` moving at `velocity`, `elapsed`
-  /// seconds after the anchor was given (it moves on at anchor_velocity); each axis bounded to
-  /// the operator's 100 N. Real-time contract: noexcept, no allocation.
+  /// Force the hand's spring-damper puts on a handle point at `position` moving at `velocity`,
+  /// `elapsed` seconds after the anchor was given (it moves on at anchor_velocity); the
+  /// simulator bounds it with the rest of the operator's wrench (operator_limits). Real-time
+  /// contract: noexcept, no allocation.
   [[nodiscard]] Vector3d force(const Vector3d& position, const Vector3d& velocity,
                                double elapsed) const noexcept;
 };

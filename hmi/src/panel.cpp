@@ -151,8 +151,10 @@ struct CursesSession {
 
 void handle_command(Operator& op, shm::CtrlCode code, PanelView& view) {
   try {
-    op.send(code);
-    view.message = "sent";
+    const ControllerStatus s = op.status();
+    const std::uint32_t word = s.vp_ok ? s.vp.state_word : 0U;
+    op.send(code);  // the core decides; the feedback says what to expect, and why not
+    view.message = command_feedback(code, word);
   } catch (const HmiError& e) {
     view.message = e.what();
   }

@@ -27,6 +27,29 @@ void scale_steps(PanelForce& f, double factor) noexcept {
 
 }  // namespace
 
+const char* command_feedback(shm::CtrlCode code, std::uint32_t state_word) noexcept {
+  const bool estop = (state_word & shm::state_bits::kEmergencyStop) != 0;
+  const bool powered = (state_word & shm::state_bits::kPowered) != 0;
+  switch (code) {
+    case shm::CtrlCode::kPowerOn:
+      if (estop) {
+        return "power on refused: the emergency stop is latched (r resets it)";
+      }
+      return powered ? "already powered" : "power on requested";
+    case shm::CtrlCode::kPowerOff:
+      return powered ? "power off requested" : "already unpowered";
+    case shm::CtrlCode::kEmergencyStop:
+      return estop ? "the emergency stop is already latched" : "emergency stop latched";
+    case shm::CtrlCode::kEmergencyReset:
+      return estop ? "emergency stop reset requested (p powers on again)"
+                   : "no emergency stop to reset";
+    case shm::CtrlCode::kStop:
+      return "controller stop requested";
+    default:
+      return "sent";
+  }
+}
+
 KeyResult apply_key(int key, PanelForce& force, double max_force, double max_torque) noexcept {
   switch (key) {
     case 'p':

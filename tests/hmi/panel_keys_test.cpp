@@ -25,6 +25,21 @@ TEST(PanelKeys, CommandKeysMapToCtrlCodes) {
   EXPECT_EQ(press('?', f).action, PanelAction::kNone);
 }
 
+TEST(PanelKeys, CommandFeedbackSaysWhatToExpectAndWhyNot) {
+  using shm::CtrlCode;
+  namespace bits = shm::state_bits;
+  EXPECT_STREQ(command_feedback(CtrlCode::kPowerOn, bits::kEmergencyStop),
+               "power on refused: the emergency stop is latched (r resets it)");
+  EXPECT_STREQ(command_feedback(CtrlCode::kPowerOn, 0), "power on requested");
+  EXPECT_STREQ(command_feedback(CtrlCode::kPowerOn, bits::kPowered), "already powered");
+  EXPECT_STREQ(command_feedback(CtrlCode::kPowerOff, 0), "already unpowered");
+  EXPECT_STREQ(command_feedback(CtrlCode::kEmergencyReset, 0), "no emergency stop to reset");
+  EXPECT_STREQ(command_feedback(CtrlCode::kEmergencyReset, bits::kEmergencyStop),
+               "emergency stop reset requested (p powers on again)");
+  EXPECT_STREQ(command_feedback(CtrlCode::kEmergencyStop, bits::kPowered),
+               "emergency stop latched");
+}
+
 TEST(PanelKeys, PushesAlongTheChosenAxisByTheStep) {
   PanelForce f;
   EXPECT_EQ(press('+', f).action, PanelAction::kForce);

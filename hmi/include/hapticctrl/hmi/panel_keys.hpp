@@ -8,6 +8,7 @@
 /// [ and ] halve / double the step, 0 release the handle (zero wrench), S stop the controller
 /// (asks y to confirm), q quit.
 #include <cstddef>
+#include <cstdint>
 
 #include "hapticctrl/shm/ctrl.hpp"
 #include "hapticctrl/shm/payloads.hpp"
@@ -36,6 +37,11 @@ struct KeyResult {
   PanelAction action = PanelAction::kNone;
   shm::CtrlCode command = shm::CtrlCode::kNone;
 };
+
+/// What the panel tells the operator when a command key is pressed, given the controller's
+/// state word (shm::state_bits) at that moment: what was asked, or why it cannot take effect
+/// (it only said "sent" when power-on met a latched emergency stop, 2026-12-02).
+[[nodiscard]] const char* command_feedback(shm::CtrlCode code, std::uint32_t state_word) noexcept;
 
 /// Applies one key (an ncurses/ASCII code) to `force` and says what the panel must do.
 /// Steps stay within [0.125, 32] N and [0.00625, 1.6] N.m; the wrench within `max_force` /

@@ -1,5 +1,8 @@
 #include "hapticctrl/rt_core/arm_dynamics.hpp"
 
+#include <array>
+#include <cmath>
+
 namespace hapticctrl::rt_core {
 
 Matrix3d axis_rotation(const Vector3d& axis, double angle) noexcept {
@@ -139,6 +142,41 @@ double ArmDynamics::potential_energy(const ChainState& s) const noexcept {
     energy -= model_.joints[k].mass * model_.gravity.dot(com);
   }
   return energy;
+}
+
+GravityDemand gravity_demand(const ArmDynamics& dynamics) noexcept {
+  constexpr int kSteps = 5;
+  const ArmModel& m = dynamics.model();
+  GravityDemand worst;
+  ChainState chain;
+  std::array<int, kJoints> index{};
+  for (;;) {
+    Vector6d q;
+    for (int j = 0; j < kJoints; ++j) {
+      const JointModel& joint = m.joints[static_cast<std::size_t>(j)];
+      q(j) = joint.q_min +
+             (joint.q_max - joint.q_min) * index[static_cast<std::size_t>(j)] / (kSteps - 1);
+    }
+    const double j23 = q(1) + q(2);
+    if (j23 >= m.limits.coupled_j23_min && j23 <= m.limits.coupled_j23_max) {
+      dynamics.forward_kinematics(q, chain);
+      const Vector6d g = dynamics.gravity_torque(chain);
+      for (int j = 0; j < kJoints; ++j) {
+        const double share = std::abs(g(j)) / m.joints[static_cast<std::size_t>(j)].torque_peak;
+        if (share > worst.share) {
+          worst = {share, j};
+        }
+      }
+    }
+    int j = 0;  // the next pose of the grid, like an odometer
+    while (j < kJoints && ++index[static_cast<std::size_t>(j)] == kSteps) {
+      index[static_cast<std::size_t>(j)] = 0;
+      ++j;
+    }
+    if (j == kJoints) {
+      return worst;
+    }
+  }
 }
 
 }  // namespace hapticctrl::rt_core

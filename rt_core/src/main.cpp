@@ -75,8 +75,15 @@ int run_core(const CoreConfig& config) {
     }
   }
 
-  const ArmDynamics dynamics(
-      load_arm_model(config.model_path.empty() ? default_arm_model_path() : config.model_path));
+  const std::string model_path =
+      config.model_path.empty() ? default_arm_model_path() : config.model_path;
+  const ArmDynamics dynamics(load_arm_model(model_path));
+  if (const GravityDemand g = gravity_demand(dynamics); g.share > 1.0) {
+    throw ArmModelError("arm model '" + model_path + "': holding the arm against gravity needs " +
+                        std::to_string(static_cast<int>(g.share * 100.0)) + " % of joint " +
+                        std::to_string(g.joint + 1) +
+                        "'s peak torque at some pose: it cannot be gravity-compensated");
+  }
   shm::Segment segment = shm::Segment::create(
       {.instance = config.instance, .group = config.group, .period_ns = config.period});
   const Vector6d ready_pose = (Vector6d() << 0, -0.6, 1.2, 0, -0.6, 0).finished();

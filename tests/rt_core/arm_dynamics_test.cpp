@@ -70,6 +70,18 @@ TEST_F(ArmDynamicsTest, GravityTorqueIsTheGradientOfPotentialEnergy) {
   }
 }
 
+TEST_F(ArmDynamicsTest, TheShippedArmCanHoldItselfAgainstGravityAndAWeakOneCannot) {
+  // H3: a model can validate and still be unable to carry its own weight; the core refuses it.
+  const GravityDemand shipped = gravity_demand(dynamics_);
+  EXPECT_GT(shipped.share, 0.01);
+  EXPECT_LT(shipped.share, 1.0) << "joint " << shipped.joint + 1;
+  ArmModel weak = dynamics_.model();
+  weak.joints[1].torque_peak = 0.2;  // J2 carries the upper arm, forearm and wrist
+  const GravityDemand demand = gravity_demand(ArmDynamics(weak));
+  EXPECT_GT(demand.share, 1.0);
+  EXPECT_EQ(demand.joint, 1);
+}
+
 TEST_F(ArmDynamicsTest, MassMatrixIsSymmetricPositiveDefinite) {
   const Matrix6d inertia_matrix = dynamics_.mass_matrix(at(kReady));
   EXPECT_LT((inertia_matrix - inertia_matrix.transpose()).norm(), 1e-12);

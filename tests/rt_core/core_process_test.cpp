@@ -4,7 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cstdio>
+#include <fstream>
 #include <optional>
+#include <sstream>
 #include <thread>
 
 #include "hapticctrl/shm/segment.hpp"
@@ -177,6 +180,29 @@ TEST(CoreProcess, AnImpossibleCpuAHistogramItCannotWriteAndNaNAreRefusedBeforeAn
             std::string::npos)
       << histogram.err();
   EXPECT_FALSE(segment_exists(instance));
+}
+
+TEST(CoreProcess, AModelThatCannotCarryItsOwnWeightIsRefused) {
+  // H3: valid line by line, but joint 2 could not hold the arm up at 0.2 N.m.
+  std::ifstream shipped(HAPTICCTRL_SHIPPED_ARM_MODEL);
+  std::stringstream text;
+  text << shipped.rdbuf();
+  std::string model = text.str();
+  const auto joint2 = model.find("[joint 2]");
+  for (const std::string key : {"torque_peak = ", "torque_continuous = "}) {
+    const auto at = model.find(key, joint2);
+    model.replace(at, model.find('\n', at) - at, key + "0.2");
+  }
+  const std::string path = "/tmp/hapticctrl-weak-" + std::to_string(getpid()) + ".arm";
+  std::ofstream(path) << model;
+  const std::string instance = test::unique_instance("weak");
+  SpawnedProcess core(HAPTICCTRL_CORE_BINARY, core_args(instance, {"--model", path}));
+  EXPECT_EQ(core.wait(), 1);
+  EXPECT_NE(core.err().find("of joint 2's peak torque at some pose: it cannot be gravity-"),
+            std::string::npos)
+      << core.err();
+  EXPECT_FALSE(segment_exists(instance));
+  std::remove(path.c_str());
 }
 
 }  // namespace

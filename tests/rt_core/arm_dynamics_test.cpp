@@ -1,7 +1,9 @@
 #include "hapticctrl/rt_core/arm_dynamics.hpp"
 
 #include <gtest/gtest.h>
+
 #include <Eigen/Eigenvalues>
+#include <cstdio>
 
 namespace hapticctrl::rt_core {
 namespace {
@@ -73,6 +75,8 @@ TEST_F(ArmDynamicsTest, GravityTorqueIsTheGradientOfPotentialEnergy) {
 TEST_F(ArmDynamicsTest, TheShippedArmCanHoldItselfAgainstGravityAndAWeakOneCannot) {
   // H3: a model can validate and still be unable to carry its own weight; the core refuses it.
   const GravityDemand shipped = gravity_demand(dynamics_);
+  std::printf("the shipped arm needs up to %.1f %% of joint %d's peak torque against gravity\n",
+              shipped.share * 100.0, shipped.joint + 1);
   EXPECT_GT(shipped.share, 0.01);
   EXPECT_LT(shipped.share, 1.0) << "joint " << shipped.joint + 1;
   ArmModel weak = dynamics_.model();

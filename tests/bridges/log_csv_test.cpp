@@ -66,6 +66,17 @@ TEST(LogCsv, EveryChannelGetsItsCsvWithTheExpectedColumns) {
                            "written\""),
             std::string::npos)
       << "text is quoted CSV";
+
+  // The demo's scene has its CSV too, as docs/lcm.md says of every channel (H5: it was dropped).
+  const auto scene = lines_of(dir.path / "hapticctrl.lab.scene.csv");
+  ASSERT_EQ(scene.size(), 2U);
+  EXPECT_EQ(scene[0].rfind("utime,steps,fixed_x,fixed_y,fixed_z,fixed_radius,mobile_x,", 0), 0U)
+      << scene[0];
+  EXPECT_NE(scene[0].find(",contact_fx,contact_fy,contact_fz,penetration,applied_x,"),
+            std::string::npos);
+  EXPECT_EQ(std::count(scene[1].begin(), scene[1].end(), ','),
+            std::count(scene[0].begin(), scene[0].end(), ','));
+  EXPECT_NE(scene[1].find(",1234,0.7,"), std::string::npos) << scene[1];
 }
 
 TEST(LogCsv, AMissingLogIsAClearError) {

@@ -11,6 +11,7 @@
 #include "hapticctrl_lcm/arm_state_t.hpp"
 #include "hapticctrl_lcm/cycle_stats_t.hpp"
 #include "hapticctrl_lcm/event_t.hpp"
+#include "hapticctrl_lcm/scene_t.hpp"
 
 namespace hapticctrl::test {
 
@@ -29,7 +30,8 @@ void log_message(lcm::LogFile& log, const std::string& channel, const M& m, std:
 }
 
 /// Writes the sample log: 5 arm states (handle x = 0.1 * cycle m, operator fx = cycle N),
-/// 2 cycle stats, 2 events, one message of another application and one corrupted arm state.
+/// 2 cycle stats, 2 events, one demo scene, one message of another application and one
+/// corrupted arm state.
 inline void write_sample_log(const std::string& path) {
   lcm::LogFile log(path, "w");
   if (!log.good()) {
@@ -78,6 +80,14 @@ inline void write_sample_log(const std::string& path) {
   e.value = 1;
   e.text = "fail-safe: 5 consecutive deadline misses, \"black box\" written";
   log_message(log, "hapticctrl.lab.events", e, t + 1);
+  hapticctrl_lcm::scene_t scene{};
+  scene.utime = t;
+  scene.steps = 1234;
+  scene.fixed_center[0] = 0.7;
+  scene.mobile_pose[6] = 1.0;
+  scene.contact_force[0] = -4.5;
+  scene.answers_received = 1200;
+  log_message(log, "hapticctrl.lab.scene", scene, t + 1);
   log_message(log, "other.application", e, t + 2);
   std::vector<std::uint8_t> junk{1, 2, 3};
   lcm::LogEvent bad{};

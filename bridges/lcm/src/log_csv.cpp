@@ -16,6 +16,7 @@
 #include "hapticctrl_lcm/event_t.hpp"
 #include "hapticctrl_lcm/hmi_command_t.hpp"
 #include "hapticctrl_lcm/hmi_force_t.hpp"
+#include "hapticctrl_lcm/scene_t.hpp"
 
 namespace hapticctrl::lcm_bridge {
 namespace {
@@ -183,6 +184,28 @@ std::map<std::string, Topic> topics() {
                      << m.lost_before;
                    return true;
                  }};
+  t["scene"] = {"utime,steps" + columns("fixed_", {"x", "y", "z"}) + ",fixed_radius" +
+                    columns("mobile_", kPose) + ",mobile_radius" +
+                    columns("contact_f", {"x", "y", "z"}) + ",penetration" +
+                    columns("applied_", kVec6) +
+                    ",rtt_last_us,rtt_mean_us,rtt_max_us,answers_received,answers_lost",
+                [](const void* d, int n, Row& r) {
+                  hapticctrl_lcm::scene_t m{};
+                  if (!decode(d, n, m)) {
+                    return false;
+                  }
+                  r << m.utime << ',' << m.steps;
+                  put(r, m.fixed_center);
+                  r << ',' << m.fixed_radius;
+                  put(r, m.mobile_pose);
+                  r << ',' << m.mobile_radius;
+                  put(r, m.contact_force);
+                  r << ',' << m.penetration;
+                  put(r, m.applied_wrench);
+                  r << ',' << m.rtt_last_us << ',' << m.rtt_mean_us << ',' << m.rtt_max_us << ','
+                    << m.answers_received << ',' << m.answers_lost;
+                  return true;
+                }};
   t["hmi_command"] = {"utime,command,origin", [](const void* d, int n, Row& r) {
                         hapticctrl_lcm::hmi_command_t m{};
                         if (!decode(d, n, m)) {

@@ -47,19 +47,25 @@ def read_csv(path):
         return list(csv.DictReader(f))
 
 
-def windowed_speed(rows, t0, t1, window=50):
-    """Largest handle displacement over `window` cycles divided by its duration, t0 <= t < t1."""
-    pts = [(int(r["cycle"]), float(r["x"]), float(r["y"]), float(r["z"]))
-           for r in rows if t0 <= float(r["t_s"]) < t1]
-    best, j = 0.0, 0
+def windowed_speeds(rows, window=50):
+    """(t, speed) per row: the handle's displacement over up to `window` cycles (at least half
+    of it) divided by its duration."""
+    pts = [(int(r["cycle"]), float(r["t_s"]), float(r["x"]), float(r["y"]), float(r["z"]))
+           for r in rows]
+    out, j = [], 0
     for i in range(len(pts)):
         while pts[i][0] - pts[j][0] > window:
             j += 1
         gap = pts[i][0] - pts[j][0]
         if gap >= window // 2:
-            d = math.dist(pts[i][1:], pts[j][1:])
-            best = max(best, d / (gap * PERIOD_S))
-    return best
+            out.append((pts[i][1], math.dist(pts[i][2:], pts[j][2:]) / (gap * PERIOD_S)))
+    return out
+
+
+def windowed_speed(rows, t0, t1, window=50):
+    """The largest windowed speed of the rows with t0 <= t < t1."""
+    inside = [r for r in rows if t0 <= float(r["t_s"]) < t1]
+    return max((v for _, v in windowed_speeds(inside, window)), default=0.0)
 
 
 def quaternion(r):
@@ -108,7 +114,7 @@ def plateau(rows, t0, t1):
     return x, f
 
 
-def contact(rows, fixed_x, k_coupling, k_contact, radii):
+def contact(rows, fixed_x, k_coupling):
     """Penetration under the second plateau against F / K_series; rendered stiffness."""
     x1, f1 = plateau(rows, 2.5, 3.5)
     x2, f2 = plateau(rows, 5.5, 6.5)
@@ -118,9 +124,9 @@ def contact(rows, fixed_x, k_coupling, k_contact, radii):
         # Not at rest against the pushes: the soft coupling of a long loop let the sphere slide
         # off the fixed one (seen at 20 ms: the handle 9.7 cm past the surface).
         return {"contact_held": False}
-    k_series = 1.0 / (1.0 / k_contact + 1.0 / k_coupling)
+    k_series = 1.0 / (1.0 / K_CONTACT + 1.0 / k_coupling)
     out = {"contact_held": True, "k_series": k_series, "contact_force_n": f2,
-           "penetration_mm": (x2 - (fixed_x - radii)) * 1e3,
+           "penetration_mm": (x2 - (fixed_x - RADII)) * 1e3,
            "penetration_expected_mm": f2 / k_series * 1e3}
     if abs(x2 - x1) > 1e-5:
         out["k_rendered"] = (f2 - f1) / (x2 - x1)
@@ -241,7 +247,7 @@ def analyse(case_dir):
     k_contact_phase = (status_of(os.path.join(case_dir, "status_contact.json"))
                        .get("client", {}).get("gains", [0])[0])
     out.update(contact(phases["contact"], fixed_sphere_x(os.path.join(case_dir, "demo.err")),
-                       k_contact_phase, K_CONTACT, RADII))
+                       k_contact_phase))
     out.update(blackout(phases["blackout"], 0.8))
     return out
 

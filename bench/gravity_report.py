@@ -11,35 +11,14 @@ writes OUT_DIR/gravity.md and gravity.json.
   2 s of the wrench rendered on it), and the stalls the core rode through.
 Only figures measured in this run.
 """
-import csv
 import json
 import math
 import os
 import sys
 
-PERIOD_S = 1e-3
+from coupling_report import read_csv, status_of, windowed_speeds
+
 COUPLED, DEGRADED, STALE = 1 << 4, 1 << 3, 1 << 5
-
-
-def read_csv(path):
-    if not os.path.exists(path):
-        return []
-    with open(path, newline="") as f:
-        return list(csv.DictReader(f))
-
-
-def handle_speeds(rows, window=50):
-    """(t, speed) with speed the displacement over about `window` cycles."""
-    pts = [(int(r["cycle"]), float(r["t_s"]), float(r["x"]), float(r["y"]), float(r["z"]))
-           for r in rows]
-    out, j = [], 0
-    for i in range(len(pts)):
-        while pts[i][0] - pts[j][0] > window:
-            j += 1
-        gap = pts[i][0] - pts[j][0]
-        if gap >= window // 2:
-            out.append((pts[i][1], math.dist(pts[i][2:], pts[j][2:]) / (gap * PERIOD_S)))
-    return out
 
 
 def chatter(rows):
@@ -57,16 +36,13 @@ def chatter(rows):
 def analyse(raw):
     rows = read_csv(os.path.join(raw, "cycles.csv"))
     demo = read_csv(os.path.join(raw, "demo.csv"))
-    try:
-        status = json.load(open(os.path.join(raw, "status.json")))
-    except (OSError, ValueError):
-        status = {}
+    status = status_of(os.path.join(raw, "status.json"))
     stopped = not rows or "FAIL-SAFE" in open(os.path.join(raw, "core.err")).read()
     out = {"judged": not stopped,
            "stalls_ridden": status.get("cycle_health", {}).get("would_fail_safe")}
     if stopped:
         return out
-    handle = handle_speeds(rows)
+    handle = windowed_speeds(rows)
     sphere = [(float(r["t_s"]), math.sqrt(sum(float(r[k]) ** 2 for k in ("vx", "vy", "vz"))))
               for r in demo]
     settled = next((r for r in rows if float(r["t_s"]) >= 3.0), rows[-1])

@@ -32,6 +32,14 @@ mkdir -p "$RUN_DIR"
 HMI=(build/hmi/hapticctrl-hmi --instance "$INSTANCE")
 PIDS=()
 
+reap_core() {  # waits for the core once and keeps its exit status in CORE_RC
+  if [[ -n "${CORE_PID:-}" ]]; then
+    CORE_RC=0
+    wait "$CORE_PID" 2>/dev/null || CORE_RC=$?
+    CORE_PID=
+  fi
+}
+
 stop_all() {
   # The controller first, by the operator's stop (fail-safe order: motors inhibited, supply off,
   # client told, tasks stopped); then the processes that served it.
@@ -44,11 +52,7 @@ stop_all() {
   for pid in "${PIDS[@]}"; do
     wait "$pid" 2>/dev/null || true
   done
-  if [[ -n "${CORE_PID:-}" ]]; then
-    CORE_RC=0
-    wait "$CORE_PID" 2>/dev/null || CORE_RC=$?
-    CORE_PID=
-  fi
+  reap_core
   if [[ -e /dev/shm/hapticctrl.$INSTANCE ]]; then
     echo "run: warning: /dev/shm/hapticctrl.$INSTANCE is still there" >&2
   fi
@@ -111,9 +115,7 @@ fi
 
 if [[ ${#REMOTE[@]} -gt 0 ]]; then
   echo "run: the web page is the operator panel; Ctrl-C stops everything"
-  CORE_RC=0
-  wait "$CORE_PID" || CORE_RC=$?
-  CORE_PID=
+  reap_core
   exit 0
 fi
 if [[ -t 0 && -t 1 ]]; then
@@ -137,9 +139,7 @@ awk -v operator=5 'match($0, /"contact_force":\[[^]]*\]/) {
            -f[1], operator, 100 * -f[1] / operator
   }' "$RUN_DIR/demo.json"
 "${HMI[@]}" stop
-CORE_RC=0
-wait "$CORE_PID" || CORE_RC=$?
-CORE_PID=
+reap_core
 cat "$RUN_DIR/core.log"
 echo "core figures: $(cat "$RUN_DIR/core.json")"
 echo "logs in $RUN_DIR/ (demo.csv: the scene per step)"

@@ -31,10 +31,6 @@ void refill(double& tokens, std::int64_t& last_ns, std::int64_t now_ns, double r
 }  // namespace
 
 bool HelloLimiter::admit(std::uint32_t ipv4, std::int64_t now_ns) noexcept {
-  if (total_tokens_ < 0.0) {
-    total_tokens_ = limits_.total_burst;
-    total_last_ns_ = now_ns;
-  }
   refill(total_tokens_, total_last_ns_, now_ns, limits_.total_per_second, limits_.total_burst);
   Source& s = source_of(ipv4, now_ns);
   refill(s.tokens, s.last_ns, now_ns, limits_.per_second, limits_.burst);

@@ -26,7 +26,8 @@ class HelloLimiter {
   /// WELCOME, or a second client process on the same host.
   static constexpr double kFirstHellos = 2.0;
 
-  explicit HelloLimiter(HelloLimits limits = {}) noexcept : limits_(limits) {}
+  explicit HelloLimiter(HelloLimits limits = {}) noexcept
+      : limits_(limits), total_tokens_(limits.total_burst) {}
 
   /// Whether a HELLO from `ipv4` at `now_ns` may be answered (spends a token if so).
   /// Real-time contract: noexcept, allocation-free, no syscall.
@@ -43,7 +44,7 @@ class HelloLimiter {
 
   HelloLimits limits_;
   std::array<Source, kSources> sources_{};
-  double total_tokens_ = -1.0;  ///< -1: not started (a full total burst at the first HELLO)
+  double total_tokens_;  ///< starts with the full total burst
   std::int64_t total_last_ns_ = 0;
 };
 

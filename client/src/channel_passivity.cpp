@@ -10,6 +10,18 @@ namespace {
 /// stays at half of that.
 constexpr double kDamperShare = 0.5;
 
+/// The damper the PC may add: what it wants, within the integration's bound and, when the
+/// controller reports one, the coupling's own damping. Taking the whole working share at once
+/// (up to m / 2 dt = 250 N·s/m for the demo's sphere) removed the 5.9 N that held the weighted
+/// sphere whenever it rose by a few mm/s; the PC kept the force chattering between 0 and 6 N, the
+/// sphere at 20-40 mm/s and the handle on its joint wall at up to 8 mm/s (20 ms one way, +-2 ms
+/// jitter, 10 % loss, 2026-12-02). Within the coupling's damping it settles to 1 mm/s in 1.5 s
+/// and dissipates the excess over a few steps instead of one.
+double bounded(double wanted, double integration, double coupling) noexcept {
+  const double bound = coupling > 0.0 ? std::min(integration, coupling) : integration;
+  return std::min(wanted, bound);
+}
+
 }  // namespace
 
 void ChannelPassivity::set_object(double mass, double inertia) noexcept {
@@ -21,6 +33,19 @@ void ChannelPassivity::on_controller_energy(double joules) noexcept {
   if (std::isfinite(joules) && joules >= controller_in_) {
     controller_in_ = joules;  // cumulative: it never goes down within a session
   }
+}
+
+void ChannelPassivity::on_coupling_damping(double linear, double angular) noexcept {
+  coupling_linear_ = std::isfinite(linear) && linear > 0.0 ? linear : 0.0;
+  coupling_angular_ = std::isfinite(angular) && angular > 0.0 ? angular : 0.0;
+}
+
+void ChannelPassivity::set_force_factor(double factor) noexcept {
+  force_factor_ = std::isfinite(factor) && factor > 0.0 ? factor : 1.0;  // as the core reads it
+}
+
+void ChannelPassivity::set_speed_factor(double factor) noexcept {
+  speed_factor_ = std::isfinite(factor) && factor > 0.0 ? factor : 1.0;
 }
 
 Vector6 ChannelPassivity::render(const Vector6& wrench) noexcept {
@@ -78,8 +103,10 @@ void ChannelPassivity::on_step(const Vector6& twist, double dt) noexcept {
   const double motion = (v_sq + w_sq) * dt;
   if (excess > 0.0 && motion > 1e-15) {
     const double alpha = excess / motion;
-    alpha_linear_ = std::min(alpha, kDamperShare * mass_ / dt);
-    alpha_angular_ = std::min(alpha, kDamperShare * inertia_ / dt);
+    alpha_linear_ = bounded(alpha, kDamperShare * mass_ / dt,
+                            coupling_linear_ / (force_factor_ * speed_factor_));
+    alpha_angular_ =
+        bounded(alpha, kDamperShare * inertia_ / dt, coupling_angular_ / force_factor_);
     ++active_steps_;
   }
 }

@@ -3,8 +3,9 @@
 /// (docs/control.md; Ryu, Artigas, Preusche). The channel hands the application's object the
 /// coupling wrench; the energy it gives the object may not exceed what the controller reports
 /// having put in (ANSWER_TIMED). When it would, a passivity controller adds a damper on the
-/// object's motion to the wrench the application gets, dissipating exactly the excess, bounded
-/// so that the application's integration stays stable. The application needs no code for it.
+/// object's motion to the wrench the application gets, dissipating the excess, bounded so that
+/// the application's integration stays stable and by the coupling's own damping (so that it
+/// never chatters the wrench). The application needs no code for it.
 ///
 /// Internal to the client library. Real-time contract: noexcept, no allocation; not
 /// thread-safe (the connection serialises it).
@@ -20,6 +21,12 @@ class ChannelPassivity {
   void set_object(double mass, double inertia) noexcept;
   /// The controller's energy into the channel so far (J), from an answer.
   void on_controller_energy(double joules) noexcept;
+  /// The coupling's own damping as the controller reports it (base frame: N·s/m, N·m·s/rad)
+  /// and the factors that turn it into the application's units: the PC's damper never exceeds
+  /// it (0: no such bound, the integration's alone).
+  void on_coupling_damping(double linear, double angular) noexcept;
+  void set_force_factor(double factor) noexcept;
+  void set_speed_factor(double factor) noexcept;
   /// The wrench the application gets for the controller's `wrench`: with the PC's damper.
   [[nodiscard]] Vector6 render(const Vector6& wrench) noexcept;
   /// Accounts the step the application just integrated: the object moved with `twist` for `dt`
@@ -42,6 +49,10 @@ class ChannelPassivity {
   Vector6 twist_{};          ///< the object's twist at the last step
   double alpha_linear_ = 0.0;
   double alpha_angular_ = 0.0;
+  double coupling_linear_ = 0.0;   ///< the coupling's damping, N·s/m in the base frame
+  double coupling_angular_ = 0.0;  ///< N·m·s/rad
+  double force_factor_ = 1.0;
+  double speed_factor_ = 1.0;
   std::uint64_t active_steps_ = 0;
 };
 

@@ -315,6 +315,7 @@ struct Connection::Impl {
         // Two-port passivity, this end: the application gets the wrench with the PC's damper.
         report = frame.body.hcp_body_u.answer_timed.coupling;
         passivity.on_controller_energy(report.energy_in);
+        passivity.on_coupling_damping(report.gains[1], report.gains[3]);
         s.coupling_wrench = passivity.render(s.coupling_wrench);
       }
       protocol::from_wire(a.handle_pose, s.handle_pose);
@@ -494,11 +495,15 @@ void Connection::set_force_factor(double factor) {
   hcp_param p = param_of(HCP_P_FORCE_FACTOR);
   p.hcp_param_u.force_factor = factor;
   impl_->set_param(p, "set_force_factor");
+  const std::lock_guard lock(impl_->state_mutex);
+  impl_->passivity.set_force_factor(factor);
 }
 void Connection::set_speed_factor(double factor) {
   hcp_param p = param_of(HCP_P_SPEED_FACTOR);
   p.hcp_param_u.speed_factor = factor;
   impl_->set_param(p, "set_speed_factor");
+  const std::lock_guard lock(impl_->state_mutex);
+  impl_->passivity.set_speed_factor(factor);
 }
 void Connection::set_base_frame(const Pose7& frame) {
   hcp_param p = param_of(HCP_P_BASE_FRAME);

@@ -18,6 +18,18 @@ constexpr double kDampingRatio = 0.7;
 constexpr double kLoopDelayRelease = 0.005;
 /// The loop delay is believed up to this; longer is a stale echo, not a loop.
 constexpr TimeNs kMaxLoopDelay = 2'000 * kNsPerMs;
+/// The gains are designed for a loop delay that follows the envelope only when the envelope
+/// leaves a band around it (10 %, at least 0.5 ms), and they move to a new design over a time
+/// constant when they rise, not in one cycle: a spring that carries a weight is stretched (72 mm
+/// for the demo's 0.5 kg sphere at 20 ms one way), so every change of k is a force step of k *
+/// stretch. With
+/// +-2 ms jitter the envelope wandered by 1-2 ms around 42 ms and each move stepped the force by
+/// 0.1-0.3 N: the sphere jiggled at 20-40 mm/s and the handle, resting on its joint wall, at up
+/// to 8 mm/s (2026-12-02). A 10 % longer loop leaves the stiffness at most 21 % over its design,
+/// inside the margin kStiffnessFraction keeps.
+constexpr double kDesignDelayBand = 0.1;
+constexpr TimeNs kDesignDelayBandMin = kNsPerMs / 2;
+constexpr TimeNs kGainSlewTime = 50 * kNsPerMs;
 
 Vector6d to_vector(const std::array<double, 6>& a) noexcept {
   Vector6d v;
@@ -181,7 +193,8 @@ ServoLaw::Coupling ServoLaw::client_wrench(const ServoInputs& in, const ClientFr
     object_r = Eigen::AngleAxisd(turned.norm(), turned.normalized()) * object_r;
   }
 
-  const CouplingGains g = derive_gains(c, static_cast<double>(memory_.loop_delay) * 1e-9);
+  const CouplingGains g =
+      slew_gains(derive_gains(c, static_cast<double>(memory_.design_delay) * 1e-9), in.dt);
   out.gains = g;
   const Vector3d e_p = object_p - chain.handle_position;
   const Eigen::AngleAxisd e_rot(object_r * chain.handle_rotation.transpose());
@@ -204,6 +217,7 @@ void ServoLaw::follow_session(const ServoInputs& in) noexcept {
     m.channel_in = 0.0;  // ... and so does its channel's energy account
     m.channel_out = 0.0;
     m.drift.setZero();
+    m.gains = CouplingGains{};  // its gains start at their design
   }
 }
 
@@ -281,6 +295,27 @@ void ServoLaw::track_loop_delay(const ServoInputs& in) noexcept {
   } else {
     envelope -= static_cast<TimeNs>(static_cast<double>(envelope - measured) * kLoopDelayRelease);
   }
+  const TimeNs band =
+      std::max(kDesignDelayBandMin,
+               static_cast<TimeNs>(static_cast<double>(m.design_delay) * kDesignDelayBand));
+  if (m.design_delay == 0 || envelope > m.design_delay + band || envelope < m.design_delay - band) {
+    m.design_delay = envelope;
+  }
+}
+
+CouplingGains ServoLaw::slew_gains(const CouplingGains& target, TimeNs dt) noexcept {
+  // Softer at once (a slower loop is a stability matter), stiffer over kGainSlewTime.
+  const double share =
+      std::clamp(static_cast<double>(dt) / static_cast<double>(kGainSlewTime), 0.0, 1.0);
+  const auto towards = [share](double& gain, double design) {
+    gain = gain <= 0.0 || design <= gain ? design : gain + (design - gain) * share;
+  };
+  CouplingGains& g = memory_.gains;
+  towards(g.k_linear, target.k_linear);
+  towards(g.b_linear, target.b_linear);
+  towards(g.k_angular, target.k_angular);
+  towards(g.b_angular, target.b_angular);
+  return g;
 }
 
 double ServoLaw::update_engagement(const ServoInputs& in, const Vector6d& twist, double fade,
@@ -443,7 +478,7 @@ void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) 
   out.velocity_fault = false;
   out.gains = CouplingGains{};
   track_loop_delay(in);
-  out.loop_delay = memory_.loop_delay;
+  out.loop_delay = memory_.design_delay;
   if (!out.commands.enable || dt <= 0.0) {
     out.commands.torque.setZero();
     memory_.wrench.setZero();  // power-on starts from zero force, never with a step ...

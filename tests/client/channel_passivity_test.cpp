@@ -57,6 +57,28 @@ TEST(ChannelPassivity, TheDamperStaysWithinWhatTheObjectsIntegrationBears) {
   EXPECT_NEAR(damped[0], 500.0 - 0.5 * 0.2 / kDt * 1.0, 1e-9) << "alpha <= m / (2 dt)";
 }
 
+TEST(ChannelPassivity, TheDamperIsAtMostTheCouplingsOwnDampingInTheApplicationsUnits) {
+  // A weight held by the coupling (6 N up) while the object rises at 10 mm/s with the channel
+  // over budget: the damper adds at most the coupling's damping (8 N.s/m, 0.08 N), never the
+  // whole working share (6 N, the chatter it made at 20 ms, H1).
+  ChannelPassivity pc;
+  pc.set_object(0.5, 1e-4);
+  pc.on_coupling_damping(8.0, 0.05);
+  (void)pc.render({0, 0, 6.0, 0, 0, 0});
+  pc.on_step({0, 0, 0.01, 0, 0, 0}, kDt);  // 60 uJ out, nothing reported in
+  EXPECT_NEAR(pc.render({0, 0, 6.0, 0, 0, 0})[2], 6.0 - 8.0 * 0.01, 1e-12);
+  // Force factor 2 and speed factor 4: the application's forces are halved and its speeds
+  // four times the handle's, so the same damping is 8 / (2 * 4) = 1 N.s/m in its units.
+  pc.set_force_factor(2.0);
+  pc.set_speed_factor(4.0);
+  pc.on_step({0, 0, 0.01, 0, 0, 0}, kDt);
+  EXPECT_NEAR(pc.render({0, 0, 6.0, 0, 0, 0})[2], 6.0 - 1.0 * 0.01, 1e-12);
+  pc.on_coupling_damping(0.0, 0.0);  // no report of it: the integration's bound alone
+  pc.on_step({0, 0, 0.01, 0, 0, 0}, kDt);
+  EXPECT_NEAR(pc.render({0, 0, 6.0, 0, 0, 0})[2], 6.0 - 0.5 * 0.5 / kDt * 0.01, 1e-12)
+      << "m / (2 dt) = 250 N.s/m";
+}
+
 TEST(ChannelPassivity, EnergyInGoesOnTheWireInMicrojoulesModulo2To32) {
   ChannelPassivity pc;
   (void)pc.render({-2.0, 0, 0, 0, 0, 0});

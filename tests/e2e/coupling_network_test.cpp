@@ -20,6 +20,7 @@
 #include <fstream>
 #include <functional>
 #include <optional>
+#include <ostream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -189,9 +190,15 @@ std::string around_fastest(const std::vector<CycleRecord>& r, std::size_t from, 
   return text;
 }
 
-/// Coupling on/off changes between cycles of the main SERVO on fresh data: a degraded cycle (a
-/// miss: the degraded SERVO never couples) or a stale link is not chatter of the coupling.
+/// Coupling on/off changes between cycles of the main SERVO on fresh data, from the first coupled
+/// record on: a degraded cycle (a miss: the degraded SERVO never couples) or a stale link is not
+/// chatter of the coupling.
 int coupling_toggles(const std::vector<CycleRecord>& r, std::size_t from) {
+  // From the first coupled record: the recorder may not have seen the coupling's start yet
+  // when the scenario saw it in the segment, and that start is no chatter.
+  while (from < r.size() && !r[from].coupled()) {
+    ++from;
+  }
   int n = 0;
   for (std::size_t i = std::max<std::size_t>(from, 1); i < r.size(); ++i) {
     if (r[i].degraded() || r[i - 1].degraded() || r[i].stale() || r[i - 1].stale()) {
@@ -382,10 +389,17 @@ struct LinkCase {
   const char* name;
   std::vector<std::string> impairment;
   /// Handle speed over 50 ms windows in the last 2 s (H1: 5 mm/s). At 20 ms one way with 10 %
-  /// loss and +-2 ms jitter: 5.2-5.6 mm/s with the gains alone, 2.4-3.9 mm/s with the two-port
-  /// passivity controllers (2026-12-02).
+  /// loss and +-2 ms jitter it was 2.6-7.5 mm/s (5 of 12 runs over 5 mm/s) while jitter moved
+  /// the gains and the client's PC chattered the force; 0.4-0.8 mm/s in 8 runs since
+  /// (2026-12-02; docs/control.md).
   double still_below = 0.005;
 };
+
+/// Names the case in test listings (GoogleTest would print its bytes, pointers included, and
+/// the ctest names would change with every build).
+void PrintTo(const LinkCase& c, std::ostream* os) {
+  *os << c.name;
+}
 
 class CouplingOverImpairedLink : public ::testing::TestWithParam<LinkCase> {};
 

@@ -171,6 +171,46 @@ TEST(ServoLaw, TheLoopDelayEnvelopeFollowsTheMedianUpAtOnceAndDownSlowly) {
   EXPECT_EQ(out.loop_delay, law.config().assumed_loop_delay);
 }
 
+TEST(ServoLaw, GainsIgnoreLoopJitterWithinTheirBandDropAtOnceAndRiseSmoothly) {
+  // A stretched spring steps its force with every change of k: jitter must not move the gains
+  // (H1: +-2 ms at 20 ms one way jiggled the weighted sphere), a slower loop lowers them at
+  // once, a faster one raises them over 50 ms.
+  ServoLaw law(default_dynamics());
+  ServoInputs in = coupled_to_object_ahead(0.0);
+  in.dt = kNsPerMs;
+  in.new_sample = true;
+  ServoOutputs out;
+  const auto feed = [&](TimeNs loop) {
+    in.loop_delay = loop;
+    law.compute(in, false, out);
+  };
+  for (int k = 0; k < 15; ++k) {
+    feed(40 * kNsPerMs);
+  }
+  const double k40 = law.derive_gains(in.client, 0.040).k_linear;
+  ASSERT_EQ(out.gains.k_linear, k40);
+  for (int k = 0; k < 500; ++k) {
+    feed((k % 2 == 0 ? 40 : 43) * kNsPerMs);
+    ASSERT_EQ(out.gains.k_linear, k40) << "jitter within 10 % of the design, sample " << k;
+  }
+  EXPECT_EQ(out.loop_delay, 40 * kNsPerMs) << "the design delay stays";
+  double largest_rise = 0.0;
+  for (int k = 0; k < 5000; ++k) {
+    const double before = out.gains.k_linear;
+    feed(3 * kNsPerMs);
+    largest_rise = std::max(largest_rise, out.gains.k_linear / before - 1.0);
+  }
+  const double k_fast =
+      law.derive_gains(in.client, static_cast<double>(out.loop_delay) * 1e-9).k_linear;
+  EXPECT_NEAR(out.gains.k_linear, k_fast, 1e-6 * k_fast) << "at the faster link's design";
+  EXPECT_GT(k_fast, 10.0 * k40);
+  EXPECT_LT(largest_rise, 0.02) << "stiffer by 1/50 of the way per cycle (a new design: 23 %)";
+  for (int k = 0; k < 8; ++k) {
+    feed(40 * kNsPerMs);
+  }
+  EXPECT_EQ(out.gains.k_linear, k40) << "a slower loop lowers the gains at once";
+}
+
 TEST(ServoLaw, VirtmechPullsTheHandleTowardTheObjectAndReturnsTheOpposite) {
   ServoLaw law(default_dynamics());
   ServoInputs in = coupled_to_object_ahead(0.002);

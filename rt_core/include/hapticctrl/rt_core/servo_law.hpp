@@ -67,7 +67,7 @@ struct ServoOutputs {
   bool braking = false;         ///< handle over the speed limit: the damped brake is on
   bool velocity_fault = false;  ///< over the speed limit for LawConfig::overspeed_fault_after
   CouplingGains gains;          ///< gains in force this cycle (zero when not coupled)
-  TimeNs loop_delay = 0;        ///< loop delay the gains were derived for
+  TimeNs loop_delay = 0;        ///< loop delay the gains are designed for
   /// Two-port passivity, the core's end of the channel (J since the session began).
   double channel_energy_in = 0.0;
   double channel_energy_out = 0.0;
@@ -125,6 +125,8 @@ struct RenderMemory {
   bool braking = false;
   std::uint64_t session_id = 0;       ///< the session the coupling is engaged with
   TimeNs loop_delay = 0;              ///< envelope of the measured loop delay
+  TimeNs design_delay = 0;            ///< loop delay the gains are designed for (in a band)
+  CouplingGains gains;                ///< gains rendered last cycle (they slew to the design)
   double channel_in = 0.0;            ///< J the coupling put into the channel
   double channel_out = 0.0;           ///< J the channel gave the coupling
   Vector6d drift = Vector6d::Zero();  ///< the channel PC's shift of the object image
@@ -176,6 +178,7 @@ class ServoLaw {
   Coupling client_wrench(const ServoInputs& in, const ClientFrame& frame, const ChainState& chain,
                          const Vector6d& twist, ServoOutputs& out) noexcept;
   void track_loop_delay(const ServoInputs& in) noexcept;
+  CouplingGains slew_gains(const CouplingGains& target, TimeNs dt) noexcept;
   void follow_session(const ServoInputs& in) noexcept;
   void guard_channel(const ServoInputs& in, const ClientFrame& frame, const Vector6d& object_force,
                      double dt, ServoOutputs& out) noexcept;

@@ -143,22 +143,16 @@ ServoLaw::Coupling ServoLaw::client_wrench(const ServoInputs& in, const ClientFr
     out.fade = 0.0;
     return coupling;  // no session: released at release_rate
   }
-  // Freshness is the time since a new sample arrived (a long but live link is fresh); the force
-  // fades with it, spring and damper alike.
-  const double fade =
-      in.client_silence <= config_.fade_after
-          ? 1.0
-          : std::clamp(1.0 - static_cast<double>(in.client_silence - config_.fade_after) /
-                                 static_cast<double>(config_.fade_duration),
-                       0.0, 1.0);
-  out.fade = fade;
-  if (fade <= 0.0) {
+  // Freshness is the time since a new sample arrived (a long but live link is fresh). Past the
+  // fade window the link is lost and nothing is rendered; within it, fade_of() fades the force.
+  if (in.client_silence >= config_.fade_after + config_.fade_duration) {
+    out.fade = 0.0;
     return coupling;
   }
   // Client poses are in its environment frame; base_frame is our base in that frame.
   const Matrix3d base_r = frame.rotation.toRotationMatrix();
   const double speed_factor = frame.speed_factor;
-  const double scale = fade * frame.force_factor;
+  const double scale = frame.force_factor;
 
   if (c.command_type == static_cast<std::uint32_t>(shm::CommandType::kImpedance)) {
     const Vector6d env = to_vector(c.impedance_wrench);
@@ -316,6 +310,25 @@ CouplingGains ServoLaw::slew_gains(const CouplingGains& target, TimeNs dt) noexc
   towards(g.k_angular, target.k_angular);
   towards(g.b_angular, target.b_angular);
   return g;
+}
+
+double ServoLaw::fade_of(TimeNs silence, const Vector6d& wrench) const noexcept {
+  // The force is zero by the end of the window and never falls faster than the full-scale slope
+  // (the device's peaks over fade_duration: 1 N/ms): a peak force starts fading at fade_after,
+  // a smaller one as late as that slope allows (5 N: at 40 ms). Fading every force from 10 ms
+  // on turned a 31 ms stall of the link's processes on this VM into a 60 % drop of the weight
+  // the handle carried: it sprang 2.5 mm off its joint wall and came back at 30 mm/s (H1
+  // end-to-end test at 1 ms one way, 2026-12-02).
+  const TimeNs end = config_.fade_after + config_.fade_duration;
+  if (silence >= end) {
+    return 0.0;
+  }
+  const ArmLimits& lim = dynamics_->model().limits;
+  const double share =
+      std::max(wrench.head<3>().norm() / lim.force_peak, wrench.tail<3>().norm() / lim.torque_peak);
+  const double needed = share * static_cast<double>(config_.fade_duration);
+  const auto left = static_cast<double>(end - silence);
+  return needed <= left ? 1.0 : left / needed;
 }
 
 double ServoLaw::update_engagement(const ServoInputs& in, const Vector6d& twist, double fade,
@@ -487,10 +500,14 @@ void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) 
   }
 
   const Coupling coupling = degraded ? Coupling{} : client_wrench(in, frame, chain_, twist, out);
+  Vector6d object_side = saturate(coupling, in.client);
+  if (!degraded && out.fade > 0.0) {  // 0: no session, or its link lost
+    out.fade = fade_of(in.client_silence, object_side);
+    object_side *= out.fade;
+  }
   // A degraded cycle renders no coupling but leaves the engagement as it was: one miss must not
   // send the coupling back through the whole ramp.
   const double engage = degraded ? memory_.engage : update_engagement(in, twist, out.fade, out);
-  const Vector6d object_side = saturate(coupling, in.client);
   if (!degraded) {
     guard_channel(in, frame, -object_side, dt, out);
   }

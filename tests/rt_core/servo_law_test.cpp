@@ -275,6 +275,39 @@ TEST(ServoLaw, ASilentLinkFadesTheForceOutWithin50msAtMost1NPerMs) {
   EXPECT_LE(max_step, 35.0 / 150.0 + 1e-9) << "the 150 ms ramp";
 }
 
+TEST(ServoLaw, ASilentLinkFadesASmallForceAsLateAsTheSlopeAllowsAndAnyForceWithin45ms) {
+  // 5 N is held through a 30 ms gap (a stall of the link's processes is no reason to drop the
+  // weight the handle carries) and still reaches zero by 45 ms at most 1 N/ms; a spring
+  // stretched to twice the peak (saturated at 35 N) is zero by 45 ms too.
+  for (const double stretch : {0.0025, 0.035}) {
+    ServoLaw law(default_dynamics());
+    ServoInputs in = coupled_to_object_ahead(stretch);
+    ServoOutputs out;
+    for (int k = 0; k < 200; ++k) {
+      law.compute(in, false, out);
+    }
+    const double held = out.handle_wrench(0);
+    double previous = held;
+    double max_step = 0.0;
+    for (int silent_ms = 1; silent_ms <= 60; ++silent_ms) {
+      in.client_silence = silent_ms * kNsPerMs;
+      in.client_age = in.client_silence;
+      law.compute(in, false, out);
+      max_step = std::max(max_step, std::abs(out.handle_wrench(0) - previous));
+      previous = out.handle_wrench(0);
+      if (silent_ms == 30 && stretch < 0.01) {
+        EXPECT_NEAR(out.handle_wrench(0), held, 1e-9) << "5 N held through 30 ms of silence";
+        EXPECT_EQ(out.fade, 1.0);
+      }
+      if (silent_ms >= 45) {
+        EXPECT_EQ(out.handle_wrench(0), 0.0) << silent_ms << " ms, " << held << " N held";
+      }
+    }
+    EXPECT_NEAR(held, stretch < 0.01 ? 5.0 : 35.0, 1e-6);
+    EXPECT_LE(max_step, 1.0 + 1e-9) << "never a step beyond 1 N per ms while fading";
+  }
+}
+
 TEST(ServoLaw, AnEndedSessionReleasesTheForceAt1NPerMs) {
   ServoLaw law(default_dynamics());
   ServoInputs in = coupled_to_object_ahead(0.0175);

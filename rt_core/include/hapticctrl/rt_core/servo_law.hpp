@@ -60,7 +60,7 @@ struct ServoOutputs {
   /// The same, in the client's environment frame (through its base frame and speed factor).
   std::array<double, 7> client_handle_pose{0, 0, 0, 0, 0, 0, 1};
   Vector6d client_handle_twist = Vector6d::Zero();
-  double fade = 1.0;    ///< 1: fresh client data, 0: faded out
+  double fade = 1.0;    ///< share of the coupling left by a silent link (1: fresh, 0: faded)
   double engage = 1.0;  ///< share of the coupling the handle gets (re-engagement, brake)
   bool coupled = false;
   bool client_stale = false;
@@ -89,8 +89,9 @@ ClientFrame client_frame_of(const shm::VprPayload& client) noexcept;
 struct LawConfig {
   TimeNs stale_after = 5 * kNsPerMs;       ///< no new sample for this long: flagged stale
   TimeNs extrapolate_max = 50 * kNsPerMs;  ///< extrapolation horizon (sample age)
-  /// No new sample for fade_after: the coupling force fades out over fade_duration, so that it
-  /// is zero within 45 ms of the last fresh sample (H1: 50 ms), at most release_rate meanwhile.
+  /// Without a new sample the coupling force is zero by fade_after + fade_duration (45 ms; H1:
+  /// 50 ms) and fades no faster than the device's peaks over fade_duration (1 N/ms): a peak
+  /// force from fade_after on, a smaller one later (ServoLaw::fade_of).
   TimeNs fade_after = 10 * kNsPerMs;
   TimeNs fade_duration = 35 * kNsPerMs;
   double release_rate = 1000.0;  ///< N/s: force change limit while fading, braking or released
@@ -179,6 +180,7 @@ class ServoLaw {
                          const Vector6d& twist, ServoOutputs& out) noexcept;
   void track_loop_delay(const ServoInputs& in) noexcept;
   CouplingGains slew_gains(const CouplingGains& target, TimeNs dt) noexcept;
+  [[nodiscard]] double fade_of(TimeNs silence, const Vector6d& wrench) const noexcept;
   void follow_session(const ServoInputs& in) noexcept;
   void guard_channel(const ServoInputs& in, const ClientFrame& frame, const Vector6d& object_force,
                      double dt, ServoOutputs& out) noexcept;

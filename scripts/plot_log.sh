@@ -42,8 +42,18 @@ set xlabel 'time [s]'; set ylabel 'position [m]'; set key outside bottom center 
 plot '$arm' every ::1 using ((\$$t-$t0)/1e6):$x with lines title 'x', \
      '' every ::1 using ((\$$t-$t0)/1e6):$y with lines title 'y', \
      '' every ::1 using ((\$$t-$t0)/1e6):$z with lines title 'z'
+# The path in a square window of at least 2 cm around it: autoscaled, a straight or resting
+# path stretched one axis over micrometres of noise and its tick labels ran together (H5).
+stats '$arm' every ::1 using $x:$y nooutput
+span = STATS_max_x - STATS_min_x > STATS_max_y - STATS_min_y ? STATS_max_x - STATS_min_x : STATS_max_y - STATS_min_y
+half = span * 0.55 < 0.01 ? 0.01 : span * 0.55
+cx = (STATS_min_x + STATS_max_x) / 2; cy = (STATS_min_y + STATS_max_y) / 2
+set xrange [cx - half : cx + half]; set yrange [cy - half : cy + half]; set format '%.3f'
+set print '-'
+print sprintf('x-y window: x %.4f..%.4f m, y %.4f..%.4f m', cx - half, cx + half, cy - half, cy + half)
 set xlabel 'x [m]'; set ylabel 'y [m]'; set size ratio -1
 plot '$arm' every ::1 using $x:$y with lines title 'x-y path'
+set autoscale; set format '% h'
 unset multiplot
 set size noratio
 set output '$OUT/$inst.forces.png'

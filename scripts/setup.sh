@@ -11,6 +11,8 @@ PACKAGES=(
   libbenchmark-dev libgtest-dev libgmock-dev libncurses-dev
   # monitoring, analysis and benchmarks
   default-jdk-headless libjchart2d-java gnuplot-nox rt-tests stress-ng procps util-linux python3
+  # the installed systemd units are checked with systemd-analyze and systemd-sysusers
+  systemd
   # the web view (bridges/web): HTTP/WebSocket server, JSON, and the browser its test drives
   civetweb libcivetweb-dev nlohmann-json3-dev chromium
 )

@@ -315,10 +315,12 @@ CouplingGains ServoLaw::slew_gains(const CouplingGains& target, TimeNs dt) noexc
 double ServoLaw::fade_of(TimeNs silence, const Vector6d& wrench) const noexcept {
   // The force is zero by the end of the window and never falls faster than the full-scale slope
   // (the device's peaks over fade_duration: 1 N/ms): a peak force starts fading at fade_after,
-  // a smaller one as late as that slope allows (5 N: at 40 ms). Fading every force from 10 ms
-  // on turned a 31 ms stall of the link's processes on this VM into a 60 % drop of the weight
-  // the handle carried: it sprang 2.5 mm off its joint wall and came back at 30 mm/s (H1
-  // end-to-end test at 1 ms one way, 2026-12-02).
+  // a smaller one as late as that slope allows but over shortest_fade at least (5 N: from 30
+  // ms). Fading every force from 10 ms on turned a 31 ms stall of the link's processes on this
+  // VM into a 60 % drop of the weight the handle carried: it sprang 2.5 mm off its joint wall
+  // and came back at 30 mm/s (H1 end-to-end test at 1 ms one way, 2026-12-02). Without the
+  // shortest fade, the 0.8 N a hand pressed through a blackout went in 1 ms (0.84 N/ms, the
+  // coupling bench), a click where it had faded at 0.05 N/ms.
   const TimeNs end = config_.fade_after + config_.fade_duration;
   if (silence >= end) {
     return 0.0;
@@ -326,7 +328,8 @@ double ServoLaw::fade_of(TimeNs silence, const Vector6d& wrench) const noexcept 
   const ArmLimits& lim = dynamics_->model().limits;
   const double share =
       std::max(wrench.head<3>().norm() / lim.force_peak, wrench.tail<3>().norm() / lim.torque_peak);
-  const double needed = share * static_cast<double>(config_.fade_duration);
+  const double needed = std::max(share * static_cast<double>(config_.fade_duration),
+                                 static_cast<double>(config_.shortest_fade));
   const auto left = static_cast<double>(end - silence);
   return needed <= left ? 1.0 : left / needed;
 }
@@ -500,20 +503,23 @@ void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) 
   }
 
   const Coupling coupling = degraded ? Coupling{} : client_wrench(in, frame, chain_, twist, out);
-  Vector6d object_side = saturate(coupling, in.client);
+  const Vector6d saturated = saturate(coupling, in.client);
   if (!degraded && out.fade > 0.0) {  // 0: no session, or its link lost
-    out.fade = fade_of(in.client_silence, object_side);
-    object_side *= out.fade;
+    out.fade = fade_of(in.client_silence, saturated);
   }
   // A degraded cycle renders no coupling but leaves the engagement as it was: one miss must not
   // send the coupling back through the whole ramp.
   const double engage = degraded ? memory_.engage : update_engagement(in, twist, out.fade, out);
+  const Vector6d object_side = saturated * out.fade;  // what the object and the channel get
   if (!degraded) {
     guard_channel(in, frame, -object_side, dt, out);
   }
   out.channel_energy_in = memory_.channel_in;
   out.channel_energy_out = memory_.channel_out;
-  Vector6d target = object_side * engage;
+  // The engagement follows the fade down (and ramps back up after it): the handle gets the fade
+  // once. Multiplying the faded force by it made the fade quadratic, twice as steep at its
+  // start as the slope it was designed for.
+  Vector6d target = saturated * engage;
   const ArmLimits& lim = dynamics_->model().limits;
   if (out.braking) {
     // Speed safety: a damped brake on the handle while the coupling is disengaged; the object

@@ -4,9 +4,12 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <array>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -83,23 +86,68 @@ TEST(LogCsv, AMissingLogIsAClearError) {
   EXPECT_THROW(log_to_csv("/nonexistent/run.lcmlog", "/tmp"), std::runtime_error);
 }
 
+/// Runs scripts/plot_log.sh on `log`; returns what it printed.
+std::vector<std::string> plot(const TempDir& dir, const std::string& log, const std::string& out) {
+  const std::string printed = (dir.path / "printed.txt").string();
+  const std::string cmd = std::string(HAPTICCTRL_SOURCE_DIR) + "/scripts/plot_log.sh " + log + " " +
+                          out + " --build " + HAPTICCTRL_BINARY_DIR + " >" + printed;
+  EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  return lines_of(printed);
+}
+
+/// The x-y panel's window the script printed: x0, x1, y0, y1 (m).
+std::optional<std::array<double, 4>> xy_window(const std::vector<std::string>& printed) {
+  std::array<double, 4> w{};
+  for (const std::string& line : printed) {
+    if (std::sscanf(line.c_str(), "x-y window: x %lf..%lf m, y %lf..%lf m", &w[0], &w[1], &w[2],
+                    &w[3]) == 4) {
+      return w;
+    }
+  }
+  return std::nullopt;
+}
+
+bool have_gnuplot() {
+  return std::system("command -v gnuplot >/dev/null") == 0;
+}
+
 TEST(LogCsv, ThePlotScriptWritesThePngs) {
-  if (std::system("command -v gnuplot >/dev/null") != 0) {
+  if (!have_gnuplot()) {
     GTEST_SKIP() << "gnuplot not installed (scripts/setup.sh installs gnuplot-nox)";
   }
   TempDir dir;
   const std::string log = (dir.path / "run.lcmlog").string();
   test::write_sample_log(log);
   const std::string out = (dir.path / "out").string();
-  const std::string cmd = std::string(HAPTICCTRL_SOURCE_DIR) + "/scripts/plot_log.sh " + log + " " +
-                          out + " --build " + HAPTICCTRL_BINARY_DIR + " >/dev/null";
-  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  const auto window = xy_window(plot(dir, log, out));
   for (const char* png : {"hapticctrl.lab.handle_trajectory.png", "hapticctrl.lab.forces.png",
                           "hapticctrl.lab.latency_histogram.png"}) {
     const fs::path p = fs::path(out) / png;
     ASSERT_TRUE(fs::exists(p)) << p;
     EXPECT_GT(fs::file_size(p), 1000U) << p;
   }
+  // The sample path is straight along x (y stays 0): the x-y panel shows it in a square window
+  // around it (H5: autoscaled, y spread over nothing and its labels ran together).
+  ASSERT_TRUE(window) << "the script says which window it drew";
+  const auto [x0, x1, y0, y1] = *window;
+  EXPECT_NEAR(x1 - x0, y1 - y0, 1e-3) << "square";
+  EXPECT_LE(x0, 0.1);
+  EXPECT_GE(x1, 0.1 * test::kSampleArmStates);
+  EXPECT_LT(y0, 0.0);
+  EXPECT_GT(y1, 0.0);
+}
+
+TEST(LogCsv, AHandleAtRestGetsA2cmWindow) {
+  if (!have_gnuplot()) {
+    GTEST_SKIP() << "gnuplot not installed (scripts/setup.sh installs gnuplot-nox)";
+  }
+  TempDir dir;
+  const std::string log = (dir.path / "rest.lcmlog").string();
+  test::write_sample_log(log, 0.0);
+  const auto window = xy_window(plot(dir, log, (dir.path / "out").string()));
+  ASSERT_TRUE(window);
+  EXPECT_NEAR((*window)[1] - (*window)[0], 0.02, 1e-4);
+  EXPECT_NEAR((*window)[3] - (*window)[2], 0.02, 1e-4);
 }
 
 }  // namespace

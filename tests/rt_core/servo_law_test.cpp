@@ -277,7 +277,7 @@ TEST(ServoLaw, ASilentLinkFadesTheForceOutWithin50msAtMost1NPerMs) {
 
 TEST(ServoLaw, ASilentLinkFadesASmallForceAsLateAsTheSlopeAllowsAndAnyForceWithin45ms) {
   // 5 N is held through a 30 ms gap (a stall of the link's processes is no reason to drop the
-  // weight the handle carries) and still reaches zero by 45 ms at most 1 N/ms; a spring
+  // weight the handle carries) and still reaches zero by 45 ms, over 15 ms; a spring
   // stretched to twice the peak (saturated at 35 N) is zero by 45 ms too.
   for (const double stretch : {0.0025, 0.035}) {
     ServoLaw law(default_dynamics());
@@ -300,11 +300,12 @@ TEST(ServoLaw, ASilentLinkFadesASmallForceAsLateAsTheSlopeAllowsAndAnyForceWithi
         EXPECT_EQ(out.fade, 1.0);
       }
       if (silent_ms >= 45) {
-        EXPECT_EQ(out.handle_wrench(0), 0.0) << silent_ms << " ms, " << held << " N held";
+        EXPECT_NEAR(out.handle_wrench(0), 0.0, 1e-9) << silent_ms << " ms, " << held << " N held";
       }
     }
     EXPECT_NEAR(held, stretch < 0.01 ? 5.0 : 35.0, 1e-6);
-    EXPECT_LE(max_step, 1.0 + 1e-9) << "never a step beyond 1 N per ms while fading";
+    // 5 N fades over the shortest fade (15 ms), not in a few cycles at the full-scale slope.
+    EXPECT_LE(max_step, (stretch < 0.01 ? 5.0 / 15.0 : 1.0) + 1e-9) << held << " N held";
   }
 }
 

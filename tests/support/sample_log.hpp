@@ -32,7 +32,8 @@ void log_message(lcm::LogFile& log, const std::string& channel, const M& m, std:
 /// Writes the sample log: 5 arm states (handle x = 0.1 * cycle m, operator fx = cycle N),
 /// 2 cycle stats, 2 events, one demo scene, one message of another application and one
 /// corrupted arm state.
-inline void write_sample_log(const std::string& path) {
+/// The handle moves `x_step` metres along x per arm_state (0: it rests).
+inline void write_sample_log(const std::string& path, double x_step = 0.1) {
   lcm::LogFile log(path, "w");
   if (!log.good()) {
     throw std::runtime_error("cannot write " + path);
@@ -44,7 +45,7 @@ inline void write_sample_log(const std::string& path) {
     a.cycle = cycle;
     a.state_word = 1;
     a.core_state = 1;
-    a.handle_pose[0] = 0.1 * cycle;
+    a.handle_pose[0] = x_step * cycle;
     a.handle_pose[6] = 1.0;
     a.operator_wrench[0] = cycle;
     a.coupling_wrench[2] = -0.5 * cycle;

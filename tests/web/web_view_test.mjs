@@ -115,6 +115,24 @@ test('a force slider moves the handle', async () => {
   assert.ok(await until(() => Math.abs(stack.status().operator_wrench[1]) < 0.1), 'the force was not released');
 });
 
+test('a small force shows as an arrow drawn over the sphere the handle sits in', async () => {
+  // 2 N draws 2 cm from the handle, inside the demo's 3 cm sphere: drawn with the depth test it
+  // was hidden (H5).
+  await page.locator('[data-testid=slider-Fz]').fill('2');
+  assert.ok(await until(() => Math.abs(stack.status().operator_wrench[2] - 2) < 0.1), 'the force never arrived');
+  const arrow = await until(() => page.evaluate(() => {
+    const a = window.hapticctrl.view?.arrows.operator;
+    if (!a?.visible) return null;
+    return { length: a.line.scale.y + a.cone.scale.y, overLine: !a.line.material.depthTest,
+      overCone: !a.cone.material.depthTest, order: a.renderOrder };
+  }));
+  assert.ok(arrow, 'no operator arrow for 2 N');
+  assert.ok(Math.abs(arrow.length - 0.02) < 0.002, `arrow ${arrow.length} m for 2 N`);
+  assert.ok(arrow.overLine && arrow.overCone && arrow.order > 0, JSON.stringify(arrow));
+  await page.click('[data-testid=release]');
+  assert.ok(await until(() => Math.abs(stack.status().operator_wrench[2]) < 0.1), 'the force was not released');
+});
+
 test('the emergency stop button latches the stop, and reset clears it', async () => {
   await page.click('[data-testid=estop]');
   assert.ok(await until(() => stack.status().emergency_stop), 'the e-stop did not latch');
@@ -182,6 +200,16 @@ test('a controller that fails safe shows why', async () => {
   assert.ok(await until(async () => /5 consecutive deadline misses/.test(await alarmText()), { timeoutMs: 10000 }),
     `no fail-safe reason: '${await alarmText()}'`);
   assert.match(await page.locator('[data-testid=events]').innerText(), /fail-safe/);
+  // Every event's own number is inside the panel, whatever its count of digits (list markers
+  // from 10 on were clipped, H5).
+  const events = await page.evaluate(() => {
+    const list = document.getElementById('events');
+    const left = list.getBoundingClientRect().left;
+    return [...list.children].map((li) => ({ text: li.textContent, inside: li.getBoundingClientRect().left >= left,
+      marker: getComputedStyle(li).listStyleType }));
+  });
+  assert.ok(events.length > 0);
+  for (const e of events) assert.ok(e.inside && e.marker === 'none', JSON.stringify(e));
   await shot('07-failed-safe');
   assert.deepEqual(pageErrors, []);
 });

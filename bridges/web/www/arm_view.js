@@ -66,9 +66,14 @@ export class ArmView {
     this.scene.add(this.handleAxes);
     this.arrows = {};
     for (const [name, colour] of Object.entries(COLOURS)) {
-      this.arrows[name] = new THREE.ArrowHelper(new THREE.Vector3(1, 0, 0), new THREE.Vector3(), 0.1, colour);
-      this.arrows[name].visible = false;
-      this.scene.add(this.arrows[name]);
+      const arrow = new THREE.ArrowHelper(new THREE.Vector3(1, 0, 0), new THREE.Vector3(), 0.1, colour);
+      // Drawn over everything: the handle sits inside the demo's 3 cm sphere, which hid every
+      // force under 3 N and the base of the larger ones.
+      arrow.line.material.depthTest = arrow.cone.material.depthTest = false;
+      arrow.renderOrder = 10;
+      arrow.visible = false;
+      this.arrows[name] = arrow;
+      this.scene.add(arrow);
     }
     this.fixedSphere = new THREE.Mesh(new THREE.SphereGeometry(1, 32, 16),
       new THREE.MeshStandardMaterial({ color: 0x8a8f98, roughness: 0.6 }));

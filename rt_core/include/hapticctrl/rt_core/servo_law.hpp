@@ -90,10 +90,12 @@ struct LawConfig {
   TimeNs stale_after = 5 * kNsPerMs;       ///< no new sample for this long: flagged stale
   TimeNs extrapolate_max = 50 * kNsPerMs;  ///< extrapolation horizon (sample age)
   /// Without a new sample the coupling force is zero by fade_after + fade_duration (45 ms; H1:
-  /// 50 ms) and fades no faster than the device's peaks over fade_duration (1 N/ms): a peak
-  /// force from fade_after on, a smaller one later (ServoLaw::fade_of).
+  /// 50 ms) and fades no faster than the device's peaks over fade_duration (1 N/ms), and over
+  /// shortest_fade at least: a peak force from fade_after on, a smaller one later
+  /// (ServoLaw::fade_of).
   TimeNs fade_after = 10 * kNsPerMs;
   TimeNs fade_duration = 35 * kNsPerMs;
+  TimeNs shortest_fade = 15 * kNsPerMs;
   double release_rate = 1000.0;  ///< N/s: force change limit while fading, braking or released
   /// Every re-engagement (fresh data after a fade, the end of a brake, a new session, power-on)
   /// gives the handle its coupling back through a ramp this long (50 ms let a handle that

@@ -19,10 +19,9 @@ constexpr double kLoopDelayRelease = 0.005;
 /// The loop delay is believed up to this; longer is a stale echo, not a loop.
 constexpr TimeNs kMaxLoopDelay = 2'000 * kNsPerMs;
 /// The gains are designed for a loop delay that follows the envelope only when the envelope
-/// leaves a band around it (10 %, at least 0.5 ms), and they move to a new design over a time
-/// constant when they rise, not in one cycle: a spring that carries a weight is stretched (72 mm
-/// for the demo's 0.5 kg sphere at 20 ms one way), so every change of k is a force step of k *
-/// stretch. With
+/// leaves a band around it (10 %, at least 0.5 ms), and they rise to a new design over a time
+/// constant, not in one cycle: a spring that carries a weight is stretched (72 mm for the demo's
+/// 0.5 kg sphere at 20 ms one way), so every change of k is a force step of k * stretch. With
 /// +-2 ms jitter the envelope wandered by 1-2 ms around 42 ms and each move stepped the force by
 /// 0.1-0.3 N: the sphere jiggled at 20-40 mm/s and the handle, resting on its joint wall, at up
 /// to 8 mm/s (2026-12-02). A 10 % longer loop leaves the stiffness at most 21 % over its design,
@@ -510,15 +509,14 @@ void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) 
   // A degraded cycle renders no coupling but leaves the engagement as it was: one miss must not
   // send the coupling back through the whole ramp.
   const double engage = degraded ? memory_.engage : update_engagement(in, twist, out.fade, out);
-  const Vector6d object_side = saturated * out.fade;  // what the object and the channel get
   if (!degraded) {
-    guard_channel(in, frame, -object_side, dt, out);
+    guard_channel(in, frame, -saturated, dt, out);
   }
   out.channel_energy_in = memory_.channel_in;
   out.channel_energy_out = memory_.channel_out;
   // The engagement follows the fade down (and ramps back up after it): the handle gets the fade
-  // once. Multiplying the faded force by it made the fade quadratic, twice as steep at its
-  // start as the slope it was designed for.
+  // once. Multiplying a faded force by it made the fade quadratic, twice as steep at its start
+  // as the slope it was designed for.
   Vector6d target = saturated * engage;
   const ArmLimits& lim = dynamics_->model().limits;
   if (out.braking) {
@@ -549,9 +547,13 @@ void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) 
   if (out.coupled) {
     // The object feels the opposite of the coupling, in the client's frame, unscaled: neither
     // the brake nor the passivity guard's damping (they brake the handle; mirrored onto the
-    // object they would push it along with the handle's motion).
-    out.coupling_wrench << -(frame.rotation * object_side.head<3>()) / frame.force_factor,
-        -(frame.rotation * object_side.tail<3>()) / frame.force_factor;
+    // object they would push it along with the handle's motion), nor the fade: like a brake, it
+    // protects the hand, and the object keeps its spring to the handle. Faded, the weighted
+    // sphere lost its support for the catch-up steps the demo took after a 60 ms stall of its
+    // process, fell, and bounced back at 0.16 m/s when the coupling returned
+    // (bench/gravity_rest.sh, 2026-12-02).
+    out.coupling_wrench << -(frame.rotation * saturated.head<3>()) / frame.force_factor,
+        -(frame.rotation * saturated.tail<3>()) / frame.force_factor;
   }
   out.handle_wrench = wrench;
 

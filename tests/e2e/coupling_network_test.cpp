@@ -200,7 +200,7 @@ int coupling_toggles(const std::vector<CycleRecord>& r, std::size_t from) {
     ++from;
   }
   int n = 0;
-  for (std::size_t i = std::max<std::size_t>(from, 1); i < r.size(); ++i) {
+  for (std::size_t i = from + 1; i < r.size(); ++i) {
     if (r[i].degraded() || r[i - 1].degraded() || r[i].stale() || r[i - 1].stale()) {
       continue;
     }
@@ -396,8 +396,8 @@ struct LinkCase {
 };
 
 /// Names the case in test listings (GoogleTest would print its bytes, pointers included, and
-/// the ctest names would change with every build).
-void PrintTo(const LinkCase& c, std::ostream* os) {
+/// the ctest names would change with every build). GoogleTest looks for this very name.
+void PrintTo(const LinkCase& c, std::ostream* os) {  // NOLINT(readability-identifier-naming)
   *os << c.name;
 }
 

@@ -299,6 +299,10 @@ TEST(ServoLaw, ASilentLinkFadesASmallForceAsLateAsTheSlopeAllowsAndAnyForceWithi
         EXPECT_NEAR(out.handle_wrench(0), held, 1e-9) << "5 N held through 30 ms of silence";
         EXPECT_EQ(out.fade, 1.0);
       }
+      if (silent_ms == 40) {
+        EXPECT_NEAR(out.coupling_wrench(0), -held, 1e-6)
+            << "the object keeps its spring while the hand's force fades (as through a brake)";
+      }
       if (silent_ms >= 45) {
         EXPECT_NEAR(out.handle_wrench(0), 0.0, 1e-9) << silent_ms << " ms, " << held << " N held";
       }

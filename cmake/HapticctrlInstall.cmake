@@ -5,6 +5,9 @@ set(HAPTICCTRL_BINDIR ${CMAKE_INSTALL_FULL_BINDIR})
 set(HAPTICCTRL_DATADIR ${CMAKE_INSTALL_FULL_DATADIR}/hapticctrl)
 set(HAPTICCTRL_DOCDIR ${CMAKE_INSTALL_FULL_DOCDIR})
 
+# The demo links the client library, installed beside the programs: found relative to itself, so
+# the installed tree works wherever it lands (a staging root, a prefix without ldconfig).
+set_target_properties(hapticctrl-demo PROPERTIES INSTALL_RPATH "$ORIGIN/../${CMAKE_INSTALL_LIBDIR}")
 install(TARGETS hapticctrl-core hapticctrl-udp hapticctrl-lcm hapticctrl-log2csv hapticctrl-web
                 hapticctrl-hmi hapticctrl-demo
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})

@@ -3,12 +3,25 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <string_view>
 
 #include "hapticctrl/lcm_bridge/log_csv.hpp"
 
+namespace {
+
+constexpr const char* kUsage =
+    "usage: hapticctrl-log2csv LOG OUT_DIR\n"
+    "An LCM log recorded with lcm-logger to one CSV per hapticctrl channel in OUT_DIR.\n";
+
+}  // namespace
+
 int main(int argc, char** argv) {
+  if (argc == 2 && (std::string_view(argv[1]) == "--help" || std::string_view(argv[1]) == "-h")) {
+    std::fputs(kUsage, stdout);
+    return 0;
+  }
   if (argc != 3) {
-    std::fprintf(stderr, "usage: hapticctrl-log2csv LOG OUT_DIR\n");
+    std::fputs(kUsage, stderr);
     return 64;
   }
   try {

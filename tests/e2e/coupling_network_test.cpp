@@ -123,15 +123,14 @@ void with_retries(const std::string& name, const std::function<bool(int)>& body)
   int stalled = 0;
   for (int attempt = 0; attempt < kAttempts; ++attempt) {
     if (body(attempt)) {
-      std::printf("%s: %d attempt(s) lost to a core that failed safe on a VM stall\n", name.c_str(),
-                  stalled);
+      std::printf("%s: %d attempt(s) lost to VM stalls (a core that failed safe, a link held up)\n",
+                  name.c_str(), stalled);
       ::testing::Test::RecordProperty("attempts_lost_to_vm_stalls", stalled);
       return;
     }
     ++stalled;
   }
-  GTEST_SKIP() << "the core failed safe on VM stalls in all " << kAttempts
-               << " attempts: nothing could be judged";
+  GTEST_SKIP() << "VM stalls disturbed all " << kAttempts << " attempts: nothing could be judged";
 }
 
 /// Index of the first record at or after `cycle`.
@@ -149,6 +148,29 @@ double max_speed(const std::vector<CycleRecord>& r, std::size_t from, std::size_
     m = std::max(m, r[i].speed);
   }
   return m;
+}
+
+/// The longest run of cycles in [from, to) on which the core saw the link stale (5 ms without a
+/// sample flags it), counting the 5 ms before the flag, and the cycles the recorder missed
+/// before a stale record (a stall that held the link up often held the recorder up too).
+std::uint64_t longest_silence(const std::vector<CycleRecord>& r, std::size_t from, std::size_t to) {
+  std::uint64_t longest = 0;
+  std::uint64_t run_start = 0;
+  bool in_run = false;
+  for (std::size_t i = from; i < std::min(to, r.size()); ++i) {
+    if (!r[i].stale()) {
+      in_run = false;
+      continue;
+    }
+    if (!in_run) {
+      in_run = true;
+      run_start = i > from && r[i].cycle - r[i - 1].cycle > 1 ? r[i - 1].cycle + 1 : r[i].cycle;
+    }
+    longest = std::max<std::uint64_t>(
+        longest,
+        r[i].cycle - run_start + 1 + 5 * static_cast<std::uint64_t>(kCyclesPerSecond) / 1000);
+  }
+  return longest;
 }
 
 /// The handle's speed as its displacement over 50 ms windows: the oscillation that H1 bounds.
@@ -414,6 +436,17 @@ TEST_P(CouplingOverImpairedLink, StaysStillWithoutSaturationOrSpeed) {
     const auto r = s.recorder->records();
     const std::size_t from = index_of(r, coupled_at);
     const std::size_t last_two = index_of(r, r.back().cycle - 2 * kCyclesPerSecond);
+    // A link silent for 30 ms or more fades the weight the handle carries (docs/control.md), and
+    // the handle moves: on this VM the relay, the bridge or the demo is held up that long now and
+    // then (once in about ten runs, 2026-12-02). That transient belongs to the link-loss tests,
+    // not to the stillness judged here: such an attempt is tried again, and counted.
+    const std::uint64_t silent =
+        longest_silence(r, index_of(r, r.back().cycle - 3 * kCyclesPerSecond), r.size());
+    if (silent >= 30 * kCyclesPerSecond / 1000) {
+      std::printf("%s: the link was silent for %llu cycles before or in the judged 2 s\n", c.name,
+                  static_cast<unsigned long long>(silent));
+      return false;
+    }
     double largest = 0.0;
     for (std::size_t i = from; i < r.size(); ++i) {
       largest = std::max(largest, r[i].force);

@@ -8,9 +8,9 @@
 #   hapticctrl-web   the 3D operator view on http://127.0.0.1:$HAPTICCTRL_WEB_PORT/ (8080)
 #   hapticctrl-hmi   the operator panel, in this terminal
 # Quitting the panel (q), or Ctrl-C, stops everything: the controller in its fail-safe order,
-# then the others; no process and no /dev/shm segment is left. Without a terminal it plays a
-# short scenario instead (power on, push the handle into the fixed sphere, read the contact
-# force) and prints the outcome. Extra arguments go to hapticctrl-core.
+# then the others; no process is left, and the shared memory (a sealed memfd) goes with them.
+# Without a terminal it plays a short scenario instead (power on, push the handle into the fixed
+# sphere, read the contact force) and prints the outcome. Extra arguments go to hapticctrl-core.
 #
 # Exit status: 0 the controller stopped in order; 10 + the stop reason's code when it failed
 # safe (11: 5 consecutive deadline misses, 14: chronic misses, 15: arm fault, 17: velocity
@@ -53,9 +53,6 @@ stop_all() {
     wait "$pid" 2>/dev/null || true
   done
   reap_core
-  if [[ -e /dev/shm/hapticctrl.$INSTANCE ]]; then
-    echo "run: warning: /dev/shm/hapticctrl.$INSTANCE is still there" >&2
-  fi
 }
 # On every way out: stop everything, then say how the controller ended. A controller that
 # failed safe makes the run fail, with its reason, whatever the script was doing.

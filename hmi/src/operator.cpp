@@ -1,11 +1,10 @@
 #include "hapticctrl/hmi/operator.hpp"
 
-#include <dirent.h>
-
 #include <algorithm>
 #include <thread>
 
 #include "hapticctrl/hmi/hand_motion.hpp"
+#include "hapticctrl/shm/rendezvous.hpp"
 
 namespace hapticctrl::hmi {
 namespace {
@@ -19,7 +18,7 @@ constexpr double kMaxTickStep = 0.02;
 
 std::string no_controller_message(const std::string& instance, const std::string& detail) {
   std::string text = detail;
-  const std::vector<std::string> running = listed_instances();
+  const std::vector<std::string> running = shm::listed_instances();
   if (running.empty()) {
     text += "; no controller runs on this machine (start one: hapticctrl-core --instance " +
             instance + ")";
@@ -43,27 +42,6 @@ shm::Segment attach_segment(const std::string& instance, bool with_force) {
 }
 
 }  // namespace
-
-std::vector<std::string> listed_instances() {
-  std::vector<std::string> names;
-  DIR* dir = opendir("/dev/shm");
-  if (dir == nullptr) {
-    return names;
-  }
-  const std::string prefix = "hapticctrl.";
-  const std::string lock_suffix = ".lock";
-  while (const dirent* entry = readdir(dir)) {
-    const std::string name = entry->d_name;
-    if (name.rfind(prefix, 0) == 0 &&
-        !(name.size() > lock_suffix.size() &&
-          name.compare(name.size() - lock_suffix.size(), lock_suffix.size(), lock_suffix) == 0)) {
-      names.push_back(name.substr(prefix.size()));
-    }
-  }
-  closedir(dir);
-  std::sort(names.begin(), names.end());
-  return names;
-}
 
 Operator::Operator(const std::string& instance, bool want_force) {
   try {

@@ -25,8 +25,11 @@ T parse_number(const std::string& option, const std::string& text, T min, T max)
 
 std::string core_usage() {
   return R"(usage: hapticctrl-core [options]
-  --instance NAME          instance name (default "default"); shm /dev/shm/hapticctrl.NAME
-  --group NAME             group owning the shared memory (mode 0660)
+  --instance NAME          instance name (default "default"); its socket is NAME.sock in
+                           $HAPTICCTRL_RUNTIME_DIR, else /run/hapticctrl (root), else
+                           $XDG_RUNTIME_DIR/hapticctrl or /tmp/hapticctrl-UID
+  --group NAME             group whose members may attach (socket mode 0660; default: the
+                           core's group)
   --model FILE             arm model file (default: the shipped Virtuose 6D class model)
   --period-us N            cycle period, 100..10000 µs (default 1000)
   --duration S             stop after S seconds (default: run until stopped)

@@ -1,77 +1,36 @@
 #include "hapticctrl/shm/segment.hpp"
 
 #include <fcntl.h>
-#include <grp.h>
+#include <poll.h>
 #include <sys/file.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <new>
 #include <string>
 #include <utility>
 
+#include "hapticctrl/shm/segment_handoff.hpp"
+
 namespace hapticctrl::shm {
 namespace {
 
-constexpr mode_t kSegmentMode = 0660;
-constexpr std::size_t kMaxInstanceName = 32;
-constexpr std::string_view kShmDir = "/dev/shm";
-
-std::string errno_text(int error) {
-  return std::strerror(error);
-}
-
-[[noreturn]] void throw_system(const std::string& what, int error) {
-  if (error == EACCES || error == EPERM) {
-    throw ShmError(ShmErrc::kPermissionDenied,
-                   what +
-                       ": permission denied (segments are mode 0660: run as the owner or a "
-                       "member of the segment's group)");
-  }
-  throw ShmError(ShmErrc::kSystem, what + ": " + errno_text(error));
-}
-
-std::string shm_path(const std::string& name) {
-  return std::string(kShmDir) + name;
-}
-
-gid_t resolve_group(const std::string& group) {
-  std::string buffer(16384, '\0');
-  struct group entry {};
-  struct group* result = nullptr;
-  int rc = ERANGE;
-  while (rc == ERANGE && buffer.size() <= (1U << 20)) {
-    rc = getgrnam_r(group.c_str(), &entry, buffer.data(), buffer.size(), &result);
-    if (rc == ERANGE) {
-      buffer.resize(buffer.size() * 2);
-    }
-  }
-  if (rc != 0 || result == nullptr) {
-    throw ShmError(ShmErrc::kSystem, "unknown group '" + group + "' for the shared-memory segment");
-  }
-  return entry.gr_gid;
-}
-
-/// mode 0660 regardless of umask, then the optional group.
-void set_ownership(int fd, const std::string& what, const std::string& group) {
-  if (fchmod(fd, kSegmentMode) != 0) {
-    throw_system("chmod " + what, errno);
-  }
-  if (!group.empty() && fchown(fd, static_cast<uid_t>(-1), resolve_group(group)) != 0) {
-    throw_system("chown " + what + " to group '" + group + "'", errno);
-  }
-}
+constexpr mode_t kSegmentMode = 0600;  // nobody opens it by name: it is handed over
+constexpr mode_t kLockMode = 0600;
+constexpr unsigned kSeals = F_SEAL_SHRINK | F_SEAL_GROW | F_SEAL_SEAL;
 
 void* map_part(int fd, std::size_t offset, std::size_t length, bool writable,
                const std::string& what) {
   const int prot = writable ? (PROT_READ | PROT_WRITE) : PROT_READ;
   void* address = mmap(nullptr, length, prot, MAP_SHARED, fd, static_cast<off_t>(offset));
   if (address == MAP_FAILED) {
-    throw_system("mmap " + what, errno);
+    throw_system_error("mmap " + what, errno);
   }
   return address;
 }
@@ -101,133 +60,101 @@ std::uint64_t try_claim(std::atomic<std::uint64_t>& word, std::uint64_t mine) {
   return current;
 }
 
-/// Reads the pid and generation of an existing segment, if it is one of ours.
-struct OldSegmentInfo {
-  pid_t creator_pid = 0;
+/// What the lock file says about the last core that held it: "pid generation".
+struct LockRecord {
+  long pid = 0;
   std::uint64_t generation = 0;
 };
 
-std::optional<OldSegmentInfo> peek_existing(const std::string& name) {
-  const int fd = shm_open(name.c_str(), O_RDONLY | O_CLOEXEC, 0);
-  if (fd < 0) {
-    return std::nullopt;
-  }
-  std::optional<OldSegmentInfo> info;
-  struct stat st {};
-  if (fstat(fd, &st) == 0 && static_cast<std::size_t>(st.st_size) >= sizeof(SegmentHeader)) {
-    void* address = mmap(nullptr, sizeof(SegmentHeader), PROT_READ, MAP_SHARED, fd, 0);
-    if (address != MAP_FAILED) {
-      const auto* header = static_cast<const SegmentHeader*>(address);
-      if (header->magic.load(std::memory_order_acquire) == kSegmentMagic ||
-          header->generation != 0) {
-        info = OldSegmentInfo{header->creator_pid, header->generation};
-      }
-      munmap(address, sizeof(SegmentHeader));
+LockRecord read_lock_record(int fd) {
+  std::array<char, 64> text{};
+  const ssize_t got = pread(fd, text.data(), text.size() - 1, 0);
+  LockRecord record;
+  if (got > 0) {
+    unsigned long long generation = 0;
+    if (std::sscanf(text.data(), "%ld %llu", &record.pid, &generation) == 2) {
+      record.generation = generation;
     }
   }
-  ::close(fd);
-  return info;
+  return record;
 }
 
-/// The exclusive flock of a live core. Attached processes probe the lock with a shared flock held
-/// for a few microseconds (Segment::core_alive, every 2 ms while a core is silent): a core
-/// starting in that window retries instead of reporting a running instance that is not there.
-bool take_exclusive_lock(int fd) {
-  for (int attempt = 0;; ++attempt) {
-    if (flock(fd, LOCK_EX | LOCK_NB) == 0) {
-      return true;
-    }
-    if (errno != EWOULDBLOCK || attempt == 3) {
-      return false;
-    }
-    usleep(1000);
+void write_lock_record(int fd, const LockRecord& record) {
+  const std::string text =
+      std::to_string(record.pid) + " " + std::to_string(record.generation) + "\n";
+  if (ftruncate(fd, 0) != 0 || pwrite(fd, text.data(), text.size(), 0) < 0) {
+    throw_system_error("write the instance lock", errno);
   }
 }
 
-/// Opens the lock object and takes the exclusive flock that marks a live core. Guards against
-/// the classic unlink race: the lock we hold must still be the one the name points to.
-int acquire_instance_lock(const SegmentNames& names, const std::string& instance,
-                          const std::string& group) {
+/// Takes the exclusive flock that marks the live core of an instance. An orderly stop removes
+/// the lock file while still holding it, so the lock we get must still be the file the name
+/// points to (else a core that stopped meanwhile removed it: try again). A core that died leaves
+/// the file, with its "pid generation", for the next one.
+int acquire_instance_lock(const InstancePaths& paths, const std::string& instance) {
   for (int attempt = 0; attempt < 5; ++attempt) {
-    const int fd = shm_open(names.lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, kSegmentMode);
+    const int fd = open(paths.lock.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, kLockMode);
     if (fd < 0) {
-      throw_system("open lock " + shm_path(names.lock), errno);
+      throw_system_error("open the instance lock " + paths.lock, errno);
     }
-    if (!take_exclusive_lock(fd)) {
+    if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
       const int error = errno;
+      const LockRecord holder = read_lock_record(fd);
       ::close(fd);
       if (error == EWOULDBLOCK) {
-        const auto old = peek_existing(names.segment);
-        throw ShmError(ShmErrc::kAlreadyRunning,
-                       "instance '" + instance + "' is already running" +
-                           (old ? " (core pid " + std::to_string(old->creator_pid) + ")" : "") +
-                           "; stop it first or choose another --instance");
+        throw ShmError(
+            ShmErrc::kAlreadyRunning,
+            "instance '" + instance + "' is already running" +
+                (holder.pid > 0 ? " (core pid " + std::to_string(holder.pid) + ")" : "") +
+                "; stop it first or choose another --instance");
       }
-      throw_system("lock " + shm_path(names.lock), error);
+      throw_system_error("lock " + paths.lock, error);
     }
     struct stat held {};
     struct stat named {};
-    if (fstat(fd, &held) == 0 && stat(shm_path(names.lock).c_str(), &named) == 0 &&
+    if (fstat(fd, &held) == 0 && lstat(paths.lock.c_str(), &named) == 0 &&
         held.st_ino == named.st_ino) {
-      try {
-        set_ownership(fd, shm_path(names.lock), group);
-      } catch (...) {
-        shm_unlink(names.lock.c_str());  // we hold the lock: the name is ours to remove
-        ::close(fd);
-        throw;
-      }
       return fd;
     }
-    ::close(fd);  // the name was unlinked/replaced under us: try again
+    ::close(fd);
   }
   throw ShmError(ShmErrc::kSystem,
                  "could not take the lock of instance '" + instance + "' (it kept being replaced)");
 }
 
-void check_not_world_accessible(const struct stat& st, const std::string& what) {
-  if ((st.st_mode & (S_IROTH | S_IWOTH)) != 0) {
-    throw ShmError(ShmErrc::kInsecure,
-                   what + " is accessible by other users (mode " +
-                       std::to_string(st.st_mode & 0777) +
-                       " decimal); refusing to use it. Remove it or fix its mode to 0660.");
+int create_sealed_segment(const std::string& instance) {
+  const int fd = memfd_create(("hapticctrl." + instance).c_str(), MFD_CLOEXEC | MFD_ALLOW_SEALING);
+  if (fd < 0) {
+    throw_system_error("create the segment", errno);
   }
+  if (fchmod(fd, kSegmentMode) != 0 || ftruncate(fd, static_cast<off_t>(kSegmentSize)) != 0 ||
+      fcntl(fd, F_ADD_SEALS, kSeals) != 0) {
+    const int error = errno;
+    ::close(fd);
+    throw_system_error("size and seal the segment", error);
+  }
+  return fd;
+}
+
+/// Whether the process behind a pidfd still runs (poll: readable once it has exited).
+bool process_running(int pidfd) {
+  pollfd watched{pidfd, POLLIN, 0};
+  return poll(&watched, 1, 0) == 0;
 }
 
 }  // namespace
 
-SegmentNames SegmentNames::of(std::string_view instance) {
-  const bool valid_chars = std::all_of(instance.begin(), instance.end(), [](char c) {
-    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
-           c == '-';
-  });
-  if (instance.empty() || instance.size() > kMaxInstanceName || !valid_chars) {
-    throw ShmError(ShmErrc::kBadInstanceName, "invalid instance name '" + std::string(instance) +
-                                                  "': use 1 to 32 characters from [A-Za-z0-9_-]");
-  }
-  const std::string base = "/hapticctrl." + std::string(instance);
-  return SegmentNames{base, base + ".lock"};
-}
-
 Segment Segment::create(const CreateOptions& options) {
   Segment seg;
   seg.instance_ = options.instance;
-  seg.names_ = SegmentNames::of(options.instance);
+  seg.paths_ = InstancePaths::in(creator_runtime_directory(), options.instance);
+  const gid_t group =
+      options.group.empty() ? static_cast<gid_t>(-1) : static_cast<gid_t>(group_id(options.group));
+  prepare_runtime_directory(seg.paths_.directory, group);
   seg.creator_ = true;
-  seg.lock_fd_ = acquire_instance_lock(seg.names_, options.instance, options.group);
-
-  // We hold the lock, so any existing segment is stale (its core died): replace it. Readers that
-  // still map the old one keep a valid (orphaned) mapping and notice via still_current().
-  const auto old = peek_existing(seg.names_.segment);
-  shm_unlink(seg.names_.segment.c_str());
-  seg.fd_ =
-      shm_open(seg.names_.segment.c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, kSegmentMode);
-  if (seg.fd_ < 0) {
-    throw_system("create " + shm_path(seg.names_.segment), errno);
-  }
-  set_ownership(seg.fd_, shm_path(seg.names_.segment), options.group);
-  if (ftruncate(seg.fd_, static_cast<off_t>(kSegmentSize)) != 0) {
-    throw_system("size " + shm_path(seg.names_.segment), errno);
-  }
+  seg.lock_fd_ = acquire_instance_lock(seg.paths_, options.instance);
+  const LockRecord previous = read_lock_record(seg.lock_fd_);
+  seg.fd_ = create_sealed_segment(options.instance);
 
   // Construct every object once through a temporary full mapping, then map per role.
   {
@@ -248,7 +175,7 @@ Segment Segment::create(const CreateOptions& options) {
     header->abi_version = kAbiVersion;
     header->header_size = sizeof(SegmentHeader);
     header->segment_size = kSegmentSize;
-    header->generation = old ? old->generation + 1 : 1;
+    header->generation = previous.generation + 1;
     header->creator_pid = me.pid;
     header->creator_start_ticks = me.start_ticks;
     header->period_ns = options.period_ns;
@@ -274,54 +201,19 @@ Segment Segment::create(const CreateOptions& options) {
   seg.header_for_writing().core_state.store(static_cast<std::uint32_t>(CoreState::kStarting),
                                             std::memory_order_relaxed);
   seg.header_for_writing().magic.store(kSegmentMagic, std::memory_order_release);
+  write_lock_record(seg.lock_fd_, LockRecord{getpid(), seg.header_->generation});
+  seg.server_ = std::make_unique<SegmentServer>(seg.paths_, seg.fd_, group);
   return seg;
 }
 
 Segment Segment::attach(std::string_view instance, const AttachOptions& options) {
   Segment seg;
   seg.instance_ = std::string(instance);
-  seg.names_ = SegmentNames::of(instance);
   const bool writes = !options.write.empty() || options.ctrl_writer;
-  const std::string path = shm_path(seg.names_.segment);
-
-  seg.fd_ = shm_open(seg.names_.segment.c_str(), (writes ? O_RDWR : O_RDONLY) | O_CLOEXEC, 0);
-  if (seg.fd_ < 0) {
-    if (errno == ENOENT) {
-      throw ShmError(ShmErrc::kNoController, "no controller is running for instance '" +
-                                                 seg.instance_ + "' (" + path +
-                                                 " does not exist); start hapticctrl-core first");
-    }
-    throw_system("open " + path, errno);
-  }
-  // Kept open to probe the core's lock cheaply (core_alive) for as long as we are attached.
-  seg.lock_fd_ = shm_open(seg.names_.lock.c_str(), O_RDONLY | O_CLOEXEC, 0);
-  if (seg.lock_fd_ < 0) {
-    if (errno != ENOENT) {
-      throw_system("open lock " + shm_path(seg.names_.lock), errno);
-    }
-    throw ShmError(ShmErrc::kNoController, "no controller is running for instance '" +
-                                               seg.instance_ + "' (its lock " +
-                                               shm_path(seg.names_.lock) + " is gone)");
-  }
-  struct stat st {};
-  if (fstat(seg.fd_, &st) != 0) {
-    throw_system("stat " + path, errno);
-  }
-  check_not_world_accessible(st, path);
-  if (st.st_uid != geteuid() && geteuid() != 0 && st.st_uid != 0) {
-    // Same-group access is allowed by the mode, but only to segments a trusted user created.
-    struct stat lock_st {};
-    if (stat(shm_path(seg.names_.lock).c_str(), &lock_st) != 0 || lock_st.st_uid != st.st_uid) {
-      throw ShmError(ShmErrc::kInsecure,
-                     path + " is owned by uid " + std::to_string(st.st_uid) +
-                         " but its lock is not: refusing a segment planted by another user");
-    }
-  }
-  if (static_cast<std::size_t>(st.st_size) < sizeof(SegmentHeader)) {
-    throw ShmError(ShmErrc::kLayoutMismatch, path + " is " + std::to_string(st.st_size) +
-                                                 " bytes, too small to be a " +
-                                                 "hapticctrl segment");
-  }
+  HandedSegment handed = request_segment(instance, writes);
+  seg.fd_ = handed.segment.release();
+  seg.core_fd_ = handed.core.release();
+  const std::string path = "the segment of instance '" + seg.instance_ + "'";
 
   seg.header_part_ =
       Part{map_part(seg.fd_, 0, kClaimsOffset, false, "header"), kClaimsOffset, false};
@@ -329,8 +221,9 @@ Segment Segment::attach(std::string_view instance, const AttachOptions& options)
   const SegmentHeader& header = *seg.header_;
   if (header.magic.load(std::memory_order_acquire) != kSegmentMagic) {
     throw ShmError(ShmErrc::kNoController,
-                   "instance '" + seg.instance_ + "' is not ready (" + path +
-                       " has no valid header: the core is starting or has stopped)");
+                   "instance '" + seg.instance_ +
+                       "' is not ready (its segment has no valid header: the core is starting "
+                       "or has stopped)");
   }
   if (header.abi_version != kAbiVersion) {
     throw ShmError(ShmErrc::kAbiMismatch,
@@ -339,9 +232,8 @@ Segment Segment::attach(std::string_view instance, const AttachOptions& options)
                        ", this program v" + std::to_string(kAbiVersion) +
                        "; rebuild so that all hapticctrl programs come from one version");
   }
-  bool layout_ok = header.header_size == sizeof(SegmentHeader) &&
-                   header.segment_size == kSegmentSize &&
-                   static_cast<std::size_t>(st.st_size) == kSegmentSize;
+  bool layout_ok =
+      header.header_size == sizeof(SegmentHeader) && header.segment_size == kSegmentSize;
   for (std::size_t i = 0; i < kRegionCount && layout_ok; ++i) {
     layout_ok = header.regions[i].offset == region_offset(static_cast<RegionId>(i)) &&
                 header.regions[i].size == kRegionSizes[i];
@@ -353,10 +245,10 @@ Segment Segment::attach(std::string_view instance, const AttachOptions& options)
                        "rebuild so that all hapticctrl programs come from one version");
   }
   if (!seg.core_alive()) {
-    throw ShmError(ShmErrc::kNoController,
-                   "no controller is running for instance '" + seg.instance_ + "': " + path +
-                       " was left by core pid " + std::to_string(header.creator_pid) +
-                       ", which is gone; the next core start replaces it");
+    throw ShmError(ShmErrc::kNoController, "no controller is running for instance '" +
+                                               seg.instance_ + "': its core (pid " +
+                                               std::to_string(header.creator_pid) +
+                                               ") stopped while this process attached");
   }
 
   if (writes) {
@@ -458,29 +350,16 @@ CtrlReader Segment::ctrl_reader() {
 }
 
 bool Segment::core_alive() const {
-  if (creator_) {
-    return true;
-  }
-  if (lock_fd_ < 0) {
-    return false;
-  }
-  // A shared lock is only granted when no core holds the exclusive one; the kernel drops a
-  // core's lock the moment its process ends, however it ends.
-  if (flock(lock_fd_, LOCK_SH | LOCK_NB) == 0) {
-    flock(lock_fd_, LOCK_UN);
-    return false;
-  }
-  return errno == EWOULDBLOCK;
+  return creator_ || (core_fd_ >= 0 && process_running(core_fd_));
 }
 
 bool Segment::still_current() const {
-  if (fd_ < 0 || header_->magic.load(std::memory_order_acquire) != kSegmentMagic) {
-    return false;
-  }
-  struct stat mine {};
-  struct stat named {};
-  return fstat(fd_, &mine) == 0 && stat(shm_path(names_.segment).c_str(), &named) == 0 &&
-         mine.st_ino == named.st_ino;
+  return header_ != nullptr && header_->magic.load(std::memory_order_acquire) == kSegmentMagic &&
+         core_alive();
+}
+
+std::uint64_t Segment::refused_attaches() const noexcept {
+  return server_ ? server_->refused() : 0;
 }
 
 std::optional<ProcessIdentity> Segment::writer_of(RegionId id) const {
@@ -518,6 +397,7 @@ void Segment::release_claims() noexcept {
 }
 
 void Segment::close() noexcept {
+  server_.reset();  // first: nobody attaches to a segment that is going away
   release_claims();
   if (creator_ && header_part_.address != nullptr) {
     auto* header = static_cast<SegmentHeader*>(header_part_.address);
@@ -531,19 +411,14 @@ void Segment::close() noexcept {
   unmap(claims_part_.address, claims_part_.length);
   unmap(header_part_.address, header_part_.length);
   header_ = nullptr;
-  if (creator_ && fd_ >= 0) {
-    shm_unlink(names_.segment.c_str());
-  }
   if (creator_ && lock_fd_ >= 0) {
-    shm_unlink(names_.lock.c_str());  // while still holding the flock (see acquire_instance_lock)
+    unlink(paths_.lock.c_str());  // while still holding the flock (see acquire_instance_lock)
   }
-  if (fd_ >= 0) {
-    ::close(fd_);
-    fd_ = -1;
-  }
-  if (lock_fd_ >= 0) {
-    ::close(lock_fd_);
-    lock_fd_ = -1;
+  for (int* fd : {&fd_, &lock_fd_, &core_fd_}) {
+    if (*fd >= 0) {
+      ::close(*fd);
+      *fd = -1;
+    }
   }
   creator_ = false;
 }
@@ -556,9 +431,11 @@ Segment& Segment::operator=(Segment&& other) noexcept {
   if (this != &other) {
     close();
     instance_ = std::move(other.instance_);
-    names_ = std::move(other.names_);
+    paths_ = std::move(other.paths_);
     fd_ = std::exchange(other.fd_, -1);
     lock_fd_ = std::exchange(other.lock_fd_, -1);
+    core_fd_ = std::exchange(other.core_fd_, -1);
+    server_ = std::move(other.server_);
     creator_ = std::exchange(other.creator_, false);
     my_claim_ = std::exchange(other.my_claim_, 0);
     header_ = std::exchange(other.header_, nullptr);

@@ -2,12 +2,16 @@
 // restarted, the core killed under its bridges, a bridge frozen longer than the watchdog, and a
 // shared-memory writer that breaks every rule. Throughout, the forces on the handle may change
 // by no more than their rate limits allow, and the core keeps its cycle.
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <optional>
 #include <random>
@@ -19,6 +23,7 @@
 #include "hapticctrl/shm/force_slew.hpp"
 #include "hapticctrl/shm/monotonic_clock.hpp"
 #include "hapticctrl/shm/payloads.hpp"
+#include "hapticctrl/shm/segment_handoff.hpp"
 #include "support/controller_stack.hpp"
 #include "support/lcm_monitor.hpp"
 #include "support/spawned_process.hpp"
@@ -515,6 +520,92 @@ TEST(FaultInjection, AMisbehavingSharedMemoryWriterIsRefusedOrLimitedAndCountedA
   EXPECT_LE(watch.largest_coupling_excess(), kRounding);
   EXPECT_FALSE(watch.left_running()) << stack.diagnostics();
   EXPECT_EQ(stack.telemetry().core_state, static_cast<std::uint32_t>(shm::CoreState::kRunning));
+}
+
+/// Descriptors of `pid` that are memfds named for hapticctrl (the core's segment).
+std::vector<std::string> segment_descriptors_of(pid_t pid) {
+  std::vector<std::string> found;
+  const std::filesystem::path fds = "/proc/" + std::to_string(pid) + "/fd";
+  for (const auto& entry : std::filesystem::directory_iterator(fds)) {
+    std::error_code error;
+    const std::string target = std::filesystem::read_symlink(entry.path(), error).string();
+    if (!error && target.rfind("/memfd:hapticctrl.", 0) == 0) {
+      found.push_back(entry.path().string());
+    }
+  }
+  return found;
+}
+
+/// H3: truncating the segment file killed the core and the UDP bridge with SIGBUS. A process of
+/// the group holding the segment read-write, and root through the core's own descriptors, now
+/// cannot change its size; the core and the bridge run on.
+TEST(FaultInjection, NobodyCanTruncateTheSegmentAndTheCoreAndBridgeRunOn) {
+  ControllerStack stack("fi-trunc", kPeriodUs);
+  ASSERT_TRUE(stack.ready()) << stack.diagnostics();
+  shm::HandedSegment writer = shm::request_segment(stack.instance(), true);
+  EXPECT_NE(ftruncate(writer.segment.get(), 0), 0);
+  EXPECT_EQ(errno, EPERM);
+  const std::vector<std::string> cores = segment_descriptors_of(stack.core().pid());
+  ASSERT_FALSE(cores.empty()) << "the core holds its segment as a memfd";
+  for (const std::string& path : cores) {
+    const int fd = open(path.c_str(), O_RDWR);
+    ASSERT_GE(fd, 0) << path;
+    EXPECT_NE(ftruncate(fd, 4096), 0) << path;
+    close(fd);
+  }
+  const std::uint64_t cycle = stack.telemetry().cycle;
+  EXPECT_TRUE(ControllerStack::eventually([&] { return stack.telemetry().cycle > cycle + 10; }));
+  EXPECT_EQ(stack.telemetry().core_state, static_cast<std::uint32_t>(shm::CoreState::kRunning));
+  EXPECT_EQ(stack.core().wait(0ms), -1) << "the core is still running";
+  EXPECT_EQ(stack.bridge().wait(0ms), -1) << "the bridge is still running";
+}
+
+/// H3: an unprivileged user who created and locked the instance's lock before the core started
+/// made it refuse to start, and a segment it planted was accepted by root's tools. Played here by
+/// `nobody` (root only: CI runs as root).
+TEST(FaultInjection, AnotherUserCanNeitherSquatNorPlantAnInstance) {
+  if (geteuid() != 0) {
+    GTEST_SKIP() << "needs root to play another user";
+  }
+  const std::string as_nobody = "/usr/bin/setpriv";
+  const std::vector<std::string> drop{"--reuid=65534", "--regid=65534", "--clear-groups"};
+  const std::string instance = unique_instance("squat");
+  const shm::InstancePaths paths =
+      shm::InstancePaths::in(shm::creator_runtime_directory(), instance);
+  std::vector<std::string> squat = drop;
+  squat.insert(squat.end(), {"/usr/bin/touch", paths.lock});
+  SpawnedProcess squatter(as_nobody, squat);
+  EXPECT_NE(squatter.wait(5s), 0) << "nobody may create files in " << paths.directory;
+  ASSERT_NE(access(paths.lock.c_str(), F_OK), 0);
+
+  // A "core" of nobody's, in a directory of nobody's: root's HMI refuses it.
+  const std::string planted_dir = "/tmp/hapticctrl-planted-" + std::to_string(getpid());
+  setenv("HAPTICCTRL_RUNTIME_DIR", planted_dir.c_str(), 1);
+  std::vector<std::string> plant = drop;
+  plant.insert(plant.end(), {HAPTICCTRL_CORE_BINARY, "--instance", instance, "--period-us", "10000",
+                             "--rt", "ignore", "--duration", "20"});
+  SpawnedProcess planter(as_nobody, plant);
+  const std::string planted_socket = planted_dir + "/" + instance + ".sock";
+  EXPECT_TRUE(ControllerStack::eventually([&] {
+    return access(planted_socket.c_str(), F_OK) == 0;
+  })) << planter.err();
+  SpawnedProcess hmi(HAPTICCTRL_HMI_BINARY, {"--instance", instance, "status"});
+  EXPECT_NE(hmi.wait(10s), 0);
+  EXPECT_NE(hmi.err().find("could have been planted"), std::string::npos) << hmi.err();
+  unsetenv("HAPTICCTRL_RUNTIME_DIR");
+  planter.signal(SIGTERM);
+  planter.wait(5s);
+  std::filesystem::remove_all(planted_dir);
+
+  // And root's own core of the instance nobody tried to squat starts and serves.
+  SpawnedProcess core(HAPTICCTRL_CORE_BINARY,
+                      {"--instance", instance, "--period-us", "10000", "--rt", "ignore"});
+  EXPECT_TRUE(ControllerStack::eventually([&] {
+    SpawnedProcess probe(HAPTICCTRL_HMI_BINARY, {"--instance", instance, "status"});
+    return probe.wait(5s) == 0;
+  })) << core.err();
+  core.signal(SIGTERM);
+  EXPECT_EQ(core.wait(5s), 0) << core.err();
 }
 
 }  // namespace

@@ -32,7 +32,7 @@ TEST(Operator, NoControllerSaysSoAndNamesTheRunningInstances) {
       << e;
   EXPECT_NE(e.find(stack.instance()), std::string::npos) << "lists the live instance: " << e;
   EXPECT_NE(attach_error("bad name!").find("instance"), std::string::npos);
-  const auto listed = listed_instances();
+  const auto listed = shm::listed_instances();
   EXPECT_NE(std::find(listed.begin(), listed.end(), stack.instance()), listed.end());
 }
 

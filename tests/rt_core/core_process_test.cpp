@@ -22,8 +22,9 @@ using test::SpawnedProcess;
 
 bool segment_exists(const std::string& instance) {
   struct stat st {};
-  return stat(("/dev/shm/hapticctrl." + instance).c_str(), &st) == 0 ||
-         stat(("/dev/shm/hapticctrl." + instance + ".lock").c_str(), &st) == 0;
+  const shm::InstancePaths paths =
+      shm::InstancePaths::in(shm::creator_runtime_directory(), instance);
+  return stat(paths.socket.c_str(), &st) == 0 || stat(paths.lock.c_str(), &st) == 0;
 }
 
 /// Attaches as soon as the core is up (bounded).

@@ -3,14 +3,17 @@
 #include <fcntl.h>
 #include <grp.h>
 #include <sys/mman.h>
+#include <sys/socket.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <gtest/gtest.h>
 
 #include <csignal>
+#include <filesystem>
 #include <string>
 
+#include "hapticctrl/shm/segment_handoff.hpp"
 #include "support/child_process.hpp"
 
 namespace hapticctrl::shm {
@@ -21,8 +24,8 @@ using test::Child;
 using test::ReadyPipe;
 using test::unique_instance;
 
-std::string shm_file(const std::string& instance) {
-  return "/dev/shm/hapticctrl." + instance;
+InstancePaths paths_of(const std::string& instance) {
+  return InstancePaths::in(creator_runtime_directory(), instance);
 }
 
 bool exists(const std::string& path) {
@@ -42,25 +45,41 @@ void expect_shm_error(Fn&& fn, ShmErrc code, const std::string& text) {
   }
 }
 
-/// Maps the raw header of an instance read-write, to forge bad segments.
+/// Maps the raw header of an instance read-write, as a process of the group that asked for a
+/// writable segment could, to forge bad segments.
 class RawHeader {
  public:
-  explicit RawHeader(const std::string& instance) {
-    fd_ = shm_open(("/hapticctrl." + instance).c_str(), O_RDWR, 0);
-    address_ = mmap(nullptr, kPageSize, PROT_READ | PROT_WRITE, MAP_SHARED, fd_, 0);
-  }
+  explicit RawHeader(const std::string& instance)
+      : handed_(request_segment(instance, true)),
+        address_(mmap(nullptr, kPageSize, PROT_READ | PROT_WRITE, MAP_SHARED, handed_.segment.get(),
+                      0)) {}
   RawHeader(const RawHeader&) = delete;
   RawHeader& operator=(const RawHeader&) = delete;
-  ~RawHeader() {
-    munmap(address_, kPageSize);
-    close(fd_);
-  }
+  ~RawHeader() { munmap(address_, kPageSize); }
   SegmentHeader* operator->() { return static_cast<SegmentHeader*>(address_); }
-  [[nodiscard]] int fd() const { return fd_; }
 
  private:
-  int fd_ = -1;
+  HandedSegment handed_;
   void* address_ = nullptr;
+};
+
+/// Sets HAPTICCTRL_RUNTIME_DIR for the scope of a test (the processes it forks inherit it).
+class RuntimeDirectory {
+ public:
+  explicit RuntimeDirectory(std::string path) : path_(std::move(path)) {
+    setenv("HAPTICCTRL_RUNTIME_DIR", path_.c_str(), 1);
+  }
+  RuntimeDirectory(const RuntimeDirectory&) = delete;
+  RuntimeDirectory& operator=(const RuntimeDirectory&) = delete;
+  ~RuntimeDirectory() {
+    unsetenv("HAPTICCTRL_RUNTIME_DIR");
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+  }
+  [[nodiscard]] const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
 };
 
 TEST(Segment, CreatedSegmentIsDescribedByItsHeader) {
@@ -77,39 +96,74 @@ TEST(Segment, CreatedSegmentIsDescribedByItsHeader) {
   EXPECT_EQ(std::string(h.instance.data()), name);
 }
 
-TEST(Segment, SegmentAndLockAreGroupReadWriteOnly) {
+TEST(Segment, OnlyTheCoresUserAndGroupMayReachTheSocket) {
   const std::string name = unique_instance("mode");
   Segment core = Segment::create({.instance = name});
-  for (const auto& path : {shm_file(name), shm_file(name) + ".lock"}) {
-    struct stat st {};
-    ASSERT_EQ(stat(path.c_str(), &st), 0) << path;
-    EXPECT_EQ(st.st_mode & 0777, 0660U) << path;
-  }
+  const InstancePaths paths = paths_of(name);
+  struct stat st {};
+  ASSERT_EQ(stat(paths.directory.c_str(), &st), 0);
+  EXPECT_EQ(st.st_mode & 0777, 0750U) << "group may enter, nobody else; nobody else may write";
+  ASSERT_EQ(stat(paths.socket.c_str(), &st), 0);
+  EXPECT_TRUE(S_ISSOCK(st.st_mode));
+  EXPECT_EQ(st.st_mode & 0777, 0660U);
+  ASSERT_EQ(stat(paths.lock.c_str(), &st), 0);
+  EXPECT_EQ(st.st_mode & 0777, 0600U);
 }
 
-TEST(Segment, ConfiguredGroupOwnsTheSegment) {
+TEST(Segment, ConfiguredGroupOwnsTheSocket) {
   const group* g = getgrgid(getegid());
   ASSERT_NE(g, nullptr);
   const std::string name = unique_instance("grp");
   Segment core = Segment::create({.instance = name, .group = g->gr_name});
   struct stat st {};
-  ASSERT_EQ(stat(shm_file(name).c_str(), &st), 0);
+  ASSERT_EQ(stat(paths_of(name).socket.c_str(), &st), 0);
   EXPECT_EQ(st.st_gid, getegid());
   const std::string failed = unique_instance("g2");
   expect_shm_error([&] { Segment::create({.instance = failed, .group = "no-such-group-x"}); },
                    ShmErrc::kSystem, "unknown group");
-  EXPECT_FALSE(exists(shm_file(failed))) << "a failed create leaves nothing behind";
-  EXPECT_FALSE(exists(shm_file(failed) + ".lock"));
+  EXPECT_FALSE(exists(paths_of(failed).socket)) << "a failed create leaves nothing behind";
+  EXPECT_FALSE(exists(paths_of(failed).lock));
 }
 
 TEST(Segment, CloseRemovesEveryName) {
   const std::string name = unique_instance("close");
   {
     Segment core = Segment::create({.instance = name});
-    EXPECT_TRUE(exists(shm_file(name)));
+    EXPECT_TRUE(exists(paths_of(name).socket));
   }
-  EXPECT_FALSE(exists(shm_file(name)));
-  EXPECT_FALSE(exists(shm_file(name) + ".lock"));
+  EXPECT_FALSE(exists(paths_of(name).socket));
+  EXPECT_FALSE(exists(paths_of(name).lock));
+}
+
+TEST(Segment, TheSegmentCannotBeResizedByAnyone) {
+  const std::string name = unique_instance("seal");
+  Segment core = Segment::create({.instance = name});
+  HandedSegment writer = request_segment(name, true);
+  EXPECT_NE(ftruncate(writer.segment.get(), 4096), 0) << "a writer truncating it";
+  EXPECT_EQ(errno, EPERM);
+  EXPECT_NE(ftruncate(writer.segment.get(), static_cast<off_t>(2 * kSegmentSize)), 0);
+  EXPECT_NE(fcntl(writer.segment.get(), F_ADD_SEALS, F_SEAL_WRITE), 0) << "seals are sealed";
+  // Even through the core's own descriptor table, as root could.
+  const std::string by_path = "/proc/self/fd/" + std::to_string(writer.segment.get());
+  const int reopened = open(by_path.c_str(), O_RDWR);
+  ASSERT_GE(reopened, 0);
+  EXPECT_NE(ftruncate(reopened, 0), 0);
+  close(reopened);
+  struct stat st {};
+  ASSERT_EQ(fstat(writer.segment.get(), &st), 0);
+  EXPECT_EQ(static_cast<std::size_t>(st.st_size), kSegmentSize);
+  EXPECT_TRUE(Segment::attach(name).still_current());
+}
+
+TEST(Segment, AReaderHoldsAReadOnlyDescriptor) {
+  const std::string name = unique_instance("rofd");
+  Segment core = Segment::create({.instance = name});
+  HandedSegment reader = request_segment(name, false);
+  EXPECT_EQ(fcntl(reader.segment.get(), F_GETFL) & O_ACCMODE, O_RDONLY);
+  EXPECT_EQ(mmap(nullptr, kPageSize, PROT_READ | PROT_WRITE, MAP_SHARED, reader.segment.get(), 0),
+            MAP_FAILED);
+  EXPECT_EQ(reader.core_pid, getpid());
+  EXPECT_EQ(reader.core_uid, geteuid());
 }
 
 TEST(Segment, PublishedDataReachesAnotherProcess) {
@@ -176,23 +230,36 @@ TEST(Segment, SegmentOfDeadCoreIsDetectedThenReplaced) {
     return 0;
   });
   ASSERT_EQ(dead_core.wait(), 128 + SIGKILL);
-  ASSERT_TRUE(exists(shm_file(name)));
-  expect_shm_error([&] { Segment::attach(name); }, ShmErrc::kNoController, "which is gone");
+  ASSERT_TRUE(exists(paths_of(name).socket)) << "nothing removed it";
+  expect_shm_error([&] { Segment::attach(name); }, ShmErrc::kNoController,
+                   "left by a core that is gone");
 
   Segment core = Segment::create({.instance = name});
   EXPECT_EQ(core.header().generation, 2U);
   EXPECT_NO_THROW(Segment::attach(name));
 }
 
-TEST(Segment, ReaderOfReplacedSegmentNoticesIt) {
+TEST(Segment, ReaderNoticesItsCoreStopped) {
   const std::string name = unique_instance("repl");
-  auto core = std::make_unique<Segment>(Segment::create({.instance = name}));
+  ReadyPipe ready;
+  ReadyPipe stop;
+  Child core_process([&] {
+    Segment core = Segment::create({.instance = name});
+    ready.signal();
+    return stop.wait() == 's' ? 0 : 1;
+  });
+  ASSERT_EQ(ready.wait(), 'r');
   Segment reader = Segment::attach(name);
   EXPECT_TRUE(reader.still_current());
   EXPECT_TRUE(reader.core_alive());
-  core.reset();
+  stop.signal('s');
+  ASSERT_EQ(core_process.wait(), 0);
   EXPECT_FALSE(reader.still_current());
   EXPECT_FALSE(reader.core_alive());
+  // A new core of the instance has a segment of its own.
+  Segment next = Segment::create({.instance = name});
+  EXPECT_FALSE(reader.still_current());
+  EXPECT_TRUE(Segment::attach(name).still_current());
 }
 
 TEST(Segment, AbiMismatchNamesBothVersions) {
@@ -217,14 +284,20 @@ TEST(Segment, LayoutMismatchIsRefused) {
   expect_shm_error([&] { Segment::attach(name); }, ShmErrc::kLayoutMismatch, "layout mismatch");
 }
 
-TEST(Segment, WorldAccessibleSegmentIsRefused) {
+TEST(Segment, ARuntimeDirectoryOthersMayWriteIsRefused) {
+  const RuntimeDirectory directory("/tmp/hapticctrl-test-" + std::to_string(getpid()) + "-open");
   const std::string name = unique_instance("world");
   Segment core = Segment::create({.instance = name});
-  {
-    RawHeader raw(name);
-    ASSERT_EQ(fchmod(raw.fd(), 0666), 0);
-  }
-  expect_shm_error([&] { Segment::attach(name); }, ShmErrc::kInsecure, "accessible by other users");
+  ASSERT_EQ(chmod(directory.path().c_str(), 0770), 0);
+  expect_shm_error([&] { Segment::attach(name); }, ShmErrc::kInsecure,
+                   "may be written by its group or by others");
+  ASSERT_EQ(chmod(directory.path().c_str(), 0750), 0);
+  EXPECT_NO_THROW(Segment::attach(name));
+}
+
+/// In a forked child: becomes nobody/nogroup with no supplementary group (root only).
+bool become_nobody() {
+  return setgroups(0, nullptr) == 0 && setgid(65534) == 0 && setuid(65534) == 0;
 }
 
 TEST(Segment, PermissionDeniedIsExplained) {
@@ -232,11 +305,11 @@ TEST(Segment, PermissionDeniedIsExplained) {
   Segment core = Segment::create({.instance = name});
   Child other_user([&] {
     if (geteuid() == 0) {
-      if (setgid(65534) != 0 || setuid(65534) != 0) {  // nobody/nogroup
+      if (!become_nobody()) {
         return 3;
       }
     } else {
-      chmod(shm_file(name).c_str(), 0);
+      chmod(paths_of(name).socket.c_str(), 0);
     }
     try {
       Segment::attach(name);
@@ -249,6 +322,60 @@ TEST(Segment, PermissionDeniedIsExplained) {
     return 1;
   });
   EXPECT_EQ(other_user.wait(), 0);
+}
+
+TEST(Segment, TheCoreRefusesAProcessOutsideItsUserAndGroup) {
+  if (geteuid() != 0) {
+    GTEST_SKIP() << "needs root to play another user";
+  }
+  const RuntimeDirectory directory("/tmp/hapticctrl-test-" + std::to_string(getpid()) + "-peer");
+  const std::string name = unique_instance("peer");
+  Segment core = Segment::create({.instance = name});
+  // Open the file permissions wide, so that only the core's own credential check stands.
+  ASSERT_EQ(chmod(directory.path().c_str(), 0755), 0);
+  ASSERT_EQ(chmod(paths_of(name).socket.c_str(), 0666), 0);
+  Child stranger([&] {
+    if (!become_nobody()) {
+      return 3;
+    }
+    try {
+      Segment::attach(name);
+    } catch (const ShmError& e) {
+      return e.code() == ShmErrc::kPermissionDenied &&
+                     std::string(e.what()).find("refused this process") != std::string::npos
+                 ? 0
+                 : 2;
+    }
+    return 1;
+  });
+  EXPECT_EQ(stranger.wait(), 0);
+  EXPECT_EQ(core.refused_attaches(), 1U);
+  EXPECT_NO_THROW(Segment::attach(name)) << "the core's own user is still served";
+}
+
+TEST(Segment, AControllerPlantedByAnotherUserIsRefused) {
+  if (geteuid() != 0) {
+    GTEST_SKIP() << "needs root to play another user";
+  }
+  // An unprivileged user makes a directory of its own and starts a "core" there, hoping that
+  // root's tools attach to it.
+  const RuntimeDirectory directory("/tmp/hapticctrl-test-" + std::to_string(getpid()) + "-plant");
+  const std::string name = unique_instance("plant");
+  ReadyPipe ready;
+  Child planter([&] {
+    if (!become_nobody()) {
+      return 3;
+    }
+    Segment planted = Segment::create({.instance = name});
+    ready.signal();
+    pause();
+    return 0;
+  });
+  ASSERT_EQ(ready.wait(), 'r');
+  expect_shm_error([&] { Segment::attach(name); }, ShmErrc::kInsecure,
+                   "belongs to uid 65534, which is neither root nor this process's user");
+  expect_shm_error([&] { Segment::create({.instance = name}); }, ShmErrc::kInsecure,
+                   "could have been planted");
 }
 
 TEST(Segment, SecondLiveWriterOfARegionIsRefusedAndDeadOneTakenOver) {

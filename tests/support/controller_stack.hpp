@@ -2,7 +2,7 @@
 /// The real processes a client talks to: hapticctrl-core (simulated arm) and hapticctrl-udp on a
 /// free loopback port, for one unique instance; plus a read-only view of the instance's shared
 /// memory to check what reached the controller. Both processes are killed on destruction.
-#include <sys/mman.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <optional>
@@ -95,10 +95,11 @@ class ControllerStack {
       core_->signal(SIGTERM);
       core_->wait(std::chrono::seconds(5));
     }
-    // A core a test killed cannot remove its segment: leave nothing behind in /dev/shm.
-    const shm::SegmentNames names = shm::SegmentNames::of(instance_);
-    shm_unlink(names.segment.c_str());
-    shm_unlink(names.lock.c_str());
+    // A core a test killed cannot remove its socket and lock: leave nothing behind.
+    const shm::InstancePaths paths =
+        shm::InstancePaths::in(shm::creator_runtime_directory(), instance_);
+    unlink(paths.socket.c_str());
+    unlink(paths.lock.c_str());
   }
 
   [[nodiscard]] bool ready() const {

@@ -29,9 +29,6 @@ class HmiError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// Instances with a segment in /dev/shm (running or left by a dead core), sorted.
-[[nodiscard]] std::vector<std::string> listed_instances();
-
 class Operator {
  public:
   /// Attaches to `instance` with one ctrl slot. With `want_force`, also claims `force`; if

@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -16,33 +17,14 @@
 #include <vector>
 
 #include "hapticctrl/shm/ctrl.hpp"
+#include "hapticctrl/shm/error.hpp"
 #include "hapticctrl/shm/layout.hpp"
 #include "hapticctrl/shm/process_identity.hpp"
+#include "hapticctrl/shm/rendezvous.hpp"
 
 namespace hapticctrl::shm {
 
-/// Why a create or attach failed; every value comes with a message that says what to do.
-enum class ShmErrc : std::uint8_t {
-  kBadInstanceName,
-  kAlreadyRunning,    ///< create: a live core owns the instance
-  kNoController,      ///< attach: no segment, or it was left by a dead core
-  kAbiMismatch,       ///< attach: segment built by another ABI version
-  kLayoutMismatch,    ///< attach: sizes/offsets differ from this program's
-  kPermissionDenied,  ///< the OS refused access
-  kInsecure,          ///< segment accessible by others than owner/group, or foreign owner
-  kWriterConflict,    ///< another live process already writes that region / no free ctrl slot
-  kSystem,            ///< any other OS error (message has errno text)
-};
-
-/// Exception for every setup failure of the shm layer.
-class ShmError : public std::runtime_error {
- public:
-  ShmError(ShmErrc code, const std::string& message) : std::runtime_error(message), code_(code) {}
-  [[nodiscard]] ShmErrc code() const noexcept { return code_; }
-
- private:
-  ShmErrc code_;
-};
+class SegmentServer;
 
 /// Options for Segment::create().
 struct CreateOptions {
@@ -57,23 +39,21 @@ struct AttachOptions {
   bool ctrl_writer = false;     ///< claim one ctrl slot to send commands
 };
 
-/// `/dev/shm` object names of an instance (validated).
-struct SegmentNames {
-  std::string segment;  ///< e.g. "/hapticctrl.default"
-  std::string lock;     ///< e.g. "/hapticctrl.default.lock"
-  /// Throws ShmError(kBadInstanceName) unless `instance` is 1-32 of [A-Za-z0-9_-].
-  static SegmentNames of(std::string_view instance);
-};
-
 /// One process's view of an instance's segment. Move-only; unmaps and releases claims on
-/// destruction; the creator also removes the segment's names (no leftovers in /dev/shm).
+/// destruction. The segment is a sealed memfd without a name (segment_handoff.hpp): it ends with
+/// the last process that maps it, whatever way the core ends; the creator also removes its
+/// socket and lock file (a core that died leaves them for the next one to reuse).
 class Segment {
  public:
-  /// Creates the instance (the core). Replaces a segment left by a dead core; refuses if a live
-  /// core owns it (kAlreadyRunning, with its pid). Mode 0660, optional group.
+  /// Creates the instance (the core): takes the instance lock in the runtime directory (refuses
+  /// kAlreadyRunning, with its pid, if a live core holds it), creates the sealed segment and
+  /// serves it on the instance's socket (mode 0660, group `options.group`) to the core's user,
+  /// root and members of that group.
   static Segment create(const CreateOptions& options);
 
-  /// Attaches to a running instance. Regions not in `options.write` are mapped read-only.
+  /// Attaches to a running instance: asks its core for the segment (segment_handoff.hpp), then
+  /// checks the header. Regions not in `options.write` are mapped read-only, and a process that
+  /// writes nothing holds a read-only descriptor.
   static Segment attach(std::string_view instance, const AttachOptions& options = {});
 
   Segment(Segment&& other) noexcept;
@@ -105,12 +85,15 @@ class Segment {
 
   [[nodiscard]] bool is_creator() const noexcept { return creator_; }
   [[nodiscard]] const std::string& instance() const noexcept { return instance_; }
-  /// Whether a live core holds the instance lock: two flock calls on a descriptor opened at
-  /// attach, a few microseconds. Not for the cycle.
+  /// Whether the core that handed out this segment still runs: one poll of its pidfd, a
+  /// microsecond or two. Not for the cycle.
   [[nodiscard]] bool core_alive() const;
-  /// Whether the instance's name still refers to this segment (false once a new core replaced
-  /// it, or after the core removed it). Not for the cycle.
+  /// Whether this segment is still its core's live one (false once the core stopped, failed
+  /// or died; a new core of the instance has a new segment). Not for the cycle.
   [[nodiscard]] bool still_current() const;
+  /// Creator: requests for the segment refused so far (a peer outside the core's user, root and
+  /// group, or a malformed request). Any thread.
+  [[nodiscard]] std::uint64_t refused_attaches() const noexcept;
   /// Identity of the live writer of a region, if any (diagnostics).
   [[nodiscard]] std::optional<ProcessIdentity> writer_of(RegionId id) const;
 
@@ -133,9 +116,11 @@ class Segment {
   void release_claims() noexcept;
 
   std::string instance_;
-  SegmentNames names_;
+  InstancePaths paths_;
   int fd_ = -1;
-  int lock_fd_ = -1;  ///< creator: holds the exclusive flock; others: probes it
+  int lock_fd_ = -1;  ///< creator: holds the instance's exclusive flock
+  int core_fd_ = -1;  ///< attacher: a pidfd of the core
+  std::unique_ptr<SegmentServer> server_;
   bool creator_ = false;
   std::uint64_t my_claim_ = 0;
   const SegmentHeader* header_ = nullptr;

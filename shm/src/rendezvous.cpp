@@ -74,7 +74,7 @@ std::string creator_runtime_directory() {
   if (std::string configured = environment("HAPTICCTRL_RUNTIME_DIR"); !configured.empty()) {
     return configured;
   }
-  const std::string system(kSystemDirectory);
+  std::string system(kSystemDirectory);
   if (geteuid() == 0 || exists(system)) {
     return system;
   }

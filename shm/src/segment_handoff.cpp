@@ -27,7 +27,7 @@ namespace {
 constexpr std::uint32_t kRequestMagic = 0x48435251;  // "HCRQ"
 constexpr std::uint32_t kReplyMagic = 0x48435250;    // "HCRP"
 constexpr std::size_t kHandedFds = 2;                // the segment, the core's pidfd
-constexpr std::size_t kServerStack = 64 * 1024;
+constexpr std::size_t kServerStack = std::size_t{64} * 1024;
 constexpr std::size_t kMaxPeerGroups = 256;
 constexpr timeval kPeerTimeout{0, 200'000};  // a silent peer cannot hold the server up
 constexpr timeval kAttacherTimeout{2, 0};    // a core that does not answer is reported

@@ -108,6 +108,58 @@ TEST(CoreProcess, InjectedOverrunTripsFailSafeInOrderAndExitsWithTheReason) {
   EXPECT_FALSE(segment_exists(instance)) << "regions released";
 }
 
+/// The fields of the last line of a CSV file.
+std::vector<std::string> last_csv_record(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::string last;
+  while (std::getline(in, line)) {
+    if (!line.empty()) {
+      last = line;
+    }
+  }
+  std::vector<std::string> fields;
+  std::istringstream split(last);
+  for (std::string field; std::getline(split, field, ',');) {
+    fields.push_back(field);
+  }
+  return fields;
+}
+
+TEST(CoreProcess, AFiftyMillisecondSigstopLeavesABlackBoxThatEndsWithTheStall) {
+  // H5: a fail-safe caused by a stall (a late wake-up skipping slots) used to leave a black box
+  // that ended with a normal cycle. 50 ms at a 5 ms period: 10 slots.
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    const std::string instance = test::unique_instance("sigstop");
+    SpawnedProcess core(HAPTICCTRL_CORE_BINARY,
+                        {"--instance", instance, "--period-us", "5000", "--rt", "ignore",
+                         "--blackbox-dir", "/tmp"});
+    ASSERT_TRUE(attach_when_ready(instance, false).has_value()) << core.err();
+    std::this_thread::sleep_for(200ms);
+    if (core.wait(0ms) != -1) {
+      continue;  // it failed safe on a stall of this VM's own before ours: try again
+    }
+    core.signal(SIGSTOP);
+    std::this_thread::sleep_for(50ms);
+    core.signal(SIGCONT);
+    ASSERT_EQ(core.wait(), 3) << core.err();
+    const std::string err = core.err();
+    const auto bb = err.find("black box: ");
+    ASSERT_NE(bb, std::string::npos) << err;
+    const std::string bb_path = err.substr(bb + 11, err.find('\n', bb) - bb - 11);
+    const std::vector<std::string> last = last_csv_record(bb_path);
+    std::remove(bb_path.c_str());
+    // cycle,scheduled_ns,wake_latency_ns,servo_start_delay_ns,servo_execution_ns,miss,degraded,
+    // stall,skipped,...
+    ASSERT_GT(last.size(), 8U);
+    EXPECT_EQ(last[7], "1") << "the last record is the stall";
+    EXPECT_GE(std::stoll(last[2]), 45'000'000LL) << "woken about 50 ms late";
+    EXPECT_GE(std::stoll(last[8]), 8) << "slots skipped";
+    return;
+  }
+  FAIL() << "the core failed safe on its own in 3 attempts";
+}
+
 TEST(CoreProcess, StopRequestExitsZeroAndLeavesNoSegment) {
   const std::string instance = test::unique_instance("stop");
   SpawnedProcess core(HAPTICCTRL_CORE_BINARY, core_args(instance));

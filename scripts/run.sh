@@ -12,12 +12,25 @@
 # Without a terminal it plays a short scenario instead (power on, push the handle into the fixed
 # sphere, read the contact force) and prints the outcome. Extra arguments go to hapticctrl-core.
 #
+# When the controller fails safe the panel says why and when, and R starts a new controller
+# (powered off, as after any fail-safe); the bridges and the demo re-attach by themselves.
+#
+# --supervise (first argument): keep a controller running: one that failed safe is started
+# again at once (powered off), and without a terminal run.sh serves until Ctrl-C or SIGTERM
+# instead of playing the scenario. For unattended demos and soak runs, never for a person at the
+# arm who has not seen why it stopped (systemd's units do not restart a failed core either).
+#
 # Exit status: 0 the controller stopped in order; 10 + the stop reason's code when it failed
 # safe (11: 5 consecutive deadline misses, 14: chronic misses, 15: arm fault, 17: velocity
 # limit; docs/rt_core.md), with the reason printed; 1 anything else that went wrong; 130
 # interrupted.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+SUPERVISE=0
+if [[ ${1:-} == --supervise ]]; then
+  SUPERVISE=1
+  shift
+fi
 scripts/setup.sh
 if [[ ! -f build/build.ninja ]]; then
   cmake -S . -B build -G Ninja >/dev/null
@@ -44,7 +57,7 @@ stop_all() {
   # The controller first, by the operator's stop (fail-safe order: motors inhibited, supply off,
   # client told, tasks stopped); then the processes that served it.
   if [[ -n "${CORE_PID:-}" ]] && kill -0 "$CORE_PID" 2>/dev/null; then
-    "${HMI[@]}" stop >/dev/null 2>&1 || kill -TERM "$CORE_PID" 2>/dev/null || true
+    "${HMI[@]}" stop >/dev/null 2>&1 || kill -TERM "$(cat "$RUN_DIR/core.pid")" 2>/dev/null || true
   fi
   for pid in "${PIDS[@]}"; do
     kill -TERM "$pid" 2>/dev/null || true
@@ -61,10 +74,9 @@ on_exit() {
   trap - EXIT INT TERM
   stop_all
   if [[ ${CORE_RC:-0} -eq 3 ]]; then
+    report_fail_safe
     local code
     code=$(sed -n 's/.*"stop_reason_code":\([0-9]*\).*/\1/p' "$RUN_DIR/core.json")
-    echo "run: the controller FAILED SAFE: $(grep -m1 'FAIL-SAFE' "$RUN_DIR/core.log" |
-      sed 's/^hapticctrl-core: FAIL-SAFE //')" >&2
     exit $((10 + ${code:-0}))
   fi
   exit "$status"
@@ -72,14 +84,44 @@ on_exit() {
 trap on_exit EXIT
 trap 'exit 130' INT TERM
 
-build/rt_core/hapticctrl-core --instance "$INSTANCE" --json "$@" >"$RUN_DIR/core.json" \
-  2>"$RUN_DIR/core.log" &
-CORE_PID=$!
-for _ in $(seq 100); do
-  "${HMI[@]}" status >/dev/null 2>&1 && break
-  kill -0 "$CORE_PID" 2>/dev/null || { echo "run: hapticctrl-core did not start" >&2; exit 1; }
-  sleep 0.05
-done
+report_fail_safe() {  # the last fail-safe of core.log, on the terminal
+  echo "run: the controller FAILED SAFE: $(grep 'FAIL-SAFE' "$RUN_DIR/core.log" | tail -n 1 |
+    sed 's/^hapticctrl-core: FAIL-SAFE //')" >&2
+}
+
+# Runs the controller (its pid in core.pid); under --supervise starts it again after each
+# fail-safe. Returns the last controller's exit status.
+run_core() {
+  local starts=0 rc
+  while true; do
+    build/rt_core/hapticctrl-core --instance "$INSTANCE" --json "$@" >"$RUN_DIR/core.json" \
+      2>>"$RUN_DIR/core.log" &
+    echo $! >"$RUN_DIR/core.pid"
+    rc=0
+    wait $! || rc=$?
+    starts=$((starts + 1))
+    if [[ $rc -ne 3 || $SUPERVISE -eq 0 ]]; then
+      return "$rc"
+    fi
+    report_fail_safe
+    echo "run: supervisor: starting controller #$((starts + 1)) (powered off)" >&2
+    sleep 0.5
+  done
+}
+
+start_core() {
+  run_core "$@" &
+  CORE_PID=$!
+  for _ in $(seq 100); do
+    "${HMI[@]}" status >/dev/null 2>&1 && return 0
+    kill -0 "$CORE_PID" 2>/dev/null || { echo "run: hapticctrl-core did not start" >&2; exit 1; }
+    sleep 0.05
+  done
+}
+
+: >"$RUN_DIR/core.log"
+echo "run: starting the controller (instance $INSTANCE; its log: $RUN_DIR/core.log)"
+start_core "$@"
 build/bridges/udp/hapticctrl-udp --instance "$INSTANCE" --port "$PORT" >"$RUN_DIR/udp.log" 2>&1 &
 PIDS+=($!)
 # The web page watches, and its emergency stop always acts. With HAPTICCTRL_WEB_CONTROL=1 (and
@@ -116,8 +158,25 @@ if [[ ${#REMOTE[@]} -gt 0 ]]; then
   exit 0
 fi
 if [[ -t 0 && -t 1 ]]; then
-  "${HMI[@]}" || true
+  # R in the panel, once the controller has ended: a new one (powered off), the same panel.
+  # Under --supervise the supervisor starts it, and the panel re-attaches by itself.
+  OFFER=(--offer-restart)
+  [[ $SUPERVISE -eq 1 ]] && OFFER=()
+  while true; do
+    panel=0
+    "${HMI[@]}" "${OFFER[@]}" || panel=$?
+    [[ $panel -eq 75 ]] || break
+    reap_core
+    [[ $CORE_RC -eq 3 ]] && report_fail_safe
+    echo "run: starting a new controller (powered off)"
+    start_core "$@"
+  done
   exit 0  # stop_all (EXIT) stops the controller and the rest
+fi
+if [[ $SUPERVISE -eq 1 ]]; then
+  echo "run: supervising the controller (a fail-safe starts a new one); Ctrl-C stops everything"
+  reap_core
+  exit 0
 fi
 
 # No terminal: a short scenario. The demo has powered the arm and coupled its sphere; the

@@ -37,7 +37,10 @@ const std::map<std::string, HmiCommand>& commands() {
 
 const char* HmiOptions::usage() noexcept {
   return "usage: hapticctrl-hmi [--instance NAME] [--timeout-ms MS] [COMMAND]\n"
-         "  (no command)            full-screen operator panel (needs a terminal)\n"
+         "  (no command)            full-screen operator panel (needs a terminal); when the\n"
+         "                          controller ends it says why and waits for a new one\n"
+         "    --offer-restart       ... or for R, then exits 75 (for the script that starts\n"
+         "                          the controller: scripts/run.sh)\n"
          "  status [--json]         one reading of the controller's state\n"
          "  power-on | power-off    switch the motor supply\n"
          "  estop | reset           latch / reset the emergency stop\n"
@@ -51,7 +54,8 @@ const char* HmiOptions::usage() noexcept {
          "                          --hand: a spring-damper hand (K N/m, B N.s/m) grips the\n"
          "                          handle meanwhile, its anchor wandering at random up to M m\n"
          "                          per axis (0.2-2 Hz, seeded)\n"
-         "Exit status: 0 done, 1 error or no effect within the timeout, 64 usage.\n";
+         "Exit status: 0 done, 1 error or no effect within the timeout, 64 usage, 75 the\n"
+         "operator asked for a new controller (--offer-restart).\n";
 }
 
 HmiOptions HmiOptions::parse(const std::vector<std::string>& args) {
@@ -78,6 +82,8 @@ HmiOptions HmiOptions::parse(const std::vector<std::string>& args) {
       o.timeout = std::chrono::milliseconds(static_cast<long>(ms));
     } else if (a == "--json") {
       o.json = true;
+    } else if (a == "--offer-restart") {
+      o.offer_restart = true;
     } else if (a == "--log") {
       o.log_path = value();
     } else if (a == "--power-on") {

@@ -121,11 +121,35 @@ int play(hmi::Operator& op, const hmi::HmiOptions& o) {
   return r.controller_stopped ? 1 : 0;
 }
 
+/// Exit status of a panel whose operator asked for a new controller (EX_TEMPFAIL).
+constexpr int kRestartRequested = 75;
+
+/// The panel, re-attached to each new controller of the instance until the operator quits.
+int panel_session(const hmi::HmiOptions& o) {
+  std::optional<hmi::Operator> op;
+  op.emplace(o.instance, true);
+  for (;;) {
+    switch (hmi::run_panel(*op, o.offer_restart)) {
+      case hmi::PanelEnd::kQuit:
+        return 0;
+      case hmi::PanelEnd::kRestartRequested:
+        return kRestartRequested;
+      case hmi::PanelEnd::kControllerReplaced:
+        op.reset();
+        op.emplace(o.instance, true);
+        break;
+    }
+  }
+}
+
 int run(const hmi::HmiOptions& o) {
+  if (o.command == HmiCommand::kPanel) {
+    return panel_session(o);
+  }
   hmi::Operator op(o.instance, needs_force(o.command));
   switch (o.command) {
     case HmiCommand::kPanel:
-      return hmi::run_panel(op);
+      return 1;  // handled above
     case HmiCommand::kStatus:
       print_status(op.status(), o.json);
       return 0;

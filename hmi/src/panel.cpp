@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdarg>
 #include <cstdio>
+#include <ctime>
 #include <deque>
 #include <string>
 
@@ -219,13 +220,73 @@ class KeyHandler {
 
 }  // namespace
 
-int run_panel(Operator& op) {
+/// "controller failed safe: <reason> at 14:02:07" (or stopped, or lost), from the last VP.
+std::string ending_banner(const ControllerStatus& last) {
+  const std::time_t now = std::time(nullptr);
+  std::tm local{};
+  std::array<char, 16> clock{};
+  std::strftime(clock.data(), clock.size(), "%H:%M:%S", localtime_r(&now, &local));
+  const bool failed = last.has_state_bit(shm::state_bits::kFailSafe) ||
+                      last.vp.core_state == static_cast<std::uint32_t>(shm::CoreState::kFailSafe);
+  const std::uint32_t reason = last.vp.stop_reason != 0
+                                   ? last.vp.stop_reason
+                                   : static_cast<std::uint32_t>(shm::StopReason::kCoreLost);
+  return std::string(failed ? " controller failed safe: " : " controller stopped: ") +
+         shm::stop_reason_name(reason) + " at " + clock.data() + " ";
+}
+
+/// Whether a controller of `instance` can be attached now (a new one after the last ended).
+bool controller_available(const std::string& instance) {
+  try {
+    return shm::Segment::attach(instance).still_current();
+  } catch (const shm::ShmError&) {
+    return false;
+  }
+}
+
+/// The screen once the controller has ended: why and when, in reverse video, until the operator
+/// quits, asks for a new controller (offer_restart) or one appears (then the panel re-attaches).
+PanelEnd wait_after_ending(const Operator& op, const PanelView& view, bool offer_restart) {
+  const std::string banner = ending_banner(op.status());
+  const std::string& instance = op.segment().instance();
+  constexpr std::int64_t kLookEveryNs = 500'000'000;
+  std::int64_t next_look = monotonic_now_ns() + kLookEveryNs;
+  erase();
+  badge(0, 0, banner.c_str(), true);
+  line(2, "%s", "the motors are off; a new controller starts powered off");
+  line(3, offer_restart ? "keys     R start a new controller   q quit"
+                        : "keys     q quit   (the panel re-attaches to a controller started again)");
+  int row = 5;
+  line(row++, "last events");
+  for (const auto& e : view.events) {
+    line(row++, "  %s", e.c_str());
+  }
+  refresh();
+  for (;;) {
+    const int key = getch();
+    if (key == 'q' || key == 'Q') {
+      return PanelEnd::kQuit;
+    }
+    if (offer_restart && (key == 'R' || key == 'r')) {
+      return PanelEnd::kRestartRequested;
+    }
+    if (monotonic_now_ns() >= next_look) {
+      next_look += kLookEveryNs;
+      if (controller_available(instance)) {
+        return PanelEnd::kControllerReplaced;
+      }
+    }
+  }
+}
+
+PanelEnd run_panel(Operator& op, bool offer_restart) {
   if (isatty(STDIN_FILENO) == 0 || isatty(STDOUT_FILENO) == 0) {
     throw HmiError("the panel needs a terminal; without one use a command (status, power-on, ...)");
   }
   shm::EventReader events(op.segment().region<shm::RegionId::kEvents>(), /*from_start=*/true);
   PanelView view;
   KeyHandler keys(op);
+  PanelEnd end = PanelEnd::kQuit;
   bool controller_gone = false;
   {
     CursesSession curses;
@@ -240,6 +301,7 @@ int run_panel(Operator& op) {
       next_draw = now + kRedrawNs;
       if (!op.controller_alive()) {
         controller_gone = true;
+        end = wait_after_ending(op, view, offer_restart);
         break;
       }
       events.poll([&](const shm::Event& e) {
@@ -255,16 +317,16 @@ int run_panel(Operator& op) {
     }
   }
   if (controller_gone) {
-    // The mapping outlives the removed segment: its last VP says how the controller ended.
+    // The mapping outlives the ended core: its last VP says how the controller ended.
     const ControllerStatus last = op.status();
     std::fprintf(stderr, "hapticctrl-hmi: the controller of instance '%s' ended (%s, %s)\n",
                  op.segment().instance().c_str(), shm::core_state_name(last.vp.core_state),
                  shm::stop_reason_name(last.vp.stop_reason));
-    return 0;
+    return end;
   }
   (void)op.request_force({});
   op.settle_force();  // let go of the handle before leaving
-  return 0;
+  return PanelEnd::kQuit;
 }
 
 }  // namespace hapticctrl::hmi

@@ -199,6 +199,11 @@ test('a controller that fails safe shows why', async () => {
   await stack.startCore(['--inject-overrun', '50:5']);
   assert.ok(await until(async () => /5 consecutive deadline misses/.test(await alarmText()), { timeoutMs: 10000 }),
     `no fail-safe reason: '${await alarmText()}'`);
+  // H5: the banner says what happened and when, and stays after the core has gone.
+  assert.match(await alarmText(), /^Controller failed safe: 5 consecutive deadline misses at \d{1,2}:\d{2}:\d{2}/);
+  await stack.processes.core.exited;
+  await new Promise((resolve) => setTimeout(resolve, 500));
+  assert.match(await alarmText(), /^Controller failed safe: /);
   assert.match(await page.locator('[data-testid=events]').innerText(), /fail-safe/);
   // Every event's own number is inside the panel, whatever its count of digits (list markers
   // from 10 on were clipped, H5).

@@ -33,6 +33,7 @@ const status = {
   framesReceived: 0,
   replies: [],
   coreLost: null,
+  failedSafe: null, // { reason, at }: the last fail-safe, until a core runs again
   webgl: true,
   modelMismatchM: null,
   view: null,
@@ -133,6 +134,13 @@ function applyPermissions(remote) {
 
 function describeAlarm(frame, stats) {
   const arm = frame.arm;
+  if (status.failedSafe) {
+    return {
+      level: 'bad',
+      text: `Controller failed safe: ${status.failedSafe.reason} at ${status.failedSafe.at} — ` +
+        'motors off; a controller started again comes up powered off',
+    };
+  }
   if (status.coreLost) return { level: 'bad', text: `CONTROLLER LOST — ${status.coreLost}` };
   if (frame.controller_silent) {
     const age = frame.age_ms.arm;
@@ -208,7 +216,12 @@ function addEvents(events) {
   const list = $('events');
   for (const e of events) {
     if (e.index === 0 && e.kind === 'core_state') status.coreLost = e.text;
-    else if (e.kind === 'core_state' && e.code <= 1) status.coreLost = null; // a core is running again
+    else if (e.kind === 'core_state' && e.code === CORE_FAIL_SAFE) {
+      status.failedSafe = { reason: e.text.replace(/^fail-safe: /, ''), at: new Date().toLocaleTimeString() };
+    } else if (e.kind === 'core_state' && e.code <= 1) { // a core is running again
+      status.coreLost = null;
+      status.failedSafe = null;
+    }
     const item = document.createElement('li');
     const fault = (e.kind === 'core_state' && e.code >= CORE_FAIL_SAFE) || (e.kind === 'emergency_stop' && e.code === 1);
     item.className = fault ? 'fault' : '';

@@ -30,6 +30,7 @@ struct HmiOptions {
   std::string sequence_path;  ///< kPlay
   std::string log_path;       ///< kPlay: CSV log ("-": stdout; empty: hapticctrl-sequence.csv)
   bool json = false;          ///< kStatus
+  bool offer_restart = false; ///< kPanel: offer R (exit 75) once the controller has ended
   bool power_on = false;      ///< kPlay: power on first
   bool with_hand = false;     ///< kPlay: a simulated hand grips the handle (--hand)
   HandOptions hand;           ///< kPlay with_hand: grip and wander

@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# `scripts/run.sh --supervise` as an unattended demo runs it, without a terminal: the controller
+# is stalled for 60 ms (SIGSTOP, as a hypervisor does) and fails safe; the supervisor must say
+# why, start a new controller (powered off), and the demo must reconnect to it by itself (H5:
+# run.sh used to hide the fail-safe, and the demo exited when its core went away). SIGTERM then
+# stops everything, leaving no process and no socket.
+# usage: run_supervise_test.sh SOURCE_DIR BUILD_DIR
+set -euo pipefail
+SOURCE=$1 BUILD=$2
+if [[ "$(realpath "$BUILD")" != "$(realpath "$SOURCE/build")" ]]; then
+  echo "scripts/run.sh runs $SOURCE/build, not this build ($BUILD): skipped"
+  exit 77
+fi
+OUT=$(mktemp -d)
+RUN=
+cleanup() {
+  [[ -n $RUN ]] && kill -TERM "$RUN" 2>/dev/null && wait "$RUN" 2>/dev/null
+  rm -rf "$OUT"
+}
+trap cleanup EXIT
+export HAPTICCTRL_INSTANCE="supervise$$" HAPTICCTRL_RUNTIME_DIR="$OUT/run"
+export HAPTICCTRL_PORT=$((20000 + $$ % 20000)) HAPTICCTRL_WEB_PORT=$((40000 + $$ % 20000))
+RUN_DIR=$SOURCE/build/run
+fail() { echo "run_supervise_test: $1" >&2; cat "$OUT/log" >&2; exit 1; }
+until_true() {  # seconds command...: polls every 0.1 s
+  local tries=$(($1 * 10))
+  shift
+  for _ in $(seq "$tries"); do
+    "$@" && return 0
+    sleep 0.1
+  done
+  return 1
+}
+said() { grep -q -- "$1" "$OUT/log"; }
+status_ok() { "$BUILD/hmi/hapticctrl-hmi" --instance "$HAPTICCTRL_INSTANCE" status >/dev/null 2>&1; }
+
+"$SOURCE/scripts/run.sh" --supervise </dev/null >"$OUT/log" 2>&1 &
+RUN=$!
+until_true 120 said "supervising the controller" || fail "run.sh did not start supervising"
+first=$(cat "$RUN_DIR/core.pid")
+kill -STOP "$first"
+sleep 0.06
+kill -CONT "$first"
+until_true 20 said "supervisor: starting controller #2" || fail "no new controller after the stall"
+said "run: the controller FAILED SAFE: after cycle [0-9]*: 5 consecutive deadline misses" ||
+  fail "the fail-safe's reason is not printed"
+until_true 20 status_ok || fail "the new controller does not answer"
+[[ $(cat "$RUN_DIR/core.pid") != "$first" ]] || fail "core.pid still names the stalled core"
+until_true 20 grep -q "reconnected" "$RUN_DIR/demo.log" || fail "the demo did not reconnect"
+kill -TERM "$RUN"
+status=0
+wait "$RUN" || status=$?
+RUN=
+[[ $status -eq 130 ]] || fail "expected exit 130 (stopped by a signal), got $status"
+if pgrep -f -- "--instance $HAPTICCTRL_INSTANCE" >/dev/null; then
+  fail "processes were left running"
+fi
+[[ -z "$(ls -A "$HAPTICCTRL_RUNTIME_DIR")" ]] || fail "the instance's socket or lock was left behind"
+echo "run_supervise_test: the supervisor restarted the controller and the demo reconnected"

@@ -56,9 +56,14 @@ reap_core() {  # waits for the core once and keeps its exit status in CORE_RC
 stop_all() {
   # The controller first, by the operator's stop (fail-safe order: motors inhibited, supply off,
   # client told, tasks stopped); then the processes that served it.
-  if [[ -n "${CORE_PID:-}" ]] && kill -0 "$CORE_PID" 2>/dev/null; then
-    "${HMI[@]}" stop >/dev/null 2>&1 || kill -TERM "$(cat "$RUN_DIR/core.pid")" 2>/dev/null || true
-  fi
+  # The supervisor (--supervise) starts no new controller from now on; one it started while
+  # this stop was on its way is stopped on the next round.
+  touch "$RUN_DIR/stopping"
+  for _ in $(seq 50); do
+    [[ -n "${CORE_PID:-}" ]] && kill -0 "$CORE_PID" 2>/dev/null || break
+    "${HMI[@]}" stop >/dev/null 2>&1 || kill -TERM "$(cat "$RUN_DIR/core.pid")" 2>/dev/null ||
+      sleep 0.1
+  done
   for pid in "${PIDS[@]}"; do
     kill -TERM "$pid" 2>/dev/null || true
   done
@@ -100,12 +105,13 @@ run_core() {
     rc=0
     wait $! || rc=$?
     starts=$((starts + 1))
-    if [[ $rc -ne 3 || $SUPERVISE -eq 0 ]]; then
+    if [[ $rc -ne 3 || $SUPERVISE -eq 0 || -e "$RUN_DIR/stopping" ]]; then
       return "$rc"
     fi
     report_fail_safe
     echo "run: supervisor: starting controller #$((starts + 1)) (powered off)" >&2
     sleep 0.5
+    [[ -e "$RUN_DIR/stopping" ]] && return "$rc"
   done
 }
 
@@ -120,6 +126,7 @@ start_core() {
 }
 
 : >"$RUN_DIR/core.log"
+rm -f "$RUN_DIR/stopping"
 echo "run: starting the controller (instance $INSTANCE; its log: $RUN_DIR/core.log)"
 start_core "$@"
 build/bridges/udp/hapticctrl-udp --instance "$INSTANCE" --port "$PORT" >"$RUN_DIR/udp.log" 2>&1 &

@@ -20,14 +20,15 @@ using test::ControllerStack;
 /// hapticctrl-hmi's panel on a pty; drains its screen output so that it never blocks.
 class PanelOnPty {
  public:
-  explicit PanelOnPty(const std::string& instance) {
+  explicit PanelOnPty(const std::string& instance, const char* option = nullptr) {
     winsize size{};
     size.ws_row = 40;
     size.ws_col = 100;
     pid_ = forkpty(&fd_, nullptr, nullptr, &size);
     if (pid_ == 0) {
       setenv("TERM", "xterm", 1);
-      execl(HAPTICCTRL_HMI_BINARY, "hapticctrl-hmi", "--instance", instance.c_str(), nullptr);
+      execl(HAPTICCTRL_HMI_BINARY, "hapticctrl-hmi", "--instance", instance.c_str(), option,
+            nullptr);
       _exit(127);
     }
   }
@@ -39,6 +40,18 @@ class PanelOnPty {
       waitpid(pid_, nullptr, 0);
     }
     close(fd_);
+  }
+  /// Reads the screen until `text` shows after `from` (bounded by `timeout`).
+  bool shows(const std::string& text, std::size_t from = 0,
+             std::chrono::milliseconds timeout = 5s) {
+    for (auto end = std::chrono::steady_clock::now() + timeout;
+         std::chrono::steady_clock::now() < end;) {
+      if (screen_.find(text, from) != std::string::npos) {
+        return true;
+      }
+      pump(20ms);
+    }
+    return screen_.find(text, from) != std::string::npos;
   }
   void keys(const std::string& k) {
     ASSERT_EQ(write(fd_, k.data(), k.size()), static_cast<ssize_t>(k.size()));
@@ -103,17 +116,50 @@ TEST(Panel, KeysPowerTheArmPushTheHandleAndStopTheController) {
   panel.keys("Sn");
   EXPECT_TRUE(watch.controller_alive()) << "n cancels the stop";
   panel.keys("Sy");
-  EXPECT_EQ(panel.wait(5s), 0) << "the panel leaves when the controller is gone";
   EXPECT_EQ(stack.core().wait(5s), 0);
+  EXPECT_TRUE(panel.shows("controller stopped: stop requested at "))
+      << "the panel says how the controller ended";
+  panel.keys("q");
+  EXPECT_EQ(panel.wait(5s), 0);
   EXPECT_NE(panel.screen().find("POWER ON"), std::string::npos);
   EXPECT_NE(panel.screen().find("ended (stopping, stop requested)"), std::string::npos);
+}
+
+/// A core that overruns 5 cycles in a row at cycle 100 (1 s at the 10 ms period).
+std::vector<std::string> failing_core() {
+  return {"--allow-fault-injection", "--inject-overrun", "100:5"};
+}
+
+TEST(Panel, AFailSafeIsToldWithItsReasonAndTimeAndROffersANewController) {
+  // H5: the operator read "no controller is running ... start hapticctrl-core first".
+  ControllerStack stack("panelfs", ControllerStack::kDefaultPeriodUs, {}, failing_core());
+  ASSERT_TRUE(stack.ready()) << stack.diagnostics();
+  PanelOnPty panel(stack.instance(), "--offer-restart");
+  EXPECT_TRUE(panel.shows("controller failed safe: 5 consecutive deadline misses at ", 0, 10s))
+      << panel.screen();
+  EXPECT_TRUE(panel.shows("R start a new controller"));
+  panel.keys("R");
+  EXPECT_EQ(panel.wait(5s), 75) << "the script that started the core is asked for a new one";
+}
+
+TEST(Panel, ReattachesToTheNextControllerOfTheInstance) {
+  ControllerStack stack("panelre", ControllerStack::kDefaultPeriodUs, {}, failing_core());
+  ASSERT_TRUE(stack.ready()) << stack.diagnostics();
+  PanelOnPty panel(stack.instance());
+  ASSERT_TRUE(panel.shows("controller failed safe: ", 0, 10s)) << panel.screen();
+  EXPECT_TRUE(panel.shows("re-attaches to a controller started again"));
+  const std::size_t ended_at = panel.screen().size();
+  stack.start_core();
+  EXPECT_TRUE(panel.shows("power off", ended_at)) << "the panel of the new controller";
+  panel.keys("q");
+  EXPECT_EQ(panel.wait(5s), 0);
 }
 
 TEST(Panel, RefusesToRunWithoutATerminal) {
   ControllerStack stack("panelnotty");
   ASSERT_TRUE(stack.ready()) << stack.diagnostics();
   Operator op(stack.instance(), true);
-  EXPECT_THROW((void)run_panel(op), HmiError);
+  EXPECT_THROW((void)run_panel(op, false), HmiError);
 }
 
 }  // namespace

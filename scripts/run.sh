@@ -31,11 +31,16 @@ if [[ ${1:-} == --supervise ]]; then
   SUPERVISE=1
   shift
 fi
+echo "run: checking the Debian packages it needs (scripts/setup.sh installs what is missing)"
 scripts/setup.sh
 if [[ ! -f build/build.ninja ]]; then
+  echo "run: configuring build/"
   cmake -S . -B build -G Ninja >/dev/null
 fi
-cmake --build build -j "$(nproc)" >/dev/null
+# Only what runs here (tests and benchmarks are scripts/test.sh's and bench.sh's), with the build
+# tool's own progress: about 4 minutes the first time on 2 vCPUs, seconds after that.
+echo "run: building the controller, the bridges, the panel and the demo"
+cmake --build build -j "$(nproc)" --target hapticctrl_run
 
 INSTANCE=${HAPTICCTRL_INSTANCE:-demo}
 PORT=${HAPTICCTRL_PORT:-5125}
@@ -127,8 +132,15 @@ start_core() {
 
 : >"$RUN_DIR/core.log"
 rm -f "$RUN_DIR/stopping"
-echo "run: starting the controller (instance $INSTANCE; its log: $RUN_DIR/core.log)"
-start_core "$@"
+# The period: an explicit --period-us always wins; else the shortest this machine holds.
+PERIOD_ARGS=()
+if [[ " $* " != *" --period-us "* ]]; then
+  PERIOD_ARGS=(--period-us "$(scripts/probe_period.sh "$RUN_DIR" 2>/dev/null)")
+  echo "run: $(cat "$RUN_DIR/probe.txt")"
+fi
+echo "run: starting the controller (instance $INSTANCE${PERIOD_ARGS[1]:+, period $((PERIOD_ARGS[1] / 1000)) ms}; its log: $RUN_DIR/core.log)"
+start_core "${PERIOD_ARGS[@]}" "$@"
+echo "run: starting the UDP bridge, the LCM bridge, the web view and the demo client"
 build/bridges/udp/hapticctrl-udp --instance "$INSTANCE" --port "$PORT" >"$RUN_DIR/udp.log" 2>&1 &
 PIDS+=($!)
 # The web page watches, and its emergency stop always acts. With HAPTICCTRL_WEB_CONTROL=1 (and
@@ -176,7 +188,7 @@ if [[ -t 0 && -t 1 ]]; then
     reap_core
     [[ $CORE_RC -eq 3 ]] && report_fail_safe
     echo "run: starting a new controller (powered off)"
-    start_core "$@"
+    start_core "${PERIOD_ARGS[@]}" "$@"
   done
   exit 0  # stop_all (EXIT) stops the controller and the rest
 fi

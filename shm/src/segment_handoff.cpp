@@ -131,6 +131,7 @@ struct SegmentServer::State {
   uid_t owner = 0;
   std::atomic<std::uint64_t> served{0};
   std::atomic<std::uint64_t> refused{0};
+  std::atomic<bool> serving{false};  ///< the thread has started and runs our code
   pthread_t thread{};
   bool thread_started = false;
 
@@ -177,6 +178,8 @@ struct SegmentServer::State {
   }
 
   void run() {
+    serving.store(true, std::memory_order_release);
+    serving.notify_one();
     std::array<pollfd, 2> watched{pollfd{listener.get(), POLLIN, 0}, pollfd{wake.get(), POLLIN, 0}};
     for (;;) {
       if (poll(watched.data(), watched.size(), -1) < 0) {
@@ -252,6 +255,11 @@ SegmentServer::SegmentServer(const InstancePaths& paths, int segment_fd, gid_t g
     throw_system_error("start the segment's server thread", rc);
   }
   s.thread_started = true;
+  // Returns once the thread runs our code: a process that forks right after (a test, a
+  // supervisor) never copies a thread caught inside its own start-up, which can hold a lock of
+  // the C library or a sanitizer's runtime that the child would then wait on forever (seen
+  // under ASan, 2026-12-02: a child forked right after create() hung in one run of many).
+  s.serving.wait(false, std::memory_order_acquire);
 }
 
 SegmentServer::~SegmentServer() {

@@ -33,21 +33,22 @@ if [[ ${1:-} == --supervise ]]; then
 fi
 echo "run: checking the Debian packages it needs (scripts/setup.sh installs what is missing)"
 scripts/setup.sh
-if [[ ! -f build/build.ninja ]]; then
-  echo "run: configuring build/"
-  cmake -S . -B build -G Ninja >/dev/null
+BUILD=${HAPTICCTRL_BUILD_DIR:-build}
+if [[ ! -f $BUILD/build.ninja ]]; then
+  echo "run: configuring $BUILD/"
+  cmake -S . -B "$BUILD" -G Ninja >/dev/null
 fi
 # Only what runs here (tests and benchmarks are scripts/test.sh's and bench.sh's), with the build
 # tool's own progress: about 4 minutes the first time on 2 vCPUs, seconds after that.
 echo "run: building the controller, the bridges, the panel and the demo"
-cmake --build build -j "$(nproc)" --target hapticctrl_run
+cmake --build "$BUILD" -j "$(nproc)" --target hapticctrl_run
 
 INSTANCE=${HAPTICCTRL_INSTANCE:-demo}
 PORT=${HAPTICCTRL_PORT:-5125}
 WEB_PORT=${HAPTICCTRL_WEB_PORT:-8080}
-RUN_DIR=build/run
+RUN_DIR=$BUILD/run
 mkdir -p "$RUN_DIR"
-HMI=(build/hmi/hapticctrl-hmi --instance "$INSTANCE")
+HMI=("$BUILD/hmi/hapticctrl-hmi" --instance "$INSTANCE")
 PIDS=()
 
 reap_core() {  # waits for the core once and keeps its exit status in CORE_RC
@@ -104,7 +105,7 @@ report_fail_safe() {  # the last fail-safe of core.log, on the terminal
 run_core() {
   local starts=0 rc
   while true; do
-    build/rt_core/hapticctrl-core --instance "$INSTANCE" --json "$@" >"$RUN_DIR/core.json" \
+    "$BUILD/rt_core/hapticctrl-core" --instance "$INSTANCE" --json "$@" >"$RUN_DIR/core.json" \
       2>>"$RUN_DIR/core.log" &
     echo $! >"$RUN_DIR/core.pid"
     rc=0
@@ -138,10 +139,11 @@ if [[ " $* " != *" --period-us "* ]]; then
   PERIOD_ARGS=(--period-us "$(scripts/probe_period.sh "$RUN_DIR" 2>/dev/null)")
   echo "run: $(cat "$RUN_DIR/probe.txt")"
 fi
-echo "run: starting the controller (instance $INSTANCE${PERIOD_ARGS[1]:+, period $((PERIOD_ARGS[1] / 1000)) ms}; its log: $RUN_DIR/core.log)"
+PERIOD_TEXT=${PERIOD_ARGS[1]:+, period $((PERIOD_ARGS[1] / 1000)) ms}
+echo "run: starting the controller (instance $INSTANCE$PERIOD_TEXT; its log: $RUN_DIR/core.log)"
 start_core "${PERIOD_ARGS[@]}" "$@"
 echo "run: starting the UDP bridge, the LCM bridge, the web view and the demo client"
-build/bridges/udp/hapticctrl-udp --instance "$INSTANCE" --port "$PORT" >"$RUN_DIR/udp.log" 2>&1 &
+"$BUILD/bridges/udp/hapticctrl-udp" --instance "$INSTANCE" --port "$PORT" >"$RUN_DIR/udp.log" 2>&1 &
 PIDS+=($!)
 # The web page watches, and its emergency stop always acts. With HAPTICCTRL_WEB_CONTROL=1 (and
 # a terminal) the page is the operator panel instead of this terminal: the LCM bridge then takes
@@ -150,13 +152,13 @@ REMOTE=()
 if [[ "${HAPTICCTRL_WEB_CONTROL:-0}" == 1 && -t 0 && -t 1 ]]; then
   REMOTE=(--allow-remote-commands)
 fi
-build/bridges/lcm/hapticctrl-lcm --instance "$INSTANCE" "${REMOTE[@]}" 2>"$RUN_DIR/lcm.log" &
+"$BUILD/bridges/lcm/hapticctrl-lcm" --instance "$INSTANCE" "${REMOTE[@]}" 2>"$RUN_DIR/lcm.log" &
 PIDS+=($!)
-build/bridges/web/hapticctrl-web --instance "$INSTANCE" --listen "127.0.0.1:$WEB_PORT" \
+"$BUILD/bridges/web/hapticctrl-web" --instance "$INSTANCE" --listen "127.0.0.1:$WEB_PORT" \
   "${REMOTE[@]}" 2>"$RUN_DIR/web.log" &
 PIDS+=($!)
-build/client/demo/hapticctrl-demo --server "127.0.0.1:$PORT" --instance "$INSTANCE" --headless --json \
-  --log "$RUN_DIR/demo.csv" >"$RUN_DIR/demo.json" 2>"$RUN_DIR/demo.log" &
+"$BUILD/client/demo/hapticctrl-demo" --server "127.0.0.1:$PORT" --instance "$INSTANCE" --headless \
+  --json --log "$RUN_DIR/demo.csv" >"$RUN_DIR/demo.json" 2>"$RUN_DIR/demo.log" &
 DEMO_PID=$!
 PIDS+=("$DEMO_PID")
 for _ in $(seq 100); do

@@ -60,7 +60,7 @@ for candidate in 1000 2000 4000 10000; do
   fi
 done
 ms() { awk -v us="$1" 'BEGIN { printf "%.1f ms", us / 1000 }'; }
-line="timing probe: a $PRIORITY thread woke up to $(ms "$worst") late in 2 s beside a CPU load"
+line="timing probe: a $PRIORITY thread woke up to $(ms "$worst") late in 2 s beside a CPU and memory load"
 line+=" (p99.9 $(ms "$p999"), CPU $CPU)"
 if ((period == 1000)); then
   line+=": the controller runs at 1 ms"

@@ -213,7 +213,6 @@ Segment Segment::attach(std::string_view instance, const AttachOptions& options)
   HandedSegment handed = request_segment(instance, writes);
   seg.fd_ = handed.segment.release();
   seg.core_fd_ = handed.core.release();
-  const std::string path = "the segment of instance '" + seg.instance_ + "'";
 
   seg.header_part_ =
       Part{map_part(seg.fd_, 0, kClaimsOffset, false, "header"), kClaimsOffset, false};

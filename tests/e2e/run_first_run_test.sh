@@ -7,21 +7,14 @@
 # steps, the build then has nothing to do) to keep within its time budget.
 # usage: run_first_run_test.sh SOURCE_DIR BUILD_DIR
 set -euo pipefail
-SOURCE=$1 BUILD=$2
-if [[ "$(realpath "$BUILD")" != "$(realpath "$SOURCE/build")" ]]; then
-  echo "scripts/run.sh runs $SOURCE/build, not this build ($BUILD): skipped"
-  exit 77
-fi
-OUT=$(mktemp -d)
-trap 'rm -rf "$OUT"' EXIT
-export HAPTICCTRL_INSTANCE="firstrun$$" HAPTICCTRL_RUNTIME_DIR="$OUT/runtime"
-export HAPTICCTRL_PORT=$((20000 + $$ % 20000)) HAPTICCTRL_WEB_PORT=$((40000 + $$ % 20000))
+SOURCE=$1 BUILD=$2 NAME=first_run
+# shellcheck source=run_script_common.sh
+. "$(dirname "$0")/run_script_common.sh"
 RUN_DIR=$SOURCE/build/run
 if [[ ${HAPTICCTRL_FIRST_RUN_CLEAN:-0} == 1 ]]; then
   export HAPTICCTRL_BUILD_DIR="$OUT/build"
   RUN_DIR=$HAPTICCTRL_BUILD_DIR/run
 fi
-fail() { echo "run_first_run_test: $1" >&2; cat "$OUT/log" >&2; exit 1; }
 
 # Each line with the seconds since the start.
 attempt() {
@@ -39,7 +32,7 @@ attempt() {
 status=0
 attempt || status=$?
 if [[ $status -ge 10 ]]; then
-  echo "run_first_run_test: first attempt failed safe ($status), trying again"
+  echo "first_run_test: first attempt failed safe ($status), trying again"
   status=0
   attempt || status=$?
 fi
@@ -63,4 +56,4 @@ grep -q "period $chosen ms" "$OUT/log" || fail "the controller was not started a
 grep -q "\"period_ns\":$((chosen * 1000000))" "$RUN_DIR/core.json" ||
   fail "the controller did not run at $chosen ms: $(cat "$RUN_DIR/core.json")"
 [[ -s $RUN_DIR/probe.hist && -s $RUN_DIR/probe.txt ]] || fail "the probe's figures are not in $RUN_DIR"
-echo "run_first_run_test: progress from ${first} s, period $chosen ms, outcome printed"
+echo "first_run_test: progress from ${first} s, period $chosen ms, outcome printed"

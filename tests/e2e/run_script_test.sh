@@ -5,20 +5,13 @@
 # (H5: it used to exit 0 and leave the reason in build/run/core.log).
 # usage: run_script_test.sh SOURCE_DIR BUILD_DIR
 set -euo pipefail
-SOURCE=$1 BUILD=$2
-if [[ "$(realpath "$BUILD")" != "$(realpath "$SOURCE/build")" ]]; then
-  echo "scripts/run.sh runs $SOURCE/build, not this build ($BUILD): skipped"
-  exit 77
-fi
-OUT=$(mktemp -d)
-trap 'rm -rf "$OUT"' EXIT
-export HAPTICCTRL_INSTANCE="runtest$$" HAPTICCTRL_RUNTIME_DIR="$OUT/run"
-export HAPTICCTRL_PORT=$((20000 + $$ % 20000)) HAPTICCTRL_WEB_PORT=$((40000 + $$ % 20000))
+SOURCE=$1 BUILD=$2 NAME=run_script
+# shellcheck source=run_script_common.sh
+. "$(dirname "$0")/run_script_common.sh"
 status=0
 "$SOURCE/scripts/run.sh" --allow-fault-injection --inject-overrun 1500:5 </dev/null \
   >"$OUT/log" 2>&1 || status=$?
 cat "$OUT/log"
-fail() { echo "run_script_test: $1" >&2; exit 1; }
 [[ $status -eq 11 ]] || fail "expected exit 11 (a fail-safe on consecutive misses), got $status"
 grep -q "^run: the controller FAILED SAFE: after cycle [0-9]*: 5 consecutive deadline misses" \
   "$OUT/log" || fail "the fail-safe's reason is not printed"

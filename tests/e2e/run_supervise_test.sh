@@ -6,12 +6,9 @@
 # stops everything, leaving no process and no socket.
 # usage: run_supervise_test.sh SOURCE_DIR BUILD_DIR
 set -euo pipefail
-SOURCE=$1 BUILD=$2
-if [[ "$(realpath "$BUILD")" != "$(realpath "$SOURCE/build")" ]]; then
-  echo "scripts/run.sh runs $SOURCE/build, not this build ($BUILD): skipped"
-  exit 77
-fi
-OUT=$(mktemp -d)
+SOURCE=$1 BUILD=$2 NAME=run_supervise
+# shellcheck source=run_script_common.sh
+. "$(dirname "$0")/run_script_common.sh"
 RUN=
 stop_run() {  # SIGTERM, then at most 30 s for run.sh to stop everything; its exit status
   kill -TERM "$RUN" 2>/dev/null || true
@@ -30,10 +27,7 @@ cleanup() {
   rm -rf "$OUT"
 }
 trap cleanup EXIT
-export HAPTICCTRL_INSTANCE="supervise$$" HAPTICCTRL_RUNTIME_DIR="$OUT/run"
-export HAPTICCTRL_PORT=$((20000 + $$ % 20000)) HAPTICCTRL_WEB_PORT=$((40000 + $$ % 20000))
 RUN_DIR=$SOURCE/build/run
-fail() { echo "run_supervise_test: $1" >&2; cat "$OUT/log" >&2; exit 1; }
 until_true() {  # seconds command...: polls every 0.1 s
   local tries=$(($1 * 10))
   shift

@@ -254,8 +254,9 @@ PanelEnd wait_after_ending(const Operator& op, const PanelView& view, bool offer
   erase();
   badge(0, 0, banner.c_str(), true);
   line(2, "%s", "the motors are off; a new controller starts powered off");
-  line(3, offer_restart ? "keys     R start a new controller   q quit"
-                        : "keys     q quit   (the panel re-attaches to a controller started again)");
+  line(3, offer_restart
+              ? "keys     R start a new controller   q quit"
+              : "keys     q quit   (the panel re-attaches to a controller started again)");
   int row = 5;
   line(row++, "last events");
   for (const auto& e : view.events) {

@@ -131,9 +131,8 @@ TEST(CoreProcess, AFiftyMillisecondSigstopLeavesABlackBoxThatEndsWithTheStall) {
   // that ended with a normal cycle. 50 ms at a 5 ms period: 10 slots.
   for (int attempt = 0; attempt < 3; ++attempt) {
     const std::string instance = test::unique_instance("sigstop");
-    SpawnedProcess core(HAPTICCTRL_CORE_BINARY,
-                        {"--instance", instance, "--period-us", "5000", "--rt", "ignore",
-                         "--blackbox-dir", "/tmp"});
+    SpawnedProcess core(HAPTICCTRL_CORE_BINARY, {"--instance", instance, "--period-us", "5000",
+                                                 "--rt", "ignore", "--blackbox-dir", "/tmp"});
     ASSERT_TRUE(attach_when_ready(instance, false).has_value()) << core.err();
     std::this_thread::sleep_for(200ms);
     if (core.wait(0ms) != -1) {

@@ -26,14 +26,14 @@ enum class HmiCommand {
 struct HmiOptions {
   std::string instance = "default";
   HmiCommand command = HmiCommand::kPanel;
-  shm::Vector6 wrench{};      ///< kForce
-  std::string sequence_path;  ///< kPlay
-  std::string log_path;       ///< kPlay: CSV log ("-": stdout; empty: hapticctrl-sequence.csv)
-  bool json = false;          ///< kStatus
-  bool offer_restart = false; ///< kPanel: offer R (exit 75) once the controller has ended
-  bool power_on = false;      ///< kPlay: power on first
-  bool with_hand = false;     ///< kPlay: a simulated hand grips the handle (--hand)
-  HandOptions hand;           ///< kPlay with_hand: grip and wander
+  shm::Vector6 wrench{};       ///< kForce
+  std::string sequence_path;   ///< kPlay
+  std::string log_path;        ///< kPlay: CSV log ("-": stdout; empty: hapticctrl-sequence.csv)
+  bool json = false;           ///< kStatus
+  bool offer_restart = false;  ///< kPanel: offer R (exit 75) once the controller has ended
+  bool power_on = false;       ///< kPlay: power on first
+  bool with_hand = false;      ///< kPlay: a simulated hand grips the handle (--hand)
+  HandOptions hand;            ///< kPlay with_hand: grip and wander
   std::chrono::milliseconds timeout{2000};  ///< how long a command waits for its effect
   bool help = false;
 

@@ -218,8 +218,6 @@ class KeyHandler {
   bool asking_stop_ = false;
 };
 
-}  // namespace
-
 /// "controller failed safe: <reason> at 14:02:07" (or stopped, or lost), from the last VP.
 std::string ending_banner(const ControllerStatus& last) {
   const std::time_t now = std::time(nullptr);
@@ -280,6 +278,8 @@ PanelEnd wait_after_ending(const Operator& op, const PanelView& view, bool offer
   }
 }
 
+}  // namespace
+
 PanelEnd run_panel(Operator& op, bool offer_restart) {
   if (isatty(STDIN_FILENO) == 0 || isatty(STDOUT_FILENO) == 0) {
     throw HmiError("the panel needs a terminal; without one use a command (status, power-on, ...)");
@@ -300,17 +300,17 @@ PanelEnd run_panel(Operator& op, bool offer_restart) {
         continue;
       }
       next_draw = now + kRedrawNs;
-      if (!op.controller_alive()) {
-        controller_gone = true;
-        end = wait_after_ending(op, view, offer_restart);
-        break;
-      }
       events.poll([&](const shm::Event& e) {
         view.events.push_back("cycle " + std::to_string(e.cycle) + ": " + shm::describe_event(e));
         if (view.events.size() > kEventLines) {
           view.events.pop_front();
         }
       });
+      if (!op.controller_alive()) {  // after the events: the fail-safe's own is among them
+        controller_gone = true;
+        end = wait_after_ending(op, view, offer_restart);
+        break;
+      }
       const ControllerStatus s = op.status();
       view.frames_per_cycle = control_frames_per_cycle(view.previous, s);
       view.previous = s;

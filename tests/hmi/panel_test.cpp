@@ -138,6 +138,7 @@ TEST(Panel, AFailSafeIsToldWithItsReasonAndTimeAndROffersANewController) {
   EXPECT_TRUE(panel.shows("controller failed safe: 5 consecutive deadline misses at ", 0, 10s))
       << panel.screen();
   EXPECT_TRUE(panel.shows("R start a new controller"));
+  EXPECT_TRUE(panel.shows(": fail-safe: 5 consecutive deadline misses")) << "among the last events";
   panel.keys("R");
   EXPECT_EQ(panel.wait(5s), 75) << "the script that started the core is asked for a new one";
 }

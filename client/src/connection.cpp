@@ -183,6 +183,10 @@ struct Connection::Impl {
                                 last_refusal + " (this client speaks " + version_text(version) +
                                 ", the controller " + version_text(frame.header.protocol) + ")");
         }
+        if (refusal.code == HCP_REFUSE_BAD_REQUEST) {  // asking again would not help
+          throw ClientError(ErrorCode::kRejected, "controller at " + peer_text +
+                                                      " refused the connection: " + last_refusal);
+        }
         last_code = refusal.code == HCP_REFUSE_BUSY ? ErrorCode::kBusy : ErrorCode::kNoController;
         const std::int64_t wait_ns =
             std::max<std::int64_t>(options.retransmit_after.count(), refusal.retry_after_ms) *

@@ -100,6 +100,30 @@ TEST_F(SessionTest, HelloOpensASessionWithTheBridgesTokenAndPublishesIt) {
   EXPECT_EQ(controller.vpr_now().watchdog_timeout_us, 100'000U);
 }
 
+TEST_F(SessionTest, WelcomeCarriesTheControllersCycleAtSessionStart) {
+  // H2: WELCOME.cycle was always 0.
+  controller.cycle->store(123'456);
+  client.hello();
+  ASSERT_EQ(client.reply.body.type, HCP_WELCOME);
+  EXPECT_EQ(client.reply.body.hcp_body_u.welcome.cycle, 123'456U);
+}
+
+TEST_F(SessionTest, AHelloWithOutOfRangeValuesIsRefusedAsABadRequest) {
+  // H2: it got no reply at all, although the .x promises REFUSE BAD_REQUEST.
+  client.asked_watchdog_ms = 5;  // below 10 ms
+  client.hello();
+  ASSERT_TRUE(client.replied);
+  ASSERT_EQ(client.reply.body.type, HCP_REFUSE);
+  EXPECT_EQ(client.reply.body.hcp_body_u.refuse.code, HCP_REFUSE_BAD_REQUEST);
+  EXPECT_EQ(protocol::text_of(client.reply.body.hcp_body_u.refuse.reason),
+            "watchdog: 0 (default) or 10 to 60000 ms");
+  EXPECT_EQ(dropped(LinkDrop::kRange), 1U) << "counted";
+  EXPECT_EQ(controller.vpr_now().session_id, 0U) << "no session";
+  client.asked_watchdog_ms = 100;
+  client.hello();
+  EXPECT_EQ(client.reply.body.type, HCP_WELCOME);
+}
+
 TEST_F(SessionTest, HelloWithoutAControllerIsRefused) {
   session.set_controller(nullptr, 0);
   client.hello();

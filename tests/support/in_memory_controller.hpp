@@ -1,6 +1,7 @@
 #pragma once
 /// The controller side of the UDP bridge's session in ordinary memory: real VPr and ctrl cells
 /// (no segment, no core), for the session tests and the fuzz target.
+#include <atomic>
 #include <memory>
 #include <vector>
 
@@ -17,7 +18,9 @@ struct InMemoryController {
   std::unique_ptr<shm::CtrlRegion> ctrl = std::make_unique<shm::CtrlRegion>();
   std::unique_ptr<shm::CtrlAckRegion> acks = std::make_unique<shm::CtrlAckRegion>();
   shm::CtrlWriter writer{ctrl->slots[0], acks->slots[0], 0};
-  udp_bridge::ControllerPorts ports{vpr.get(), &writer, 1'000'000};
+  std::unique_ptr<std::atomic<std::uint64_t>> cycle =
+      std::make_unique<std::atomic<std::uint64_t>>(0);  ///< the core's heartbeat
+  udp_bridge::ControllerPorts ports{vpr.get(), &writer, 1'000'000, cycle.get()};
 
   /// The last VPr sample (default-constructed if none was published).
   [[nodiscard]] shm::VprPayload vpr_now() const {

@@ -134,7 +134,8 @@ void answer_cycles(const shm::Segment& segment, UdpSocket& socket, Session& sess
 /// Serves one controller until it goes away (or the bridge stops).
 void run_attached(shm::Segment& segment, UdpSocket& socket, Session& session, std::int64_t end_ns) {
   hapticctrl::udp_bridge::ControllerPorts ports{&segment.writable<shm::RegionId::kVpr>(),
-                                                &segment.ctrl_writer(), segment.header().period_ns};
+                                                &segment.ctrl_writer(), segment.header().period_ns,
+                                                &segment.header().heartbeat_cycle};
   auto& stats = segment.writable<shm::RegionId::kLinkStats>();
   session.set_controller(&ports, monotonic_ns());
 

@@ -72,9 +72,12 @@ std::size_t Session::on_datagram(std::span<const std::uint8_t> bytes,
   }
   hcp_frame in;
   const DecodeStatus status = protocol::decode(bytes, in);
-  // A PARAM with a bad value from the session is answered (REJECTED), not silently dropped.
-  const bool param_out_of_range = status == DecodeStatus::kOutOfRange && in.body.type == HCP_PARAM;
-  if (status != DecodeStatus::kOk && !param_out_of_range) {
+  // A PARAM with a bad value from the session is answered (REJECTED), and a HELLO asking for
+  // out-of-range values is refused (BAD_REQUEST, as the .x says), not silently dropped.
+  const bool out_of_range = status == DecodeStatus::kOutOfRange;
+  const bool param_out_of_range = out_of_range && in.body.type == HCP_PARAM;
+  const bool hello_out_of_range = out_of_range && in.body.type == HCP_HELLO;
+  if (status != DecodeStatus::kOk && !param_out_of_range && !hello_out_of_range) {
     counters_.drop(drop_reason_of(status));
     return 0;
   }
@@ -83,6 +86,12 @@ std::size_t Session::on_datagram(std::span<const std::uint8_t> bytes,
       if (!hello_limiter_.admit(source, now)) {
         counters_.drop(LinkDrop::kRateLimited);
         return 0;
+      }
+      if (hello_out_of_range) {
+        counters_.drop(LinkDrop::kRange);  // no session for it: counted, and told why
+        const protocol::Problem why = protocol::check_hello(in.body.hcp_body_u.hello);
+        return refuse(HCP_REFUSE_BAD_REQUEST, in.header.protocol, 0,
+                      why ? *why : std::string_view("HELLO values out of range"), now, reply);
       }
       return on_hello(in, from, now, reply);
     case HCP_CONTROL_OBJECT:
@@ -424,7 +433,9 @@ std::size_t Session::welcome(TimeNs now, std::span<std::uint8_t> reply) noexcept
   w.features = session_.features;
   w.watchdog_ms = watchdog_ms_;
   w.period_ns = ports_.period_ns;
-  w.cycle = 0;
+  w.cycle = ports_.heartbeat_cycle != nullptr
+                ? ports_.heartbeat_cycle->load(std::memory_order_acquire)
+                : 0;
   return protocol::encode(out, reply);
 }
 

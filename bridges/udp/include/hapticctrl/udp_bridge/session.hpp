@@ -31,6 +31,8 @@ struct ControllerPorts {
   shm::SeqlockCell<shm::VprPayload>* vpr = nullptr;
   shm::CtrlWriter* ctrl = nullptr;
   std::int64_t period_ns = 0;
+  /// The core's heartbeat cycle (the segment header's): WELCOME.cycle. Null: 0 is sent.
+  const std::atomic<std::uint64_t>* heartbeat_cycle = nullptr;
 };
 
 /// What the answer thread needs to know about the session.

@@ -21,6 +21,7 @@ cmake -S "$source/client/examples/minimal" -B "$work/example" -G Ninja \
 cmake --build "$work/example" >/dev/null
 test -x "$work/example/minimal_cpp"
 test -x "$work/example/minimal_c"
+"$work/example/c_api_from_cpp17" >/dev/null  # built at C++17, and runs
 # With nothing listening the C example must fail cleanly, naming the problem.
 if "$work/example/minimal_c" "127.0.0.1#9" 2>"$work/err"; then
   echo "minimal_c connected to nothing" >&2
@@ -31,5 +32,10 @@ grep -q "time out" "$work/err"
 export PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig"
 # shellcheck disable=SC2046
 cc -o "$work/minimal_pc" "$source/client/examples/minimal/minimal.c" $(pkg-config --cflags --libs hapticctrl)
-test -x "$work/minimal_pc"
-echo "install test: find_package and pkg-config builds OK"
+# ... and runs as built, without LD_LIBRARY_PATH (the .pc file carries the rpath).
+if env -u LD_LIBRARY_PATH "$work/minimal_pc" "127.0.0.1#9" 2>"$work/err_pc"; then
+  echo "minimal_pc connected to nothing" >&2
+  exit 1
+fi
+grep -q "time out" "$work/err_pc" || { cat "$work/err_pc" >&2; exit 1; }
+echo "install test: find_package (C, C++20, C++17 on the C API) and pkg-config builds run"

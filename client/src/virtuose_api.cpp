@@ -4,11 +4,13 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <memory>
 #include <mutex>
 #include <new>
+#include <unordered_set>
 
 #include "hapticctrl/client/connection.hpp"
 #include "hapticctrl/protocol/monotonic_clock.hpp"
@@ -142,18 +144,55 @@ struct VirtContextS {
 
 namespace {
 
-/// The context's error state, or the thread's for a NULL context.
-int fail(VirtContext vc, int code, const char* text) noexcept {
-  return vc != nullptr ? vc->error.set(code, text) : t_open_error.set(code, text);
+/// Every context virtOpen returned and virtClose has not closed: a closed, foreign or NULL
+/// handle is recognised as such (it was used after free).
+struct LiveContexts {
+  std::mutex mutex;
+  std::unordered_set<const VirtContextS*> contexts;
+};
+
+LiveContexts& live() noexcept {
+  static LiveContexts registry;
+  return registry;
 }
 
+bool registered(VirtContext vc) noexcept {
+  LiveContexts& l = live();
+  const std::lock_guard lock(l.mutex);
+  return vc != nullptr && l.contexts.count(vc) != 0;
+}
+
+/// The context's error state, or the thread's for a NULL or unknown context.
+int fail(VirtContext vc, int code, const char* text) noexcept {
+  return registered(vc) ? vc->error.set(code, text) : t_open_error.set(code, text);
+}
+
+/// A live context; otherwise VIRT_E_INVALID_CONTEXT in the thread's error state.
 bool valid(VirtContext vc) noexcept {
-  if (vc == nullptr || !vc->connection) {
-    t_open_error.set(VIRT_E_INVALID_CONTEXT, "invalid context (NULL or closed)");
+  if (!registered(vc)) {
+    t_open_error.set(
+        VIRT_E_INVALID_CONTEXT,
+        vc == nullptr ? "NULL context" : "invalid context: closed, or not returned by virtOpen");
     return false;
   }
   return true;
 }
+
+/// A live context and a non-NULL argument (else VIRT_E_INCORRECT_VALUE saying `what`).
+bool ready(VirtContext vc, const void* argument, const char* what) noexcept {
+  if (!valid(vc)) {
+    return false;
+  }
+  if (argument == nullptr) {
+    vc->error.set(VIRT_E_INCORRECT_VALUE, what);
+    return false;
+  }
+  return true;
+}
+
+/// How long virtOpen waits for the controller's first answer, and a setter for its effect.
+constexpr auto kFirstAnswerTimeout = std::chrono::seconds(2);
+constexpr auto kEffectTimeout = std::chrono::milliseconds(500);
 
 StateSnapshot state_of(VirtContext vc) noexcept {
   return vc->connection->snapshot();
@@ -172,7 +211,18 @@ VirtContext virtOpen(const char* name) {
   try {
     auto vc = std::make_unique<VirtContextS>();
     vc->connection = std::make_unique<Connection>(hapticctrl::client::Address::parse(name));
+    // As Haption's: returns once the controller's first answer is here, so that the getters
+    // report the arm, never a default pose (they did, in 9 opens of 10).
+    StateSnapshot first;
+    if (!vc->connection->wait_for_answer(0, kFirstAnswerTimeout, first)) {
+      fail(nullptr, VIRT_E_TIME_OUT,
+           "virtOpen: the session opened, but no answer from the controller came within 2 s");
+      return nullptr;
+    }
     t_open_error = ErrorState{};
+    LiveContexts& l = live();
+    const std::lock_guard lock(l.mutex);
+    l.contexts.insert(vc.get());
     return vc.release();
   } catch (const ClientError& e) {
     fail(nullptr, e.code() == ErrorCode::kInvalidArgument ? VIRT_E_WRONG_FORMAT : code_of(e.code()),
@@ -189,6 +239,11 @@ int virtClose(VirtContext vc) {
   }
   virtStopLoop(vc);
   const int rc = vc->guarded([&] { vc->connection->close(); });
+  {
+    LiveContexts& l = live();
+    const std::lock_guard lock(l.mutex);
+    l.contexts.erase(vc);
+  }
   delete vc;  // NOLINT(cppcoreguidelines-owning-memory): the C API hands out raw handles
   return rc;
 }
@@ -218,15 +273,15 @@ int virtSetSpeedFactor(VirtContext vc, float factor) {
 }
 
 int virtSetBaseFrame(VirtContext vc, float* pos) {
-  if (!valid(vc) || pos == nullptr) {
-    return fail(vc, VIRT_E_INCORRECT_VALUE, "virtSetBaseFrame: NULL pose");
+  if (!ready(vc, pos, "virtSetBaseFrame: NULL pose")) {
+    return -1;
   }
   return vc->guarded([&] { vc->connection->set_base_frame(to_doubles<7>(pos)); });
 }
 
 int virtSetObservationFrame(VirtContext vc, float* pos) {
-  if (!valid(vc) || pos == nullptr) {
-    return fail(vc, VIRT_E_INCORRECT_VALUE, "virtSetObservationFrame: NULL pose");
+  if (!ready(vc, pos, "virtSetObservationFrame: NULL pose")) {
+    return -1;
   }
   return vc->guarded([&] { vc->connection->set_observation_frame(to_doubles<7>(pos)); });
 }
@@ -245,8 +300,8 @@ int virtSetCommandType(VirtContext vc, VirtCommandType type) {
 }
 
 int virtAttachVO(VirtContext vc, float mass, float* mxmymz) {
-  if (!valid(vc) || mxmymz == nullptr) {
-    return fail(vc, VIRT_E_INCORRECT_VALUE, "virtAttachVO: NULL inertia");
+  if (!ready(vc, mxmymz, "virtAttachVO: NULL inertia")) {
+    return -1;
   }
   return vc->guarded(
       [&] { vc->connection->attach_object(static_cast<double>(mass), to_doubles<3>(mxmymz)); });
@@ -257,11 +312,38 @@ int virtDetachVO(VirtContext vc) {
 }
 
 int virtSetPowerOn(VirtContext vc, int power) {
-  return valid(vc) ? vc->guarded([&] { vc->connection->set_power(power != 0); }) : -1;
+  if (!valid(vc)) {
+    return -1;
+  }
+  const bool on = power != 0;
+  if (vc->guarded([&] { vc->connection->set_power(on); }) != 0) {
+    return -1;
+  }
+  if (vc->loop_running.load()) {
+    return 0;  // from the periodic function: the next answers show it (waiting would stall them)
+  }
+  // The acknowledgement says the bridge passed it on; return once the controller did it (a getter
+  // then reports it), or say why not.
+  StateSnapshot s = state_of(vc);
+  const std::int64_t deadline = monotonic_ns() + std::chrono::nanoseconds(kEffectTimeout).count();
+  while (s.powered() != on) {
+    if (on && s.emergency_stop()) {
+      return fail(vc, VIRT_E_CONTROLLER_REFUSED,
+                  "virtSetPowerOn: the emergency stop is latched (reset it first)");
+    }
+    const std::int64_t left = deadline - monotonic_ns();
+    if (left <= 0 || !vc->connection->wait_for_answer(s.cycle, std::chrono::nanoseconds(left), s)) {
+      return fail(vc, VIRT_E_TIME_OUT, "virtSetPowerOn: the controller did not switch the power");
+    }
+  }
+  return 0;
 }
 
 int virtSetTimeoutValue(VirtContext vc, float seconds) {
-  if (!valid(vc) || !std::isfinite(seconds)) {
+  if (!valid(vc)) {
+    return -1;
+  }
+  if (!std::isfinite(seconds)) {
     return fail(vc, VIRT_E_INCORRECT_VALUE, "virtSetTimeoutValue: not a finite number");
   }
   const auto ms = std::chrono::milliseconds(std::lround(static_cast<double>(seconds) * 1000.0));
@@ -277,8 +359,8 @@ int virtSaturateTorque(VirtContext vc, float force_threshold, float moment_thres
 }
 
 int virtSetPosition(VirtContext vc, float* pos) {
-  if (!valid(vc) || pos == nullptr) {
-    return fail(vc, VIRT_E_INCORRECT_VALUE, "virtSetPosition: NULL pose");
+  if (!ready(vc, pos, "virtSetPosition: NULL pose")) {
+    return -1;
   }
   const std::lock_guard lock(vc->pending_mutex);
   if (vc->command_type != CommandType::kVirtmech) {
@@ -295,8 +377,8 @@ int virtSetPosition(VirtContext vc, float* pos) {
 }
 
 int virtSetSpeed(VirtContext vc, float* speed) {
-  if (!valid(vc) || speed == nullptr) {
-    return fail(vc, VIRT_E_INCORRECT_VALUE, "virtSetSpeed: NULL speed");
+  if (!ready(vc, speed, "virtSetSpeed: NULL speed")) {
+    return -1;
   }
   const std::lock_guard lock(vc->pending_mutex);
   vc->object_speed = to_doubles<6>(speed);
@@ -304,8 +386,8 @@ int virtSetSpeed(VirtContext vc, float* speed) {
 }
 
 int virtSetForce(VirtContext vc, float* force) {
-  if (!valid(vc) || force == nullptr) {
-    return fail(vc, VIRT_E_INCORRECT_VALUE, "virtSetForce: NULL force");
+  if (!ready(vc, force, "virtSetForce: NULL force")) {
+    return -1;
   }
   const std::lock_guard lock(vc->pending_mutex);
   if (vc->command_type != CommandType::kImpedance) {
@@ -321,8 +403,8 @@ int virtSetForce(VirtContext vc, float* force) {
 }
 
 int virtAddForce(VirtContext vc, float* force) {
-  if (!valid(vc) || force == nullptr) {
-    return fail(vc, VIRT_E_INCORRECT_VALUE, "virtAddForce: NULL force");
+  if (!ready(vc, force, "virtAddForce: NULL force")) {
+    return -1;
   }
   const std::lock_guard lock(vc->pending_mutex);
   if (vc->command_type != CommandType::kImpedance) {
@@ -339,64 +421,67 @@ int virtAddForce(VirtContext vc, float* force) {
 }
 
 int virtGetPosition(VirtContext vc, float* pos) {
-  if (!valid(vc) || pos == nullptr) {
-    return fail(vc, VIRT_E_INCORRECT_VALUE, "virtGetPosition: NULL output");
+  if (!ready(vc, pos, "virtGetPosition: NULL output")) {
+    return -1;
   }
   to_floats(state_of(vc).handle_pose, pos);
   return 0;
 }
 
 int virtGetSpeed(VirtContext vc, float* speed) {
-  if (!valid(vc) || speed == nullptr) {
-    return fail(vc, VIRT_E_INCORRECT_VALUE, "virtGetSpeed: NULL output");
+  if (!ready(vc, speed, "virtGetSpeed: NULL output")) {
+    return -1;
   }
   to_floats(state_of(vc).handle_twist, speed);
   return 0;
 }
 
 int virtGetForce(VirtContext vc, float* force) {
-  if (!valid(vc) || force == nullptr) {
-    return fail(vc, VIRT_E_INCORRECT_VALUE, "virtGetForce: NULL output");
+  if (!ready(vc, force, "virtGetForce: NULL output")) {
+    return -1;
   }
   to_floats(state_of(vc).coupling_wrench, force);
   return 0;
 }
 
 int virtGetArticularPosition(VirtContext vc, float* pos) {
-  if (!valid(vc) || pos == nullptr) {
-    return fail(vc, VIRT_E_INCORRECT_VALUE, "virtGetArticularPosition: NULL output");
+  if (!ready(vc, pos, "virtGetArticularPosition: NULL output")) {
+    return -1;
   }
   to_floats(state_of(vc).joint_position, pos);
   return 0;
 }
 
 int virtGetArticularSpeed(VirtContext vc, float* speed) {
-  if (!valid(vc) || speed == nullptr) {
-    return fail(vc, VIRT_E_INCORRECT_VALUE, "virtGetArticularSpeed: NULL output");
+  if (!ready(vc, speed, "virtGetArticularSpeed: NULL output")) {
+    return -1;
   }
   to_floats(state_of(vc).joint_velocity, speed);
   return 0;
 }
 
 int virtGetPowerOn(VirtContext vc, int* power) {
-  if (!valid(vc) || power == nullptr) {
-    return fail(vc, VIRT_E_INCORRECT_VALUE, "virtGetPowerOn: NULL output");
+  if (!ready(vc, power, "virtGetPowerOn: NULL output")) {
+    return -1;
   }
   *power = state_of(vc).powered() ? 1 : 0;
   return 0;
 }
 
 int virtGetEmergencyStop(VirtContext vc, int* emergency_stop) {
-  if (!valid(vc) || emergency_stop == nullptr) {
-    return fail(vc, VIRT_E_INCORRECT_VALUE, "virtGetEmergencyStop: NULL output");
+  if (!ready(vc, emergency_stop, "virtGetEmergencyStop: NULL output")) {
+    return -1;
   }
-  *emergency_stop = state_of(vc).emergency_stop() ? 1 : 0;
+  // Haption's meaning: 1 while the arm is operational (the emergency stop is not latched and a
+  // controller answers), 0 otherwise.
+  const StateSnapshot s = state_of(vc);
+  *emergency_stop = s.valid && !s.emergency_stop() && vc->connection->is_open() ? 1 : 0;
   return 0;
 }
 
 int virtGetTimeLastUpdate(VirtContext vc, unsigned int* time) {
-  if (!valid(vc) || time == nullptr) {
-    return fail(vc, VIRT_E_INCORRECT_VALUE, "virtGetTimeLastUpdate: NULL output");
+  if (!ready(vc, time, "virtGetTimeLastUpdate: NULL output")) {
+    return -1;
   }
   const StateSnapshot s = state_of(vc);
   if (!s.valid) {
@@ -409,8 +494,10 @@ int virtGetTimeLastUpdate(VirtContext vc, unsigned int* time) {
 
 int virtSetPeriodicFunction(VirtContext vc, void (*fn)(VirtContext, void*), float* period,
                             void* arg) {
-  if (!valid(vc) || fn == nullptr || period == nullptr || !std::isfinite(*period) ||
-      *period <= 0.0F) {
+  if (!valid(vc)) {
+    return -1;
+  }
+  if (fn == nullptr || period == nullptr || !std::isfinite(*period) || *period <= 0.0F) {
     return fail(vc, VIRT_E_INCORRECT_VALUE, "virtSetPeriodicFunction: NULL function or bad period");
   }
   if (vc->loop_running.load()) {
@@ -450,7 +537,7 @@ int virtStopLoop(VirtContext vc) {
 }
 
 int virtGetErrorCode(VirtContext vc) {
-  return vc != nullptr ? vc->error.code : t_open_error.code;
+  return registered(vc) ? vc->error.code : t_open_error.code;
 }
 
 char* virtGetErrorMessage(int code) {
@@ -465,7 +552,7 @@ char* virtGetErrorMessage(int code) {
 }
 
 const char* virtGetErrorDetail(VirtContext vc) {
-  return vc != nullptr ? vc->error.detail.data() : t_open_error.detail.data();
+  return registered(vc) ? vc->error.detail.data() : t_open_error.detail.data();
 }
 
 // NOLINTEND(readability-identifier-naming)

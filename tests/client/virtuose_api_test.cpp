@@ -7,6 +7,7 @@
 #include <cmath>
 #include <string>
 
+#include "hapticctrl/shm/segment.hpp"
 #include "support/controller_stack.hpp"
 
 namespace hapticctrl {
@@ -65,11 +66,11 @@ TEST(VirtuoseApi, ParametersStateAndModes) {
 
   EXPECT_EQ(virtSetPowerOn(vc, 1), 0);
   int power = 0;
-  EXPECT_TRUE(
-      ControllerStack::eventually([&] { return virtGetPowerOn(vc, &power) == 0 && power == 1; }));
-  int estop = 1;
-  EXPECT_EQ(virtGetEmergencyStop(vc, &estop), 0);
-  EXPECT_EQ(estop, 0);
+  EXPECT_EQ(virtGetPowerOn(vc, &power), 0);
+  EXPECT_EQ(power, 1) << "a getter right after the setter reports the new value";
+  int operational = 0;
+  EXPECT_EQ(virtGetEmergencyStop(vc, &operational), 0);
+  EXPECT_EQ(operational, 1) << "Haption's meaning: 1 while the arm is operational";
   float pose[7] = {};    // NOLINT(*-avoid-c-arrays)
   float speed[6] = {};   // NOLINT(*-avoid-c-arrays)
   float joints[6] = {};  // NOLINT(*-avoid-c-arrays)
@@ -86,6 +87,61 @@ TEST(VirtuoseApi, ParametersStateAndModes) {
   EXPECT_EQ(virtClose(vc), 0);
   EXPECT_TRUE(
       ControllerStack::eventually([&] { return stack.link_stats().sessions_closed == 1U; }, 1s));
+}
+
+TEST(VirtuoseApi, OpenReturnsWithTheArmsPoseAndInvalidContextsAreRefusedWithoutACrash) {
+  ControllerStack stack("capiopen");
+  ASSERT_TRUE(stack.ready()) << stack.diagnostics();
+  const std::string name = "127.0.0.1#" + std::to_string(stack.port());
+  // H2: virtGetPosition right after virtOpen gave (0,0,0) in 9 opens of 10.
+  for (int i = 0; i < 5; ++i) {
+    VirtContext vc = virtOpen(name.c_str());
+    ASSERT_NE(vc, nullptr) << virtGetErrorDetail(nullptr);
+    float pose[7] = {};  // NOLINT(*-avoid-c-arrays)
+    EXPECT_EQ(virtGetPosition(vc, pose), 0);
+    EXPECT_NEAR(pose[0], static_cast<float>(stack.position().handle_pose[0]), 0.01F)
+        << "the real handle, not a default pose";
+    EXPECT_GT(pose[0], 0.1F);
+    ASSERT_EQ(virtClose(vc), 0);
+    // H2: a call on a closed context was a use after free.
+    int power = 0;
+    EXPECT_EQ(virtGetPowerOn(vc, &power), -1);
+    EXPECT_EQ(virtGetErrorCode(vc), VIRT_E_INVALID_CONTEXT);
+    EXPECT_EQ(virtSetPowerOn(vc, 1), -1);
+    EXPECT_EQ(virtClose(vc), -1);
+    EXPECT_TRUE(ControllerStack::eventually(
+        [&] { return stack.link_stats().sessions_closed == static_cast<std::uint64_t>(i) + 1; },
+        2s));
+  }
+  int power = 0;
+  EXPECT_EQ(virtGetPowerOn(nullptr, &power), -1);
+  EXPECT_EQ(virtGetErrorCode(nullptr), VIRT_E_INVALID_CONTEXT) << "not VIRT_E_INCORRECT_VALUE";
+}
+
+TEST(VirtuoseApi, PowerOnWithTheEmergencyStopLatchedFailsAndTheStopReadsNotOperational) {
+  ControllerStack stack("capiestop");
+  ASSERT_TRUE(stack.ready()) << stack.diagnostics();
+  const std::string name = "127.0.0.1#" + std::to_string(stack.port());
+  VirtContext vc = virtOpen(name.c_str());
+  ASSERT_NE(vc, nullptr) << virtGetErrorDetail(nullptr);
+  shm::Segment operator_side = shm::Segment::attach(stack.instance(), {.ctrl_writer = true});
+  operator_side.ctrl_writer().send(shm::CtrlCode::kEmergencyStop, 0, 0);
+  int operational = 1;
+  EXPECT_TRUE(ControllerStack::eventually(
+      [&] { return virtGetEmergencyStop(vc, &operational) == 0 && operational == 0; }));
+  // H2: it returned success while the power stayed off.
+  EXPECT_EQ(virtSetPowerOn(vc, 1), -1);
+  EXPECT_EQ(virtGetErrorCode(vc), VIRT_E_CONTROLLER_REFUSED);
+  EXPECT_NE(std::string(virtGetErrorDetail(vc)).find("emergency stop is latched"),
+            std::string::npos);
+  int power = 1;
+  EXPECT_EQ(virtGetPowerOn(vc, &power), 0);
+  EXPECT_EQ(power, 0);
+  operator_side.ctrl_writer().send(shm::CtrlCode::kEmergencyReset, 0, 0);
+  EXPECT_TRUE(ControllerStack::eventually(
+      [&] { return virtGetEmergencyStop(vc, &operational) == 0 && operational == 1; }));
+  EXPECT_EQ(virtSetPowerOn(vc, 1), 0) << virtGetErrorDetail(vc);
+  EXPECT_EQ(virtClose(vc), 0);
 }
 
 struct LoopState {

@@ -53,7 +53,9 @@ typedef enum {
 #define VIRT_E_INCOMPATIBLE_VERSION 11
 #define VIRT_E_CONTROLLER_REFUSED 12
 
-/** Opens a session: "udpxdr://host:port", "host#port" or "host". NULL on failure. */
+/** Opens a session: "udpxdr://host:port", "host#port" or "host". Returns once the controller's
+ *  first answer has arrived (the getters then report the arm), NULL on failure (VIRT_E_TIME_OUT
+ *  when no answer came within 2 s). */
 VirtContext virtOpen(const char* name);
 int virtClose(VirtContext vc);
 
@@ -66,6 +68,9 @@ int virtSetObservationFrame(VirtContext vc, float* pos);
 int virtSetCommandType(VirtContext vc, VirtCommandType type);
 int virtAttachVO(VirtContext vc, float mass, float* mxmymz);
 int virtDetachVO(VirtContext vc);
+/** Returns once the controller has switched the power (virtGetPowerOn then says so), or -1:
+ *  VIRT_E_CONTROLLER_REFUSED while the emergency stop is latched, VIRT_E_TIME_OUT. Called from
+ *  the periodic function it returns at the acknowledgement (the next answers show it). */
 int virtSetPowerOn(VirtContext vc, int power);
 int virtSetTimeoutValue(VirtContext vc, float seconds);
 int virtSaturateTorque(VirtContext vc, float force_threshold, float moment_threshold);
@@ -86,6 +91,8 @@ int virtGetForce(VirtContext vc, float* force);
 int virtGetArticularPosition(VirtContext vc, float* pos);
 int virtGetArticularSpeed(VirtContext vc, float* speed);
 int virtGetPowerOn(VirtContext vc, int* power);
+/** As Haption's: 1 while the arm is operational (emergency stop not latched, controller
+ *  answering), 0 otherwise. */
 int virtGetEmergencyStop(VirtContext vc, int* emergency_stop);
 /** Microseconds since the last controller answer arrived. */
 int virtGetTimeLastUpdate(VirtContext vc, unsigned int* time);
@@ -97,7 +104,8 @@ int virtStartLoop(VirtContext vc);
 /** Not from inside the periodic function. */
 int virtStopLoop(VirtContext vc);
 
-/** The last error of `vc` (or of the calling thread's last virtOpen when vc is NULL). */
+/** The last error of `vc` (or, when vc is NULL, closed or unknown, the calling thread's: its
+ *  last virtOpen or its call with an invalid context, VIRT_E_INVALID_CONTEXT). */
 int virtGetErrorCode(VirtContext vc);
 /** A static text for an error code. */
 char* virtGetErrorMessage(int code);

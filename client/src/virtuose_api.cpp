@@ -290,7 +290,21 @@ int virtSetCommandType(VirtContext vc, VirtCommandType type) {
   if (!valid(vc)) {
     return -1;
   }
-  const auto t = static_cast<CommandType>(type);
+  CommandType t = CommandType::kNone;
+  switch (type) {
+    case COMMAND_TYPE_NONE:
+      break;
+    case COMMAND_TYPE_IMPEDANCE:
+      t = CommandType::kImpedance;
+      break;
+    case COMMAND_TYPE_VIRTMECH:
+      t = CommandType::kVirtmech;
+      break;
+    default:
+      return fail(vc, VIRT_E_MODE_NOT_SUPPORTED,
+                  "virtSetCommandType: hapticctrl's controller has COMMAND_TYPE_NONE, "
+                  "COMMAND_TYPE_IMPEDANCE and COMMAND_TYPE_VIRTMECH only");
+  }
   const int rc = vc->guarded([&] { vc->connection->set_command_type(t); });
   if (rc == 0) {
     const std::lock_guard lock(vc->pending_mutex);
@@ -541,14 +555,43 @@ int virtGetErrorCode(VirtContext vc) {
 }
 
 char* virtGetErrorMessage(int code) {
-  static char kTexts[][48] = {// NOLINT(*-avoid-c-arrays): the C API returns char*
-                              "no error",          "out of memory",   "communication failure",
-                              "invalid context",   "unknown error",   "wrong format",
-                              "time out",          "wrong mode",      "incorrect value",
-                              "unknown error",     "controller busy", "incompatible version",
-                              "controller refused"};
-  const int count = static_cast<int>(sizeof kTexts / sizeof kTexts[0]);
-  return kTexts[code >= 0 && code < count ? code : 4];
+  // Indexed by VirtuoseAPI's codes, 0 to 21; hapticctrl's own from 100.
+  static char kTexts[][40] = {// NOLINT(*-avoid-c-arrays): the C API returns char*
+                              "no error",
+                              "out of memory",
+                              "communication failure",
+                              "invalid context",
+                              "file not found",
+                              "wrong format",
+                              "time out",
+                              "not implemented",
+                              "variable not available",
+                              "incorrect value",
+                              "syntax error",
+                              "hardware error",
+                              "position discontinuity",
+                              "library not found",
+                              "periodic function error",
+                              "performance counter error",
+                              "major/minor version mismatch",
+                              "wrong mode",
+                              "mode not supported",
+                              "call time error",
+                              "incompatible version",
+                              "incorrect virtual mechanism type",
+                              "controller busy",
+                              "controller refused",
+                              "unknown error"};
+  constexpr int kHaptionCodes = 22;
+  constexpr int kOwnFirst = VIRT_E_VIRTUOSE_BUSY;
+  constexpr int kOwnCount = 2;
+  if (code >= 0 && code < kHaptionCodes) {
+    return kTexts[code];
+  }
+  if (code >= kOwnFirst && code < kOwnFirst + kOwnCount) {
+    return kTexts[kHaptionCodes + code - kOwnFirst];
+  }
+  return kTexts[kHaptionCodes + kOwnCount];
 }
 
 const char* virtGetErrorDetail(VirtContext vc) {

@@ -20,6 +20,14 @@ std::string url(const ControllerStack& stack) {
   return "udpxdr://127.0.0.1:" + std::to_string(stack.port());
 }
 
+// H2: an application written against VirtuoseAPI 4.x compares these numbers (five differed).
+static_assert(COMMAND_TYPE_NONE == 0 && COMMAND_TYPE_IMPEDANCE == 3 && COMMAND_TYPE_VIRTMECH == 5 &&
+              COMMAND_TYPE_ARTICULAR_IMPEDANCE == 7);
+static_assert(VIRT_E_INVALID_CONTEXT == 3 && VIRT_E_TIME_OUT == 6 && VIRT_E_NOT_IMPLEMENTED == 7 &&
+              VIRT_E_INCORRECT_VALUE == 9 && VIRT_E_WRONG_MODE == 17 &&
+              VIRT_E_MODE_NOT_SUPPORTED == 18 && VIRT_E_INCOMPATIBLE_VERSION == 20 &&
+              VIRT_E_INCORRECT_VM_TYPE == 21);
+
 TEST(VirtuoseApi, OpenFailuresHaveCodesAndDetails) {
   EXPECT_EQ(virtOpen(nullptr), nullptr);
   EXPECT_EQ(virtGetErrorCode(nullptr), VIRT_E_WRONG_FORMAT);
@@ -28,7 +36,10 @@ TEST(VirtuoseApi, OpenFailuresHaveCodesAndDetails) {
   EXPECT_NE(std::string(virtGetErrorDetail(nullptr)).find("bad controller address"),
             std::string::npos);
   EXPECT_STREQ(virtGetErrorMessage(VIRT_E_TIME_OUT), "time out");
+  EXPECT_STREQ(virtGetErrorMessage(VIRT_E_WRONG_MODE), "wrong mode");
+  EXPECT_STREQ(virtGetErrorMessage(VIRT_E_CONTROLLER_REFUSED), "controller refused");
   EXPECT_STREQ(virtGetErrorMessage(-5), "unknown error");
+  EXPECT_STREQ(virtGetErrorMessage(22), "unknown error");
   EXPECT_EQ(virtClose(nullptr), -1);
   EXPECT_EQ(virtGetErrorCode(nullptr), VIRT_E_INVALID_CONTEXT);
 }
@@ -57,7 +68,10 @@ TEST(VirtuoseApi, ParametersStateAndModes) {
   EXPECT_NE(std::string(virtGetErrorDetail(vc)).find("force factor"), std::string::npos);
 
   float force[6] = {1, 0, 0, 0, 0, 0};  // NOLINT(*-avoid-c-arrays)
+  EXPECT_EQ(virtSetCommandType(vc, COMMAND_TYPE_ARTICULAR), -1);
+  EXPECT_EQ(virtGetErrorCode(vc), VIRT_E_MODE_NOT_SUPPORTED);
   EXPECT_EQ(virtSetCommandType(vc, COMMAND_TYPE_VIRTMECH), 0);
+  EXPECT_EQ(stack.vpr().command_type, 2U) << "the protocol's VIRTMECH";
   EXPECT_EQ(virtAddForce(vc, force), -1);
   EXPECT_EQ(virtGetErrorCode(vc), VIRT_E_WRONG_MODE);
   EXPECT_EQ(virtAttachVO(vc, 0.5F, inertia), 0);

@@ -25,10 +25,18 @@ extern "C" {
 /* NOLINTBEGIN(readability-identifier-naming) */
 typedef struct VirtContextS* VirtContext;
 
+/* Command types, with VirtuoseAPI 4.x's values. hapticctrl's controller has NONE, IMPEDANCE
+ * (the application sends a wrench) and VIRTMECH (it sends a virtual object's state); the others
+ * are refused with VIRT_E_MODE_NOT_SUPPORTED. */
 typedef enum {
   COMMAND_TYPE_NONE = 0,
-  COMMAND_TYPE_IMPEDANCE = 1,
-  COMMAND_TYPE_VIRTMECH = 2
+  COMMAND_TYPE_JOINT = 1,
+  COMMAND_TYPE_CARTESIAN = 2,
+  COMMAND_TYPE_IMPEDANCE = 3,
+  COMMAND_TYPE_ADMITTANCE = 4,
+  COMMAND_TYPE_VIRTMECH = 5,
+  COMMAND_TYPE_ARTICULAR = 6,
+  COMMAND_TYPE_ARTICULAR_IMPEDANCE = 7
 } VirtCommandType;
 
 typedef enum {
@@ -40,18 +48,33 @@ typedef enum {
   INDEXING_NONE_FORCE_FEEDBACK_INHIBITION = 5
 } VirtIndexingType;
 
-/* Error codes (VirtuoseAPI names). */
+/* Error codes, with VirtuoseAPI 4.x's names and values. */
 #define VIRT_E_NO_ERROR 0
 #define VIRT_E_OUT_OF_MEMORY 1
 #define VIRT_E_COMMUNICATION_FAILURE 2
 #define VIRT_E_INVALID_CONTEXT 3
+#define VIRT_E_FILE_NOT_FOUND 4
 #define VIRT_E_WRONG_FORMAT 5
 #define VIRT_E_TIME_OUT 6
-#define VIRT_E_WRONG_MODE 7
-#define VIRT_E_INCORRECT_VALUE 8
-#define VIRT_E_VIRTUOSE_BUSY 10
-#define VIRT_E_INCOMPATIBLE_VERSION 11
-#define VIRT_E_CONTROLLER_REFUSED 12
+#define VIRT_E_NOT_IMPLEMENTED 7
+#define VIRT_E_VARIABLE_NOT_AVAILABLE 8
+#define VIRT_E_INCORRECT_VALUE 9
+#define VIRT_E_SYNTAX_ERROR 10
+#define VIRT_E_HARDWARE_ERROR 11
+#define VIRT_E_POSITION_DISCONTINUITY 12
+#define VIRT_E_VIRTUOSE_DLL_NOT_FOUND 13
+#define VIRT_E_PERIODIC_FUNCTION 14
+#define VIRT_E_PERFORMANCE_COUNTER 15
+#define VIRT_E_MAJOR_MINOR_VERSION 16
+#define VIRT_E_WRONG_MODE 17
+#define VIRT_E_MODE_NOT_SUPPORTED 18
+#define VIRT_E_CALL_TIME 19
+#define VIRT_E_INCOMPATIBLE_VERSION 20
+#define VIRT_E_INCORRECT_VM_TYPE 21
+/* hapticctrl's own, beyond VirtuoseAPI's range: another client holds the controller; the
+ * controller refused a command (e.g. power on while the emergency stop is latched). */
+#define VIRT_E_VIRTUOSE_BUSY 100
+#define VIRT_E_CONTROLLER_REFUSED 101
 
 /** Opens a session: "udpxdr://host:port", "host#port" or "host". Returns once the controller's
  *  first answer has arrived (the getters then report the arm), NULL on failure (VIRT_E_TIME_OUT

@@ -3,7 +3,7 @@
 /// How an attached process (the bridges) follows the core's cycles and notices within a few
 /// milliseconds that the core is gone: killed, crashed or replaced by a new core.
 ///
-/// Real-time contract: none of this is for the cycle (it blocks, and probes the lock with flock).
+/// Real-time contract: none of this is for the cycle (it blocks, and polls the core's pidfd).
 #include <chrono>
 #include <cstdint>
 
@@ -11,13 +11,13 @@
 
 namespace hapticctrl::shm {
 
-/// Waits for VP publishes; when none comes for `poll`, checks the core's heartbeat and lock.
+/// Waits for VP publishes; when none comes for `poll`, checks that the core still runs.
 class CoreWatch {
  public:
   /// What ended a wait.
   enum class Wake : std::uint8_t {
     kCycle,     ///< the core published VP
-    kSilent,    ///< nothing within `poll`, but the core still holds its lock (slow period, stall)
+    kSilent,    ///< nothing within `poll`, but the core still runs (slow period, stall)
     kCoreGone,  ///< the core's lock is free, or a new core replaced the segment
   };
 

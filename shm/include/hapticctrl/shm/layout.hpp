@@ -2,8 +2,9 @@
 /// @file layout.hpp
 /// Layout of one controller instance's shared-memory segment.
 ///
-/// One POSIX shm object per instance (`/dev/shm/hapticctrl.<instance>`), made of page-aligned
-/// parts so that each process can map each part with the protection its role needs:
+/// One sealed memfd per instance (segment_handoff.hpp: the core hands it out, it has no name),
+/// made of page-aligned parts so that each process can map each part with the protection its
+/// role needs:
 ///
 ///   page 0          SegmentHeader   written by the core, read by all
 ///   page 1          ClaimTable      writer claims: written by any process that claims a role
@@ -16,8 +17,8 @@
 ///     ctrl_ack      written by the core                (ring progress)
 ///     telemetry     written by the core                (seqlock)
 ///
-/// A second object, `/dev/shm/hapticctrl.<instance>.lock`, carries the core's exclusive flock:
-/// the kernel drops it when the core dies, which is how a stale segment is told from a live one.
+/// The core's exclusive flock on `<runtime dir>/<instance>.lock` (rendezvous.hpp) makes it the
+/// instance's only core; attached processes tell a live core from a dead one by its pidfd.
 
 #include <array>
 #include <atomic>

@@ -18,12 +18,12 @@ class CoreWatch {
   enum class Wake : std::uint8_t {
     kCycle,     ///< the core published VP
     kSilent,    ///< nothing within `poll`, but the core still runs (slow period, stall)
-    kCoreGone,  ///< the core's lock is free, or a new core replaced the segment
+    kCoreGone,  ///< the core's process has ended, or it stopped (the segment is no longer live)
   };
 
   /// 2 ms: with the 100 µs..10 ms periods of the core, a lost core is noticed within about
-  /// 2 ms of its process ending (the kernel frees the lock at once), and a silent core costs a
-  /// probe of a few microseconds per 2 ms.
+  /// 2 ms of its process ending (its pidfd turns readable at once), and a silent core costs a
+  /// probe of a microsecond or two per 2 ms.
   static constexpr std::chrono::milliseconds kDefaultPoll{2};
 
   explicit CoreWatch(const Segment& segment, std::chrono::nanoseconds poll = kDefaultPoll) noexcept

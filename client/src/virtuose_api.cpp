@@ -11,8 +11,10 @@
 #include <mutex>
 #include <new>
 #include <unordered_set>
+#include <utility>
 
 #include "hapticctrl/client/connection.hpp"
+#include "hapticctrl/protocol/codec.hpp"
 #include "hapticctrl/protocol/monotonic_clock.hpp"
 
 namespace {
@@ -83,7 +85,20 @@ struct VirtContextS {
   std::unique_ptr<Connection> connection;
   ErrorState error;
 
+  /// The parameters as the controller acknowledged them, for the getters (a getter right after a
+  /// successful setter returns the new value). Guarded by pending_mutex.
+  struct Settings {
+    float time_step = 0.0F;  ///< 0 until set: the controller's answers pace the application
+    float force_factor = 1.0F;
+    float speed_factor = 1.0F;
+    VirtIndexingType indexing = INDEXING_ALL;
+    std::array<float, 7> base_frame{0, 0, 0, 0, 0, 0, 1};
+    std::array<float, 7> observation_frame{0, 0, 0, 0, 0, 0, 1};
+    VirtCommandType command_type = COMMAND_TYPE_NONE;
+  };
+
   std::mutex pending_mutex;  // the application's thread and the loop's callback both set these
+  Settings settings;
   CommandType command_type = CommandType::kNone;
   Pose7 object_pose{0, 0, 0, 0, 0, 0, 1};
   Vector6 object_speed{};
@@ -190,6 +205,28 @@ bool ready(VirtContext vc, const void* argument, const char* what) noexcept {
   return true;
 }
 
+/// Runs a parameter setter's call; on success records what the controller acknowledged.
+template <typename Call, typename Record>
+int set_and_record(VirtContext vc, Call&& call, Record&& record) noexcept {
+  const int rc = vc->guarded(std::forward<Call>(call));
+  if (rc == 0) {
+    const std::lock_guard lock(vc->pending_mutex);
+    record(vc->settings);
+  }
+  return rc;
+}
+
+/// Copies one acknowledged setting out, for a getter.
+template <typename Read>
+int get_setting(VirtContext vc, const void* out, const char* what, Read&& read) noexcept {
+  if (!ready(vc, out, what)) {
+    return -1;
+  }
+  const std::lock_guard lock(vc->pending_mutex);
+  read(vc->settings);
+  return 0;
+}
+
 /// How long virtOpen waits for the controller's first answer, and a setter for its effect.
 constexpr auto kFirstAnswerTimeout = std::chrono::seconds(2);
 constexpr auto kEffectTimeout = std::chrono::milliseconds(500);
@@ -249,41 +286,119 @@ int virtClose(VirtContext vc) {
 }
 
 int virtSetTimeStep(VirtContext vc, float step) {
-  return valid(vc) ? vc->guarded([&] { vc->connection->set_time_step(static_cast<double>(step)); })
-                   : -1;
+  if (!valid(vc)) {
+    return -1;
+  }
+  return set_and_record(
+      vc, [&] { vc->connection->set_time_step(static_cast<double>(step)); },
+      [&](VirtContextS::Settings& s) { s.time_step = step; });
 }
 
 int virtSetIndexingMode(VirtContext vc, VirtIndexingType mode) {
-  return valid(vc) ? vc->guarded([&] {
-    vc->connection->set_indexing_mode(static_cast<hapticctrl::client::IndexingMode>(mode));
-  })
-                   : -1;
+  if (!valid(vc)) {
+    return -1;
+  }
+  return set_and_record(
+      vc,
+      [&] {
+        vc->connection->set_indexing_mode(static_cast<hapticctrl::client::IndexingMode>(mode));
+      },
+      [&](VirtContextS::Settings& s) { s.indexing = mode; });
 }
 
 int virtSetForceFactor(VirtContext vc, float factor) {
-  return valid(vc)
-             ? vc->guarded([&] { vc->connection->set_force_factor(static_cast<double>(factor)); })
-             : -1;
+  if (!valid(vc)) {
+    return -1;
+  }
+  return set_and_record(
+      vc, [&] { vc->connection->set_force_factor(static_cast<double>(factor)); },
+      [&](VirtContextS::Settings& s) { s.force_factor = factor; });
 }
 
 int virtSetSpeedFactor(VirtContext vc, float factor) {
-  return valid(vc)
-             ? vc->guarded([&] { vc->connection->set_speed_factor(static_cast<double>(factor)); })
-             : -1;
+  if (!valid(vc)) {
+    return -1;
+  }
+  return set_and_record(
+      vc, [&] { vc->connection->set_speed_factor(static_cast<double>(factor)); },
+      [&](VirtContextS::Settings& s) { s.speed_factor = factor; });
 }
 
 int virtSetBaseFrame(VirtContext vc, float* pos) {
   if (!ready(vc, pos, "virtSetBaseFrame: NULL pose")) {
     return -1;
   }
-  return vc->guarded([&] { vc->connection->set_base_frame(to_doubles<7>(pos)); });
+  return set_and_record(
+      vc, [&] { vc->connection->set_base_frame(to_doubles<7>(pos)); },
+      [&](VirtContextS::Settings& s) { std::copy_n(pos, 7, s.base_frame.begin()); });
 }
 
 int virtSetObservationFrame(VirtContext vc, float* pos) {
   if (!ready(vc, pos, "virtSetObservationFrame: NULL pose")) {
     return -1;
   }
-  return vc->guarded([&] { vc->connection->set_observation_frame(to_doubles<7>(pos)); });
+  return set_and_record(
+      vc, [&] { vc->connection->set_observation_frame(to_doubles<7>(pos)); },
+      [&](VirtContextS::Settings& s) { std::copy_n(pos, 7, s.observation_frame.begin()); });
+}
+
+int virtGetTimeStep(VirtContext vc, float* step) {
+  return get_setting(vc, step, "virtGetTimeStep: NULL output",
+                     [&](const VirtContextS::Settings& s) { *step = s.time_step; });
+}
+
+int virtGetIndexingMode(VirtContext vc, VirtIndexingType* mode) {
+  return get_setting(vc, mode, "virtGetIndexingMode: NULL output",
+                     [&](const VirtContextS::Settings& s) { *mode = s.indexing; });
+}
+
+int virtGetForceFactor(VirtContext vc, float* factor) {
+  return get_setting(vc, factor, "virtGetForceFactor: NULL output",
+                     [&](const VirtContextS::Settings& s) { *factor = s.force_factor; });
+}
+
+int virtGetSpeedFactor(VirtContext vc, float* factor) {
+  return get_setting(vc, factor, "virtGetSpeedFactor: NULL output",
+                     [&](const VirtContextS::Settings& s) { *factor = s.speed_factor; });
+}
+
+int virtGetBaseFrame(VirtContext vc, float* pos) {
+  return get_setting(vc, pos, "virtGetBaseFrame: NULL output",
+                     [&](const VirtContextS::Settings& s) {
+                       std::copy(s.base_frame.begin(), s.base_frame.end(), pos);
+                     });
+}
+
+int virtGetObservationFrame(VirtContext vc, float* pos) {
+  return get_setting(vc, pos, "virtGetObservationFrame: NULL output",
+                     [&](const VirtContextS::Settings& s) {
+                       std::copy(s.observation_frame.begin(), s.observation_frame.end(), pos);
+                     });
+}
+
+int virtGetCommandType(VirtContext vc, VirtCommandType* type) {
+  return get_setting(vc, type, "virtGetCommandType: NULL output",
+                     [&](const VirtContextS::Settings& s) { *type = s.command_type; });
+}
+
+int virtGetTimeoutValue(VirtContext vc, float* seconds) {
+  if (!ready(vc, seconds, "virtGetTimeoutValue: NULL output")) {
+    return -1;
+  }
+  // The watchdog in force: the bridge may have capped what was asked (--max-watchdog-ms).
+  *seconds = static_cast<float>(vc->connection->watchdog_ms()) / 1000.0F;
+  return 0;
+}
+
+int virtGetControlerVersion(VirtContext vc, int* major, int* minor) {
+  if (!ready(vc, major, "virtGetControlerVersion: NULL output") ||
+      !ready(vc, minor, "virtGetControlerVersion: NULL output")) {
+    return -1;
+  }
+  const std::uint32_t version = vc->connection->controller_version();
+  *major = static_cast<int>(hapticctrl::protocol::version_major(version));
+  *minor = static_cast<int>(hapticctrl::protocol::version_minor(version));
+  return 0;
 }
 
 int virtSetCommandType(VirtContext vc, VirtCommandType type) {
@@ -309,6 +424,7 @@ int virtSetCommandType(VirtContext vc, VirtCommandType type) {
   if (rc == 0) {
     const std::lock_guard lock(vc->pending_mutex);
     vc->command_type = t;
+    vc->settings.command_type = type;
   }
   return rc;
 }

@@ -63,6 +63,39 @@ TEST(VirtuoseApi, ParametersStateAndModes) {
   EXPECT_EQ(stack.vpr().watchdog_timeout_us, 200'000U);
   EXPECT_DOUBLE_EQ(stack.vpr().force_limits[0], 20.0);
 
+  // H2: a getter right after a successful setter returns the new value.
+  float value = 0.0F;
+  EXPECT_EQ(virtGetTimeStep(vc, &value), 0);
+  EXPECT_FLOAT_EQ(value, 0.002F);
+  EXPECT_EQ(virtGetForceFactor(vc, &value), 0);
+  EXPECT_FLOAT_EQ(value, 1.0F);
+  EXPECT_EQ(virtSetSpeedFactor(vc, 0.5F), 0);
+  EXPECT_EQ(virtGetSpeedFactor(vc, &value), 0);
+  EXPECT_FLOAT_EQ(value, 0.5F);
+  EXPECT_EQ(virtGetTimeoutValue(vc, &value), 0);
+  EXPECT_FLOAT_EQ(value, 0.2F);
+  VirtIndexingType mode = INDEXING_NONE;
+  EXPECT_EQ(virtSetIndexingMode(vc, INDEXING_TRANS), 0);
+  EXPECT_EQ(virtGetIndexingMode(vc, &mode), 0);
+  EXPECT_EQ(mode, INDEXING_TRANS);
+  EXPECT_EQ(virtSetIndexingMode(vc, INDEXING_ALL), 0);
+  float shifted[7] = {0.1F, 0, 0, 0, 0, 0, 1};  // NOLINT(*-avoid-c-arrays)
+  float frame[7] = {};                          // NOLINT(*-avoid-c-arrays)
+  EXPECT_EQ(virtSetObservationFrame(vc, shifted), 0);
+  EXPECT_EQ(virtGetObservationFrame(vc, frame), 0);
+  EXPECT_FLOAT_EQ(frame[0], 0.1F);
+  EXPECT_FLOAT_EQ(frame[6], 1.0F);
+  EXPECT_EQ(virtGetBaseFrame(vc, frame), 0);
+  EXPECT_FLOAT_EQ(frame[0], 0.0F);
+  EXPECT_EQ(virtSetObservationFrame(vc, identity), 0);
+  int major = 0;
+  int minor = -1;
+  EXPECT_EQ(virtGetControlerVersion(vc, &major, &minor), 0);
+  EXPECT_EQ(major, 1);
+  EXPECT_GE(minor, 1);
+  EXPECT_EQ(virtGetTimeStep(vc, nullptr), -1);
+  EXPECT_EQ(virtGetErrorCode(vc), VIRT_E_INCORRECT_VALUE);
+
   EXPECT_EQ(virtSetForceFactor(vc, -1.0F), -1);
   EXPECT_EQ(virtGetErrorCode(vc), VIRT_E_INCORRECT_VALUE);
   EXPECT_NE(std::string(virtGetErrorDetail(vc)).find("force factor"), std::string::npos);
@@ -72,6 +105,9 @@ TEST(VirtuoseApi, ParametersStateAndModes) {
   EXPECT_EQ(virtGetErrorCode(vc), VIRT_E_MODE_NOT_SUPPORTED);
   EXPECT_EQ(virtSetCommandType(vc, COMMAND_TYPE_VIRTMECH), 0);
   EXPECT_EQ(stack.vpr().command_type, 2U) << "the protocol's VIRTMECH";
+  VirtCommandType type = COMMAND_TYPE_NONE;
+  EXPECT_EQ(virtGetCommandType(vc, &type), 0);
+  EXPECT_EQ(type, COMMAND_TYPE_VIRTMECH) << "not the refused ARTICULAR";
   EXPECT_EQ(virtAddForce(vc, force), -1);
   EXPECT_EQ(virtGetErrorCode(vc), VIRT_E_WRONG_MODE);
   EXPECT_EQ(virtAttachVO(vc, 0.5F, inertia), 0);

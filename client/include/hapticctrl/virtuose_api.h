@@ -120,6 +120,21 @@ int virtGetEmergencyStop(VirtContext vc, int* emergency_stop);
 /** Microseconds since the last controller answer arrived. */
 int virtGetTimeLastUpdate(VirtContext vc, unsigned int* time);
 
+/* The parameters as the controller acknowledged them: a getter right after a successful setter
+ * returns the new value. Before any setter: time step 0 (the controller's answers pace the
+ * application), factors 1, INDEXING_ALL, identity frames, COMMAND_TYPE_NONE. The timeout is the
+ * watchdog in force (the bridge may cap what was asked). */
+int virtGetTimeStep(VirtContext vc, float* step);
+int virtGetIndexingMode(VirtContext vc, VirtIndexingType* indexing_mode);
+int virtGetForceFactor(VirtContext vc, float* force_factor);
+int virtGetSpeedFactor(VirtContext vc, float* speed_factor);
+int virtGetBaseFrame(VirtContext vc, float* base);
+int virtGetObservationFrame(VirtContext vc, float* obs);
+int virtGetCommandType(VirtContext vc, VirtCommandType* type);
+int virtGetTimeoutValue(VirtContext vc, float* time_value);
+/** The controller's protocol version (major, minor), as its WELCOME said. */
+int virtGetControlerVersion(VirtContext vc, int* major, int* minor);
+
 /** The periodic function runs after each controller answer, every `*period` seconds. */
 int virtSetPeriodicFunction(VirtContext vc, void (*fn)(VirtContext, void*), float* period,
                             void* arg);

@@ -11,6 +11,9 @@ trap 'rm -rf "$work"' EXIT
 cmake --install "$build" --prefix "$work/prefix" >/dev/null
 test -f "$work/prefix/lib/cmake/hapticctrl/hapticctrlConfig.cmake"
 test -f "$work/prefix/include/hapticctrl/virtuose_api.h"
+test -f "$work/prefix/include/hapticctrl/virtuose/VirtuoseAPI.h"
+test -f "$work/prefix/include/hapticctrl/virtuose/virtuoseAPI.h"
+test ! -e "$work/prefix/include/VirtuoseAPI.h"  # never beside a Haption SDK's
 if find "$work/prefix/include" -name 'hapticctrl_protocol.h' | grep -q .; then
   echo "the XDR types must stay private" >&2
   exit 1

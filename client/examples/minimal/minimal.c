@@ -1,5 +1,5 @@
 /* The same with the VirtuoseAPI-style C API. Usage: minimal_c [host#port] */
-#include <hapticctrl/virtuose_api.h>
+#include "VirtuoseAPI.h" /* as a Virtuose application includes it */
 #include <stdio.h>
 
 int main(int argc, char** argv) {

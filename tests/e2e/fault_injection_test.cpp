@@ -49,6 +49,14 @@ constexpr std::uint64_t kMissDivisor = 5;
 #else
 constexpr std::uint64_t kMissDivisor = 20;
 #endif
+/// How soon a client hears that its core was killed (median of three). Plain builds: 4.0-4.4 ms
+/// measured (2026-12-02); under TSan the bridge, the client and the core run instrumented and the
+/// median was 8.4-10.9 ms in six runs that afternoon, over a 10 ms bound in two.
+#ifdef HAPTICCTRL_SANITIZED
+constexpr double kNoticeMs = 20.0;
+#else
+constexpr double kNoticeMs = 10.0;
+#endif
 
 /// Follows every cycle of a core from a thread and keeps the largest change per cycle of the
 /// force the motors put on the handle (coupling, norm) beyond what the law allows (the rate
@@ -402,9 +410,9 @@ TEST(FaultInjection, AKilledCoreIsToldToClientAndLcmWithinMillisecondsAndTheNext
   print("last heartbeat to the LCM bridge noticing", lcm_heartbeat_ms);
   // The median: one VM stall of several milliseconds (seen on this machine) must not decide.
   // Heartbeat ages include up to one period (the core beats once per cycle).
-  EXPECT_LE(median(client_ms), 10.0);
-  EXPECT_LE(median(udp_heartbeat_ms), 10.0 + kPeriodUs * 1e-3);
-  EXPECT_LE(median(lcm_heartbeat_ms), 10.0 + kPeriodUs * 1e-3);
+  EXPECT_LE(median(client_ms), kNoticeMs);
+  EXPECT_LE(median(udp_heartbeat_ms), kNoticeMs + kPeriodUs * 1e-3);
+  EXPECT_LE(median(lcm_heartbeat_ms), kNoticeMs + kPeriodUs * 1e-3);
 }
 
 TEST(FaultInjection, AFrozenBridgeIsStaleInputTheCouplingFadesAndResumesOnContinue) {

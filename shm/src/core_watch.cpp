@@ -9,7 +9,7 @@ CoreWatch::Wake CoreWatch::wait() {
   if (vp.wait_for_publish(vp.sequence_word(), poll_) == WaitStatus::kPublished) {
     return Wake::kCycle;
   }
-  if (segment_->core_alive() && segment_->still_current()) {
+  if (segment_->still_current()) {  // the core still runs, and its segment is live
     return Wake::kSilent;
   }
   const SegmentHeader& header = segment_->header();

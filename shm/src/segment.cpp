@@ -21,9 +21,7 @@
 namespace hapticctrl::shm {
 namespace {
 
-constexpr mode_t kSegmentMode = 0600;  // nobody opens it by name: it is handed over
 constexpr mode_t kLockMode = 0600;
-constexpr unsigned kSeals = F_SEAL_SHRINK | F_SEAL_GROW | F_SEAL_SEAL;
 
 void* map_part(int fd, std::size_t offset, std::size_t length, bool writable,
                const std::string& what) {
@@ -122,20 +120,6 @@ int acquire_instance_lock(const InstancePaths& paths, const std::string& instanc
                  "could not take the lock of instance '" + instance + "' (it kept being replaced)");
 }
 
-int create_sealed_segment(const std::string& instance) {
-  const int fd = memfd_create(("hapticctrl." + instance).c_str(), MFD_CLOEXEC | MFD_ALLOW_SEALING);
-  if (fd < 0) {
-    throw_system_error("create the segment", errno);
-  }
-  if (fchmod(fd, kSegmentMode) != 0 || ftruncate(fd, static_cast<off_t>(kSegmentSize)) != 0 ||
-      fcntl(fd, F_ADD_SEALS, kSeals) != 0) {
-    const int error = errno;
-    ::close(fd);
-    throw_system_error("size and seal the segment", error);
-  }
-  return fd;
-}
-
 /// Whether the process behind a pidfd still runs (poll: readable once it has exited).
 bool process_running(int pidfd) {
   pollfd watched{pidfd, POLLIN, 0};
@@ -154,7 +138,7 @@ Segment Segment::create(const CreateOptions& options) {
   seg.creator_ = true;
   seg.lock_fd_ = acquire_instance_lock(seg.paths_, options.instance);
   const LockRecord previous = read_lock_record(seg.lock_fd_);
-  seg.fd_ = create_sealed_segment(options.instance);
+  seg.fd_ = create_sealed_segment("hapticctrl." + options.instance, kSegmentSize);
 
   // Construct every object once through a temporary full mapping, then map per role.
   {

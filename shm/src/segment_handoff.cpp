@@ -4,6 +4,7 @@
 #include <poll.h>
 #include <pthread.h>
 #include <sys/eventfd.h>
+#include <sys/mman.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/syscall.h>
@@ -100,6 +101,22 @@ bool send_reply(int socket, const Reply& reply, const int* fds, std::size_t coun
 }
 
 }  // namespace
+
+int create_sealed_segment(const std::string& name, std::size_t size) {
+  const int fd = memfd_create(name.c_str(), MFD_CLOEXEC | MFD_ALLOW_SEALING);
+  if (fd < 0) {
+    throw_system_error("create the segment", errno);
+  }
+  // Mode 0600: nobody opens it by name, it is handed over; a reader of another user cannot
+  // reopen its read-only descriptor writable through /proc.
+  if (fchmod(fd, 0600) != 0 || ftruncate(fd, static_cast<off_t>(size)) != 0 ||
+      fcntl(fd, F_ADD_SEALS, kSeals) != 0) {
+    const int error = errno;
+    ::close(fd);
+    throw_system_error("size and seal the segment", error);
+  }
+  return fd;
+}
 
 UniqueFd& UniqueFd::operator=(UniqueFd&& other) noexcept {
   if (this != &other) {

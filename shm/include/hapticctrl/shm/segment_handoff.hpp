@@ -14,6 +14,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <string_view>
 
 #include "hapticctrl/shm/rendezvous.hpp"
@@ -39,6 +40,10 @@ class UniqueFd {
  private:
   int fd_ = -1;
 };
+
+/// Creates a segment of `size` bytes as a memfd named `name` (for /proc only), sealed against
+/// shrinking, growing and further seals: what request_segment() checks. Throws ShmError.
+[[nodiscard]] int create_sealed_segment(const std::string& name, std::size_t size);
 
 /// What the core hands an attacher.
 struct HandedSegment {

@@ -24,16 +24,9 @@ command -v cyclictest >/dev/null || { echo "cyclictest missing (scripts/setup.sh
 TMP=$(mktemp -d)
 trap 'rm -rf "$TMP"' EXIT
 
-# p50/p99/p99.9/max (µs) from a cyclictest-format histogram on stdin: "bin count" lines.
+# p50/p99/p99.9/max (µs) from a cyclictest-format histogram on stdin.
 percentiles() {
-  awk '/^[0-9]/ { bin[n] = $1 + 0; cnt[n] = $2 + 0; total += $2; n++ }
-       /Max Latencies/ { max = $NF + 0 }
-       /Histogram Overflows/ { over = $NF + 0 }
-       END {
-         total += over; split("0.5 0.99 0.999", ps, " ")
-         for (k = 1; k <= 3; k++) { want = ps[k] * total; seen = 0; res[k] = max
-           for (i = 0; i < n; i++) { seen += cnt[i]; if (seen >= want) { res[k] = bin[i] + 1; break } } }
-         printf "%d %d %d %d\n", res[1], res[2], res[3], max }'
+  awk -f "$(dirname "$0")/../scripts/cyclictest_percentiles.awk"
 }
 
 run_pair() {  # label

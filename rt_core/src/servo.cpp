@@ -178,6 +178,10 @@ void ServoTask::commit(std::uint64_t cycle, TimeNs now) noexcept {
   if (outputs_.coupled && commands.enable) {
     state_word |= shm::state_bits::kCoupled;
   }
+  if (outputs_.saturated && commands.enable) {
+    state_word |= shm::state_bits::kSaturated;
+  }
+  state_word |= outputs_.joint_bounds;
   if (outputs_.client_stale) {
     state_word |= shm::state_bits::kClientStale;
     s.counters.vpr_stale.fetch_add(1, std::memory_order_relaxed);

@@ -29,6 +29,9 @@ constexpr TimeNs kMaxLoopDelay = 2'000 * kNsPerMs;
 constexpr double kDesignDelayBand = 0.1;
 constexpr TimeNs kDesignDelayBandMin = kNsPerMs / 2;
 constexpr TimeNs kGainSlewTime = 50 * kNsPerMs;
+/// A wrench counts as clipped (VirtuoseAPI's SATURATE alarm) when the limit took more than 1 uN
+/// off it (a squared norm of 1e-12): far above the rounding of an unclipped sum.
+constexpr double kClipped = 1e-12;
 
 Vector6d to_vector(const std::array<double, 6>& a) noexcept {
   Vector6d v;
@@ -429,6 +432,23 @@ Vector6d ServoLaw::joint_walls(const Vector6d& q) const noexcept {
   return tau;
 }
 
+std::uint32_t ServoLaw::joint_bounds(const Vector6d& q) const noexcept {
+  // In the wall: where joint_walls pushes back (within the margin of the limit, or beyond).
+  const ArmModel& m = dynamics_->model();
+  const double margin = config_.wall_margin;
+  std::uint32_t bits = 0;
+  const auto mark = [&](unsigned index, double value, double lo, double hi) {
+    bits |= value < lo + margin ? shm::state_bits::joint_bound(index, false) : 0U;
+    bits |= value > hi - margin ? shm::state_bits::joint_bound(index, true) : 0U;
+  };
+  for (int i = 0; i < kJoints; ++i) {
+    const JointModel& j = m.joints[static_cast<std::size_t>(i)];
+    mark(static_cast<unsigned>(i), q(i), j.q_min, j.q_max);
+  }
+  mark(kJoints, q(1) + q(2), m.limits.coupled_j23_min, m.limits.coupled_j23_max);
+  return bits;
+}
+
 Vector6d ServoLaw::guard_passivity(const Vector6d& wrench, const Vector6d& twist,
                                    double dt) noexcept {
   // One-port passivity observer (Hannaford & Ryu) at the user's port, the handle: during the
@@ -491,6 +511,8 @@ void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) 
   out.engage = 0.0;
   out.braking = false;
   out.velocity_fault = false;
+  out.saturated = false;
+  out.joint_bounds = joint_bounds(q);
   out.gains = CouplingGains{};
   track_loop_delay(in);
   out.loop_delay = memory_.design_delay;
@@ -503,6 +525,7 @@ void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) 
 
   const Coupling coupling = degraded ? Coupling{} : client_wrench(in, frame, chain_, twist, out);
   const Vector6d saturated = saturate(coupling, in.client);
+  out.saturated = (saturated - (coupling.spring + coupling.damper)).squaredNorm() > kClipped;
   if (!degraded && out.fade > 0.0) {  // 0: no session, or its link lost
     out.fade = fade_of(in.client_silence, saturated);
   }

@@ -163,7 +163,7 @@ TEST_F(SessionTest, AnotherMajorVersionIsRefusedWithBothVersions) {
   EXPECT_EQ(client.reply.body.hcp_body_u.refuse.code, HCP_REFUSE_VERSION);
   EXPECT_EQ(client.reply.body.hcp_body_u.refuse.peer_version, protocol::make_version(2, 1));
   EXPECT_EQ(std::string(protocol::text_of(client.reply.body.hcp_body_u.refuse.reason)),
-            "protocol version mismatch: client 2.1 (oldest 2.1), controller 1.1");
+            "protocol version mismatch: client 2.1 (oldest 2.1), controller 1.2");
   EXPECT_EQ(session.counters().refused_version.load(), 1U);
 }
 
@@ -310,6 +310,17 @@ TEST_F(SessionTest, EveryParameterReachesVprOrCtrl) {
   apply(f);
   test::expect_reference_parameters(controller.vpr_now());
   EXPECT_FALSE(session.check_watchdog(client.now + 250 * kMs));
+  // 1.2: the frames in single precision land in the same fields.
+  f = client.param(HCP_P_BASE_FRAME_SP);
+  f.body.hcp_body_u.param.hcp_param_u.base_frame_sp[0] = 0.25F;
+  f.body.hcp_body_u.param.hcp_param_u.base_frame_sp[6] = 1.0F;
+  apply(f);
+  f = client.param(HCP_P_OBSERVATION_FRAME_SP);
+  f.body.hcp_body_u.param.hcp_param_u.observation_frame_sp[1] = -0.5F;
+  f.body.hcp_body_u.param.hcp_param_u.observation_frame_sp[6] = 1.0F;
+  apply(f);
+  EXPECT_EQ(controller.vpr_now().base_frame[0], 0.25);
+  EXPECT_EQ(controller.vpr_now().observation_frame[1], -0.5);
 
   f = client.param(HCP_P_POWER);
   f.body.hcp_body_u.param.hcp_param_u.power_on = 1;
@@ -321,7 +332,7 @@ TEST_F(SessionTest, EveryParameterReachesVprOrCtrl) {
   EXPECT_EQ(controller.drain(),
             (std::vector<shm::CtrlCode>{shm::CtrlCode::kPowerOn, shm::CtrlCode::kEmergencyStop,
                                         shm::CtrlCode::kEmergencyReset, shm::CtrlCode::kPowerOff}));
-  EXPECT_EQ(session.counters().params_applied.load(), 15U);
+  EXPECT_EQ(session.counters().params_applied.load(), 17U);
 }
 
 TEST_F(SessionTest, ARetransmittedParameterIsAcknowledgedAgainButAppliedOnce) {

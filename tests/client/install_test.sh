@@ -1,12 +1,19 @@
 #!/usr/bin/env bash
 # Installs the client package from a build tree into a temporary prefix, then builds the
-# example against it twice: with find_package(hapticctrl) and with pkg-config.
+# examples against it twice: with find_package(hapticctrl) and with pkg-config, and runs the
+# Virtuose application both builds made against the real controller and bridge.
 # Usage: install_test.sh <build dir> <source dir>
 set -euo pipefail
 build=$1
 source=$2
 work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
+pids=()
+cleanup() {
+  for pid in "${pids[@]}"; do kill -TERM "$pid" 2>/dev/null || true; done
+  for pid in "${pids[@]}"; do wait "$pid" 2>/dev/null || true; done
+  rm -rf "$work"
+}
+trap cleanup EXIT
 
 cmake --install "$build" --prefix "$work/prefix" >/dev/null
 test -f "$work/prefix/lib/cmake/hapticctrl/hapticctrlConfig.cmake"
@@ -19,11 +26,12 @@ if find "$work/prefix/include" -name 'hapticctrl_protocol.h' | grep -q .; then
   exit 1
 fi
 
-cmake -S "$source/client/examples/minimal" -B "$work/example" -G Ninja \
+cmake -S "$source/client/examples" -B "$work/example" -G Ninja \
   -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
 cmake --build "$work/example" >/dev/null
 test -x "$work/example/minimal_cpp"
 test -x "$work/example/minimal_c"
+test -x "$work/example/virtuose_app"
 "$work/example/c_api_from_cpp17" >/dev/null  # built at C++17, and runs
 # With nothing listening the C example must fail cleanly, naming the problem.
 if "$work/example/minimal_c" "127.0.0.1#9" 2>"$work/err"; then
@@ -35,10 +43,36 @@ grep -q "time out" "$work/err"
 export PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig"
 # shellcheck disable=SC2046
 cc -o "$work/minimal_pc" "$source/client/examples/minimal/minimal.c" $(pkg-config --cflags --libs hapticctrl)
+# shellcheck disable=SC2046
+cc -std=c11 -Wall -Wextra -Werror -o "$work/virtuose_app_pc" \
+  "$source/client/examples/virtuose_app/virtuose_app.c" $(pkg-config --cflags --libs hapticctrl) -lm
 # ... and runs as built, without LD_LIBRARY_PATH (the .pc file carries the rpath).
 if env -u LD_LIBRARY_PATH "$work/minimal_pc" "127.0.0.1#9" 2>"$work/err_pc"; then
   echo "minimal_pc connected to nothing" >&2
   exit 1
 fi
 grep -q "time out" "$work/err_pc" || { cat "$work/err_pc" >&2; exit 1; }
-echo "install test: find_package (C, C++20, C++17 on the C API) and pkg-config builds run"
+
+# The Virtuose application, built both ways, against the real controller and bridge.
+instance="install$$"
+"$build/rt_core/hapticctrl-core" --instance "$instance" --rt ignore --blackbox-dir "$work" \
+  --duration 60 >"$work/core.log" 2>&1 &
+pids+=($!)
+sleep 0.5
+"$build/bridges/udp/hapticctrl-udp" --instance "$instance" --port 0 >"$work/udp.log" 2>&1 &
+pids+=($!)
+port=""
+for _ in $(seq 100); do
+  port=$(sed -n 's/.*listening on 127\.0\.0\.1:\([0-9]*\).*/\1/p' "$work/udp.log" | head -1)
+  [ -n "$port" ] && break
+  sleep 0.05
+done
+[ -n "$port" ] || { cat "$work/core.log" "$work/udp.log" >&2; exit 1; }
+for app in "$work/example/virtuose_app" "$work/virtuose_app_pc"; do
+  env -u LD_LIBRARY_PATH "$app" "127.0.0.1#$port" || {
+    cat "$work/core.log" "$work/udp.log" >&2
+    exit 1
+  }
+done
+echo "install test: find_package (C, C++20, C++17 on the C API) and pkg-config builds run;" \
+  "the Virtuose application passes against the controller, built both ways"

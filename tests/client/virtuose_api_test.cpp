@@ -1,24 +1,24 @@
-// The VirtuoseAPI-style C API against the real controller and bridge.
+// The C API's sessions, errors and diagnostics against the real controller and bridge.
 #include "hapticctrl/virtuose_api.h"
 
 #include <gtest/gtest.h>
 
-#include <atomic>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 
-#include "hapticctrl/shm/segment.hpp"
 #include "support/controller_stack.hpp"
+#include "virtuose_session.hpp"
 
 namespace hapticctrl {
 namespace {
 
 using namespace std::chrono_literals;
 using test::ControllerStack;
-
-std::string url(const ControllerStack& stack) {
-  return "udpxdr://127.0.0.1:" + std::to_string(stack.port());
-}
+using test::VirtuoseSession;
 
 // H2: an application written against VirtuoseAPI 4.x compares these numbers (five differed).
 static_assert(COMMAND_TYPE_NONE == 0 && COMMAND_TYPE_IMPEDANCE == 3 && COMMAND_TYPE_VIRTMECH == 5 &&
@@ -26,7 +26,11 @@ static_assert(COMMAND_TYPE_NONE == 0 && COMMAND_TYPE_IMPEDANCE == 3 && COMMAND_T
 static_assert(VIRT_E_INVALID_CONTEXT == 3 && VIRT_E_TIME_OUT == 6 && VIRT_E_NOT_IMPLEMENTED == 7 &&
               VIRT_E_INCORRECT_VALUE == 9 && VIRT_E_WRONG_MODE == 17 &&
               VIRT_E_MODE_NOT_SUPPORTED == 18 && VIRT_E_INCOMPATIBLE_VERSION == 20 &&
-              VIRT_E_INCORRECT_VM_TYPE == 21);
+              VIRT_E_INCORRECT_VM_TYPE == 21 && VIRT_E_ALREADY_CALLED == 22);
+static_assert(INDEXING_ROT_FORCE_FEEDBACK_INHIBITION == 6 && INDEXING_ROT == 7 &&
+              VM_TYPE_Crank == 8 && GRIPPER_COMMAND_TYPE_IMPEDANCE == 2 && DEBUG_LOOP == 2);
+static_assert(VIRT_BOUND_SUP_AXE_2_3 == 0x2000 && VIRT_ALARM_SATURATE == 0x8000 &&
+              VIRT_ALARM_CALLBACK_OVERRUN == 0x20000 && VIRT_BREAKDOWN_MOTOR_8 == 0x80);
 
 TEST(VirtuoseApi, OpenFailuresHaveCodesAndDetails) {
   EXPECT_EQ(virtOpen(nullptr), nullptr);
@@ -39,104 +43,10 @@ TEST(VirtuoseApi, OpenFailuresHaveCodesAndDetails) {
   EXPECT_STREQ(virtGetErrorMessage(VIRT_E_WRONG_MODE), "wrong mode");
   EXPECT_STREQ(virtGetErrorMessage(VIRT_E_CONTROLLER_REFUSED), "controller refused");
   EXPECT_STREQ(virtGetErrorMessage(-5), "unknown error");
-  EXPECT_STREQ(virtGetErrorMessage(22), "unknown error");
+  EXPECT_STREQ(virtGetErrorMessage(22), "already called");
+  EXPECT_STREQ(virtGetErrorMessage(23), "unknown error");
   EXPECT_EQ(virtClose(nullptr), -1);
   EXPECT_EQ(virtGetErrorCode(nullptr), VIRT_E_INVALID_CONTEXT);
-}
-
-TEST(VirtuoseApi, ParametersStateAndModes) {
-  ControllerStack stack("capi");
-  ASSERT_TRUE(stack.ready()) << stack.diagnostics();
-  const std::string name = "127.0.0.1#" + std::to_string(stack.port());
-  VirtContext vc = virtOpen(name.c_str());
-  ASSERT_NE(vc, nullptr) << virtGetErrorDetail(nullptr);
-  float identity[7] = {0, 0, 0, 0, 0, 0, 1};    // NOLINT(*-avoid-c-arrays)
-  float inertia[3] = {0.001F, 0.001F, 0.001F};  // NOLINT(*-avoid-c-arrays)
-  EXPECT_EQ(virtSetTimeStep(vc, 0.002F), 0);
-  EXPECT_EQ(virtSetIndexingMode(vc, INDEXING_ALL), 0);
-  EXPECT_EQ(virtSetForceFactor(vc, 1.0F), 0);
-  EXPECT_EQ(virtSetSpeedFactor(vc, 1.0F), 0);
-  EXPECT_EQ(virtSetBaseFrame(vc, identity), 0);
-  EXPECT_EQ(virtSetObservationFrame(vc, identity), 0);
-  EXPECT_EQ(virtSaturateTorque(vc, 20.0F, 2.0F), 0);
-  EXPECT_EQ(virtSetTimeoutValue(vc, 0.2F), 0);
-  EXPECT_EQ(stack.vpr().watchdog_timeout_us, 200'000U);
-  EXPECT_DOUBLE_EQ(stack.vpr().force_limits[0], 20.0);
-
-  // H2: a getter right after a successful setter returns the new value.
-  float value = 0.0F;
-  EXPECT_EQ(virtGetTimeStep(vc, &value), 0);
-  EXPECT_FLOAT_EQ(value, 0.002F);
-  EXPECT_EQ(virtGetForceFactor(vc, &value), 0);
-  EXPECT_FLOAT_EQ(value, 1.0F);
-  EXPECT_EQ(virtSetSpeedFactor(vc, 0.5F), 0);
-  EXPECT_EQ(virtGetSpeedFactor(vc, &value), 0);
-  EXPECT_FLOAT_EQ(value, 0.5F);
-  EXPECT_EQ(virtGetTimeoutValue(vc, &value), 0);
-  EXPECT_FLOAT_EQ(value, 0.2F);
-  VirtIndexingType mode = INDEXING_NONE;
-  EXPECT_EQ(virtSetIndexingMode(vc, INDEXING_TRANS), 0);
-  EXPECT_EQ(virtGetIndexingMode(vc, &mode), 0);
-  EXPECT_EQ(mode, INDEXING_TRANS);
-  EXPECT_EQ(virtSetIndexingMode(vc, INDEXING_ALL), 0);
-  float shifted[7] = {0.1F, 0, 0, 0, 0, 0, 1};  // NOLINT(*-avoid-c-arrays)
-  float frame[7] = {};                          // NOLINT(*-avoid-c-arrays)
-  EXPECT_EQ(virtSetObservationFrame(vc, shifted), 0);
-  EXPECT_EQ(virtGetObservationFrame(vc, frame), 0);
-  EXPECT_FLOAT_EQ(frame[0], 0.1F);
-  EXPECT_FLOAT_EQ(frame[6], 1.0F);
-  EXPECT_EQ(virtGetBaseFrame(vc, frame), 0);
-  EXPECT_FLOAT_EQ(frame[0], 0.0F);
-  EXPECT_EQ(virtSetObservationFrame(vc, identity), 0);
-  int major = 0;
-  int minor = -1;
-  EXPECT_EQ(virtGetControlerVersion(vc, &major, &minor), 0);
-  EXPECT_EQ(major, 1);
-  EXPECT_GE(minor, 1);
-  EXPECT_EQ(virtGetTimeStep(vc, nullptr), -1);
-  EXPECT_EQ(virtGetErrorCode(vc), VIRT_E_INCORRECT_VALUE);
-
-  EXPECT_EQ(virtSetForceFactor(vc, -1.0F), -1);
-  EXPECT_EQ(virtGetErrorCode(vc), VIRT_E_INCORRECT_VALUE);
-  EXPECT_NE(std::string(virtGetErrorDetail(vc)).find("force factor"), std::string::npos);
-
-  float force[6] = {1, 0, 0, 0, 0, 0};  // NOLINT(*-avoid-c-arrays)
-  EXPECT_EQ(virtSetCommandType(vc, COMMAND_TYPE_ARTICULAR), -1);
-  EXPECT_EQ(virtGetErrorCode(vc), VIRT_E_MODE_NOT_SUPPORTED);
-  EXPECT_EQ(virtSetCommandType(vc, COMMAND_TYPE_VIRTMECH), 0);
-  EXPECT_EQ(stack.vpr().command_type, 2U) << "the protocol's VIRTMECH";
-  VirtCommandType type = COMMAND_TYPE_NONE;
-  EXPECT_EQ(virtGetCommandType(vc, &type), 0);
-  EXPECT_EQ(type, COMMAND_TYPE_VIRTMECH) << "not the refused ARTICULAR";
-  EXPECT_EQ(virtAddForce(vc, force), -1);
-  EXPECT_EQ(virtGetErrorCode(vc), VIRT_E_WRONG_MODE);
-  EXPECT_EQ(virtAttachVO(vc, 0.5F, inertia), 0);
-  EXPECT_EQ(stack.vpr().flags, 1U);
-  EXPECT_EQ(virtDetachVO(vc), 0);
-
-  EXPECT_EQ(virtSetPowerOn(vc, 1), 0);
-  int power = 0;
-  EXPECT_EQ(virtGetPowerOn(vc, &power), 0);
-  EXPECT_EQ(power, 1) << "a getter right after the setter reports the new value";
-  int operational = 0;
-  EXPECT_EQ(virtGetEmergencyStop(vc, &operational), 0);
-  EXPECT_EQ(operational, 1) << "Haption's meaning: 1 while the arm is operational";
-  float pose[7] = {};    // NOLINT(*-avoid-c-arrays)
-  float speed[6] = {};   // NOLINT(*-avoid-c-arrays)
-  float joints[6] = {};  // NOLINT(*-avoid-c-arrays)
-  EXPECT_EQ(virtGetPosition(vc, pose), 0);
-  EXPECT_NEAR(std::hypot(std::hypot(pose[3], pose[4]), std::hypot(pose[5], pose[6])), 1.0F, 1e-5F);
-  EXPECT_EQ(virtGetSpeed(vc, speed), 0);
-  EXPECT_EQ(virtGetForce(vc, force), 0);
-  EXPECT_EQ(virtGetArticularPosition(vc, joints), 0);
-  EXPECT_EQ(virtGetArticularSpeed(vc, joints), 0);
-  unsigned int age_us = 0;
-  EXPECT_EQ(virtGetTimeLastUpdate(vc, &age_us), 0);
-  EXPECT_LT(age_us, 1'000'000U);
-  EXPECT_EQ(virtGetPosition(vc, nullptr), -1);
-  EXPECT_EQ(virtClose(vc), 0);
-  EXPECT_TRUE(
-      ControllerStack::eventually([&] { return stack.link_stats().sessions_closed == 1U; }, 1s));
 }
 
 TEST(VirtuoseApi, OpenReturnsWithTheArmsPoseAndInvalidContextsAreRefusedWithoutACrash) {
@@ -168,71 +78,72 @@ TEST(VirtuoseApi, OpenReturnsWithTheArmsPoseAndInvalidContextsAreRefusedWithoutA
   EXPECT_EQ(virtGetErrorCode(nullptr), VIRT_E_INVALID_CONTEXT) << "not VIRT_E_INCORRECT_VALUE";
 }
 
-TEST(VirtuoseApi, PowerOnWithTheEmergencyStopLatchedFailsAndTheStopReadsNotOperational) {
-  ControllerStack stack("capiestop");
+TEST(VirtuoseApi, VersionsAxesAndTheLastErrorOfASession) {
+  int major = 0;
+  int minor = 0;
+  ASSERT_EQ(virtAPIVersion(&major, &minor), 0);
+  EXPECT_EQ(major, 4) << "the VirtuoseAPI level the header matches (4.04)";
+  EXPECT_EQ(minor, 4);
+  ControllerStack stack("capiversion");
   ASSERT_TRUE(stack.ready()) << stack.diagnostics();
-  const std::string name = "127.0.0.1#" + std::to_string(stack.port());
-  VirtContext vc = virtOpen(name.c_str());
-  ASSERT_NE(vc, nullptr) << virtGetErrorDetail(nullptr);
-  shm::Segment operator_side = shm::Segment::attach(stack.instance(), {.ctrl_writer = true});
-  operator_side.ctrl_writer().send(shm::CtrlCode::kEmergencyStop, 0, 0);
-  int operational = 1;
-  EXPECT_TRUE(ControllerStack::eventually(
-      [&] { return virtGetEmergencyStop(vc, &operational) == 0 && operational == 0; }));
-  // H2: it returned success while the power stayed off.
-  EXPECT_EQ(virtSetPowerOn(vc, 1), -1);
-  EXPECT_EQ(virtGetErrorCode(vc), VIRT_E_CONTROLLER_REFUSED);
-  EXPECT_NE(std::string(virtGetErrorDetail(vc)).find("emergency stop is latched"),
-            std::string::npos);
-  int power = 1;
-  EXPECT_EQ(virtGetPowerOn(vc, &power), 0);
-  EXPECT_EQ(power, 0);
-  operator_side.ctrl_writer().send(shm::CtrlCode::kEmergencyReset, 0, 0);
-  EXPECT_TRUE(ControllerStack::eventually(
-      [&] { return virtGetEmergencyStop(vc, &operational) == 0 && operational == 1; }));
-  EXPECT_EQ(virtSetPowerOn(vc, 1), 0) << virtGetErrorDetail(vc);
-  EXPECT_EQ(virtClose(vc), 0);
+  const VirtuoseSession vc(stack);
+  ASSERT_TRUE(vc.open()) << virtGetErrorDetail(nullptr);
+  ASSERT_EQ(virtGetControlerVersion(vc.get(), &major, &minor), 0);
+  EXPECT_EQ(major, 1);
+  EXPECT_EQ(minor, 2) << "the bridge's protocol, from its WELCOME";
+  int axes = 0;
+  ASSERT_EQ(virtGetNbAxes(vc.get(), &axes), 0);
+  EXPECT_EQ(axes, 6);
+  int error = -1;
+  ASSERT_EQ(virtGetError(vc.get(), &error), 0);
+  EXPECT_EQ(error, VIRT_E_NO_ERROR);
+  EXPECT_EQ(virtSetForceFactor(vc.get(), -2.0F), -1);
+  ASSERT_EQ(virtGetError(vc.get(), &error), 0);
+  EXPECT_EQ(error, VIRT_E_INCORRECT_VALUE);
+  EXPECT_EQ(virtGetError(nullptr, &error), -1);
 }
 
-struct LoopState {
-  std::atomic<int> calls{0};
-  float push = 3.0F;
-};
-
-void periodic(VirtContext vc, void* arg) {
-  auto* state = static_cast<LoopState*>(arg);
-  ++state->calls;
-  float force[6] = {state->push, 0, 0, 0, 0, 0};  // NOLINT(*-avoid-c-arrays)
-  float extra[6] = {1, 0, 0, 0, 0, 0};            // NOLINT(*-avoid-c-arrays)
-  virtSetForce(vc, force);
-  virtAddForce(vc, extra);
-}
-
-TEST(VirtuoseApi, PeriodicFunctionRendersImpedanceForces) {
-  ControllerStack stack("capiloop");
+TEST(VirtuoseApi, DebugLinesGoToTheOutputFileAndTheHardwareStatusIsTheControllers) {
+  ControllerStack stack("capidebug");
   ASSERT_TRUE(stack.ready()) << stack.diagnostics();
-  VirtContext vc = virtOpen(url(stack).c_str());
-  ASSERT_NE(vc, nullptr) << virtGetErrorDetail(nullptr);
-  EXPECT_EQ(virtStartLoop(vc), -1);  // no periodic function yet
-  LoopState state;
-  const float cycle_s = static_cast<float>(stack.period_us()) * 1e-6F;
-  float period = 2.2F * cycle_s;  // rounded to two controller cycles, and written back
-  ASSERT_EQ(virtSetPeriodicFunction(vc, periodic, &period, &state), 0);
-  EXPECT_FLOAT_EQ(period, 2.0F * cycle_s);
-  ASSERT_EQ(virtSetCommandType(vc, COMMAND_TYPE_IMPEDANCE), 0);
-  ASSERT_EQ(virtSetPowerOn(vc, 1), 0);
-  ASSERT_EQ(virtStartLoop(vc), 0);
-  EXPECT_TRUE(ControllerStack::eventually([&] {
-    return std::abs(stack.vpr().impedance_wrench[0] - 4.0) < 1e-6;  // virtSetForce + virtAddForce
-  }));
-  state.calls = 0;
-  std::this_thread::sleep_for(800ms);
-  EXPECT_EQ(virtStopLoop(vc), 0);
-  const int expected = 800'000 / (2 * stack.period_us());  // one call every two cycles
-  EXPECT_GT(state.calls.load(), expected / 2);
-  EXPECT_LT(state.calls.load(), expected * 3 / 2 + 2);
-  EXPECT_EQ(virtClose(vc), 0);
-}
+  const VirtuoseSession vc(stack);
+  ASSERT_TRUE(vc.open()) << virtGetErrorDetail(nullptr);
+  const std::filesystem::path log =
+      std::filesystem::temp_directory_path() / (stack.instance() + "-virtuose.log");
+  std::string name = log.string();
+  ASSERT_EQ(virtSetOutputFile(vc.get(), name.data()), 0) << vc.detail();
+  std::string missing = "/nonexistent-dir/x.log";
+  EXPECT_EQ(virtSetOutputFile(vc.get(), missing.data()), -1);
+  EXPECT_EQ(virtGetErrorCode(vc.get()), VIRT_E_FILE_NOT_FOUND);
+  EXPECT_EQ(virtSetDebugFlags(vc.get(), 0x4), -1) << "DEBUG_SERVO and DEBUG_LOOP only";
+  ASSERT_EQ(virtSetDebugFlags(vc.get(), DEBUG_SERVO | DEBUG_LOOP), 0);
+  float period = 0.01F;
+  ASSERT_EQ(virtSetPeriodicFunction(
+                vc.get(), [](VirtContext, void*) {}, &period, nullptr),
+            0);
+  ASSERT_EQ(virtStartLoop(vc.get()), 0);
+  std::this_thread::sleep_for(200ms);
+  ASSERT_EQ(virtStopLoop(vc.get()), 0);
+  ASSERT_EQ(virtSetDebugFlags(vc.get(), 0), 0);
+  std::ifstream in(log);
+  std::stringstream text;
+  text << in.rdbuf();
+  EXPECT_NE(text.str().find("virtuose servo: cycle "), std::string::npos) << text.str();
+  EXPECT_NE(text.str().find("virtuose loop: cycle "), std::string::npos) << text.str();
+  std::filesystem::remove(log);
 
+  char* buffer = nullptr;
+  std::size_t size = 0;
+  FILE* status = open_memstream(&buffer, &size);
+  ASSERT_NE(status, nullptr);
+  EXPECT_EQ(virtDisplayHardwareStatus(vc.get(), status), 0);
+  std::fclose(status);
+  const std::string shown(buffer, size);
+  free(buffer);  // NOLINT(*-no-malloc,*-owning-memory): open_memstream's
+  EXPECT_NE(shown.find("protocol 1.2"), std::string::npos) << shown;
+  EXPECT_NE(shown.find("core running"), std::string::npos) << shown;
+  EXPECT_NE(shown.find("power off"), std::string::npos) << shown;
+  EXPECT_EQ(virtDisplayHardwareStatus(vc.get(), nullptr), -1);
+}
 }  // namespace
 }  // namespace hapticctrl

@@ -46,7 +46,7 @@ hcp_frame object_frame() {
 
 TEST(Codec, KeepaliveGoldenBytes) {
   const auto bytes = encoded(make_frame(HCP_KEEPALIVE, kToken, 42, 1'000'000'000));
-  EXPECT_EQ(hex(bytes), "484354500001000101020304050607080000002a000000003b9aca000000000684eff7b4");
+  EXPECT_EQ(hex(bytes), "484354500001000201020304050607080000002a000000003b9aca0000000006b10241e7");
 }
 
 TEST(Codec, ControlObjectGoldenBytesAndSize) {
@@ -54,9 +54,9 @@ TEST(Codec, ControlObjectGoldenBytesAndSize) {
   EXPECT_EQ(bytes.size(), 88U);
   EXPECT_LE(bytes.size(), kControlMaxBytes);
   EXPECT_EQ(hex(bytes),
-            "484354500001000101020304050607080000002b0000000077359400000000043dcccccd3e4ccccd3e"
+            "484354500001000201020304050607080000002b0000000077359400000000043dcccccd3e4ccccd3e"
             "99999a0000000000000000000000003f8000003f000000000000000000000000000000000000003e80"
-            "00003d97a5c3");
+            "0000a4d742ac");
 }
 
 TEST(Codec, ControlWrenchGoldenBytes) {
@@ -66,8 +66,8 @@ TEST(Codec, ControlWrenchGoldenBytes) {
   const auto bytes = encoded(f);
   EXPECT_EQ(bytes.size(), 60U);
   EXPECT_EQ(hex(bytes),
-            "484354500001000101020304050607080000002c0000000000000003000000053f800000c00000004040"
-            "000000000000000000003f0000002d2bd014");
+            "484354500001000201020304050607080000002c0000000000000003000000053f800000c00000004040"
+            "000000000000000000003f00000067b2a760");
 }
 
 TEST(Codec, ParamGoldenBytes) {
@@ -75,8 +75,26 @@ TEST(Codec, ParamGoldenBytes) {
   f.body.hcp_body_u.param.id = HCP_P_TIME_STEP;
   f.body.hcp_body_u.param.hcp_param_u.time_step = 0.001;
   EXPECT_EQ(hex(encoded(f)),
-            "4843545000010001010203040506070800000007000000000000000400000008000000013f50624dd2f1a9"
-            "fc5e8c69bd");
+            "4843545000010002010203040506070800000007000000000000000400000008000000013f50624dd2f1a9"
+            "fc04ed56dd");
+}
+
+TEST(Codec, EveryParameterA12ClientSendsFitsInNinetyBytes) {
+  // H2: PARAM BASE_FRAME and OBSERVATION_FRAME in double precision made 96 bytes; 1.2 clients
+  // send them as _SP (68). The double forms stay decodable for 1.1 clients.
+  for (int id = HCP_P_TIME_STEP; id <= HCP_P_OBSERVATION_FRAME_SP; ++id) {
+    hcp_frame f = make_frame(HCP_PARAM, kToken, 7, 4);
+    f.body.hcp_body_u.param.id = static_cast<hcp_param_id>(id);
+    const std::size_t n = encoded(f).size();
+    if (id == HCP_P_BASE_FRAME || id == HCP_P_OBSERVATION_FRAME) {
+      EXPECT_EQ(n, 96U) << id;
+    } else {
+      EXPECT_LE(n, kControlMaxBytes) << "parameter " << id;
+    }
+  }
+  hcp_frame f = make_frame(HCP_PARAM, kToken, 7, 4);
+  f.body.hcp_body_u.param.id = HCP_P_BASE_FRAME_SP;
+  EXPECT_EQ(encoded(f).size(), 68U);
 }
 
 TEST(Codec, EveryControlFrameFitsTheSeedLimit) {

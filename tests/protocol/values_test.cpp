@@ -40,10 +40,17 @@ TEST(Values, EachParameterHasItsRange) {
   p.hcp_param_u.speed_factor = std::numeric_limits<double>::infinity();
   EXPECT_TRUE(check_param(p));
   p = param(HCP_P_INDEXING_MODE);
-  p.hcp_param_u.indexing_mode = 5;
+  p.hcp_param_u.indexing_mode = 7;  // VirtuoseAPI's: 0-4, 6 and 7
   EXPECT_FALSE(check_param(p));
-  p.hcp_param_u.indexing_mode = 6;
+  p.hcp_param_u.indexing_mode = 5;
+  EXPECT_EQ(check_param(p).value_or(""), "indexing mode: 0 to 4, 6 or 7 (VirtuoseAPI's)");
+  p.hcp_param_u.indexing_mode = 8;
   EXPECT_TRUE(check_param(p));
+  p = param(HCP_P_BASE_FRAME_SP);
+  p.hcp_param_u.base_frame_sp[6] = 1.0F;
+  EXPECT_FALSE(check_param(p));
+  p.hcp_param_u.base_frame_sp[6] = 2.0F;
+  EXPECT_TRUE(check_param(p)) << "not a unit quaternion";
   p = param(HCP_P_COMMAND_TYPE);
   p.hcp_param_u.command_type = 3;
   EXPECT_TRUE(check_param(p));

@@ -111,6 +111,52 @@ TEST(ServoLaw, WrenchIsSaturatedToTheDeviceAndClientLimits) {
   EXPECT_NEAR(out.handle_wrench.tail<3>().norm(), 0.5, 1e-9);
 }
 
+TEST(ServoLaw, AClippedWrenchIsFlaggedSaturatedAndAnUnclippedOneIsNot) {
+  ServoLaw law(default_dynamics());
+  ServoInputs in = powered_at(kReady);
+  in.client.session_id = 1;
+  in.client.command_type = static_cast<std::uint32_t>(shm::CommandType::kImpedance);
+  in.client.impedance_wrench = {10, 0, 0, 0, 0, 1};
+  in.client_valid = true;
+  ServoOutputs out;
+  law.compute(in, false, out);
+  EXPECT_FALSE(out.saturated) << "10 N and 1 N.m are within 35 N and 3 N.m";
+  in.client.impedance_wrench = {0, 0, 0, 0, 0, 3.5};
+  law.compute(in, false, out);
+  EXPECT_TRUE(out.saturated) << "3.5 N.m over the 3 N.m peak";
+  in.client.impedance_wrench = {4, 0, 0, 0, 0, 0};
+  in.client.force_limits = {3.0, 0.0};
+  law.compute(in, false, out);
+  EXPECT_TRUE(out.saturated) << "over the client's own 3 N limit (virtSaturateTorque)";
+  in.logical.powered = false;
+  law.compute(in, false, out);
+  EXPECT_FALSE(out.saturated) << "unpowered: nothing rendered, nothing clipped";
+}
+
+TEST(ServoLaw, JointBoundsNameTheJointsInTheirWallsAndTheJ23Sum) {
+  ServoLaw law(default_dynamics());
+  ServoOutputs out;
+  law.compute(powered_at(kReady), false, out);
+  EXPECT_EQ(out.joint_bounds, 0U) << "the ready pose is clear of every wall";
+  Vector6d q = kReady;
+  q(0) = -2.39;  // joint 1: limits -2.4 2.4, wall margin 0.05 rad
+  q(5) = 2.58;   // joint 6: limits -2.6 2.6
+  law.compute(powered_at(q), false, out);
+  EXPECT_EQ(out.joint_bounds,
+            shm::state_bits::joint_bound(0, false) | shm::state_bits::joint_bound(5, true));
+  q = kReady;
+  q(1) = 0.58;  // joint 2 in its upper wall (limit 0.6), the J2 + J3 sum 2.18 in its (2.2)
+  q(2) = 1.6;
+  law.compute(powered_at(q), false, out);
+  EXPECT_EQ(out.joint_bounds,
+            shm::state_bits::joint_bound(1, true) | shm::state_bits::joint_bound(6, true));
+  q(1) = -1.0;  // the sum -0.7 in its lower wall (-0.6), each joint clear of its own
+  q(2) = 0.3;
+  law.compute(powered_at(q), false, out);
+  EXPECT_EQ(out.joint_bounds, shm::state_bits::joint_bound(6, false));
+  EXPECT_EQ(out.joint_bounds & ~shm::state_bits::kJointBoundsMask, 0U);
+}
+
 TEST(ServoLaw, GainsFollowObjectMassAndTimeStepWithinDeviceBounds) {
   ServoLaw law(default_dynamics());
   shm::VprPayload c;

@@ -355,6 +355,12 @@ hcp_ack_status Session::apply(const hcp_param& param, TimeNs now) noexcept {
     case HCP_P_OBSERVATION_FRAME:
       protocol::from_wire(u.observation_frame, vpr_.observation_frame);
       break;
+    case HCP_P_BASE_FRAME_SP:
+      protocol::from_wire(u.base_frame_sp, vpr_.base_frame);
+      break;
+    case HCP_P_OBSERVATION_FRAME_SP:
+      protocol::from_wire(u.observation_frame_sp, vpr_.observation_frame);
+      break;
     case HCP_P_INDEXING_MODE:
       vpr_.indexing_mode = u.indexing_mode;
       break;

@@ -2,33 +2,52 @@
 #define HAPTICCTRL_VIRTUOSE_API_H
 /**
  * @file virtuose_api.h
- * A C API with the VirtuoseAPI calling conventions, so that existing Virtuose applications port
- * to hapticctrl with little change. Every function returns 0 on success and -1 on error (the
- * error then has a code, virtGetErrorCode(), and a detailed text, virtGetErrorDetail()).
- * Poses are float[7] {x, y, z, qx, qy, qz, qw}, speeds and forces float[6] {linear, angular},
- * SI units, in the environment (observation) frame.
+ * hapticctrl's C API: every function, type and constant of Haption's VirtuoseAPI 4.x under its
+ * names and numeric values, so that a Virtuose application builds against hapticctrl with
+ * another include path and link line ("VirtuoseAPI.h" and "virtuoseAPI.h" include this file).
+ * docs/virtuose_api.md gives each function's status and meaning here.
  *
- * Real-time contract: virtOpen, virtClose and every virtSet* of a parameter block (a reliable
- * exchange with the controller, bounded by the timeout); virtGet*, virtSetPosition,
- * virtSetSpeed, virtSetForce and virtAddForce do not allocate and are safe in the application's
- * cycle: the only lock they take is the context registry's, which virtOpen and virtClose hold
- * for one set insertion or removal (it is what recognises a closed or foreign context).
+ * Conventions: every int function returns 0 on success and -1 on error; the error then has a
+ * code (virtGetErrorCode), a static text (virtGetErrorMessage) and, a hapticctrl extension, a
+ * detailed one (virtGetErrorDetail). Poses are float[7] {x, y, z, qx, qy, qz, qw}, speeds and
+ * forces float[6] {linear, angular}, SI units, in the application's environment frame.
+ * Functions for hardware the simulated arm has not (buttons, dead-man, analog and digital I/O,
+ * additional axes, gripper, trackball) fail with VIRT_E_VARIABLE_NOT_AVAILABLE and zero their
+ * outputs; features the controller has not (speed control, articular and texture commands,
+ * trajectories, virtual mechanisms, catch frame) fail with VIRT_E_NOT_IMPLEMENTED.
  *
- * Differences from VirtuoseAPI: control frames carry either the object state (VIRTMECH) or a
- * wrench (IMPEDANCE), so virtAddForce needs COMMAND_TYPE_IMPEDANCE; the periodic function is
- * paced by the controller's answer stream (its period rounded to a multiple of the cycle).
+ * Real-time contract: virtOpen, virtClose, virtSetPowerOn and every setter of a parameter (a
+ * reliable exchange with the controller, bounded by the timeout) block; so do virtSetOutputFile
+ * and virtDisplayHardwareStatus (file I/O). Every other function (the getters, virtSetPosition,
+ * virtSetSpeed, virtSetForce, virtAddForce, virtForceShiftButton, the conversions) allocates
+ * nothing and is safe in the application's cycle and its periodic function: the only lock they
+ * take is the context registry's, which virtOpen and virtClose hold for one set insertion or
+ * removal (it is what recognises a closed or foreign context).
+ *
+ * Differences from Haption's library: control frames carry either the object state (VIRTMECH)
+ * or a wrench (IMPEDANCE), so virtAddForce needs COMMAND_TYPE_IMPEDANCE; the periodic function
+ * is paced by the controller's answers (its period a multiple of the controller's cycle);
+ * indexing is done in this library, shifted by virtForceShiftButton (the arm has no shift button).
  */
+#include <stdio.h> /* FILE, for virtDisplayHardwareStatus */
+
 #ifdef __cplusplus
 extern "C" {
 #endif
 
 /* The names are VirtuoseAPI's, kept for source compatibility. */
-/* NOLINTBEGIN(readability-identifier-naming) */
-typedef struct VirtContextS* VirtContext;
+/* NOLINTBEGIN(readability-identifier-naming,modernize-use-using) */
 
-/* Command types, with VirtuoseAPI 4.x's values. hapticctrl's controller has NONE, IMPEDANCE
- * (the application sends a wrench) and VIRTMECH (it sends a virtual object's state); the others
- * are refused with VIRT_E_MODE_NOT_SUPPORTED. */
+/** A session handle, as VirtuoseAPI's: an opaque pointer. A closed or foreign one is recognised
+ *  (VIRT_E_INVALID_CONTEXT), never dereferenced. */
+typedef void* VirtContext;
+/** The periodic function: called with the context and the argument given to
+ *  virtSetPeriodicFunction. */
+typedef void (*VirtPeriodicFunction)(VirtContext, void*);
+
+/** Command types, VirtuoseAPI's values. The controller has NONE, IMPEDANCE (the application sends
+ *  a wrench) and VIRTMECH (it sends a virtual object's state); the others are refused with
+ *  VIRT_E_MODE_NOT_SUPPORTED (JOINT, CARTESIAN and ADMITTANCE are 3.x's). */
 typedef enum {
   COMMAND_TYPE_NONE = 0,
   COMMAND_TYPE_JOINT = 1,
@@ -40,16 +59,42 @@ typedef enum {
   COMMAND_TYPE_ARTICULAR_IMPEDANCE = 7
 } VirtCommandType;
 
+/** Gripper command types (the simulated arm has no gripper: VIRT_E_VARIABLE_NOT_AVAILABLE). */
+typedef enum {
+  GRIPPER_COMMAND_TYPE_NONE = 0,
+  GRIPPER_COMMAND_TYPE_POSITION = 1,
+  GRIPPER_COMMAND_TYPE_IMPEDANCE = 2
+} VirtGripperCommandType;
+
+/** What a shift (virtForceShiftButton) indexes, and whether forces stop meanwhile. */
 typedef enum {
   INDEXING_ALL = 0,
   INDEXING_TRANS = 1,
   INDEXING_NONE = 2,
   INDEXING_ALL_FORCE_FEEDBACK_INHIBITION = 3,
   INDEXING_TRANS_FORCE_FEEDBACK_INHIBITION = 4,
-  INDEXING_NONE_FORCE_FEEDBACK_INHIBITION = 5
+  INDEXING_ROT_FORCE_FEEDBACK_INHIBITION = 6,
+  INDEXING_ROT = 7
 } VirtIndexingType;
 
-/* Error codes, with VirtuoseAPI 4.x's names and values. */
+/** Virtual mechanism types (virtual mechanisms are not implemented). */
+typedef enum {
+  VM_TYPE_CartMotion = 0,
+  VM_TYPE_Spline = 1,
+  VM_TYPE_Rx = 2,
+  VM_TYPE_Tx = 3,
+  VM_TYPE_TxRx = 4,
+  VM_TYPE_TxTyTz = 5,
+  VM_TYPE_RxRyRz = 6,
+  VM_TYPE_TxTy = 7,
+  VM_TYPE_Crank = 8
+} VirtVmType;
+
+/* virtSetDebugFlags: what is written to the output file (virtSetOutputFile, else stderr). */
+#define DEBUG_SERVO 0x0001 /**< one line per controller answer */
+#define DEBUG_LOOP 0x0002  /**< one line per periodic function call */
+
+/* Error codes, VirtuoseAPI's names and values. */
 #define VIRT_E_NO_ERROR 0
 #define VIRT_E_OUT_OF_MEMORY 1
 #define VIRT_E_COMMUNICATION_FAILURE 2
@@ -72,85 +117,270 @@ typedef enum {
 #define VIRT_E_CALL_TIME 19
 #define VIRT_E_INCOMPATIBLE_VERSION 20
 #define VIRT_E_INCORRECT_VM_TYPE 21
+#define VIRT_E_ALREADY_CALLED 22
 /* hapticctrl's own, beyond VirtuoseAPI's range: another client holds the controller; the
  * controller refused a command (e.g. power on while the emergency stop is latched). */
 #define VIRT_E_VIRTUOSE_BUSY 100
 #define VIRT_E_CONTROLLER_REFUSED 101
 
+/* virtIsInBounds: the joints in their walls (lower limit: LEFT or INF, upper: RIGHT or SUP). */
+#define VIRT_BOUND_LEFT_AXE_1 0x0001
+#define VIRT_BOUND_RIGHT_AXE_1 0x0002
+#define VIRT_BOUND_SUP_AXE_2 0x0004
+#define VIRT_BOUND_INF_AXE_2 0x0008
+#define VIRT_BOUND_SUP_AXE_3 0x0010
+#define VIRT_BOUND_INF_AXE_3 0x0020
+#define VIRT_BOUND_RIGHT_AXE_4 0x0040
+#define VIRT_BOUND_LEFT_AXE_4 0x0080
+#define VIRT_BOUND_SUP_AXE_5 0x0100
+#define VIRT_BOUND_INF_AXE_5 0x0200
+#define VIRT_BOUND_LEFT_AXE_6 0x0400
+#define VIRT_BOUND_RIGHT_AXE_6 0x0800
+#define VIRT_BOUND_INF_AXE_2_3 0x1000
+#define VIRT_BOUND_SUP_AXE_2_3 0x2000
+
+/* virtGetAlarm. */
+#define VIRT_ALARM_OVERHEAT 0x00004000
+#define VIRT_ALARM_SATURATE 0x00008000
+#define VIRT_ALARM_CALLBACK_OVERRUN 0x00020000
+#define VIRT_ALARM_ERROR_POSITION 0x00040000
+#define VIRT_ALARM_LOW_BATTERY 0x00100000
+
+/* virtGetFailure (per-motor failures: not reported by the controller). */
+#define VIRT_BREAKDOWN_MOTOR_1 0x0001
+#define VIRT_BREAKDOWN_MOTOR_2 0x0002
+#define VIRT_BREAKDOWN_MOTOR_3 0x0004
+#define VIRT_BREAKDOWN_MOTOR_4 0x0008
+#define VIRT_BREAKDOWN_MOTOR_5 0x0010
+#define VIRT_BREAKDOWN_MOTOR_6 0x0020
+#define VIRT_BREAKDOWN_MOTOR_7 0x0040
+#define VIRT_BREAKDOWN_MOTOR_8 0x0080
+
+/* VirtuoseAPI's other names of three functions. */
+#define virtConvertDisplToTransformationMatrix virtConvertDeplToHomogeneMatrix
+#define virtConvertTransformationMatrixToDispl virtConvertHomogeneMatrixToDepl
+#define virtGetDigitalInputs virtGetTorInputs
+
+/* --- session ------------------------------------------------------------------------------- */
+
 /** Opens a session: "udpxdr://host:port", "host#port" or "host". Returns once the controller's
  *  first answer has arrived (the getters then report the arm), NULL on failure (VIRT_E_TIME_OUT
- *  when no answer came within 2 s). */
-VirtContext virtOpen(const char* name);
-int virtClose(VirtContext vc);
-
-int virtSetTimeStep(VirtContext vc, float step);
-int virtSetIndexingMode(VirtContext vc, VirtIndexingType mode);
-int virtSetForceFactor(VirtContext vc, float factor);
-int virtSetSpeedFactor(VirtContext vc, float factor);
-int virtSetBaseFrame(VirtContext vc, float* pos);
-int virtSetObservationFrame(VirtContext vc, float* pos);
-int virtSetCommandType(VirtContext vc, VirtCommandType type);
-int virtAttachVO(VirtContext vc, float mass, float* mxmymz);
-int virtDetachVO(VirtContext vc);
-/** Returns once the controller has switched the power (virtGetPowerOn then says so), or -1:
- *  VIRT_E_CONTROLLER_REFUSED while the emergency stop is latched, VIRT_E_TIME_OUT. Called from
- *  the periodic function it returns at the acknowledgement (the next answers show it). */
-int virtSetPowerOn(VirtContext vc, int power);
-int virtSetTimeoutValue(VirtContext vc, float seconds);
-int virtSaturateTorque(VirtContext vc, float force_threshold, float moment_threshold);
-
-/** VIRTMECH: the virtual object's pose; sent at once (with the last speed) unless a loop runs,
- *  in which case it goes out after the periodic function returns. */
-int virtSetPosition(VirtContext vc, float* pos);
-/** VIRTMECH: the virtual object's speed, sent with the next position. */
-int virtSetSpeed(VirtContext vc, float* speed);
-/** IMPEDANCE: the wrench to render; sent at once unless a loop runs. */
-int virtSetForce(VirtContext vc, float* force);
-/** IMPEDANCE: adds to the wrench of this cycle. */
-int virtAddForce(VirtContext vc, float* force);
-
-int virtGetPosition(VirtContext vc, float* pos);
-int virtGetSpeed(VirtContext vc, float* speed);
-int virtGetForce(VirtContext vc, float* force);
-int virtGetArticularPosition(VirtContext vc, float* pos);
-int virtGetArticularSpeed(VirtContext vc, float* speed);
-int virtGetPowerOn(VirtContext vc, int* power);
-/** As Haption's: 1 while the arm is operational (emergency stop not latched, controller
- *  answering), 0 otherwise. */
-int virtGetEmergencyStop(VirtContext vc, int* emergency_stop);
-/** Microseconds since the last controller answer arrived. */
-int virtGetTimeLastUpdate(VirtContext vc, unsigned int* time);
-
-/* The parameters as the controller acknowledged them: a getter right after a successful setter
- * returns the new value. Before any setter: time step 0 (the controller's answers pace the
- * application), factors 1, INDEXING_ALL, identity frames, COMMAND_TYPE_NONE. The timeout is the
- * watchdog in force (the bridge may cap what was asked). */
-int virtGetTimeStep(VirtContext vc, float* step);
-int virtGetIndexingMode(VirtContext vc, VirtIndexingType* indexing_mode);
-int virtGetForceFactor(VirtContext vc, float* force_factor);
-int virtGetSpeedFactor(VirtContext vc, float* speed_factor);
-int virtGetBaseFrame(VirtContext vc, float* base);
-int virtGetObservationFrame(VirtContext vc, float* obs);
-int virtGetCommandType(VirtContext vc, VirtCommandType* type);
-int virtGetTimeoutValue(VirtContext vc, float* time_value);
+ *  when no answer came within 2 s). Blocks. */
+VirtContext virtOpen(const char* nom);
+/** Stops the loop, says goodbye (acknowledged) and frees the context. Blocks. */
+int virtClose(VirtContext VC);
+/** The VirtuoseAPI level this library implements: 4.04 (major 4, minor 4). */
+int virtAPIVersion(int* major, int* minor);
 /** The controller's protocol version (major, minor), as its WELCOME said. */
-int virtGetControlerVersion(VirtContext vc, int* major, int* minor);
+int virtGetControlerVersion(VirtContext VC, int* major, int* minor);
+/** The number of joints the controller's answers carry (6). */
+int virtGetNbAxes(VirtContext VC, int* nbAxes);
+/** Not available: the controller does not say the device's type and serial number. */
+int virtGetDeviceID(VirtContext VC, int* device_type, int* serial_number);
+/** Not implemented: one session controls the arm; there is no observation-only session. */
+int virtDisableControlConnexion(VirtContext VC, int disable);
 
-/** The periodic function runs after each controller answer, every `*period` seconds. */
-int virtSetPeriodicFunction(VirtContext vc, void (*fn)(VirtContext, void*), float* period,
-                            void* arg);
-int virtStartLoop(VirtContext vc);
-/** Not from inside the periodic function. */
-int virtStopLoop(VirtContext vc);
+/* --- errors -------------------------------------------------------------------------------- */
 
-/** The last error of `vc` (or, when vc is NULL, closed or unknown, the calling thread's: its
+/** The last error of `VC` (or, when VC is NULL, closed or unknown, the calling thread's: its
  *  last virtOpen or its call with an invalid context, VIRT_E_INVALID_CONTEXT). */
-int virtGetErrorCode(VirtContext vc);
+int virtGetErrorCode(VirtContext VC);
+/** The same into `*error`; returns 0 for a live context. */
+int virtGetError(VirtContext VC, int* error);
 /** A static text for an error code. */
 char* virtGetErrorMessage(int code);
 /** hapticctrl extension: the detailed text of the last error (the controller's reason). */
-const char* virtGetErrorDetail(VirtContext vc);
-/* NOLINTEND(readability-identifier-naming) */
+const char* virtGetErrorDetail(VirtContext VC);
+
+/* --- parameters: acknowledged by the controller; a getter after a successful setter returns
+ * the new value. Before any setter: time step 0 (the controller's answers pace the
+ * application), factors 1, INDEXING_ALL, identity frames, COMMAND_TYPE_NONE. ---------------- */
+
+int virtSetTimeStep(VirtContext VC, float step);
+int virtGetTimeStep(VirtContext VC, float* step);
+int virtSetIndexingMode(VirtContext VC, VirtIndexingType indexing_mode);
+int virtGetIndexingMode(VirtContext VC, VirtIndexingType* indexing_mode);
+int virtSetForceFactor(VirtContext VC, float force_factor);
+int virtGetForceFactor(VirtContext VC, float* force_factor);
+int virtSetSpeedFactor(VirtContext VC, float speed_factor);
+int virtGetSpeedFactor(VirtContext VC, float* speed_factor);
+/** The arm's base in the environment frame. */
+int virtSetBaseFrame(VirtContext VC, float* base);
+int virtGetBaseFrame(VirtContext VC, float* base);
+int virtSetObservationFrame(VirtContext VC, float* obs);
+int virtGetObservationFrame(VirtContext VC, float* obs);
+/** Not implemented: the observation frame does not move. */
+int virtSetObservationFrameSpeed(VirtContext VC, float* speed);
+int virtSetCommandType(VirtContext VC, VirtCommandType type);
+int virtGetCommandType(VirtContext VC, VirtCommandType* type);
+/** Not available: no gripper. */
+int virtSetGripperCommandType(VirtContext VC, VirtGripperCommandType type);
+/** The watchdog: the controller fades the coupling out when the application is silent this
+ *  long. The getter gives the one in force (the bridge may cap what was asked). */
+int virtSetTimeoutValue(VirtContext VC, float time_value);
+int virtGetTimeoutValue(VirtContext VC, float* time_value);
+/** Lower force [N] and torque [N.m] limits than the device's (0: the device's). */
+int virtSaturateTorque(VirtContext VC, float forceThreshold, float momentThreshold);
+/** Not implemented: the handle point is the arm model's. */
+int virtSetCatchFrame(VirtContext VC, float* frame);
+int virtGetCatchFrame(VirtContext VC, float* frame);
+/** DEBUG_SERVO and/or DEBUG_LOOP lines to the output file; 0 stops them. */
+int virtSetDebugFlags(VirtContext VC, unsigned short flag);
+/** Where the debug lines go (appended); NULL: back to stderr. VIRT_E_FILE_NOT_FOUND if it
+ *  cannot be opened. */
+int virtSetOutputFile(VirtContext VC, char* name);
+
+/* --- the virtual object (VIRTMECH) ---------------------------------------------------------- */
+
+/** Couples the application's object, of this mass [kg] and principal inertia [kg.m^2]. */
+int virtAttachVO(VirtContext VC, float mass, float* mxmymz);
+/** The same: the object is coupled to the avatar (the handle as indexing moved it). */
+int virtAttachVOAvatar(VirtContext VC, float mass, float* mxmymz);
+/** A quasi-static object: no mass, coupled with stiffness Ks and damping Bs, each {rotation x3,
+ *  translation x3} as VirtuoseAPI orders them. The coupling is isotropic: the smallest of each
+ *  three is used, and the controller may lower it further to stay stable over the link. */
+int virtAttachQSVO(VirtContext VC, float* Ks, float* Bs);
+int virtDetachVO(VirtContext VC);
+int virtDetachVOAvatar(VirtContext VC);
+/** The coupling stiffness / damping in force, float[6] in virtAttachQSVO's order (0 while not
+ *  coupled). */
+int virtGetSimulationStiffness(VirtContext VC, float* stiffness);
+int virtGetSimulationDamping(VirtContext VC, float* damping);
+
+/* --- power ------------------------------------------------------------------------------------ */
+
+/** Returns once the controller has switched the power (virtGetPowerOn then says so), or -1:
+ *  VIRT_E_CONTROLLER_REFUSED while the emergency stop is latched, VIRT_E_TIME_OUT. Called from
+ *  the periodic function it returns at the acknowledgement (the next answers show it). */
+int virtSetPowerOn(VirtContext VC, int power);
+int virtGetPowerOn(VirtContext VC, int* power);
+/** As Haption's: 1 while the arm is operational (emergency stop not latched, controller
+ *  answering), 0 otherwise. */
+int virtGetEmergencyStop(VirtContext VC, int* emergency_stop);
+/** 0: the application's forces are not rendered (zero wrench, or the object follows the
+ *  handle); 1 (the default): they are. */
+int virtEnableForceFeedback(VirtContext VC, int enable);
+
+/* --- commands, per cycle -------------------------------------------------------------------- */
+
+/** VIRTMECH: the virtual object's pose; sent at once (with the last speed) unless a loop runs,
+ *  in which case it goes out after the periodic function returns. */
+int virtSetPosition(VirtContext VC, float* pos);
+/** VIRTMECH: the virtual object's speed, sent with the next position. */
+int virtSetSpeed(VirtContext VC, float* speed);
+/** IMPEDANCE: the wrench to render; sent at once unless a loop runs. */
+int virtSetForce(VirtContext VC, float* force);
+/** IMPEDANCE: adds to the wrench of this cycle. */
+int virtAddForce(VirtContext VC, float* force);
+
+/* --- state, per cycle: the latest controller answer ----------------------------------------- */
+
+/** The avatar: the handle as indexing moved it (virtForceShiftButton), environment frame. */
+int virtGetPosition(VirtContext VC, float* pos);
+int virtGetAvatarPosition(VirtContext VC, float* pos);
+int virtGetSpeed(VirtContext VC, float* speed);
+/** The handle itself, without indexing. */
+int virtGetPhysicalPosition(VirtContext VC, float* pos);
+int virtGetPhysicalSpeed(VirtContext VC, float* speed);
+/** VIRTMECH: the wrench the coupling applies to the virtual object. */
+int virtGetForce(VirtContext VC, float* force);
+int virtGetArticularPosition(VirtContext VC, float* pos);
+int virtGetArticularSpeed(VirtContext VC, float* speed);
+/** Microseconds since the last controller answer arrived. */
+int virtGetTimeLastUpdate(VirtContext VC, unsigned int* time);
+/** VIRT_ALARM_SATURATE (the controller clipped the wrench in the last answer),
+ *  VIRT_ALARM_CALLBACK_OVERRUN (the periodic function outlasted its period since the last
+ *  call of virtGetAlarm). The simulated arm has no temperature, battery or position error. */
+int virtGetAlarm(VirtContext VC, unsigned int* alarm);
+/** Not available: the controller reports arm faults as a fail-safe, not per motor. */
+int virtGetFailure(VirtContext VC, unsigned int* error);
+/** VIRT_BOUND_* bits of the joints in their walls, from the controller's answer. */
+int virtIsInBounds(VirtContext VC, unsigned int* bounds);
+/** 1 while shifted (indexing under way), 0 otherwise. */
+int virtIsInShiftPosition(VirtContext VC, int* decalage);
+/** Presses (1) or releases (0) the shift: while pressed the avatar keeps still on the indexed
+ *  axes (virtSetIndexingMode) and the handle moves freely; releasing keeps the new offset. */
+int virtForceShiftButton(VirtContext VC, int forceShiftButton);
+/** Writes the session's and the controller's state to `fichier`. Blocks (file I/O). */
+int virtDisplayHardwareStatus(VirtContext VC, FILE* fichier);
+
+/* --- the periodic function ------------------------------------------------------------------ */
+
+/** The function runs after a controller answer, every `*period` seconds: the period is rounded to
+ *  a multiple of the controller's cycle and written back. Not while the loop runs. */
+int virtSetPeriodicFunction(VirtContext VC, void (*fn)(VirtContext, void*), float* period,
+                            void* arg);
+int virtStartLoop(VirtContext VC);
+/** Not from inside the periodic function. */
+int virtStopLoop(VirtContext VC);
+
+/* --- conversions (no context needed: VC may be NULL) -------------------------------------- */
+
+/** A pose d[7] to a homogeneous matrix m[16], row-major. */
+int virtConvertDeplToHomogeneMatrix(VirtContext VC, float* d, float* m);
+/** A homogeneous matrix m[16], row-major, to a pose d[7]. */
+int virtConvertHomogeneMatrixToDepl(VirtContext VC, float* d, float* m);
+/** rgb[3] in [0, 1] to its luma (Rec. 601 weights). */
+int virtConvertRGBToGrayscale(VirtContext VC, float* rgb, float* gray);
+
+/* --- not available on the simulated arm: VIRT_E_VARIABLE_NOT_AVAILABLE, outputs zeroed ------- */
+
+int virtGetButton(VirtContext VC, int button_number, int* state);
+int virtWaitPressButton(VirtContext VC, int button_number);
+int virtGetDeadMan(VirtContext VC, int* dead_man);
+int virtGetADC(VirtContext VC, int line, float* adc);
+int virtGetAnalogicInputs(VirtContext VC, float* inputs);
+int virtGetTorInputs(VirtContext VC, unsigned int* tor_in);
+int virtOutputsSetting(VirtContext VC, unsigned int outputs);
+int virtSetPwmOutput(VirtContext VC, float* pwm);
+int virtGetMouseState(VirtContext VC, int* actif, int* clic_gauche, int* clic_droit);
+int virtGetTrackball(VirtContext VC, int* x_move, int* y_move);
+int virtGetTrackballButton(VirtContext VC, int* actif, int* btn_gauche, int* btn_milieu,
+                           int* btn_droit);
+int virtGetArticularPositionOfAdditionalAxe(VirtContext VC, float* pos);
+int virtGetArticularSpeedOfAdditionalAxe(VirtContext VC, float* speed);
+int virtSetArticularPositionOfAdditionalAxe(VirtContext VC, float* pos);
+int virtSetArticularSpeedOfAdditionalAxe(VirtContext VC, float* speed);
+int virtSetArticularForceOfAdditionalAxe(VirtContext VC, float* effort);
+int virtSetFingerTipSpeed(VirtContext VC, float* speed);
+
+/* --- not implemented by the controller: VIRT_E_NOT_IMPLEMENTED ------------------------------- */
+
+int virtActiveSpeedControl(VirtContext VC, float radius, float speedFactor);
+int virtActiveRotationSpeedControl(VirtContext VC, float angle, float speedFactor);
+int virtDeactiveSpeedControl(VirtContext VC);
+int virtDeactiveRotationSpeedControl(VirtContext VC);
+/** Also sets both outputs to 0 (speed control is never active). */
+int virtIsInSpeedControl(VirtContext VC, int* translation, int* rotation);
+int virtSetForceInSpeedControl(VirtContext VC, float force);
+int virtSetTorqueInSpeedControl(VirtContext VC, float torque);
+int virtGetCenterSphere(VirtContext VC, float* pos);
+int virtGetAxisOfRotation(VirtContext VC, float* axe);
+int virtSetArticularPosition(VirtContext VC, float* pos);
+int virtSetArticularSpeed(VirtContext VC, float* speed);
+int virtSetArticularForce(VirtContext VC, float* force);
+int virtSetTexture(VirtContext VC, float* position, float* intensite, int reinit);
+int virtSetTextureForce(VirtContext VC, float* texture_force);
+int virtTrajRecordStart(VirtContext VC);
+int virtTrajRecordStop(VirtContext VC);
+int virtTrajSetSamplingTimeStep(VirtContext VC, float timeStep, unsigned int* recordTime);
+int virtVmStartTrajSampling(VirtContext VC, unsigned int nbSamples);
+int virtVmGetTrajSamples(VirtContext VC, float* samples);
+int virtVmSetType(VirtContext VC, VirtVmType type);
+int virtVmActivate(VirtContext VC);
+int virtVmDeactivate(VirtContext VC);
+int virtVmSetBaseFrame(VirtContext VC, float* base);
+int virtVmGetBaseFrame(VirtContext VC, float* base);
+int virtVmSetBaseFrameToCurrentFrame(VirtContext VC);
+int virtVmSetDefaultToCartesianPosition(VirtContext VC);
+int virtVmSetDefaultToTransparentMode(VirtContext VC);
+int virtVmSetRobotMode(VirtContext VC, int OnOff);
+int virtVmWaitUpperBound(VirtContext VC);
+int virtVmLoadSpline(VirtContext VC, char* file_name);
+int virtVmSaveCurrentSpline(VirtContext VC, char* file_name);
+int virtVmDeleteSpline(VirtContext VC, char* file_name);
+
+/* NOLINTEND(readability-identifier-naming,modernize-use-using) */
 
 #ifdef __cplusplus
 }

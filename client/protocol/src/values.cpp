@@ -95,8 +95,14 @@ Problem check_param(const hcp_param& param) noexcept {
       return check_pose(u.base_frame);
     case HCP_P_OBSERVATION_FRAME:
       return check_pose(u.observation_frame);
+    case HCP_P_BASE_FRAME_SP:
+      return check_pose(u.base_frame_sp);
+    case HCP_P_OBSERVATION_FRAME_SP:
+      return check_pose(u.observation_frame_sp);
     case HCP_P_INDEXING_MODE:
-      return u.indexing_mode <= kMaxIndexingMode ? Problem{} : Problem{"indexing mode: 0 to 5"};
+      return u.indexing_mode <= kMaxIndexingMode && u.indexing_mode != kNotAnIndexingMode
+                 ? Problem{}
+                 : Problem{"indexing mode: 0 to 4, 6 or 7 (VirtuoseAPI's)"};
     case HCP_P_COMMAND_TYPE:
       return u.command_type <= kMaxCommandType
                  ? Problem{}

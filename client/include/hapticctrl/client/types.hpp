@@ -23,7 +23,8 @@ enum class IndexingMode : std::uint32_t {
   kNone = 2,
   kAllInhibited = 3,
   kTranslationInhibited = 4,
-  kNoneInhibited = 5,
+  kRotationInhibited = 6,  ///< 5 is not one of VirtuoseAPI's
+  kRotation = 7,
 };
 
 /// Controller state bits (as in the answer's state word).
@@ -82,6 +83,9 @@ struct LinkStatistics {
   double link_loss = 0.0;       ///< fraction of control frames lost on the way in
   double loop_delay_us = 0.0;   ///< the coupling loop the controller's gains are derived for
   double sample_age_us = 0.0;   ///< age of the object state the controller used last
+  /// The coupling gains in force: k_lin [N/m], b_lin [N.s/m], k_ang [N.m/rad], b_ang
+  /// [N.m.s/rad] (zero while not coupled).
+  std::array<double, 4> coupling_gains{};
   /// Two-port passivity, this end of the channel (J since the session began): energy the
   /// object put in and got out, the controller's reported input, and the steps the library's
   /// passivity controller damped.

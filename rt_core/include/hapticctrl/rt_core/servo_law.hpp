@@ -66,6 +66,9 @@ struct ServoOutputs {
   bool client_stale = false;
   bool braking = false;         ///< handle over the speed limit: the damped brake is on
   bool velocity_fault = false;  ///< over the speed limit for LawConfig::overspeed_fault_after
+  bool saturated = false;       ///< the coupling was clipped to the force or torque limit
+  /// shm::state_bits::joint_bound bits of the joints (and the J2 + J3 sum) in their walls.
+  std::uint32_t joint_bounds = 0;
   CouplingGains gains;          ///< gains in force this cycle (zero when not coupled)
   TimeNs loop_delay = 0;        ///< loop delay the gains are designed for
   /// Two-port passivity, the core's end of the channel (J since the session began).
@@ -192,6 +195,7 @@ class ServoLaw {
   Vector6d rate_limit(const Vector6d& target, double rate, double dt) noexcept;
   Vector6d guard_passivity(const Vector6d& wrench, const Vector6d& twist, double dt) noexcept;
   Vector6d joint_walls(const Vector6d& q) const noexcept;
+  [[nodiscard]] std::uint32_t joint_bounds(const Vector6d& q) const noexcept;
   Vector6d workspace_wall(const Vector3d& velocity) noexcept;
   void express_for_client(const ClientFrame& frame, const Vector6d& twist,
                           ServoOutputs& out) const noexcept;

@@ -51,6 +51,16 @@ inline constexpr std::uint32_t kDegraded = 1U << 3;       ///< this cycle ran th
 inline constexpr std::uint32_t kCoupled = 1U << 4;        ///< coupling active this cycle
 inline constexpr std::uint32_t kClientStale = 1U << 5;    ///< VPr stale: extrapolating/fading
 inline constexpr std::uint32_t kStopping = 1U << 6;       ///< orderly stop under way
+/// The coupling wrench was clipped to the force or torque limit this cycle.
+inline constexpr std::uint32_t kSaturated = 1U << 7;
+/// Bits 8 + 2j / 9 + 2j: joint j (0-5) in its lower / upper wall; bits 20 / 21: the J2 + J3 sum in
+/// its lower / upper wall (the arm model's coupled limit). `joint_bound(j, upper)` names them.
+inline constexpr std::uint32_t kJointBoundsShift = 8;
+inline constexpr std::uint32_t kJointBoundsMask = 0x3FFFU << kJointBoundsShift;
+/// The bound bit of joint `j` (0-5; 6 for the J2 + J3 sum), lower or upper.
+[[nodiscard]] constexpr std::uint32_t joint_bound(unsigned j, bool upper) noexcept {
+  return 1U << (kJointBoundsShift + 2U * j + (upper ? 1U : 0U));
+}
 }  // namespace state_bits
 
 /// Bits of VprPayload::flags.

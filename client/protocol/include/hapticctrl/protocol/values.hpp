@@ -24,7 +24,9 @@ inline constexpr double kMinTimeStep = 1e-5;         ///< s
 inline constexpr double kMaxTimeStep = 1.0;          ///< s
 inline constexpr double kMinFactor = 1e-3;
 inline constexpr double kMaxFactor = 1e3;
-inline constexpr unsigned kMaxIndexingMode = 5;  ///< VirtuoseAPI's six indexing modes
+/// VirtuoseAPI's seven indexing modes are 0-4, 6 and 7 (5 is not one of them).
+inline constexpr unsigned kMaxIndexingMode = 7;
+inline constexpr unsigned kNotAnIndexingMode = 5;
 inline constexpr unsigned kMaxCommandType = 2;   ///< NONE, IMPEDANCE, VIRTMECH
 inline constexpr double kMaxMass = 1000.0;       ///< kg
 inline constexpr double kMaxInertia = 1000.0;    ///< kg.m^2

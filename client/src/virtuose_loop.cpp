@@ -1,0 +1,63 @@
+// The C API's periodic function: run on the connection's receive thread after the controller's
+// answers, every `decimation` of them, with the commands it set sent right after it returns.
+#include <algorithm>
+#include <cmath>
+
+#include "virtuose_context.hpp"
+
+using hapticctrl::client::StateSnapshot;
+using hapticctrl::client::virtuose::Context;
+using hapticctrl::client::virtuose::context_of;
+using hapticctrl::client::virtuose::fail;
+
+extern "C" {
+// NOLINTBEGIN(readability-identifier-naming): VirtuoseAPI's names
+
+int virtSetPeriodicFunction(VirtContext VC, void (*fn)(VirtContext, void*), float* period,
+                            void* arg) {
+  Context* vc = context_of(VC);
+  if (vc == nullptr) {
+    return -1;
+  }
+  if (fn == nullptr || period == nullptr || !std::isfinite(*period) || *period <= 0.0F) {
+    return fail(VC, VIRT_E_INCORRECT_VALUE, "virtSetPeriodicFunction: NULL function or bad period");
+  }
+  if (vc->loop_running.load()) {
+    return fail(VC, VIRT_E_WRONG_MODE, "virtSetPeriodicFunction: stop the loop first");
+  }
+  const double cycle_s = static_cast<double>(vc->connection->controller_period_ns()) / 1e9;
+  vc->decimation =
+      cycle_s > 0.0
+          ? static_cast<unsigned>(std::max(1L, std::lround(static_cast<double>(*period) / cycle_s)))
+          : 1U;
+  *period = static_cast<float>(static_cast<double>(vc->decimation) * cycle_s);  // the one used
+  vc->periodic = fn;
+  vc->periodic_arg = arg;
+  return 0;
+}
+
+int virtStartLoop(VirtContext VC) {
+  Context* vc = context_of(VC);
+  if (vc == nullptr) {
+    return -1;
+  }
+  if (vc->periodic == nullptr) {
+    return fail(VC, VIRT_E_WRONG_MODE, "virtStartLoop: call virtSetPeriodicFunction first");
+  }
+  vc->loop_running.store(true);
+  return vc->guarded(
+      [&] { vc->connection->start_loop([vc](const StateSnapshot& s) { vc->on_answer(s); }); });
+}
+
+int virtStopLoop(VirtContext VC) {
+  Context* vc = context_of(VC);
+  if (vc == nullptr) {
+    return -1;
+  }
+  vc->connection->stop_loop();
+  vc->loop_running.store(false);
+  return 0;
+}
+
+// NOLINTEND(readability-identifier-naming)
+}  // extern "C"

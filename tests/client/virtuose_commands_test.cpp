@@ -1,0 +1,57 @@
+// The C API's per-cycle commands against the real controller and bridge.
+#include <gtest/gtest.h>
+
+#include <array>
+
+#include "hapticctrl/virtuose_api.h"
+#include "support/controller_stack.hpp"
+#include "virtuose_session.hpp"
+
+namespace hapticctrl {
+namespace {
+
+using test::ControllerStack;
+using test::VirtuoseSession;
+
+TEST(VirtuoseCommands, EachCommandNeedsItsModeAndReachesTheController) {
+  ControllerStack stack("capicommands");
+  ASSERT_TRUE(stack.ready()) << stack.diagnostics();
+  const VirtuoseSession vc(stack);
+  ASSERT_TRUE(vc.open()) << virtGetErrorDetail(nullptr);
+  std::array<float, 7> pose{};
+  ASSERT_EQ(virtGetPosition(vc.get(), pose.data()), 0);
+  std::array<float, 6> speed{0.01F, 0, 0, 0, 0, 0};
+  std::array<float, 6> force{1, 0, 0, 0, 0, 0};
+  EXPECT_EQ(virtSetPosition(vc.get(), pose.data()), -1) << "COMMAND_TYPE_NONE";
+  EXPECT_EQ(virtGetErrorCode(vc.get()), VIRT_E_WRONG_MODE);
+  EXPECT_EQ(virtSetForce(vc.get(), force.data()), -1);
+  EXPECT_EQ(virtGetErrorCode(vc.get()), VIRT_E_WRONG_MODE);
+
+  ASSERT_EQ(virtSetCommandType(vc.get(), COMMAND_TYPE_VIRTMECH), 0);
+  ASSERT_EQ(virtSetSpeed(vc.get(), speed.data()), 0);
+  pose[0] += 0.001F;
+  ASSERT_EQ(virtSetPosition(vc.get(), pose.data()), 0);
+  EXPECT_TRUE(ControllerStack::eventually([&] {
+    const shm::VprPayload v = stack.vpr();
+    return std::abs(v.object_pose[0] - static_cast<double>(pose[0])) < 1e-6 &&
+           std::abs(v.object_twist[0] - 0.01) < 1e-6;
+  })) << "the pose with the speed set before it";
+  EXPECT_EQ(virtSetForce(vc.get(), force.data()), -1);
+  EXPECT_EQ(virtAddForce(vc.get(), force.data()), -1);
+  EXPECT_EQ(virtGetErrorCode(vc.get()), VIRT_E_WRONG_MODE);
+  pose[6] = 3.0F;  // not a unit quaternion: the library refuses to send it
+  EXPECT_EQ(virtSetPosition(vc.get(), pose.data()), -1);
+  EXPECT_EQ(virtGetErrorCode(vc.get()), VIRT_E_INCORRECT_VALUE);
+
+  ASSERT_EQ(virtSetCommandType(vc.get(), COMMAND_TYPE_IMPEDANCE), 0);
+  ASSERT_EQ(virtAddForce(vc.get(), force.data()), 0);  // with the next virtSetForce
+  ASSERT_EQ(virtSetForce(vc.get(), force.data()), 0);
+  EXPECT_TRUE(ControllerStack::eventually([&] { return stack.vpr().impedance_wrench[0] == 2.0; }));
+  EXPECT_EQ(virtSetForce(vc.get(), nullptr), -1);
+  EXPECT_EQ(virtGetErrorCode(vc.get()), VIRT_E_INCORRECT_VALUE);
+  EXPECT_EQ(virtSetSpeed(nullptr, speed.data()), -1);
+  EXPECT_EQ(virtGetErrorCode(nullptr), VIRT_E_INVALID_CONTEXT);
+}
+
+}  // namespace
+}  // namespace hapticctrl

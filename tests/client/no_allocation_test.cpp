@@ -7,8 +7,12 @@
 #include <cstdlib>
 #include <memory>
 #include <new>
+#include <string>
+#include <thread>
+#include <array>
 
 #include "hapticctrl/client/connection.hpp"
+#include "hapticctrl/virtuose_api.h"
 #include "support/allocation_counter.hpp"
 #include "support/controller_stack.hpp"
 
@@ -50,6 +54,42 @@ TEST(ClientNoAllocation, PerCycleCallsAllocateNothing) {
   test::counting = false;
   EXPECT_EQ(answered, 200);
   EXPECT_EQ(test::allocations.load(), 0U);
+}
+
+TEST(ClientNoAllocation, TheVirtuoseApisPerCycleCallsAllocateNothing) {
+  test::ControllerStack stack("noallocvirt", test::ControllerStack::kDefaultPeriodUs);
+  ASSERT_TRUE(stack.ready()) << stack.diagnostics();
+  const std::string name = "127.0.0.1#" + std::to_string(stack.port());
+  VirtContext vc = virtOpen(name.c_str());
+  ASSERT_NE(vc, nullptr) << virtGetErrorDetail(nullptr);
+  ASSERT_EQ(virtSetCommandType(vc, COMMAND_TYPE_VIRTMECH), 0);
+  std::array<float, 7> pose{};
+  std::array<float, 6> six{};
+  std::array<float, 16> matrix{};
+  unsigned int bits = 0;
+  int flag = 0;
+  test::allocations = 0;
+  test::counting = true;
+  for (int i = 0; i < 200; ++i) {
+    virtGetPosition(vc, pose.data());
+    virtGetPhysicalPosition(vc, pose.data());
+    virtGetSpeed(vc, six.data());
+    virtGetForce(vc, six.data());
+    virtGetArticularPosition(vc, six.data());
+    virtGetAlarm(vc, &bits);
+    virtIsInBounds(vc, &bits);
+    virtGetPowerOn(vc, &flag);
+    virtGetTimeLastUpdate(vc, &bits);
+    virtForceShiftButton(vc, i % 2);
+    virtSetSpeed(vc, six.data());
+    virtSetPosition(vc, pose.data());
+    virtConvertDeplToHomogeneMatrix(vc, pose.data(), matrix.data());
+    virtGetButton(vc, 1, &flag);  // an error: recorded without allocating
+    std::this_thread::sleep_for(1ms);
+  }
+  test::counting = false;
+  EXPECT_EQ(test::allocations.load(), 0U);
+  EXPECT_EQ(virtClose(vc), 0);
 }
 
 }  // namespace

@@ -2,5 +2,5 @@
  * compiler finds it through the hapticctrl package's include flags (pkg-config hapticctrl, or
  * linking hapticctrl::client), without it being put at the top of the system's include directory,
  * where Haption's own SDK could also be. hapticctrl's C API, with VirtuoseAPI 4.x's names and
- * values; docs/protocol.md lists the functions implemented so far. */
+ * values; docs/virtuose_api.md gives each function's status. */
 #include "hapticctrl/virtuose_api.h"

@@ -138,7 +138,9 @@ bool Context::flush_locked() noexcept {
 }
 
 void Context::on_answer(const StateSnapshot& s) noexcept {
-  if ((debug_flags & DEBUG_SERVO) != 0U) {
+  const unsigned flags = debug_flags.load(std::memory_order_relaxed);
+  if ((flags & DEBUG_SERVO) != 0U) {
+    const std::lock_guard lock(mutex);
     std::fprintf(
         debug_stream(),
         "virtuose servo: cycle %llu state 0x%x handle %.4f %.4f %.4f force %.3f %.3f %.3f\n",
@@ -158,7 +160,7 @@ void Context::on_answer(const StateSnapshot& s) noexcept {
   if (period > 0 && took > period) {
     alarms |= VIRT_ALARM_CALLBACK_OVERRUN;
   }
-  if ((debug_flags & DEBUG_LOOP) != 0U) {
+  if ((flags & DEBUG_LOOP) != 0U) {
     std::fprintf(debug_stream(), "virtuose loop: cycle %llu call %.1f us of a %.1f us period\n",
                  static_cast<unsigned long long>(s.cycle), static_cast<double>(took) / 1e3,
                  static_cast<double>(period) / 1e3);

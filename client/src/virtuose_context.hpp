@@ -56,9 +56,10 @@ struct Context {
   Vector6 added_wrench{};
   bool pose_pending = false;
   bool wrench_pending = false;
-  std::uint32_t alarms = 0;     ///< VIRT_ALARM_* raised since virtGetAlarm last read them
-  unsigned debug_flags = 0;     ///< DEBUG_*
-  std::FILE* output = nullptr;  ///< virtSetOutputFile's, owned; nullptr: stderr
+  std::uint32_t alarms = 0;              ///< VIRT_ALARM_* raised since virtGetAlarm last read them
+  std::atomic<unsigned> debug_flags{0};  ///< DEBUG_* (read outside `mutex` too)
+  std::FILE* output = nullptr;  ///< virtSetOutputFile's, owned; nullptr: stderr; written to
+                                ///< under `mutex` only (virtSetOutputFile may close it)
 
   VirtPeriodicFunction periodic = nullptr;
   void* periodic_arg = nullptr;
@@ -93,7 +94,7 @@ struct Context {
   bool flush_locked() noexcept;
   /// The loop's callback, after each controller answer.
   void on_answer(const StateSnapshot& s) noexcept;
-  /// Where debug lines go.
+  /// Where debug lines go. Caller holds `mutex`.
   [[nodiscard]] std::FILE* debug_stream() const noexcept {
     return output != nullptr ? output : stderr;
   }

@@ -10,7 +10,7 @@ using hapticctrl::client::virtuose::fail;
 namespace {
 
 /// A pose's quaternion may be off unit norm by float rounding; beyond this it is not a rotation.
-constexpr double kQuaternionTolerance = 1e-3;
+constexpr float kQuaternionTolerance = 1e-3F;
 /// How far from orthonormal (max |R^T R - I| entry) a matrix's rotation part may be.
 constexpr double kRotationTolerance = 1e-3;
 /// Rec. 601 luma weights.
@@ -29,14 +29,14 @@ int virtConvertDeplToHomogeneMatrix(VirtContext VC, float* d, float* m) {
   if (d == nullptr || m == nullptr) {
     return fail(VC, VIRT_E_INCORRECT_VALUE, "virtConvertDeplToHomogeneMatrix: NULL argument");
   }
-  const Eigen::Quaterniond q(d[6], d[3], d[4], d[5]);
-  if (!std::isfinite(q.norm()) || std::abs(q.norm() - 1.0) > kQuaternionTolerance) {
+  const Eigen::Quaternionf q(d[6], d[3], d[4], d[5]);
+  if (!std::isfinite(q.norm()) || std::abs(q.norm() - 1.0F) > kQuaternionTolerance) {
     return fail(VC, VIRT_E_INCORRECT_VALUE,
                 "virtConvertDeplToHomogeneMatrix: the quaternion has not unit norm");
   }
   Eigen::Map<RowMajor4> out(m);
   out.setIdentity();
-  out.topLeftCorner<3, 3>() = q.normalized().toRotationMatrix().cast<float>();
+  out.topLeftCorner<3, 3>() = q.normalized().toRotationMatrix();
   out.topRightCorner<3, 1>() << d[0], d[1], d[2];
   return 0;
 }

@@ -14,7 +14,6 @@ namespace {
 
 using namespace std::chrono_literals;
 using test::ControllerStack;
-using test::url;
 using test::VirtuoseSession;
 
 TEST(VirtuoseParameters, ParametersStateAndModes) {

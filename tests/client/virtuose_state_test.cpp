@@ -35,7 +35,7 @@ Pose physical(VirtContext vc) {
 }
 
 double distance(const Pose& a, const Pose& b) {
-  return std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+  return static_cast<double>(std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]));
 }
 
 /// The operator pushes the handle with `wrench` (the simulated hand, through the force region)

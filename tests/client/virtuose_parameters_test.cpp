@@ -197,6 +197,19 @@ TEST(VirtuoseParameters, ForceFeedbackOffSendsNoWrenchAtOnceAndOnBringsTheNextOn
   ASSERT_EQ(virtEnableForceFeedback(vc.get(), 1), 0);
   ASSERT_EQ(virtSetForce(vc.get(), force), 0);
   EXPECT_TRUE(ControllerStack::eventually([&] { return stack.vpr().impedance_wrench[0] == 2.0; }));
+
+  // VIRTMECH: off, the controller gets the handle's own state as the object's (no spring).
+  ASSERT_EQ(virtSetCommandType(vc.get(), COMMAND_TYPE_VIRTMECH), 0);
+  float pose[7] = {};  // NOLINT(*-avoid-c-arrays)
+  ASSERT_EQ(virtGetPosition(vc.get(), pose), 0);
+  pose[0] += 0.05F;  // 5 cm away from the handle
+  ASSERT_EQ(virtSetPosition(vc.get(), pose), 0);
+  EXPECT_TRUE(ControllerStack::eventually(
+      [&] { return std::abs(stack.vpr().object_pose[0] - static_cast<double>(pose[0])) < 1e-6; }));
+  ASSERT_EQ(virtEnableForceFeedback(vc.get(), 0), 0);
+  EXPECT_TRUE(ControllerStack::eventually([&] {
+    return std::abs(stack.vpr().object_pose[0] - stack.vp().handle_pose[0]) < 1e-3;
+  })) << "the object sent is the handle, not the application's 5 cm away";
 }
 
 TEST(VirtuoseParameters, FramesTravelInSinglePrecisionWithinNinetyBytes) {

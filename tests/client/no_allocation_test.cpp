@@ -3,13 +3,13 @@
 // library uses too) is armed while 200 controller cycles are answered in VIRTMECH.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <atomic>
 #include <cstdlib>
 #include <memory>
 #include <new>
 #include <string>
 #include <thread>
-#include <array>
 
 #include "hapticctrl/client/connection.hpp"
 #include "hapticctrl/virtuose_api.h"

@@ -39,7 +39,7 @@ TEST(Connection, HandshakeNegotiatesAndTheAnswerStreamFlows) {
   EXPECT_EQ(c.features(), 7U) << "joint state, link statistics, timing";
   EXPECT_EQ(c.controller_period_ns(), stack.period_us() * 1000);
   EXPECT_EQ(c.watchdog_ms(), 3000U);
-  EXPECT_EQ(c.controller_version(), 0x00010001U);
+  EXPECT_EQ(c.controller_version(), 0x00010002U);
   StateSnapshot s;
   ASSERT_TRUE(c.wait_for_answer(0, 2s, s));
   EXPECT_TRUE(s.valid);
@@ -192,7 +192,7 @@ TEST(Connection, VersionMismatchIsExplainedWithBothVersions) {
     EXPECT_EQ(e.code(), ErrorCode::kVersion);
     const std::string what = e.what();
     EXPECT_NE(what.find("client 2.3"), std::string::npos) << what;
-    EXPECT_NE(what.find("controller 1.1"), std::string::npos) << what;
+    EXPECT_NE(what.find("controller 1.2"), std::string::npos) << what;
   }
   EXPECT_TRUE(
       ControllerStack::eventually([&] { return stack.link_stats().refused_version == 1U; }, 1s));

@@ -442,7 +442,7 @@ TEST(FaultInjection, AMisbehavingSharedMemoryWriterIsRefusedOrLimitedAndCountedA
   ControllerStack stack("fi-rogue", kPeriodUs);
   ASSERT_TRUE(stack.ready()) << stack.diagnostics();
   stack.bridge().signal(SIGTERM);  // the rogue takes the UDP bridge's place as VPr's writer
-  ASSERT_EQ(stack.bridge().wait(5s), 0);
+  ASSERT_EQ(stack.bridge().wait(5s), 0) << stack.diagnostics();
   shm::Segment rogue = shm::Segment::attach(
       stack.instance(),
       shm::AttachOptions{{shm::RegionId::kVpr, shm::RegionId::kForce}, /*ctrl_writer=*/true});

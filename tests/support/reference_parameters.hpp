@@ -14,8 +14,9 @@ inline void expect_reference_parameters(const shm::VprPayload& v) {
   EXPECT_DOUBLE_EQ(v.client_time_step, 0.002);
   EXPECT_DOUBLE_EQ(v.force_factor, 0.5);
   EXPECT_DOUBLE_EQ(v.speed_factor, 2.0);
-  EXPECT_DOUBLE_EQ(v.base_frame[2], 0.1);
-  EXPECT_DOUBLE_EQ(v.observation_frame[0], -0.1);
+  // Frames travel in single precision from a 1.2 client (0.1 becomes 0.10000000149).
+  EXPECT_NEAR(v.base_frame[2], 0.1, 1e-7);
+  EXPECT_NEAR(v.observation_frame[0], -0.1, 1e-7);
   EXPECT_EQ(v.indexing_mode, 1U);
   EXPECT_EQ(v.command_type, 2U);
   EXPECT_EQ(v.flags, shm::vpr_flags::kObjectAttached);

@@ -59,7 +59,7 @@ TEST(VirtuoseLoop, PeriodicFunctionRendersImpedanceForces) {
 
 struct Overrun {
   std::atomic<int> calls{0};
-  std::chrono::milliseconds stall{0};
+  std::atomic<int> stall_ms{0};  // set by the test, read by the callback
 };
 
 TEST(VirtuoseLoop, APeriodicFunctionThatOutlastsItsPeriodRaisesTheOverrunAlarmOnce) {
@@ -74,7 +74,7 @@ TEST(VirtuoseLoop, APeriodicFunctionThatOutlastsItsPeriodRaisesTheOverrunAlarmOn
                 [](VirtContext, void* arg) {
                   auto* s = static_cast<Overrun*>(arg);
                   ++s->calls;
-                  std::this_thread::sleep_for(s->stall);
+                  std::this_thread::sleep_for(std::chrono::milliseconds(s->stall_ms.load()));
                 },
                 &period, &state),
             0);
@@ -89,10 +89,10 @@ TEST(VirtuoseLoop, APeriodicFunctionThatOutlastsItsPeriodRaisesTheOverrunAlarmOn
   unsigned int alarm = 0xFFFFFFFF;
   ASSERT_EQ(virtGetAlarm(vc.get(), &alarm), 0);
   ASSERT_EQ(alarm & VIRT_ALARM_CALLBACK_OVERRUN, 0U) << "an empty function takes microseconds";
-  state.stall = 50ms;  // five periods
+  state.stall_ms = 50;  // five periods
   const int before = state.calls.load();
   EXPECT_TRUE(ControllerStack::eventually([&] { return state.calls.load() > before + 1; }));
-  state.stall = 0ms;
+  state.stall_ms = 0;
   const int stalled = state.calls.load();  // the last stalled call may still be running
   EXPECT_TRUE(ControllerStack::eventually([&] { return state.calls.load() > stalled + 1; }));
   ASSERT_EQ(virtGetAlarm(vc.get(), &alarm), 0);

@@ -55,10 +55,16 @@ grep -q "time out" "$work/err_pc" || { cat "$work/err_pc" >&2; exit 1; }
 
 # The Virtuose application, built both ways, against the real controller and bridge.
 instance="install$$"
+export HAPTICCTRL_RUNTIME_DIR="$work/run"  # where the core's socket appears once it serves
+mkdir -m 0700 "$HAPTICCTRL_RUNTIME_DIR"
 "$build/rt_core/hapticctrl-core" --instance "$instance" --rt ignore --blackbox-dir "$work" \
   --duration 60 >"$work/core.log" 2>&1 &
 pids+=($!)
-sleep 0.5
+for _ in $(seq 200); do
+  [ -S "$HAPTICCTRL_RUNTIME_DIR/$instance.sock" ] && break
+  sleep 0.05
+done
+[ -S "$HAPTICCTRL_RUNTIME_DIR/$instance.sock" ] || { cat "$work/core.log" >&2; exit 1; }
 "$build/bridges/udp/hapticctrl-udp" --instance "$instance" --port 0 >"$work/udp.log" 2>&1 &
 pids+=($!)
 port=""

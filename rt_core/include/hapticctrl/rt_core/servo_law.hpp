@@ -69,8 +69,8 @@ struct ServoOutputs {
   bool saturated = false;       ///< the coupling was clipped to the force or torque limit
   /// shm::state_bits::joint_bound bits of the joints (and the J2 + J3 sum) in their walls.
   std::uint32_t joint_bounds = 0;
-  CouplingGains gains;          ///< gains in force this cycle (zero when not coupled)
-  TimeNs loop_delay = 0;        ///< loop delay the gains are designed for
+  CouplingGains gains;    ///< gains in force this cycle (zero when not coupled)
+  TimeNs loop_delay = 0;  ///< loop delay the gains are designed for
   /// Two-port passivity, the core's end of the channel (J since the session began).
   double channel_energy_in = 0.0;
   double channel_energy_out = 0.0;

@@ -27,9 +27,9 @@ inline constexpr double kMaxFactor = 1e3;
 /// VirtuoseAPI's seven indexing modes are 0-4, 6 and 7 (5 is not one of them).
 inline constexpr unsigned kMaxIndexingMode = 7;
 inline constexpr unsigned kNotAnIndexingMode = 5;
-inline constexpr unsigned kMaxCommandType = 2;   ///< NONE, IMPEDANCE, VIRTMECH
-inline constexpr double kMaxMass = 1000.0;       ///< kg
-inline constexpr double kMaxInertia = 1000.0;    ///< kg.m^2
+inline constexpr unsigned kMaxCommandType = 2;  ///< NONE, IMPEDANCE, VIRTMECH
+inline constexpr double kMaxMass = 1000.0;      ///< kg
+inline constexpr double kMaxInertia = 1000.0;   ///< kg.m^2
 inline constexpr double kMaxGain = 1e6;
 inline constexpr double kMaxForceLimit = 1e4;
 inline constexpr double kMaxEnergy = 1e12;  ///< J, a coupling channel's cumulative energy

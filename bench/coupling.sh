@@ -75,7 +75,7 @@ case_run() {  # name delay_ms loss jitter_ms
   local relay_pid=$!
   PIDS+=($relay_pid)
   relay=$(port_of "$dir/netem.out")
-  "$BUILD/client/demo/hapticctrl-demo" --server "127.0.0.1:$relay" --headless --no-lcm \
+  "$BUILD/demo/hapticctrl-demo" --server "127.0.0.1:$relay" --headless --no-lcm \
     --contact-stiffness 2000 --json --no-reconnect --log "$dir/demo.csv" >"$dir/demo.json" \
     2>"$dir/demo.err" &
   PIDS+=($!)

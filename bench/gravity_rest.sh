@@ -26,7 +26,7 @@ port=$(port_of "$RAW/udp.out")
 "$BUILD/hmi/hapticctrl-hmi" --instance "$inst" play "$RAW/zero.seq" --log "$RAW/cycles.csv" \
   >"$RAW/hmi.out" 2>&1 &
 player=$!
-"$BUILD/client/demo/hapticctrl-demo" --server "127.0.0.1:$port" --headless --no-lcm --json \
+"$BUILD/demo/hapticctrl-demo" --server "127.0.0.1:$port" --headless --no-lcm --json \
   --gravity --no-reconnect --duration $((SECONDS_AT_REST + 5)) --log "$RAW/demo.csv" \
   >"$RAW/demo.json" 2>"$RAW/demo.err" &
 PIDS+=($!)

@@ -11,7 +11,7 @@ set_target_properties(hapticctrl-demo PROPERTIES INSTALL_RPATH "$ORIGIN/../${CMA
 install(TARGETS hapticctrl-core hapticctrl-udp hapticctrl-lcm hapticctrl-log2csv hapticctrl-web
                 hapticctrl-hmi hapticctrl-demo
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-install(FILES ${PROJECT_SOURCE_DIR}/rt_core/models/virtuose6d_class.arm
+install(FILES ${PROJECT_SOURCE_DIR}/arm_model/models/virtuose6d_class.arm
         DESTINATION ${CMAKE_INSTALL_DATADIR}/hapticctrl/models)
 if(TARGET hapticctrl_web_page)
   install(DIRECTORY ${HAPTICCTRL_WEB_WWW_DIR}/ DESTINATION ${CMAKE_INSTALL_DATADIR}/hapticctrl/www)

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# clang-format (check only) and clang-tidy over the project's own sources.
+# The dependency rules (docs/architecture.md), clang-format (check only) and clang-tidy over the
+# project's own sources.
 # Usage: scripts/lint.sh [build-dir-with-compile_commands.json]  (--fix to reformat in place)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -11,6 +12,8 @@ for arg in "$@"; do
     *) BUILD=$arg ;;
   esac
 done
+
+scripts/check_architecture.py .
 
 mapfile -t SOURCES < <(git ls-files '*.cpp' '*.hpp' '*.h' | grep -v '^lcmtypes/generated/')
 if [[ $FIX -eq 1 ]]; then

@@ -159,7 +159,7 @@ PIDS+=($!)
 "$BUILD/bridges/web/hapticctrl-web" --instance "$INSTANCE" --listen "127.0.0.1:$WEB_PORT" \
   "${REMOTE[@]}" 2>"$RUN_DIR/web.log" &
 PIDS+=($!)
-"$BUILD/client/demo/hapticctrl-demo" --server "127.0.0.1:$PORT" --instance "$INSTANCE" --headless \
+"$BUILD/demo/hapticctrl-demo" --server "127.0.0.1:$PORT" --instance "$INSTANCE" --headless \
   --json --log "$RUN_DIR/demo.csv" >"$RUN_DIR/demo.json" 2>"$RUN_DIR/demo.log" &
 DEMO_PID=$!
 PIDS+=("$DEMO_PID")

@@ -8,7 +8,7 @@ namespace hapticctrl::web_bridge {
 namespace {
 
 TEST(ModelJson, CarriesTheKinematicsOfTheShippedModel) {
-  const rt_core::ArmModel model = rt_core::load_arm_model(rt_core::default_arm_model_path());
+  const arm_model::ArmModel model = arm_model::load_arm_model(arm_model::default_arm_model_path());
   const auto j = nlohmann::json::parse(model_json(model));
   EXPECT_EQ(j["type"], "model");
   EXPECT_EQ(j["name"], model.name);

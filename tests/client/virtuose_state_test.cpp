@@ -144,7 +144,7 @@ TEST_F(VirtuoseState, IsInBoundsNamesTheJointsTheControllerHoldsInTheirWalls) {
       5s));
   std::array<float, 6> q{};
   ASSERT_EQ(virtGetArticularPosition(vc, q.data()), 0);
-  // The shipped model's limits (rt_core/models/virtuose6d_class.arm) and the wall's 0.05 rad.
+  // The shipped model's limits (arm_model/models/virtuose6d_class.arm) and the wall's 0.05 rad.
   constexpr std::array<std::pair<float, float>, 7> kLimits{{{-2.4F, 2.4F},
                                                             {-1.6F, 0.6F},
                                                             {0.2F, 2.6F},

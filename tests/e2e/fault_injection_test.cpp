@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "hapticctrl/client/connection.hpp"
-#include "hapticctrl/rt_core/arm_model.hpp"
+#include "hapticctrl/arm_model/arm_model.hpp"
 #include "hapticctrl/shm/force_slew.hpp"
 #include "hapticctrl/shm/monotonic_clock.hpp"
 #include "hapticctrl/shm/payloads.hpp"
@@ -66,7 +66,7 @@ constexpr double kNoticeMs = 10.0;
 /// process, paced by its own clock), and whether the core ever left its running state.
 class ForceStepWatch {
  public:
-  ForceStepWatch(const shm::Segment& segment, const rt_core::ArmLimits& limits)
+  ForceStepWatch(const shm::Segment& segment, const arm_model::ArmLimits& limits)
       : segment_(segment),
         rate_step_(limits.force_rate * kPeriodS),
         max_damping_(limits.max_damping_linear),
@@ -168,8 +168,8 @@ class ForceStepWatch {
   std::thread thread_;
 };
 
-rt_core::ArmLimits arm_limits() {
-  return rt_core::load_arm_model(rt_core::default_arm_model_path()).limits;
+arm_model::ArmLimits arm_limits() {
+  return arm_model::load_arm_model(arm_model::default_arm_model_path()).limits;
 }
 /// How fast the HMI ramps the operator's force, per axis [N/s].
 double operator_rate_limit() {
@@ -469,7 +469,7 @@ TEST(FaultInjection, AMisbehavingSharedMemoryWriterIsRefusedOrLimitedAndCountedA
   // faster than the rate limit, then faded out when the writer falls silent.
   sample.base_frame = {0, 0, 0, 0, 0, 0, 1};
   sample.impedance_wrench = {1e9, 0, 0, 0, 0, 0};
-  const rt_core::ArmLimits limits = arm_limits();
+  const arm_model::ArmLimits limits = arm_limits();
   double strongest = 0.0;
   for (int i = 0; i < 50; ++i) {
     vpr.publish(sample, shm::monotonic_now_ns());

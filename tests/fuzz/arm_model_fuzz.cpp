@@ -1,4 +1,4 @@
-// libFuzzer target: the arm model parser (rt_core/models/*.arm). Any text either parses into a
+// libFuzzer target: the arm model parser (arm_model/models/*.arm). Any text either parses into a
 // model whose every number is finite, or is refused with ArmModelError; anything else (another
 // exception, a crash, a sanitizer report) is a finding. Seeds: the shipped model.
 #include <cmath>
@@ -6,11 +6,11 @@
 #include <cstdint>
 #include <string>
 
-#include "hapticctrl/rt_core/arm_model.hpp"
+#include "hapticctrl/arm_model/arm_model.hpp"
 
 namespace {
 
-namespace rc = hapticctrl::rt_core;
+namespace rc = hapticctrl::arm_model;
 
 bool finite(const rc::ArmModel& m) {
   bool ok = m.gravity.allFinite() && m.handle.allFinite() &&

@@ -7,7 +7,7 @@ namespace hapticctrl::test {
 
 inline const rt_core::ArmDynamics& default_dynamics() {
   static const rt_core::ArmDynamics dynamics(
-      rt_core::load_arm_model(rt_core::default_arm_model_path()));
+      arm_model::load_arm_model(arm_model::default_arm_model_path()));
   return dynamics;
 }
 

@@ -1,5 +1,5 @@
 // The page's forward kinematics (bridges/web/www/kinematics.js) against the numbers the C++ model
-// is checked with (rt_core/models/virtuose6d_class.arm: the ready pose puts the handle at
+// is checked with (arm_model/models/virtuose6d_class.arm: the ready pose puts the handle at
 // (0.628, 0, 0.227) m, cross-checked with Orocos KDL).
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
@@ -8,7 +8,7 @@ import { axisRotation, forwardKinematics, handleMismatch } from '../../bridges/w
 
 /** The shipped model's kinematic lines, read from the model file itself. */
 function shippedModel() {
-  const text = readFileSync(new URL('../../rt_core/models/virtuose6d_class.arm', import.meta.url), 'utf8');
+  const text = readFileSync(new URL('../../arm_model/models/virtuose6d_class.arm', import.meta.url), 'utf8');
   const joints = [];
   let handle = null;
   let section = null;

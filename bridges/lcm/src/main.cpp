@@ -19,7 +19,7 @@
 #include "hapticctrl/lcm_bridge/hmi_input.hpp"
 #include "hapticctrl/lcm_bridge/lcm_bridge_config.hpp"
 #include "hapticctrl/lcm_bridge/messages.hpp"
-#include "hapticctrl/protocol/monotonic_clock.hpp"
+#include "hapticctrl/shm/monotonic_clock.hpp"
 #include "hapticctrl/shm/core_watch.hpp"
 #include "hapticctrl/shm/segment.hpp"
 
@@ -28,7 +28,7 @@ namespace {
 using hapticctrl::lcm_bridge::Channels;
 using hapticctrl::lcm_bridge::HmiInput;
 using hapticctrl::lcm_bridge::LcmBridgeConfig;
-using hapticctrl::protocol::monotonic_ns;
+using hapticctrl::shm::monotonic_now_ns;
 namespace shm = hapticctrl::shm;
 namespace lb = hapticctrl::lcm_bridge;
 
@@ -81,7 +81,7 @@ void publish_loop(const shm::Segment& seg, lcm::LCM& lcm, const Channels& ch,
   shm::CoreWatch watch(seg);
   while (running.load(std::memory_order_relaxed)) {
     const shm::CoreWatch::Wake wake = watch.wait();
-    const std::int64_t now = monotonic_ns();
+    const std::int64_t now = monotonic_now_ns();
     // Arm state after a cycle only (a silent 2 ms wake of the watch is no new state); statistics
     // by the clock; the regions are read only for what is due.
     const bool arm_due = wake == shm::CoreWatch::Wake::kCycle && now >= next_arm;
@@ -160,13 +160,13 @@ void run_attached(shm::Segment& seg, lcm::LCM& lcm, const Channels& ch,
   auto command_sub = lcm.subscribeFunction(
       ch.hmi_command,
       +[](const lcm::ReceiveBuffer* rbuf, const std::string& /*channel*/, HmiInput* input) {
-        input->on_command(rbuf->data, rbuf->data_size, monotonic_ns());
+        input->on_command(rbuf->data, rbuf->data_size, monotonic_now_ns());
       },
       &hmi);
   auto force_sub = lcm.subscribeFunction(
       ch.hmi_force,
       +[](const lcm::ReceiveBuffer* rbuf, const std::string& /*channel*/, HmiInput* input) {
-        input->on_force(rbuf->data, rbuf->data_size, monotonic_ns());
+        input->on_force(rbuf->data, rbuf->data_size, monotonic_now_ns());
       },
       &hmi);
   std::atomic<bool> publishing{true};
@@ -175,7 +175,7 @@ void run_attached(shm::Segment& seg, lcm::LCM& lcm, const Channels& ch,
       [&] { publish_loop(seg, lcm, ch, config, publishing, core_gone, counters); });
   while (!g_stop.load() && !core_gone.load()) {
     lcm.handleTimeout(2);
-    const std::int64_t now = monotonic_ns();
+    const std::int64_t now = monotonic_now_ns();
     hmi.tick(now);
     if (end_ns != 0 && now >= end_ns) {
       g_stop.store(true);
@@ -211,7 +211,7 @@ int run(const LcmBridgeConfig& config) {
   PublishCounters counters;
   std::string hmi_json = "\"commands_applied\":0";
   const std::int64_t end_ns =
-      config.duration_s > 0.0 ? monotonic_ns() + static_cast<std::int64_t>(config.duration_s * 1e9)
+      config.duration_s > 0.0 ? monotonic_now_ns() + static_cast<std::int64_t>(config.duration_s * 1e9)
                               : 0;
   std::fprintf(stderr, "hapticctrl-lcm: instance '%s' on %s, channels %s.*, remote commands %s\n",
                config.instance.c_str(), config.lcm_url.c_str(),
@@ -231,7 +231,7 @@ int run(const LcmBridgeConfig& config) {
       said_waiting = true;
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    if (end_ns != 0 && monotonic_ns() >= end_ns) {
+    if (end_ns != 0 && monotonic_now_ns() >= end_ns) {
       g_stop.store(true);
     }
   }

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "hapticctrl/lcmtypes/channels.hpp"
-#include "hapticctrl/rt_core/arm_model.hpp"
+#include "hapticctrl/arm_model/arm_model.hpp"
 #include "hapticctrl/shm/monotonic_clock.hpp"
 #include "hapticctrl/web_bridge/model_json.hpp"
 #include "hapticctrl/web_bridge/page_gateway.hpp"
@@ -190,9 +190,9 @@ void push_loop(wb::TelemetryView& view, wb::WebServer& server, double rate_hz,
 
 int run(const wb::WebConfig& config) {
   const std::string model_path = config.arm_model_path.empty()
-                                     ? hapticctrl::rt_core::default_arm_model_path()
+                                     ? hapticctrl::arm_model::default_arm_model_path()
                                      : config.arm_model_path;
-  const std::string model = wb::model_json(hapticctrl::rt_core::load_arm_model(model_path));
+  const std::string model = wb::model_json(hapticctrl::arm_model::load_arm_model(model_path));
   lcm::LCM lcm(config.lcm_url);
   if (!lcm.good()) {
     throw std::runtime_error("cannot open LCM at '" + config.lcm_url + "'");

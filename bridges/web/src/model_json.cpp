@@ -5,15 +5,15 @@
 namespace hapticctrl::web_bridge {
 namespace {
 
-nlohmann::json vector_json(const rt_core::Vector3d& v) {
+nlohmann::json vector_json(const arm_model::Vector3d& v) {
   return nlohmann::json::array({v.x(), v.y(), v.z()});
 }
 
 }  // namespace
 
-std::string model_json(const rt_core::ArmModel& model) {
+std::string model_json(const arm_model::ArmModel& model) {
   nlohmann::json joints = nlohmann::json::array();
-  for (const rt_core::JointModel& j : model.joints) {
+  for (const arm_model::JointModel& j : model.joints) {
     joints.push_back({{"origin", vector_json(j.origin)},
                       {"axis", vector_json(j.axis)},
                       {"limits", nlohmann::json::array({j.q_min, j.q_max})}});

@@ -11,10 +11,21 @@
 #include <array>
 
 #include "hapticctrl/rt_core/arm_io.hpp"
-#include "hapticctrl/rt_core/arm_model.hpp"
+#include "hapticctrl/arm_model/arm_model.hpp"
 
 namespace hapticctrl::rt_core {
 
+// The core works in the arm model's types (arm_model/, a contract of its own).
+using arm_model::ArmLimits;
+using arm_model::ArmModel;
+using arm_model::ArmModelError;
+using arm_model::default_arm_model_path;
+using arm_model::JointModel;
+using arm_model::kJoints;
+using arm_model::load_arm_model;
+using arm_model::Matrix3d;
+using arm_model::parse_arm_model;
+using arm_model::Vector3d;
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
 
 /// Joint frames and handle pose for one configuration.

@@ -6,12 +6,12 @@
 /// does, and checks its handle against the controller's. Setup code (allocates).
 #include <string>
 
-#include "hapticctrl/rt_core/arm_model.hpp"
+#include "hapticctrl/arm_model/arm_model.hpp"
 
 namespace hapticctrl::web_bridge {
 
 /// {"name":...,"joints":[{"origin":[x,y,z],"axis":[x,y,z],"limits":[lo,hi]},...],
 ///  "handle":[x,y,z],"workspace":{"center":[...],"half_size":[...]}}
-[[nodiscard]] std::string model_json(const rt_core::ArmModel& model);
+[[nodiscard]] std::string model_json(const arm_model::ArmModel& model);
 
 }  // namespace hapticctrl::web_bridge

@@ -1,4 +1,4 @@
-#include "hapticctrl/rt_core/arm_model.hpp"
+#include "hapticctrl/arm_model/arm_model.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -12,10 +12,10 @@
 #include <vector>
 
 #ifndef HAPTICCTRL_DEFAULT_ARM_MODEL
-#define HAPTICCTRL_DEFAULT_ARM_MODEL "rt_core/models/virtuose6d_class.arm"
+#define HAPTICCTRL_DEFAULT_ARM_MODEL "arm_model/models/virtuose6d_class.arm"
 #endif
 
-namespace hapticctrl::rt_core {
+namespace hapticctrl::arm_model {
 namespace {
 
 /// Longest length any part of a desktop haptic arm can have (m): a link, an offset, the
@@ -339,4 +339,4 @@ std::string default_arm_model_path() {
   return HAPTICCTRL_DEFAULT_ARM_MODEL;
 }
 
-}  // namespace hapticctrl::rt_core
+}  // namespace hapticctrl::arm_model

@@ -1,6 +1,6 @@
 #pragma once
 /// @file codec.hpp
-/// Encoding and decoding of hapticctrl protocol frames (client/protocol/hapticctrl_protocol.x).
+/// Encoding and decoding of hapticctrl protocol frames (protocol/hapticctrl_protocol.x).
 ///
 /// Private to the UDP bridge and the client library: applications never see these types.
 /// Everything here works on caller-provided fixed buffers through xdrmem (no allocation, no

@@ -1,11 +1,11 @@
-#include "hapticctrl/rt_core/arm_model.hpp"
+#include "hapticctrl/arm_model/arm_model.hpp"
 
 #include <gtest/gtest.h>
 
 #include <fstream>
 #include <sstream>
 
-namespace hapticctrl::rt_core {
+namespace hapticctrl::arm_model {
 namespace {
 
 std::string default_text() {
@@ -93,4 +93,4 @@ TEST(ArmModel, UnreadableFileIsAClearError) {
 }
 
 }  // namespace
-}  // namespace hapticctrl::rt_core
+}  // namespace hapticctrl::arm_model

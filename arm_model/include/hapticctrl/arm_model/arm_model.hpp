@@ -10,7 +10,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace hapticctrl::rt_core {
+namespace hapticctrl::arm_model {
 
 using Vector3d = Eigen::Matrix<double, 3, 1>;
 using Matrix3d = Eigen::Matrix<double, 3, 3>;
@@ -68,7 +68,7 @@ class ArmModelError : public std::runtime_error {
 ArmModel parse_arm_model(const std::string& text, const std::string& source);
 /// Loads a model file. Throws ArmModelError (also when the file cannot be read).
 ArmModel load_arm_model(const std::string& path);
-/// The default model file shipped with the build (rt_core/models/virtuose6d_class.arm).
+/// The default model file shipped with the build (arm_model/models/virtuose6d_class.arm).
 std::string default_arm_model_path();
 
-}  // namespace hapticctrl::rt_core
+}  // namespace hapticctrl::arm_model

@@ -149,7 +149,7 @@ bool SimulatedArm::get_measures(ArmMeasures& out) noexcept {
   out.position = measured_position_;
   out.velocity = measured_velocity_;
   out.torque = applied_torque_;
-  out.supply_on = supply_on_;
+  out.supply_on = supply_on_.load(std::memory_order_acquire);
   out.operator_wrench = operator_wrench();
   out.operator_wrench_rejected = rejected_;
   return out.position.allFinite() && out.velocity.allFinite();
@@ -184,7 +184,8 @@ void SimulatedArm::read_operator_wrench() noexcept {
 
 void SimulatedArm::send_commands(const ArmCommands& commands, TimeNs /*now*/, TimeNs dt) noexcept {
   read_operator_wrench();
-  const bool enabled = supply_on_ && commands.enable && commands.torque.allFinite();
+  const bool enabled =
+      supply_on_.load(std::memory_order_acquire) && commands.enable && commands.torque.allFinite();
   applied_torque_.setZero();
   if (enabled) {
     for (int i = 0; i < kJoints; ++i) {

@@ -315,7 +315,9 @@ ExecutiveResult Executive::stop_sequence(shm::StopReason reason, bool fail_safe)
   }
   step(StopStep::kInhibitCommands);
 
-  // 2. Power off the (simulated) supply.
+  // 2. Power off the (simulated) supply, even when the gate stayed open: a SERVO hung in the
+  // cycle must not keep the motors powered, and set_supply is the ArmIo call made safe beside a
+  // running cycle (arm_io.hpp).
   arm_->set_supply(false);
   if (exclusive) {
     shared_->logical.powered = false;

@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <memory>
+#include <thread>
 
 namespace hapticctrl::rt_core {
 namespace {
@@ -81,6 +83,35 @@ TEST_F(ArmSimulatorTest, SimulatedArmQuantisesAndSaturates) {
   EXPECT_DOUBLE_EQ(m.torque(5), 3.0);
   const double step = 2.0 * 3.141592653589793 / 262144;
   EXPECT_NEAR(std::remainder(m.position(0), step), 0.0, 1e-12);
+}
+
+TEST_F(ArmSimulatorTest, TheSupplyCutFromAnotherThreadReachesARunningCycle) {
+  // The fail-safe cuts the supply even when a SERVO hangs in the cycle (H4: set_supply was a
+  // plain bool written beside the cycle; the ThreadSanitizer build checks this race).
+  auto force = std::make_unique<shm::SeqlockCell<shm::ForcePayload>>();
+  SimulatedArm arm(dynamics_, SimulatorOptions{}, kReady, force.get());
+  arm.set_supply(true);
+  ArmCommands cmd;
+  cmd.enable = true;
+  cmd.torque.setConstant(0.5);
+  std::atomic<bool> cut{false};
+  std::thread fail_safe([&] {
+    for (int k = 0; k < 200; ++k) {
+      arm.set_supply(k % 2 == 0);
+    }
+    arm.set_supply(false);
+    cut.store(true);
+  });
+  ArmMeasures m;
+  for (int k = 0; k < 2000 && !cut.load(); ++k) {
+    arm.send_commands(cmd, 0, kNsPerMs / 10);
+    arm.get_measures(m);
+  }
+  fail_safe.join();
+  arm.send_commands(cmd, 0, kNsPerMs / 10);
+  ASSERT_TRUE(arm.get_measures(m));
+  EXPECT_FALSE(m.supply_on);
+  EXPECT_EQ(m.torque, Vector6d::Zero()) << "no torque once the supply is cut";
 }
 
 TEST_F(ArmSimulatorTest, UnpoweredSimulatedArmDoesNotMoveUnderOperatorForce) {

@@ -33,7 +33,8 @@ struct ArmCommands {
 };
 
 /// Real-time contract of every method: noexcept, no allocation, no blocking; safe in the cycle.
-/// Calls are serialised by the servo (one cycle owner at a time), never concurrent.
+/// get_measures and send_commands are serialised by the servo (one cycle owner at a time);
+/// set_supply may come from another thread meanwhile (see there).
 class ArmIo {
  public:
   virtual ~ArmIo() = default;
@@ -41,7 +42,10 @@ class ArmIo {
   virtual bool get_measures(ArmMeasures& out) noexcept = 0;
   /// Applies `commands` for the period `dt` that starts at `now`.
   virtual void send_commands(const ArmCommands& commands, TimeNs now, TimeNs dt) noexcept = 0;
-  /// Switches the motor power supply (fail-safe and power requests).
+  /// Switches the motor power supply (fail-safe and power requests). Safe to call while a cycle
+  /// runs on another thread: the fail-safe cuts the supply even when it could not take the cycle
+  /// from a SERVO that hangs in it, as a hardware supply relay is cut independently of the bus.
+  /// Implementations make the switch atomic; the next send_commands sees it.
   virtual void set_supply(bool on) noexcept = 0;
 };
 

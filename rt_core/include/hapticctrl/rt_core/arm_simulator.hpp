@@ -9,6 +9,7 @@
 /// (validated), and
 /// measures quantised to the encoder resolution with a filtered finite-difference velocity.
 
+#include <atomic>
 #include <cstdint>
 
 #include "hapticctrl/rt_core/arm_dynamics.hpp"
@@ -94,7 +95,7 @@ class SimulatedArm final : public ArmIo {
 
   bool get_measures(ArmMeasures& out) noexcept override;
   void send_commands(const ArmCommands& commands, TimeNs now, TimeNs dt) noexcept override;
-  void set_supply(bool on) noexcept override { supply_on_ = on; }
+  void set_supply(bool on) noexcept override { supply_on_.store(on, std::memory_order_release); }
 
   [[nodiscard]] const ArmSimulator& simulator() const noexcept { return sim_; }
   [[nodiscard]] ArmSimulator& simulator() noexcept { return sim_; }
@@ -115,7 +116,7 @@ class SimulatedArm final : public ArmIo {
   Vector6d applied_torque_ = Vector6d::Zero();
   Vector6d measured_position_;
   Vector6d measured_velocity_ = Vector6d::Zero();
-  bool supply_on_ = false;
+  std::atomic<bool> supply_on_{false};  ///< also switched by the fail-safe, cycle or not
   std::uint64_t rejected_ = 0;
   std::uint64_t force_sequence_ = 0;  ///< the last operator force sample read
 };

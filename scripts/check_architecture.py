@@ -13,18 +13,19 @@ import sys
 # The contracts (ground floor) use nothing of the project; each process room may use these.
 CONTRACTS = {"shm", "protocol", "lcmtypes", "arm_model"}
 ALLOWED = {
+    "program": set(),  # scaffolding (options, main skeleton): every process may use it
     "shm": set(),
     "protocol": set(),
     "lcmtypes": set(),
     "arm_model": set(),
-    "rt_core": {"shm", "arm_model"},
+    "rt_core": {"shm", "arm_model", "program"},
     "client": {"protocol"},  # it runs on another machine: never shm/ or rt_core/
-    "bridges/udp": CONTRACTS,
-    "bridges/lcm": CONTRACTS,
-    "bridges/web": CONTRACTS,
-    "hmi": {"shm", "lcmtypes"},
-    "demo": {"client", "lcmtypes"},  # an application of the client library
-    "bench/netem": {"protocol"},  # the impairment relay the tests and benchmarks use
+    "bridges/udp": CONTRACTS | {"program"},
+    "bridges/lcm": CONTRACTS | {"program"},
+    "bridges/web": CONTRACTS | {"program"},
+    "hmi": {"shm", "lcmtypes", "program"},
+    "demo": {"client", "lcmtypes", "program"},  # an application of the client library
+    "bench/netem": {"protocol", "program"},  # the impairment relay the tests and benchmarks use
 }
 # Rooms that may use anything: they test or measure the others.
 FREE = {"tests", "bench"}

@@ -9,6 +9,8 @@ PACKAGES=(
   # design-card libraries
   libeigen3-dev liblcm-dev liblcm-bin liblcm-java libglib2.0-dev libtirpc-dev rpcsvc-proto zlib1g-dev
   libbenchmark-dev libgtest-dev libgmock-dev libncurses-dev
+  # program scaffolding: every program's options (program/)
+  libcli11-dev
   # monitoring, analysis and benchmarks
   default-jdk-headless libjchart2d-java gnuplot-nox rt-tests stress-ng procps util-linux python3
   # the installed systemd units are checked with systemd-analyze and systemd-sysusers

@@ -25,6 +25,7 @@
 #include "hapticctrl/demo/demo_options.hpp"
 #include "hapticctrl/demo/scene_publisher.hpp"
 #include "hapticctrl/demo/sphere_scene.hpp"
+#include "hapticctrl/program/main_skeleton.hpp"
 
 namespace {
 
@@ -421,23 +422,16 @@ int run(const demo::DemoOptions& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  demo::DemoOptions options;
-  try {
-    options = demo::DemoOptions::parse(std::vector<std::string>(argv + 1, argv + argc));
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "hapticctrl-demo: %s\n%s", e.what(), demo::DemoOptions::usage());
-    return 64;
-  }
-  if (options.help) {
-    std::printf("%s", demo::DemoOptions::usage());
-    return 0;
-  }
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
-  try {
-    return run(options);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "hapticctrl-demo: %s\n", e.what());
-    return 1;
-  }
+  return hapticctrl::program::main_skeleton<demo::DemoOptions>(
+      "hapticctrl-demo", argc, argv,
+      [](const std::vector<std::string>& args, demo::DemoOptions& c) {
+        c = demo::DemoOptions::parse(args);
+        return !c.help;
+      },
+      &demo::DemoOptions::usage,
+      [](const demo::DemoOptions& c) {
+        std::signal(SIGINT, on_signal);
+        std::signal(SIGTERM, on_signal);
+        return run(c);
+      });
 }

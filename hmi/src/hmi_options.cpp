@@ -5,6 +5,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "hapticctrl/program/options.hpp"
 #include "number_text.hpp"
 
 namespace hapticctrl::hmi {
@@ -33,90 +34,106 @@ const std::map<std::string, HmiCommand>& commands() {
   return table;
 }
 
+constexpr const char* kProgram = "hapticctrl-hmi";
+constexpr const char* kDescription =
+    "The operator's tool on the shared memory. Commands:\n"
+    "  (none)                  full-screen operator panel (needs a terminal); when the\n"
+    "                          controller ends it says why and waits for a new one\n"
+    "                          (--offer-restart: or for R, then exits 75)\n"
+    "  status [--json]         one reading of the controller's state\n"
+    "  power-on | power-off    switch the motor supply\n"
+    "  estop | reset           latch / reset the emergency stop\n"
+    "  stop                    stop the controller (fail-safe order) and wait for it\n"
+    "  force FX FY FZ TX TY TZ operator wrench on the handle [N, N.m], base frame, ramped\n"
+    "  zero-force              release the handle (and let go of a simulated hand)\n"
+    "  play FILE               play a force sequence (t fx fy fz tx ty tz per line) and log\n"
+    "                          the arm's response per cycle (--log, default\n"
+    "                          hapticctrl-sequence.csv); --hand K,B: a spring-damper hand\n"
+    "                          grips the handle meanwhile, its anchor wandering at random\n"
+    "                          up to --wander M per axis (0.2-2 Hz, --seed N)\n"
+    "Exit status: 0 done, 1 error or no effect within the timeout, 64 usage, 75 the\n"
+    "operator asked for a new controller (--offer-restart).";
+
+/// Every option, once: parse() and usage() both read these declarations. The command and its
+/// arguments are positional (negative numbers included); parse() checks them.
+void declare(program::Options& o, HmiOptions& h, std::vector<std::string>& positional,
+             std::vector<std::string>& play_only) {
+  o.text("--instance", h.instance, "controller instance (default: default)");
+  o.custom(
+      "--timeout-ms", "MS",
+      [&h](const std::string& v) {
+        h.timeout = std::chrono::milliseconds(
+            program::number_in<std::int64_t>("--timeout-ms", v, 1, 600'000));
+      },
+      "how long a command waits for its effect [1..600000] (default 2000)");
+  o.flag("--json", h.json, "status: as one JSON line");
+  o.flag("--offer-restart", h.offer_restart, "panel: offer R when the controller ends");
+  o.custom(
+      "--log", "CSV|-",
+      [&h, &play_only](const std::string& v) {
+        h.log_path = v;
+        play_only.emplace_back("--log");
+      },
+      "play: the per-cycle log");
+  o.flag("--power-on", h.power_on, "play: power on first");
+  o.custom(
+      "--hand", "K,B",
+      [&h, &play_only](const std::string& text) {
+        const auto comma = text.find(',');
+        if (comma == std::string::npos) {
+          throw std::invalid_argument("--hand needs K,B (stiffness N/m, damping N.s/m)");
+        }
+        h.hand.stiffness = number_of(text.substr(0, comma), "--hand stiffness");
+        h.hand.damping = number_of(text.substr(comma + 1), "--hand damping");
+        h.with_hand = true;
+        play_only.emplace_back("--hand");
+      },
+      "play: a spring-damper hand grips the handle (N/m, N.s/m)");
+  o.custom(
+      "--wander", "M",
+      [&h, &play_only](const std::string& v) {
+        h.hand.wander = number_of(v, "--wander");
+        play_only.emplace_back("--wander");
+      },
+      "play: the hand's anchor wanders up to M per axis");
+  o.custom(
+      "--seed", "N",
+      [&h, &play_only](const std::string& v) {
+        h.hand.seed = program::number_in<std::uint64_t>("--seed", v, 0, 1'000'000'000'000'000ULL);
+        play_only.emplace_back("--seed");
+      },
+      "play: the wander's random seed");
+  o.app().add_option("command", positional, "the command and its arguments (see above)");
+}
+
 }  // namespace
 
-const char* HmiOptions::usage() noexcept {
-  return "usage: hapticctrl-hmi [--instance NAME] [--timeout-ms MS] [COMMAND]\n"
-         "  (no command)            full-screen operator panel (needs a terminal); when the\n"
-         "                          controller ends it says why and waits for a new one\n"
-         "    --offer-restart       ... or for R, then exits 75 (for the script that starts\n"
-         "                          the controller: scripts/run.sh)\n"
-         "  status [--json]         one reading of the controller's state\n"
-         "  power-on | power-off    switch the motor supply\n"
-         "  estop | reset           latch / reset the emergency stop\n"
-         "  stop                    stop the controller (fail-safe order) and wait for it\n"
-         "  force FX FY FZ TX TY TZ operator wrench on the handle [N, N.m], base frame, ramped\n"
-         "  zero-force              release the handle (and let go of a simulated hand)\n"
-         "  play FILE [--log CSV|-] [--power-on] [--hand K,B] [--wander M] [--seed N]\n"
-         "                          play a force sequence (t fx fy fz tx ty tz per line) and log\n"
-         "                          the arm's response per cycle (default "
-         "hapticctrl-sequence.csv);\n"
-         "                          --hand: a spring-damper hand (K N/m, B N.s/m) grips the\n"
-         "                          handle meanwhile, its anchor wandering at random up to M m\n"
-         "                          per axis (0.2-2 Hz, seeded)\n"
-         "Exit status: 0 done, 1 error or no effect within the timeout, 64 usage, 75 the\n"
-         "operator asked for a new controller (--offer-restart).\n";
+std::string HmiOptions::usage() {
+  HmiOptions h;
+  std::vector<std::string> positional;
+  std::vector<std::string> play_only;
+  program::Options o(kProgram, kDescription);
+  declare(o, h, positional, play_only);
+  return o.help();
 }
 
 HmiOptions HmiOptions::parse(const std::vector<std::string>& args) {
   HmiOptions o;
-  bool have_command = false;
   std::vector<std::string> positional;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    auto value = [&]() -> const std::string& {
-      if (i + 1 >= args.size()) {
-        throw std::invalid_argument(a + " needs a value");
-      }
-      return args[++i];
-    };
-    if (a == "--help" || a == "-h") {
-      o.help = true;
-    } else if (a == "--instance") {
-      o.instance = value();
-    } else if (a == "--timeout-ms") {
-      const double ms = number_of(value(), "--timeout-ms");
-      if (ms < 1 || ms > 600'000) {
-        throw std::invalid_argument("--timeout-ms must be within 1..600000");
-      }
-      o.timeout = std::chrono::milliseconds(static_cast<long>(ms));
-    } else if (a == "--json") {
-      o.json = true;
-    } else if (a == "--offer-restart") {
-      o.offer_restart = true;
-    } else if (a == "--log") {
-      o.log_path = value();
-    } else if (a == "--power-on") {
-      o.power_on = true;
-    } else if (a == "--hand") {
-      const std::string& text = value();
-      const auto comma = text.find(',');
-      if (comma == std::string::npos) {
-        throw std::invalid_argument("--hand needs K,B (stiffness N/m, damping N.s/m)");
-      }
-      o.hand.stiffness = number_of(text.substr(0, comma), "--hand stiffness");
-      o.hand.damping = number_of(text.substr(comma + 1), "--hand damping");
-      o.with_hand = true;
-    } else if (a == "--wander") {
-      o.hand.wander = number_of(value(), "--wander");
-    } else if (a == "--seed") {
-      const double seed = number_of(value(), "--seed");
-      if (seed < 0 || seed > 1e15 || seed != static_cast<double>(static_cast<std::int64_t>(seed))) {
-        throw std::invalid_argument("--seed must be a whole number within 0..1e15");
-      }
-      o.hand.seed = static_cast<std::uint64_t>(seed);
-    } else if (!a.empty() && a[0] == '-' && !(have_command && o.command == HmiCommand::kForce)) {
-      throw std::invalid_argument("unknown option '" + a + "'");
-    } else if (!have_command) {
-      const auto found = commands().find(a);
-      if (found == commands().end()) {
-        throw std::invalid_argument("unknown command '" + a + "'");
-      }
-      o.command = found->second;
-      have_command = true;
-    } else {
-      positional.push_back(a);
+  std::vector<std::string> play_only;  // the play options given
+  program::Options options(kProgram, kDescription);
+  declare(options, o, positional, play_only);
+  o.help = !options.parse(args);
+  if (o.help) {
+    return o;
+  }
+  if (!positional.empty()) {
+    const auto found = commands().find(positional.front());
+    if (found == commands().end()) {
+      throw std::invalid_argument("unknown command '" + positional.front() + "'");
     }
+    o.command = found->second;
+    positional.erase(positional.begin());
   }
   if (o.command == HmiCommand::kForce) {
     if (positional.size() != 6) {
@@ -140,7 +157,7 @@ HmiOptions HmiOptions::parse(const std::vector<std::string>& args) {
     throw std::invalid_argument("unexpected argument '" + positional[0] + "'");
   }
   if (o.command != HmiCommand::kPlay &&
-      std::any_of(args.begin(), args.end(), [](const std::string& a) {
+      std::any_of(play_only.begin(), play_only.end(), [](const std::string& a) {
         return a == "--hand" || a == "--wander" || a == "--seed";
       })) {
     throw std::invalid_argument("--hand, --wander and --seed go with the play command");

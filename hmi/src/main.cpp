@@ -17,6 +17,7 @@
 #include "hapticctrl/hmi/sequence_player.hpp"
 #include "hapticctrl/hmi/status.hpp"
 #include "hapticctrl/hmi/wrench_sequence.hpp"
+#include "hapticctrl/program/main_skeleton.hpp"
 #include "hapticctrl/shm/names.hpp"
 
 namespace {
@@ -185,21 +186,11 @@ int run(const hmi::HmiOptions& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  hmi::HmiOptions options;
-  try {
-    options = hmi::HmiOptions::parse(std::vector<std::string>(argv + 1, argv + argc));
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "hapticctrl-hmi: %s\n%s", e.what(), hmi::HmiOptions::usage());
-    return 64;
-  }
-  if (options.help) {
-    std::printf("%s", hmi::HmiOptions::usage());
-    return 0;
-  }
-  try {
-    return run(options);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "hapticctrl-hmi: %s\n", e.what());
-    return 1;
-  }
+  return hapticctrl::program::main_skeleton<hmi::HmiOptions>(
+      "hapticctrl-hmi", argc, argv,
+      [](const std::vector<std::string>& args, hmi::HmiOptions& c) {
+        c = hmi::HmiOptions::parse(args);
+        return !c.help;
+      },
+      &hmi::HmiOptions::usage, [](const hmi::HmiOptions& c) { return run(c); });
 }

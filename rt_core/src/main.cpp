@@ -11,6 +11,7 @@
 #include <thread>
 #include <vector>
 
+#include "hapticctrl/program/main_skeleton.hpp"
 #include "hapticctrl/rt_core/arm_dynamics.hpp"
 #include "hapticctrl/rt_core/arm_simulator.hpp"
 #include "hapticctrl/rt_core/black_box.hpp"
@@ -184,24 +185,11 @@ int run_core(const CoreConfig& config) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CoreConfig config;
-  try {
-    config = parse_core_args(std::vector<std::string>(argv + 1, argv + argc));
-  } catch (const std::invalid_argument& e) {
-    std::cerr << "hapticctrl-core: " << e.what() << "\n";
-    return 64;
-  }
-  if (config.show_help) {
-    std::cout << core_usage();
-    return 0;
-  }
-  try {
-    return run_core(config);
-  } catch (const std::invalid_argument& e) {
-    std::cerr << "hapticctrl-core: " << e.what() << "\n";
-    return 64;
-  } catch (const std::exception& e) {
-    std::cerr << "hapticctrl-core: error: " << e.what() << "\n";
-    return 1;
-  }
+  return hapticctrl::program::main_skeleton<CoreConfig>(
+      "hapticctrl-core", argc, argv,
+      [](const std::vector<std::string>& args, CoreConfig& c) {
+        c = parse_core_args(args);
+        return !c.show_help;
+      },
+      &core_usage, [](const CoreConfig& c) { return run_core(c); });
 }

@@ -19,8 +19,9 @@
 #include "hapticctrl/lcm_bridge/hmi_input.hpp"
 #include "hapticctrl/lcm_bridge/lcm_bridge_config.hpp"
 #include "hapticctrl/lcm_bridge/messages.hpp"
-#include "hapticctrl/shm/monotonic_clock.hpp"
+#include "hapticctrl/program/main_skeleton.hpp"
 #include "hapticctrl/shm/core_watch.hpp"
+#include "hapticctrl/shm/monotonic_clock.hpp"
 #include "hapticctrl/shm/segment.hpp"
 
 namespace {
@@ -211,8 +212,9 @@ int run(const LcmBridgeConfig& config) {
   PublishCounters counters;
   std::string hmi_json = "\"commands_applied\":0";
   const std::int64_t end_ns =
-      config.duration_s > 0.0 ? monotonic_now_ns() + static_cast<std::int64_t>(config.duration_s * 1e9)
-                              : 0;
+      config.duration_s > 0.0
+          ? monotonic_now_ns() + static_cast<std::int64_t>(config.duration_s * 1e9)
+          : 0;
   std::fprintf(stderr, "hapticctrl-lcm: instance '%s' on %s, channels %s.*, remote commands %s\n",
                config.instance.c_str(), config.lcm_url.c_str(),
                ("hapticctrl." + config.instance).c_str(),
@@ -249,23 +251,16 @@ int run(const LcmBridgeConfig& config) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  LcmBridgeConfig config;
-  try {
-    config = LcmBridgeConfig::parse(std::vector<std::string>(argv + 1, argv + argc));
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "hapticctrl-lcm: %s\n%s", e.what(), LcmBridgeConfig::usage());
-    return 64;
-  }
-  if (config.help) {
-    std::printf("%s", LcmBridgeConfig::usage());
-    return 0;
-  }
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
-  try {
-    return run(config);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "hapticctrl-lcm: %s\n", e.what());
-    return 1;
-  }
+  return hapticctrl::program::main_skeleton<LcmBridgeConfig>(
+      "hapticctrl-lcm", argc, argv,
+      [](const std::vector<std::string>& args, LcmBridgeConfig& c) {
+        c = LcmBridgeConfig::parse(args);
+        return !c.help;
+      },
+      &LcmBridgeConfig::usage,
+      [](const LcmBridgeConfig& c) {
+        std::signal(SIGINT, on_signal);
+        std::signal(SIGTERM, on_signal);
+        return run(c);
+      });
 }

@@ -2,22 +2,12 @@
 
 #include <arpa/inet.h>
 
-#include <charconv>
 #include <stdexcept>
+
+#include "hapticctrl/program/options.hpp"
 
 namespace hapticctrl::udp_bridge {
 namespace {
-
-template <typename T>
-T number(const std::string& option, const std::string& text, T lo, T hi) {
-  T value{};
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (ec != std::errc{} || end != text.data() + text.size() || !(value >= lo && value <= hi)) {
-    throw std::invalid_argument(option + ": expected a number from " + std::to_string(lo) + " to " +
-                                std::to_string(hi) + ", got '" + text + "'");
-  }
-  return value;
-}
 
 bool is_loopback(const std::string& address) {
   in_addr a{};
@@ -25,69 +15,52 @@ bool is_loopback(const std::string& address) {
          (::inet_pton(AF_INET, address.c_str(), &a) == 1 && (ntohl(a.s_addr) >> 24U) == 127U);
 }
 
+/// Every option, once: parse() and usage() both read these declarations.
+void declare(program::Options& o, BridgeConfig& c) {
+  o.text("--instance", c.instance, "controller instance to serve (default: default)");
+  o.text("--bind", c.bind_address, "IPv4 address to listen on (default: 127.0.0.1)");
+  o.number<std::uint16_t>("--port", c.port, 0, 65535,
+                          "UDP port (default: 5125; 0: any free port, printed)");
+  o.flag("--allow-remote", c.allow_remote, "required to bind an address other than loopback");
+  o.custom(
+      "--allow-client", "NET",
+      [&c](const std::string& v) { c.allowed_clients.push_back(Ipv4Network::parse(v)); },
+      "serve only this client address or network (a.b.c.d[/n]); repeat for more (default: any "
+      "address that reaches the port)",
+      /*repeat=*/true);
+  o.number("--hello-rate", c.hello_rate, 1.0, 10000.0,
+           "handshakes (HELLO) answered per second per source, and the burst allowed "
+           "(default: 20); 5 times that from all sources together");
+  o.number<std::uint32_t>("--watchdog-ms", c.watchdog_ms, 10, 60000,
+                          "default session watchdog, ms (default: 3000)");
+  o.number<std::uint32_t>("--max-watchdog-ms", c.max_watchdog_ms, 10, 600000,
+                          "the longest watchdog a client may ask for, ms (default: 10000, at "
+                          "least --watchdog-ms)");
+  o.number("--priority", c.priority, 1, 98,
+           "SCHED_FIFO priority for both threads (below the core's)");
+  o.number("--duration", c.duration_s, 0.0, 1e6,
+           "exit after S seconds (default: run until SIGINT/SIGTERM)");
+  o.flag("--json", c.json, "print the final counters as one JSON line");
+}
+
+constexpr const char* kProgram = "hapticctrl-udp";
+constexpr const char* kDescription =
+    "The UDP bridge: serves one client session of the hapticctrl protocol for a controller.";
+
 }  // namespace
 
-const char* BridgeConfig::usage() noexcept {
-  return "usage: hapticctrl-udp [options]\n"
-         "  --instance NAME     controller instance to serve (default: default)\n"
-         "  --bind ADDRESS      IPv4 address to listen on (default: 127.0.0.1)\n"
-         "  --port N            UDP port (default: 5125; 0: any free port, printed)\n"
-         "  --allow-remote      required to bind an address other than loopback\n"
-         "  --allow-client NET  serve only this client address or network (a.b.c.d[/n]);\n"
-         "                      repeat for more (default: any address that reaches the port)\n"
-         "  --hello-rate N      handshakes (HELLO) answered per second per source, and the\n"
-         "                      burst allowed, 1..10000 (default: 20); 5 times that from\n"
-         "                      all sources together\n"
-         "  --watchdog-ms N     default session watchdog, 10..60000 ms (default: 3000)\n"
-         "  --max-watchdog-ms N the longest watchdog a client may ask for, 10..600000 ms\n"
-         "                      (default: 10000, at least --watchdog-ms)\n"
-         "  --priority N        SCHED_FIFO priority 1..98 for both threads (below the core's)\n"
-         "  --duration S        exit after S seconds (default: run until SIGINT/SIGTERM)\n"
-         "  --json              print the final counters as one JSON line\n";
+std::string BridgeConfig::usage() {
+  BridgeConfig c;
+  program::Options o(kProgram, kDescription);
+  declare(o, c);
+  return o.help();
 }
 
 BridgeConfig BridgeConfig::parse(const std::vector<std::string>& args) {
   BridgeConfig c;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    const auto value = [&]() -> const std::string& {
-      if (i + 1 >= args.size()) {
-        throw std::invalid_argument(a + ": missing value");
-      }
-      return args[++i];
-    };
-    if (a == "--instance") {
-      c.instance = value();
-    } else if (a == "--bind") {
-      c.bind_address = value();
-    } else if (a == "--port") {
-      c.port = number<std::uint16_t>(a, value(), 0, 65535);
-    } else if (a == "--allow-remote") {
-      c.allow_remote = true;
-    } else if (a == "--allow-client") {
-      try {
-        c.allowed_clients.push_back(Ipv4Network::parse(value()));
-      } catch (const std::invalid_argument& e) {
-        throw std::invalid_argument(a + ": " + e.what());
-      }
-    } else if (a == "--hello-rate") {
-      c.hello_rate = number<double>(a, value(), 1.0, 10000.0);
-    } else if (a == "--max-watchdog-ms") {
-      c.max_watchdog_ms = number<std::uint32_t>(a, value(), 10, 600000);
-    } else if (a == "--watchdog-ms") {
-      c.watchdog_ms = number<std::uint32_t>(a, value(), 10, 60000);
-    } else if (a == "--priority") {
-      c.priority = number<int>(a, value(), 1, 98);
-    } else if (a == "--duration") {
-      c.duration_s = number<double>(a, value(), 0.0, 1e6);
-    } else if (a == "--json") {
-      c.json = true;
-    } else if (a == "--help" || a == "-h") {
-      c.help = true;
-    } else {
-      throw std::invalid_argument("unknown option '" + a + "'");
-    }
-  }
+  program::Options o(kProgram, kDescription);
+  declare(o, c);
+  c.help = !o.parse(args);
   if (!c.allow_remote && !is_loopback(c.bind_address)) {
     throw std::invalid_argument("--bind " + c.bind_address +
                                 ": not a loopback address; a client elsewhere could then command "

@@ -20,6 +20,7 @@
 #include <utility>
 #include <vector>
 
+#include "hapticctrl/program/main_skeleton.hpp"
 #include "hapticctrl/protocol/monotonic_clock.hpp"
 #include "hapticctrl/shm/core_watch.hpp"
 #include "hapticctrl/shm/names.hpp"
@@ -269,23 +270,16 @@ int run(const BridgeConfig& config) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  BridgeConfig config;
-  try {
-    config = BridgeConfig::parse(std::vector<std::string>(argv + 1, argv + argc));
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "hapticctrl-udp: %s\n%s", e.what(), BridgeConfig::usage());
-    return 64;
-  }
-  if (config.help) {
-    std::printf("%s", BridgeConfig::usage());
-    return 0;
-  }
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
-  try {
-    return run(config);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "hapticctrl-udp: %s\n", e.what());
-    return 1;
-  }
+  return hapticctrl::program::main_skeleton<BridgeConfig>(
+      "hapticctrl-udp", argc, argv,
+      [](const std::vector<std::string>& args, BridgeConfig& c) {
+        c = BridgeConfig::parse(args);
+        return !c.help;
+      },
+      &BridgeConfig::usage,
+      [](const BridgeConfig& c) {
+        std::signal(SIGINT, on_signal);
+        std::signal(SIGTERM, on_signal);
+        return run(c);
+      });
 }

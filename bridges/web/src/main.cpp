@@ -15,8 +15,9 @@
 #include <thread>
 #include <vector>
 
-#include "hapticctrl/lcmtypes/channels.hpp"
 #include "hapticctrl/arm_model/arm_model.hpp"
+#include "hapticctrl/lcmtypes/channels.hpp"
+#include "hapticctrl/program/main_skeleton.hpp"
 #include "hapticctrl/shm/monotonic_clock.hpp"
 #include "hapticctrl/web_bridge/model_json.hpp"
 #include "hapticctrl/web_bridge/page_gateway.hpp"
@@ -237,24 +238,17 @@ int run(const wb::WebConfig& config) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  wb::WebConfig config;
-  try {
-    config = wb::WebConfig::parse(std::vector<std::string>(argv + 1, argv + argc));
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "hapticctrl-web: %s\n%s", e.what(), wb::WebConfig::usage());
-    return 64;
-  }
-  if (config.help) {
-    std::printf("%s", wb::WebConfig::usage());
-    return 0;
-  }
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
-  std::signal(SIGPIPE, SIG_IGN);  // a browser gone mid-write is an error return, not a signal
-  try {
-    return run(config);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "hapticctrl-web: %s\n", e.what());
-    return 1;
-  }
+  return hapticctrl::program::main_skeleton<wb::WebConfig>(
+      "hapticctrl-web", argc, argv,
+      [](const std::vector<std::string>& args, wb::WebConfig& c) {
+        c = wb::WebConfig::parse(args);
+        return !c.help;
+      },
+      &wb::WebConfig::usage,
+      [](const wb::WebConfig& c) {
+        std::signal(SIGINT, on_signal);
+        std::signal(SIGTERM, on_signal);
+        std::signal(SIGPIPE, SIG_IGN);  // a browser gone mid-write is an error return, not a signal
+        return run(c);
+      });
 }

@@ -30,7 +30,8 @@ struct DemoOptions {
   bool help = false;
 
   static DemoOptions parse(const std::vector<std::string>& args);
-  static const char* usage() noexcept;
+  /// The --help text, generated from the same declarations.
+  static std::string usage();
 };
 
 }  // namespace hapticctrl::demo

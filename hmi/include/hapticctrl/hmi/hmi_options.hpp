@@ -38,7 +38,8 @@ struct HmiOptions {
   bool help = false;
 
   static HmiOptions parse(const std::vector<std::string>& args);
-  static const char* usage() noexcept;
+  /// The --help text, generated from the same declarations.
+  static std::string usage();
 };
 
 }  // namespace hapticctrl::hmi

@@ -22,7 +22,8 @@ struct LcmBridgeConfig {
   bool help = false;
 
   static LcmBridgeConfig parse(const std::vector<std::string>& args);
-  static const char* usage() noexcept;
+  /// The --help text, generated from the same declarations.
+  static std::string usage();
 };
 
 }  // namespace hapticctrl::lcm_bridge

@@ -26,7 +26,8 @@ struct BridgeConfig {
   bool help = false;
 
   static BridgeConfig parse(const std::vector<std::string>& args);
-  static const char* usage() noexcept;
+  /// The --help text, generated from the same declarations.
+  static std::string usage();
 };
 
 }  // namespace hapticctrl::udp_bridge

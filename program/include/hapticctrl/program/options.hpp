@@ -1,0 +1,62 @@
+#pragma once
+/// @file options.hpp
+/// A program's command line, declared once with CLI11: the --help text is generated from the
+/// declarations, numbers are range-checked with NaN and infinities refused (CLI::Range lets NaN
+/// through), and every usage error is a std::invalid_argument naming the option, which
+/// main_skeleton.hpp turns into the project's usage exit (64). Setup code: allocates, throws;
+/// never called from a cycle.
+#include <CLI/CLI.hpp>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace hapticctrl::program {
+
+/// `text` as a T within [lo, hi]: whole for integer types, finite for floating ones. Throws
+/// std::invalid_argument("<option>: expected a number from LO to HI, got 'TEXT'").
+template <typename T>
+T number_in(const std::string& option, const std::string& text, T lo, T hi);
+
+/// "LO..HI", as the help text and the errors write a range.
+template <typename T>
+std::string range_text(T lo, T hi);
+
+class Options {
+ public:
+  /// `program` names the usage line; `description` heads the --help text.
+  Options(const std::string& program, const std::string& description);
+
+  /// --name N: a number within [lo, hi] into `target` (its current value is the default shown).
+  template <typename T>
+  Options& number(const std::string& name, T& target, T lo, T hi, const std::string& help) {
+    return custom(
+        name, "N",
+        [&target, name, lo, hi](const std::string& v) { target = number_in<T>(name, v, lo, hi); },
+        help + " [" + range_text(lo, hi) + "]");
+  }
+  /// --name TEXT into `target`.
+  Options& text(const std::string& name, std::string& target, const std::string& help);
+  /// --name: sets `target`.
+  Options& flag(const std::string& name, bool& target, const std::string& help);
+  /// --name: calls `on` (a flag that clears a setting, or sets several).
+  Options& flag(const std::string& name, std::function<void()> on, const std::string& help);
+  /// --name VALUE handed to `apply`, which throws std::invalid_argument for a bad value (its
+  /// message is prefixed with the option's name unless it already starts with it). `repeat`: the
+  /// option may come more than once (each value applied in order).
+  Options& custom(const std::string& name, const std::string& value_name,
+                  std::function<void(const std::string&)> apply, const std::string& help,
+                  bool repeat = false);
+
+  /// Parses `args` (without the program name). Returns false when --help or -h was given (then
+  /// print help()). Throws std::invalid_argument("<option>: <why>") on any usage error.
+  bool parse(const std::vector<std::string>& args);
+  /// The generated --help text.
+  [[nodiscard]] std::string help() const;
+  /// CLI11's app, for what the helpers do not cover (positionals, subcommands).
+  [[nodiscard]] CLI::App& app() { return app_; }
+
+ private:
+  CLI::App app_;
+};
+
+}  // namespace hapticctrl::program

@@ -1,0 +1,129 @@
+// Options declared once with CLI11 (options.hpp).
+#include "hapticctrl/program/options.hpp"
+
+#include <charconv>
+#include <cstdint>
+#include <sstream>
+#include <stdexcept>
+#include <type_traits>
+
+namespace hapticctrl::program {
+namespace {
+
+template <typename T>
+std::string text_of(T value) {
+  std::ostringstream out;
+  out << +value;  // + prints 8-bit integers as numbers
+  return out.str();
+}
+
+/// Prefixes `message` with the option's name unless it already starts with it.
+std::string about(const std::string& option, const std::string& message) {
+  return message.rfind(option, 0) == 0 ? message : option + ": " + message;
+}
+
+}  // namespace
+
+template <typename T>
+T number_in(const std::string& option, const std::string& text, T lo, T hi) {
+  T value{};
+  const char* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+  // Written so that NaN is out of range too.
+  if (ec != std::errc() || ptr != end || !(value >= lo && value <= hi)) {
+    throw std::invalid_argument(option + ": expected a number from " + text_of(lo) + " to " +
+                                text_of(hi) + ", got '" + text + "'");
+  }
+  return value;
+}
+
+template <typename T>
+std::string range_text(T lo, T hi) {
+  return text_of(lo) + ".." + text_of(hi);
+}
+
+template int number_in<int>(const std::string&, const std::string&, int, int);
+template std::uint16_t number_in<std::uint16_t>(const std::string&, const std::string&,
+                                                std::uint16_t, std::uint16_t);
+template std::uint32_t number_in<std::uint32_t>(const std::string&, const std::string&,
+                                                std::uint32_t, std::uint32_t);
+template std::uint64_t number_in<std::uint64_t>(const std::string&, const std::string&,
+                                                std::uint64_t, std::uint64_t);
+template std::int64_t number_in<std::int64_t>(const std::string&, const std::string&, std::int64_t,
+                                              std::int64_t);
+template double number_in<double>(const std::string&, const std::string&, double, double);
+template std::string range_text<int>(int, int);
+template std::string range_text<std::uint16_t>(std::uint16_t, std::uint16_t);
+template std::string range_text<std::uint32_t>(std::uint32_t, std::uint32_t);
+template std::string range_text<std::uint64_t>(std::uint64_t, std::uint64_t);
+template std::string range_text<std::int64_t>(std::int64_t, std::int64_t);
+template std::string range_text<double>(double, double);
+
+Options::Options(const std::string& program, const std::string& description)
+    : app_(description, program) {
+  app_.set_help_flag("-h,--help", "this text");
+  app_.get_formatter()->column_width(28);
+}
+
+Options& Options::text(const std::string& name, std::string& target, const std::string& help) {
+  return custom(
+      name, "TEXT", [&target](const std::string& v) { target = v; }, help);
+}
+
+Options& Options::flag(const std::string& name, bool& target, const std::string& help) {
+  return flag(
+      name, [&target] { target = true; }, help);
+}
+
+Options& Options::flag(const std::string& name, std::function<void()> on, const std::string& help) {
+  app_.add_flag_callback(name, std::move(on), help);
+  return *this;
+}
+
+Options& Options::custom(const std::string& name, const std::string& value_name,
+                         std::function<void(const std::string&)> apply, const std::string& help,
+                         bool repeat) {
+  const auto checked = [name, apply = std::move(apply)](const std::string& value) {
+    try {
+      apply(value);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(about(name, e.what()));
+    }
+  };
+  if (repeat) {
+    app_.add_option_function<std::vector<std::string>>(
+            name,
+            [checked](const std::vector<std::string>& values) {
+              for (const std::string& v : values) {
+                checked(v);
+              }
+            },
+            help)
+        ->type_name(value_name)
+        ->allow_extra_args(false)  // one value per occurrence, never the arguments after it
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  } else {
+    app_.add_option_function<std::string>(name, checked, help)
+        ->type_name(value_name)
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  }
+  return *this;
+}
+
+bool Options::parse(const std::vector<std::string>& args) {
+  std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 pops from the back
+  try {
+    app_.parse(reversed);
+  } catch (const CLI::CallForHelp&) {
+    return false;
+  } catch (const CLI::ParseError& e) {
+    throw std::invalid_argument(e.what());
+  }
+  return true;
+}
+
+std::string Options::help() const {
+  return app_.help();
+}
+
+}  // namespace hapticctrl::program

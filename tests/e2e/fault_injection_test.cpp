@@ -18,8 +18,8 @@
 #include <thread>
 #include <vector>
 
-#include "hapticctrl/client/connection.hpp"
 #include "hapticctrl/arm_model/arm_model.hpp"
+#include "hapticctrl/client/connection.hpp"
 #include "hapticctrl/shm/force_slew.hpp"
 #include "hapticctrl/shm/monotonic_clock.hpp"
 #include "hapticctrl/shm/payloads.hpp"

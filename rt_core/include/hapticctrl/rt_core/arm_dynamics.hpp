@@ -10,8 +10,8 @@
 
 #include <array>
 
-#include "hapticctrl/rt_core/arm_io.hpp"
 #include "hapticctrl/arm_model/arm_model.hpp"
+#include "hapticctrl/rt_core/arm_io.hpp"
 
 namespace hapticctrl::rt_core {
 

@@ -65,17 +65,12 @@ void declare(program::Options& o, DemoOptions& d) {
 }  // namespace
 
 std::string DemoOptions::usage() {
-  DemoOptions d;
-  program::Options o(kProgram, kDescription);
-  declare(o, d);
-  return o.help();
+  return program::help_of<DemoOptions>(kProgram, kDescription, declare);
 }
 
 DemoOptions DemoOptions::parse(const std::vector<std::string>& args) {
   DemoOptions d;
-  program::Options o(kProgram, kDescription);
-  declare(o, d);
-  d.help = !o.parse(args);
+  d.help = !program::parse_into(d, args, kProgram, kDescription, declare);
   return d;
 }
 

@@ -91,17 +91,12 @@ void declare(program::Options& o, CoreConfig& c) {
 }  // namespace
 
 std::string core_usage() {
-  CoreConfig c;
-  program::Options o(kProgram, kDescription);
-  declare(o, c);
-  return o.help();
+  return program::help_of<CoreConfig>(kProgram, kDescription, declare);
 }
 
 CoreConfig parse_core_args(const std::vector<std::string>& args) {
   CoreConfig c;
-  program::Options o(kProgram, kDescription);
-  declare(o, c);
-  c.show_help = !o.parse(args);
+  c.show_help = !program::parse_into(c, args, kProgram, kDescription, declare);
   return c;
 }
 

@@ -28,17 +28,12 @@ void declare(program::Options& o, LcmBridgeConfig& c) {
 }  // namespace
 
 std::string LcmBridgeConfig::usage() {
-  LcmBridgeConfig c;
-  program::Options o(kProgram, kDescription);
-  declare(o, c);
-  return o.help();
+  return program::help_of<LcmBridgeConfig>(kProgram, kDescription, declare);
 }
 
 LcmBridgeConfig LcmBridgeConfig::parse(const std::vector<std::string>& args) {
   LcmBridgeConfig c;
-  program::Options o(kProgram, kDescription);
-  declare(o, c);
-  c.help = !o.parse(args);
+  c.help = !program::parse_into(c, args, kProgram, kDescription, declare);
   return c;
 }
 

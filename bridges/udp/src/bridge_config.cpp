@@ -50,17 +50,12 @@ constexpr const char* kDescription =
 }  // namespace
 
 std::string BridgeConfig::usage() {
-  BridgeConfig c;
-  program::Options o(kProgram, kDescription);
-  declare(o, c);
-  return o.help();
+  return program::help_of<BridgeConfig>(kProgram, kDescription, declare);
 }
 
 BridgeConfig BridgeConfig::parse(const std::vector<std::string>& args) {
   BridgeConfig c;
-  program::Options o(kProgram, kDescription);
-  declare(o, c);
-  c.help = !o.parse(args);
+  c.help = !program::parse_into(c, args, kProgram, kDescription, declare);
   if (!c.allow_remote && !is_loopback(c.bind_address)) {
     throw std::invalid_argument("--bind " + c.bind_address +
                                 ": not a loopback address; a client elsewhere could then command "

@@ -61,17 +61,12 @@ void declare(program::Options& o, WebConfig& c) {
 }  // namespace
 
 std::string WebConfig::usage() {
-  WebConfig c;
-  program::Options o(kProgram, kDescription);
-  declare(o, c);
-  return o.help();
+  return program::help_of<WebConfig>(kProgram, kDescription, declare);
 }
 
 WebConfig WebConfig::parse(const std::vector<std::string>& args) {
   WebConfig c;
-  program::Options o(kProgram, kDescription);
-  declare(o, c);
-  c.help = !o.parse(args);
+  c.help = !program::parse_into(c, args, kProgram, kDescription, declare);
   if (c.listen.rfind("127.", 0) != 0 && !c.allow_remote) {
     throw std::invalid_argument("--listen " + c.listen +
                                 " serves the web view beyond this host: add --allow-remote to "

@@ -59,4 +59,22 @@ class Options {
   CLI::App app_;
 };
 
+/// The --help text of the options `declare(Options&, Config&)` declares.
+template <typename Config, typename Declare>
+std::string help_of(const std::string& program, const std::string& description, Declare declare) {
+  Config config{};
+  Options o(program, description);
+  declare(o, config);
+  return o.help();
+}
+
+/// Parses `args` into `config` through `declare`; false when --help was given.
+template <typename Config, typename Declare>
+bool parse_into(Config& config, const std::vector<std::string>& args, const std::string& program,
+                const std::string& description, Declare declare) {
+  Options o(program, description);
+  declare(o, config);
+  return o.parse(args);
+}
+
 }  // namespace hapticctrl::program

@@ -103,7 +103,7 @@ void declare(program::Options& o, HmiOptions& h, std::vector<std::string>& posit
         play_only.emplace_back("--seed");
       },
       "play: the wander's random seed");
-  o.app().add_option("command", positional, "the command and its arguments (see above)");
+  o.positional("command", positional, "the command and its arguments (see above)");
 }
 
 }  // namespace

@@ -47,7 +47,7 @@ void declare(Options& o, Sample& s) {
         s.clients.push_back(v);
       },
       "a client", /*repeat=*/true);
-  o.app().add_option("args", s.positional, "the rest");
+  o.positional("args", s.positional, "the rest");
 }
 
 TEST(Options, ParsesEachKindAndKeepsDefaults) {

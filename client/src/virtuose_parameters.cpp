@@ -8,7 +8,6 @@
 #include "virtuose_context.hpp"
 
 using hapticctrl::client::CommandType;
-using hapticctrl::client::Indexing;
 using hapticctrl::client::StateSnapshot;
 using hapticctrl::client::virtuose::Context;
 using hapticctrl::client::virtuose::context_of;
@@ -91,9 +90,6 @@ int virtSetIndexingMode(VirtContext VC, VirtIndexingType indexing_mode) {
   Context* vc = context_of(VC);
   if (vc == nullptr) {
     return -1;
-  }
-  if (Indexing probe; !probe.set_mode(static_cast<std::uint32_t>(indexing_mode))) {
-    return fail(VC, VIRT_E_INCORRECT_VALUE, "virtSetIndexingMode: not a VirtIndexingType");
   }
   return set_and_record(
       VC,

@@ -15,10 +15,7 @@ using hapticctrl::client::virtuose::to_floats;
 
 namespace {
 
-/// Answer state bits (protocol 1.2, docs/protocol.md): bit 7 saturated; from bit 8 two bits per
-/// joint (lower, upper wall) and two for the J2 + J3 sum.
-constexpr std::uint32_t kSaturatedBit = 1U << 7;
-constexpr unsigned kBoundsShift = 8;
+namespace state_bits = hapticctrl::client::state_bits;
 
 /// VirtuoseAPI's bound bit of each answer bound bit (joint j lower, upper; then J2 + J3):
 /// lower is LEFT or INF, upper RIGHT or SUP.
@@ -124,13 +121,13 @@ int virtGetTimeLastUpdate(VirtContext VC, unsigned int* time) {
 }
 
 int virtGetAlarm(VirtContext VC, unsigned int* alarm) {
-  return read_state(
-      VC, alarm, "virtGetAlarm: NULL output", [&](Context& c, const StateSnapshot& s) {
-        *alarm = c.alarms |
-                 ((s.state_word & kSaturatedBit) != 0U ? static_cast<unsigned>(VIRT_ALARM_SATURATE)
-                                                       : 0U);
-        c.alarms = 0;  // raised since the last read
-      });
+  return read_state(VC, alarm, "virtGetAlarm: NULL output",
+                    [&](Context& c, const StateSnapshot& s) {
+                      *alarm = c.alarms | ((s.state_word & state_bits::kSaturated) != 0U
+                                               ? static_cast<unsigned>(VIRT_ALARM_SATURATE)
+                                               : 0U);
+                      c.alarms = 0;  // raised since the last read
+                    });
 }
 
 int virtIsInBounds(VirtContext VC, unsigned int* bounds) {
@@ -138,7 +135,7 @@ int virtIsInBounds(VirtContext VC, unsigned int* bounds) {
                     [&](const Context&, const StateSnapshot& s) {
                       unsigned int bits = 0;
                       for (unsigned i = 0; i < std::size(kBoundBits); ++i) {
-                        if ((s.state_word & (1U << (kBoundsShift + i))) != 0U) {
+                        if ((s.state_word & (1U << (state_bits::kJointBoundsShift + i))) != 0U) {
                           bits |= kBoundBits[i];
                         }
                       }

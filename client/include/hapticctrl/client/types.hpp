@@ -36,6 +36,10 @@ inline constexpr std::uint32_t kDegraded = 1U << 3;
 inline constexpr std::uint32_t kCoupled = 1U << 4;
 inline constexpr std::uint32_t kClientStale = 1U << 5;
 inline constexpr std::uint32_t kStopping = 1U << 6;
+/// 1.2: the coupling wrench was clipped to the force or torque limit this cycle.
+inline constexpr std::uint32_t kSaturated = 1U << 7;
+/// 1.2: bits 8 + 2j / 9 + 2j joint j (0-5) in its lower / upper wall; 20 / 21 the J2 + J3 sum.
+inline constexpr unsigned kJointBoundsShift = 8;
 }  // namespace state_bits
 
 /// One controller cycle as the client received it: taken atomically, timestamped.

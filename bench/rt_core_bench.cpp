@@ -26,12 +26,12 @@ ServoInputs coupled_inputs() {
   in.dt = kNsPerMs;
   in.logical.powered = true;
   in.client.session_id = 1;
-  in.client.command_type = static_cast<std::uint32_t>(shm::CommandType::kVirtmech);
-  in.client.flags = shm::vpr_flags::kObjectAttached;
+  in.client.command = ClientCommand::kVirtmech;
+  in.client.object_attached = true;
   in.client.object_pose = {0.63, 0.01, 0.23, 0, 0, 0, 1};
   in.client.object_twist = {0.02, 0, 0, 0, 0, 0.1};
   in.client.object_mass = 0.3;
-  in.client.client_time_step = 1e-3;
+  in.client.time_step = 1e-3;
   in.client_valid = true;
   return in;
 }

@@ -19,7 +19,10 @@ Executive::Executive(const ExecutiveConfig& config, Clock& clock, ServoTasks& ta
     : config_(config),
       clock_(&clock),
       tasks_(&tasks),
-      shared_(&shared),
+      gate_(&shared.gate),
+      gate_owned_(&shared.state),
+      to_servo_(&shared.from_clock),
+      from_servo_(&shared.to_clock),
       arm_(&arm),
       outputs_(outputs),
       black_box_(&black_box),
@@ -144,13 +147,13 @@ shm::StopReason Executive::run_slot(TimeNs scheduled, TimeNs woke) noexcept {
     case MonitorVerdict::kMiss:
       break;
   }
-  if (shared_->counters.arm_faults.load(std::memory_order_relaxed) > 0) {
+  if (from_servo_->counters.arm_faults.load(std::memory_order_relaxed) > 0) {
     return shm::StopReason::kArmFault;
   }
-  if (shared_->velocity_fault.load(std::memory_order_acquire)) {
+  if (from_servo_->velocity_fault.load(std::memory_order_acquire)) {
     return shm::StopReason::kVelocityLimit;
   }
-  if (shared_->stop_requested.load(std::memory_order_acquire)) {
+  if (from_servo_->stop_requested.load(std::memory_order_acquire)) {
     return shm::StopReason::kStopRequested;
   }
   return shm::StopReason::kNone;
@@ -166,7 +169,7 @@ void Executive::release_servo(TimeNs now) noexcept {
       return;  // both stuck: nothing can run this cycle (a miss)
     }
   }
-  if (shared_->gate.grant(cycle_)) {
+  if (gate_->grant(cycle_)) {
     tasks_->release(role, cycle_, now);
   }
 }
@@ -220,19 +223,19 @@ shm::TelemetryPayload Executive::telemetry() const noexcept {
   t.skipped_slots = skipped_slots_;
   t.would_fail_safe = would_fail_safe_;
   t.first_would_fail_safe_cycle = first_would_fail_safe_cycle_;
-  t.late_servo_discarded = shared_->counters.late_discarded.load(std::memory_order_relaxed);
+  t.late_servo_discarded = from_servo_->counters.late_discarded.load(std::memory_order_relaxed);
   t.window_miss_ppm = monitor_.window_miss_ppm();
   t.leaky_bucket_score = monitor_.leaky_bucket_score();
   t.wake_latency = wake_latency_.summary();
   t.servo_start_delay = servo_start_delay_.summary();
   t.servo_execution = servo_execution_.summary();
   t.measured_period = measured_period_.summary();
-  t.vpr_torn = shared_->counters.vpr_torn.load(std::memory_order_relaxed);
-  t.vpr_stale = shared_->counters.vpr_stale.load(std::memory_order_relaxed);
-  t.vpr_rejected = shared_->counters.vpr_rejected.load(std::memory_order_relaxed);
-  t.force_rejected = shared_->counters.force_rejected.load(std::memory_order_relaxed);
-  t.ctrl_accepted = shared_->counters.ctrl_accepted.load(std::memory_order_relaxed);
-  t.ctrl_rejected = shared_->counters.ctrl_rejected.load(std::memory_order_relaxed);
+  t.vpr_torn = from_servo_->counters.vpr_torn.load(std::memory_order_relaxed);
+  t.vpr_stale = from_servo_->counters.vpr_stale.load(std::memory_order_relaxed);
+  t.vpr_rejected = from_servo_->counters.vpr_rejected.load(std::memory_order_relaxed);
+  t.force_rejected = from_servo_->counters.force_rejected.load(std::memory_order_relaxed);
+  t.ctrl_accepted = from_servo_->counters.ctrl_accepted.load(std::memory_order_relaxed);
+  t.ctrl_rejected = from_servo_->counters.ctrl_rejected.load(std::memory_order_relaxed);
   wake_latency_.coarse(t.wake_histogram);
   return t;
 }
@@ -255,7 +258,7 @@ void Executive::report_state_changes(TimeNs now) noexcept {
       {shm::state_bits::kDegraded, shm::EventKind::kDegraded},
       {shm::state_bits::kCoupled, shm::EventKind::kCoupling},
   }};
-  const std::uint32_t word = shared_->committed_state_word.load(std::memory_order_relaxed);
+  const std::uint32_t word = from_servo_->committed_state_word.load(std::memory_order_relaxed);
   const std::uint32_t changed = word ^ reported_state_word_;
   for (const BitEvent& b : kBitEvents) {
     if ((changed & b.bit) != 0) {
@@ -266,7 +269,7 @@ void Executive::report_state_changes(TimeNs now) noexcept {
   if (stale_.update((word & shm::state_bits::kClientStale) != 0, cycle_)) {
     emit(shm::EventKind::kClientStale, stale_.reported() ? 1U : 0U, stale_.lapses(), now);
   }
-  const std::uint64_t session = shared_->committed_session.load(std::memory_order_relaxed);
+  const std::uint64_t session = from_servo_->committed_session.load(std::memory_order_relaxed);
   if (session != reported_session_) {
     emit(shm::EventKind::kClientSession, 0, session, now);
     reported_session_ = session;
@@ -298,13 +301,11 @@ ExecutiveResult Executive::stop_sequence(shm::StopReason reason, bool fail_safe)
   }
 
   // 1. Inhibit motor commands: no commit may enable them from now on, and no task may enter.
-  shared_->inhibit.store(true, std::memory_order_release);
-  shared_->clock_state_bits.fetch_or(
-      fail_safe ? shm::state_bits::kFailSafe : shm::state_bits::kStopping,
-      std::memory_order_acq_rel);
+  to_servo_->inhibit_commands();
+  to_servo_->add_state_bits(fail_safe ? shm::state_bits::kFailSafe : shm::state_bits::kStopping);
   bool exclusive = false;
   for (int attempt = 0; attempt < kGateCloseAttempts && !exclusive; ++attempt) {
-    exclusive = shared_->gate.close() || shared_->gate.closed();
+    exclusive = gate_->close() || gate_->closed();
     if (!exclusive) {
       clock_->sleep_until(clock_->now() + 10 * kNsPerUs);
     }
@@ -319,27 +320,24 @@ ExecutiveResult Executive::stop_sequence(shm::StopReason reason, bool fail_safe)
   // cycle must not keep the motors powered, and set_supply is the ArmIo call made safe beside a
   // running cycle (arm_io.hpp).
   arm_->set_supply(false);
-  if (exclusive) {
-    shared_->logical.powered = false;
-  }
   step(StopStep::kPowerOffSupply);
 
   // 3. Close the protocol: VP says FAILSAFE/STOPPING and why, so the bridge tells the client.
   // Only now (no task can commit any more) does the servo's view of the state change, so the
   // first VP that says FAILSAFE is this one, already unpowered.
-  shared_->stop_reason.store(static_cast<std::uint32_t>(reason), std::memory_order_relaxed);
-  shared_->core_state.store(static_cast<std::uint32_t>(core_state_), std::memory_order_relaxed);
+  to_servo_->announce(core_state_, reason);
   publish_telemetry(clock_->now());  // before VP: whoever sees VP close finds telemetry agreeing
-  if (exclusive && shared_->regions.vp != nullptr) {
+  // The gate closed, the CLOCK holds the gate-owned state: the last VP is published from here.
+  if (exclusive && gate_owned_->regions.vp != nullptr) {
     shm::VpPayload vp;
-    (void)shared_->regions.vp->read(vp);
+    (void)gate_owned_->regions.vp->read(vp);
     vp.cycle = cycle_;
-    vp.state_word = (shared_->logical.state_word() & ~shm::state_bits::kPowered) |
-                    shared_->clock_state_bits.load(std::memory_order_relaxed);
+    vp.state_word =
+        (gate_owned_->logical.state_word() & ~shm::state_bits::kPowered) | to_servo_->state_bits();
     vp.core_state = static_cast<std::uint32_t>(core_state_);
     vp.stop_reason = static_cast<std::uint32_t>(reason);
     vp.coupling_wrench = {};
-    shared_->regions.vp->publish(vp, clock_->now());
+    gate_owned_->regions.vp->publish(vp, clock_->now());
     result.protocol_closed_in_vp = true;
   }
   emit(shm::EventKind::kCoreState, static_cast<std::uint32_t>(core_state_),

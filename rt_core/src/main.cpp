@@ -95,9 +95,7 @@ int run_core(const CoreConfig& config) {
       arm, segment.ctrl_reader(),
       ServoRegions{&segment.region<shm::RegionId::kVpr>(), &segment.writable<shm::RegionId::kVp>(),
                    &segment.writable<shm::RegionId::kPosition>()},
-      config.allow_fault_injection);
-  shared.inject_at_cycle = config.inject_at_cycle;
-  shared.inject_cycles = config.inject_cycles;
+      config.allow_fault_injection, {config.inject_at_cycle, config.inject_cycles});
   ServoTask main_task(shared, ServoRole::kMain, ServoLaw(dynamics));
   ServoTask degraded_task(shared, ServoRole::kDegraded, ServoLaw(dynamics));
   BlackBox black_box(static_cast<std::size_t>(2 * kNsPerS / config.period));
@@ -105,7 +103,7 @@ int run_core(const CoreConfig& config) {
 
   // The degraded SERVO is left free to run on any CPU, so that it can still run when the main
   // SERVO hogs the shared CPU.
-  ThreadedServoTasks tasks(clock, main_task, degraded_task, shared, config.period,
+  ThreadedServoTasks tasks(clock, main_task, degraded_task, shared.overrun, config.period,
                            ThreadPlacement{fifo ? config.priority - 1 : 0, cpu},
                            ThreadPlacement{fifo ? config.priority - 2 : 0, -1});
   const bool placed = place_current_thread(ThreadPlacement{fifo ? config.priority : 0, cpu}) &&

@@ -55,6 +55,37 @@ TimeNs loop_delay_of(const shm::VprPayload& s, std::uint64_t cycle, TimeNs perio
   return static_cast<TimeNs>(cycle - s.echo_cycle) * period;
 }
 
+/// The law's view of a valid sample (client_sample.hpp): the ABI stops here.
+ClientSample client_sample_of(const shm::VprPayload& s) noexcept {
+  ClientSample c;
+  c.session_id = s.session_id;
+  switch (static_cast<shm::CommandType>(s.command_type)) {
+    case shm::CommandType::kImpedance:
+      c.command = ClientCommand::kImpedance;
+      break;
+    case shm::CommandType::kVirtmech:
+      c.command = ClientCommand::kVirtmech;
+      break;
+    case shm::CommandType::kNone:
+      c.command = ClientCommand::kNone;
+      break;
+  }
+  c.object_attached = (s.flags & shm::vpr_flags::kObjectAttached) != 0;
+  c.object_pose = s.object_pose;
+  c.object_twist = s.object_twist;
+  c.impedance_wrench = s.impedance_wrench;
+  c.object_mass = s.object_mass;
+  c.object_inertia = s.object_inertia;
+  c.time_step = s.client_time_step;
+  c.force_factor = s.force_factor;
+  c.speed_factor = s.speed_factor;
+  c.base_frame = s.base_frame;
+  c.gain_override = s.gain_override;
+  c.force_limits = s.force_limits;
+  c.energy_in = s.client_energy_in;
+  return c;
+}
+
 void copy_to(const Vector6d& from, std::array<double, 6>& to) noexcept {
   for (std::size_t i = 0; i < 6; ++i) {
     to[i] = from(static_cast<Eigen::Index>(i));
@@ -64,22 +95,22 @@ void copy_to(const Vector6d& from, std::array<double, 6>& to) noexcept {
 }  // namespace
 
 StepResult ServoTask::begin(std::uint64_t cycle, TimeNs now, TimeNs dt) noexcept {
-  if (!shared_->gate.enter(cycle)) {
+  if (!gate_->enter(cycle)) {
     return StepResult::kNotGranted;
   }
   gather(cycle, now, dt);
-  shared_->gate.leave(cycle);
+  gate_->leave(cycle);
   law_.compute(inputs_, role_ == ServoRole::kDegraded, outputs_);
   return StepResult::kDone;
 }
 
 StepResult ServoTask::finish(std::uint64_t cycle, TimeNs now) noexcept {
-  if (!shared_->gate.enter(cycle)) {
-    shared_->counters.late_discarded.fetch_add(1, std::memory_order_relaxed);
+  if (!gate_->enter(cycle)) {
+    to_clock_->counters.late_discarded.fetch_add(1, std::memory_order_relaxed);
     return StepResult::kDiscarded;
   }
   commit(cycle, now);
-  shared_->gate.leave(cycle);
+  gate_->leave(cycle);
   return StepResult::kDone;
 }
 
@@ -89,32 +120,34 @@ StepResult ServoTask::run(std::uint64_t cycle, TimeNs now, TimeNs dt) noexcept {
 }
 
 void ServoTask::gather(std::uint64_t cycle, TimeNs now, TimeNs dt) noexcept {
-  ServoShared& s = *shared_;
+  GateOwnedState& s = *state_;
+  ServoCounters& counters = to_clock_->counters;
   inputs_.cycle = cycle;
   inputs_.now = now;
   inputs_.dt = dt;
   if (!s.arm->get_measures(inputs_.measures)) {
-    s.counters.arm_faults.fetch_add(1, std::memory_order_relaxed);
+    counters.arm_faults.fetch_add(1, std::memory_order_relaxed);
   }
-  s.counters.force_rejected.store(inputs_.measures.operator_wrench_rejected,
-                                  std::memory_order_relaxed);
+  counters.force_rejected.store(inputs_.measures.operator_wrench_rejected,
+                                std::memory_order_relaxed);
 
   // Logical state from ctrl, in each writer's order.
   s.ctrl.drain([&](const shm::CtrlCommand& command) {
     const bool accepted = s.interpreter.apply(command, s.logical);
-    (accepted ? s.counters.ctrl_accepted : s.counters.ctrl_rejected)
+    (accepted ? counters.ctrl_accepted : counters.ctrl_rejected)
         .fetch_add(1, std::memory_order_relaxed);
     return accepted;
   });
   if (s.logical.stop_requested) {
-    s.stop_requested.store(true, std::memory_order_release);
+    to_clock_->stop_requested.store(true, std::memory_order_release);
   }
-  if (s.inject_at_cycle != 0 && cycle >= s.inject_at_cycle && role_ == ServoRole::kMain) {
-    s.logical.pending_overrun_cycles = s.inject_cycles;
-    s.inject_at_cycle = 0;
+  ScheduledOverrun& scheduled = s.scheduled_overrun;
+  if (scheduled.at_cycle != 0 && cycle >= scheduled.at_cycle && role_ == ServoRole::kMain) {
+    s.logical.pending_overrun_cycles = scheduled.cycles;
+    scheduled.at_cycle = 0;
   }
   if (s.logical.pending_overrun_cycles > 0 && role_ == ServoRole::kMain) {
-    s.overrun_request.store(s.logical.pending_overrun_cycles, std::memory_order_release);
+    overrun_->request(s.logical.pending_overrun_cycles);
     s.logical.pending_overrun_cycles = 0;
   }
   const bool want_supply = s.logical.powered;
@@ -129,49 +162,50 @@ void ServoTask::gather(std::uint64_t cycle, TimeNs now, TimeNs dt) noexcept {
 }
 
 void ServoTask::exchange_client(TimeNs now) noexcept {
-  ServoShared& s = *shared_;
+  GateOwnedState& s = *state_;
+  ServoCounters& counters = to_clock_->counters;
   inputs_.new_sample = false;
   if (s.regions.vpr != nullptr) {
     shm::VprPayload sample;
     const shm::ReadResult r = s.regions.vpr->read(sample);
     if (r.status == shm::ReadStatus::kTorn) {
-      s.counters.vpr_torn.fetch_add(1, std::memory_order_relaxed);
+      counters.vpr_torn.fetch_add(1, std::memory_order_relaxed);
     } else if (r.ok() && r.sequence != s.last_client_sequence) {
       s.last_client_sequence = r.sequence;
       if (client_sample_valid(sample)) {
         s.last_client = sample;
+        s.client = client_sample_of(sample);
         s.client_valid = true;
         s.last_client_arrival = now;
         s.last_client_time = sample_time_of(sample, now);
         inputs_.new_sample = true;
         inputs_.loop_delay = loop_delay_of(sample, inputs_.cycle, inputs_.dt);
       } else {
-        s.counters.vpr_rejected.fetch_add(1, std::memory_order_relaxed);
+        counters.vpr_rejected.fetch_add(1, std::memory_order_relaxed);
       }
     }
   }
-  inputs_.client = s.last_client;
+  inputs_.client = s.client;
   inputs_.client_valid = s.client_valid;
   inputs_.client_age = s.client_valid ? now - s.last_client_time : 0;
   inputs_.client_silence = s.client_valid ? now - s.last_client_arrival : 0;
 }
 
 void ServoTask::commit(std::uint64_t cycle, TimeNs now) noexcept {
-  ServoShared& s = *shared_;
+  GateOwnedState& s = *state_;
+  ServoToClock& report = *to_clock_;
   ArmCommands commands = outputs_.commands;
-  commands.enable =
-      commands.enable && s.logical.powered && !s.inhibit.load(std::memory_order_acquire);
+  commands.enable = commands.enable && s.logical.powered && !from_clock_->commands_inhibited();
   if (!commands.enable) {
     commands.torque.setZero();
   }
   s.arm->send_commands(commands, now, inputs_.dt);
   if (outputs_.velocity_fault && commands.enable) {
-    s.velocity_fault.store(true, std::memory_order_release);  // the CLOCK fails safe
+    report.velocity_fault.store(true, std::memory_order_release);  // the CLOCK fails safe
   }
   s.rendered = commands.enable ? law_.memory() : RenderMemory{};
 
-  std::uint32_t state_word =
-      s.logical.state_word() | s.clock_state_bits.load(std::memory_order_relaxed);
+  std::uint32_t state_word = s.logical.state_word() | from_clock_->state_bits();
   if (role_ == ServoRole::kDegraded) {
     state_word |= shm::state_bits::kDegraded;
   }
@@ -184,13 +218,13 @@ void ServoTask::commit(std::uint64_t cycle, TimeNs now) noexcept {
   state_word |= outputs_.joint_bounds;
   if (outputs_.client_stale) {
     state_word |= shm::state_bits::kClientStale;
-    s.counters.vpr_stale.fetch_add(1, std::memory_order_relaxed);
+    report.counters.vpr_stale.fetch_add(1, std::memory_order_relaxed);
   }
-  s.committed_state_word.store(state_word, std::memory_order_relaxed);
-  s.committed_session.store(s.client_valid ? s.last_client.session_id : 0,
-                            std::memory_order_relaxed);
-  const auto core_state = s.core_state.load(std::memory_order_relaxed);
-  const auto stop_reason = s.stop_reason.load(std::memory_order_relaxed);
+  report.committed_state_word.store(state_word, std::memory_order_relaxed);
+  report.committed_session.store(s.client_valid ? s.last_client.session_id : 0,
+                                 std::memory_order_relaxed);
+  const std::uint32_t core_state = from_clock_->core_state();
+  const std::uint32_t stop_reason = from_clock_->stop_reason();
 
   if (s.regions.vp != nullptr) {
     shm::VpPayload vp;
@@ -231,7 +265,7 @@ void ServoTask::commit(std::uint64_t cycle, TimeNs now) noexcept {
     copy_to(outputs_.handle_wrench, pos.coupling_wrench);
     s.regions.position->publish_quietly(pos, now);
   }
-  s.commit_cycle.store(cycle, std::memory_order_release);
+  report.commit_cycle.store(cycle, std::memory_order_release);
 }
 
 }  // namespace hapticctrl::rt_core

@@ -1,49 +1,24 @@
+// The servo law's cycle (ServoLaw::compute) and the coupling it renders: the client's wrench,
+// the fade of a silent link, engagement, saturation and the rate limit. Its gains, passivity
+// and walls live in servo_law_gains.cpp, servo_law_passivity.cpp and servo_law_walls.cpp.
 #include "hapticctrl/rt_core/servo_law.hpp"
 
 #include <algorithm>
 #include <cmath>
 
+#include "law_math.hpp"
+
 namespace hapticctrl::rt_core {
 namespace {
 
-/// Fraction of the explicit-integration stability bound (k < 4 m / T²) used for the derived
-/// stiffness, and the damping ratio of the derived damping.
-constexpr double kStiffnessFraction = 0.25;
-constexpr double kDampingRatio = 0.7;
-/// The loop-delay envelope follows the median of the recent samples up at once and down by this
-/// share per new sample (about 200 samples, 0.2 s at 1 kHz): the gains drop as soon as the link
-/// slows and rise back slowly. The median ignores single long loops (a lost answer makes the
-/// client echo an older one): following each of them changed the stiffness under load, and
-/// k * stretch stepped with it (the weighted sphere jiggled at 25 mm/s with 10 % loss, H1).
-constexpr double kLoopDelayRelease = 0.005;
-/// The loop delay is believed up to this; longer is a stale echo, not a loop.
-constexpr TimeNs kMaxLoopDelay = 2'000 * kNsPerMs;
-/// The gains are designed for a loop delay that follows the envelope only when the envelope
-/// leaves a band around it (10 %, at least 0.5 ms), and they rise to a new design over a time
-/// constant, not in one cycle: a spring that carries a weight is stretched (72 mm for the demo's
-/// 0.5 kg sphere at 20 ms one way), so every change of k is a force step of k * stretch. With
-/// +-2 ms jitter the envelope wandered by 1-2 ms around 42 ms and each move stepped the force by
-/// 0.1-0.3 N: the sphere jiggled at 20-40 mm/s and the handle, resting on its joint wall, at up
-/// to 8 mm/s (2026-12-02). A 10 % longer loop leaves the stiffness at most 21 % over its design,
-/// inside the margin kStiffnessFraction keeps.
-constexpr double kDesignDelayBand = 0.1;
-constexpr TimeNs kDesignDelayBandMin = kNsPerMs / 2;
-constexpr TimeNs kGainSlewTime = 50 * kNsPerMs;
+using law_math::clamp_norm;
+using law_math::object_twist_in_base;
+using law_math::to_quaternion;
+using law_math::to_vector;
+
 /// A wrench counts as clipped (VirtuoseAPI's SATURATE alarm) when the limit took more than 1 uN
 /// off it (a squared norm of 1e-12): far above the rounding of an unclipped sum.
 constexpr double kClipped = 1e-12;
-
-Vector6d to_vector(const std::array<double, 6>& a) noexcept {
-  Vector6d v;
-  for (int i = 0; i < 6; ++i) {
-    v(i) = a[static_cast<std::size_t>(i)];
-  }
-  return v;
-}
-
-Eigen::Quaterniond to_quaternion(const std::array<double, 7>& pose) noexcept {
-  return {pose[6], pose[3], pose[4], pose[5]};  // w, x, y, z
-}
 
 /// spring * s + damper with the largest s in [0, 1] whose norm stays within `limit`; the damper
 /// alone is clamped to `limit` first. The damper keeps its whole share of a saturated force.
@@ -64,28 +39,9 @@ Vector3d saturate_keeping_damper(const Vector3d& spring, const Vector3d& damper,
   return spring * s + damper;
 }
 
-/// Scales `v` down to norm `limit` if longer.
-Vector3d clamp_norm(const Vector3d& v, double limit) noexcept {
-  const double n = v.norm();
-  return n > limit && n > 0.0 ? Vector3d(v * (limit / n)) : v;
-}
-
-double bounded(double value, double upper) noexcept {
-  return std::clamp(value, 0.0, upper);
-}
-
-/// The client object's twist in our base frame (linear de-scaled by the speed factor).
-Vector6d object_twist_in_base(const shm::VprPayload& c, const ClientFrame& frame) noexcept {
-  const Vector6d env = to_vector(c.object_twist);
-  Vector6d base;
-  base << frame.rotation.conjugate() * env.head<3>() / frame.speed_factor,
-      frame.rotation.conjugate() * env.tail<3>();
-  return base;
-}
-
 }  // namespace
 
-ClientFrame client_frame_of(const shm::VprPayload& c) noexcept {
+ClientFrame client_frame_of(const ClientSample& c) noexcept {
   ClientFrame frame;
   const Eigen::Quaterniond q = to_quaternion(c.base_frame);
   if (q.norm() > 0.5) {
@@ -100,46 +56,10 @@ ClientFrame client_frame_of(const shm::VprPayload& c) noexcept {
 ServoLaw::ServoLaw(const ArmDynamics& dynamics, const LawConfig& config) noexcept
     : dynamics_(&dynamics), config_(config) {}
 
-CouplingGains ServoLaw::derive_gains(const shm::VprPayload& c, double loop_delay) const noexcept {
-  const ArmLimits& lim = dynamics_->model().limits;
-  const double mass = c.object_mass > 0.0 ? c.object_mass : config_.default_object_mass;
-  // The object sees the coupling's answer to its own motion a whole loop later (the answer's
-  // way out, the client's hold, the sample's way back and its wait for the cycle: measured),
-  // and its integration adds one client step: that lag bounds the stiffness it can take.
-  const double client_step =
-      c.client_time_step > 0.0 ? c.client_time_step : config_.default_time_step;
-  const double step = client_step + std::max(0.0, loop_delay);
-  const double largest_inertia =
-      std::max({c.object_inertia[0], c.object_inertia[1], c.object_inertia[2]});
-  // Without a declared inertia: a solid 5 cm sphere of the object's mass.
-  const double inertia = largest_inertia > 0.0 ? largest_inertia : 0.4 * mass * 0.05 * 0.05;
-  CouplingGains g;
-  g.k_linear = bounded(kStiffnessFraction * mass / (step * step), lim.max_stiffness_linear);
-  g.b_linear = bounded(2.0 * kDampingRatio * std::sqrt(g.k_linear * mass),
-                       std::min(lim.max_damping_linear, mass / step));
-  g.k_angular = bounded(kStiffnessFraction * inertia / (step * step), lim.max_stiffness_angular);
-  g.b_angular = bounded(2.0 * kDampingRatio * std::sqrt(g.k_angular * inertia),
-                        std::min(lim.max_damping_angular, inertia / step));
-  const auto& o = c.gain_override;
-  if (o[0] > 0.0) {
-    g.k_linear = bounded(o[0], lim.max_stiffness_linear);
-  }
-  if (o[1] > 0.0) {
-    g.b_linear = bounded(o[1], lim.max_damping_linear);
-  }
-  if (o[2] > 0.0) {
-    g.k_angular = bounded(o[2], lim.max_stiffness_angular);
-  }
-  if (o[3] > 0.0) {
-    g.b_angular = bounded(o[3], lim.max_damping_angular);
-  }
-  return g;
-}
-
 ServoLaw::Coupling ServoLaw::client_wrench(const ServoInputs& in, const ClientFrame& frame,
                                            const ChainState& chain, const Vector6d& twist,
                                            ServoOutputs& out) noexcept {
-  const shm::VprPayload& c = in.client;
+  const ClientSample& c = in.client;
   Coupling coupling;
   if (!in.client_valid || c.session_id == 0) {
     out.fade = 0.0;
@@ -156,14 +76,13 @@ ServoLaw::Coupling ServoLaw::client_wrench(const ServoInputs& in, const ClientFr
   const double speed_factor = frame.speed_factor;
   const double scale = frame.force_factor;
 
-  if (c.command_type == static_cast<std::uint32_t>(shm::CommandType::kImpedance)) {
+  if (c.command == ClientCommand::kImpedance) {
     const Vector6d env = to_vector(c.impedance_wrench);
     coupling.spring << base_r.transpose() * env.head<3>(), base_r.transpose() * env.tail<3>();
     coupling.spring *= scale;
     return coupling;
   }
-  if (c.command_type != static_cast<std::uint32_t>(shm::CommandType::kVirtmech) ||
-      (c.flags & shm::vpr_flags::kObjectAttached) == 0) {
+  if (c.command != ClientCommand::kVirtmech || !c.object_attached) {
     return coupling;  // VIRTMECH couples an attached object only
   }
   const Eigen::Quaterniond object_q_env = to_quaternion(c.object_pose);
@@ -217,103 +136,6 @@ void ServoLaw::follow_session(const ServoInputs& in) noexcept {
   }
 }
 
-void ServoLaw::guard_channel(const ServoInputs& in, const ClientFrame& frame,
-                             const Vector6d& object_force, double dt, ServoOutputs& out) noexcept {
-  // Two-port time-domain passivity (Ryu, Artigas, Preusche): the channel between the coupling
-  // and the client's object must not give either end more energy than the other end put in.
-  // Here the core's end: the coupling pushes the object image with `object_force` while the
-  // image moves with the client's twist; the energy that came out of the
-  // channel may not exceed what the client reports having put in (VPr.client_energy_in, which
-  // arrives a link delay late). When it would, a series passivity controller lets the image
-  // give way along the force (it "drifts" towards the handle), dissipating exactly the excess;
-  // the drift is given back slowly while the budget allows. Energies in the client's units
-  // (speed and force factors), as the client counts them.
-  RenderMemory& m = memory_;
-  if (!(in.client.client_energy_in >= 0.0) || !out.coupled) {
-    return;  // a 1.0 client reports no energy: the one-port guard at the handle remains
-  }
-  // The channel's own flow (the client's twist, in the base frame) and the power in the
-  // client's units (force / force factor, speed * speed factor). The PC's drift is not part of
-  // the channel: what it takes or gives back is booked separately below (Ryu's observer).
-  const Vector6d image_twist = object_twist_in_base(in.client, frame);
-  Vector6d weight;
-  weight << Vector3d::Constant(frame.speed_factor / frame.force_factor),
-      Vector3d::Constant(1.0 / frame.force_factor);
-  const Vector6d force = object_force.cwiseProduct(weight);
-  const double power = force.dot(image_twist);
-  (power >= 0.0 ? m.channel_in : m.channel_out) += std::abs(power) * dt;
-  const double excess = m.channel_out - in.client.client_energy_in;
-  const double force_sq = force.dot(object_force);
-  Vector6d rate = Vector6d::Zero();
-  if (excess > 0.0 && force_sq > 1e-12) {
-    rate = object_force * (excess / (dt * force_sq));
-    // Bounded like everything the device renders: the image gives way at 0.5 m/s, 5 rad/s.
-    rate.head<3>() = clamp_norm(rate.head<3>(), 0.5);
-    rate.tail<3>() = clamp_norm(rate.tail<3>(), 5.0);
-    ++counters_.channel_pc_active;
-  } else if (excess < 0.0 && m.drift.squaredNorm() > 0.0) {
-    // Give the drift back, slowly (2 cm/s, 0.2 rad/s), within the budget: it costs energy.
-    rate.head<3>() = -clamp_norm(m.drift.head<3>() / dt, 0.02);
-    rate.tail<3>() = -clamp_norm(m.drift.tail<3>() / dt, 0.2);
-    const double cost = -force.dot(rate) * dt;
-    if (cost > -excess) {
-      rate *= -excess / cost;
-    }
-  }
-  // The drift never exceeds 5 cm / 0.5 rad: beyond, the PC is saturated and the one-port guard
-  // at the handle is what remains.
-  Vector6d drift = m.drift + rate * dt;
-  drift.head<3>() = clamp_norm(drift.head<3>(), 0.05);
-  drift.tail<3>() = clamp_norm(drift.tail<3>(), 0.5);
-  rate = (drift - m.drift) / dt;
-  m.channel_out -= force.dot(rate) * dt;  // dissipated by the PC (> 0), or given back (< 0)
-  m.drift = drift;
-}
-
-void ServoLaw::track_loop_delay(const ServoInputs& in) noexcept {
-  if (!in.new_sample) {
-    return;
-  }
-  RenderMemory& m = memory_;
-  m.loop_samples[m.loop_next % m.loop_samples.size()] =
-      in.loop_delay > 0 && in.loop_delay <= kMaxLoopDelay ? in.loop_delay
-                                                          : config_.assumed_loop_delay;
-  ++m.loop_next;
-  const std::size_t n = std::min<std::size_t>(m.loop_next, m.loop_samples.size());
-  std::array<TimeNs, RenderMemory::kLoopSamples> sorted{};
-  std::copy_n(m.loop_samples.begin(), n, sorted.begin());
-  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(n / 2),
-                   sorted.begin() + static_cast<std::ptrdiff_t>(n));
-  const TimeNs measured = sorted[n / 2];
-  TimeNs& envelope = m.loop_delay;
-  if (measured >= envelope) {
-    envelope = measured;
-  } else {
-    envelope -= static_cast<TimeNs>(static_cast<double>(envelope - measured) * kLoopDelayRelease);
-  }
-  const TimeNs band =
-      std::max(kDesignDelayBandMin,
-               static_cast<TimeNs>(static_cast<double>(m.design_delay) * kDesignDelayBand));
-  if (m.design_delay == 0 || envelope > m.design_delay + band || envelope < m.design_delay - band) {
-    m.design_delay = envelope;
-  }
-}
-
-CouplingGains ServoLaw::slew_gains(const CouplingGains& target, TimeNs dt) noexcept {
-  // Softer at once (a slower loop is a stability matter), stiffer over kGainSlewTime.
-  const double share =
-      std::clamp(static_cast<double>(dt) / static_cast<double>(kGainSlewTime), 0.0, 1.0);
-  const auto towards = [share](double& gain, double design) {
-    gain = gain <= 0.0 || design <= gain ? design : gain + (design - gain) * share;
-  };
-  CouplingGains& g = memory_.gains;
-  towards(g.k_linear, target.k_linear);
-  towards(g.b_linear, target.b_linear);
-  towards(g.k_angular, target.k_angular);
-  towards(g.b_angular, target.b_angular);
-  return g;
-}
-
 double ServoLaw::fade_of(TimeNs silence, const Vector6d& wrench) const noexcept {
   // The force is zero by the end of the window and never falls faster than the full-scale slope
   // (the device's peaks over fade_duration: 1 N/ms): a peak force starts fading at fade_after,
@@ -358,7 +180,7 @@ double ServoLaw::update_engagement(const ServoInputs& in, const Vector6d& twist,
   return m.engage;
 }
 
-Vector6d ServoLaw::saturate(const Coupling& c, const shm::VprPayload& client) const noexcept {
+Vector6d ServoLaw::saturate(const Coupling& c, const ClientSample& client) const noexcept {
   const ArmLimits& lim = dynamics_->model().limits;
   const double force_limit = client.force_limits[0] > 0.0
                                  ? std::min(client.force_limits[0], lim.force_peak)
@@ -390,94 +212,6 @@ Vector6d ServoLaw::rate_limit(const Vector6d& target, double rate, double dt) no
       last.tail<3>() + clamp_norm(dtau, max_torque_step);
   memory_.wrench = limited;
   return limited;
-}
-
-Vector6d ServoLaw::workspace_wall(const Vector3d& velocity) noexcept {
-  // A soft wall outside the workspace box pushes the handle back in; it starts at zero force on
-  // the box's faces, so it never steps. It damps the motion across it (never pulling the handle
-  // out): a handle resting on the undamped wall under a weighted object kept ringing (H1).
-  const ArmLimits& lim = dynamics_->model().limits;
-  const Vector3d offset = chain_.handle_position - lim.workspace_center;
-  const Vector3d outside = (offset.cwiseAbs() - lim.workspace_half_size).cwiseMax(0.0);
-  Vector6d wall = Vector6d::Zero();
-  for (int i = 0; i < 3; ++i) {
-    if (outside(i) > 0.0) {
-      const double outward = offset(i) > 0.0 ? 1.0 : -1.0;
-      const double push =
-          lim.workspace_stiffness * outside(i) + lim.max_damping_linear * velocity(i) * outward;
-      wall(i) = -outward * std::max(0.0, push);
-    }
-  }
-  if ((outside.array() > 0.0).any()) {
-    ++counters_.workspace_walls;
-  }
-  return wall;
-}
-
-Vector6d ServoLaw::joint_walls(const Vector6d& q) const noexcept {
-  const ArmModel& m = dynamics_->model();
-  Vector6d tau = Vector6d::Zero();
-  const double margin = config_.wall_margin;
-  const double k = config_.wall_stiffness;
-  for (int i = 0; i < kJoints; ++i) {
-    const JointModel& j = m.joints[static_cast<std::size_t>(i)];
-    tau(i) +=
-        k * std::max(0.0, j.q_min + margin - q(i)) - k * std::max(0.0, q(i) - (j.q_max - margin));
-  }
-  const double sum = q(1) + q(2);
-  const double coupled = k * std::max(0.0, m.limits.coupled_j23_min + margin - sum) -
-                         k * std::max(0.0, sum - (m.limits.coupled_j23_max - margin));
-  tau(1) += coupled;
-  tau(2) += coupled;
-  return tau;
-}
-
-std::uint32_t ServoLaw::joint_bounds(const Vector6d& q) const noexcept {
-  // In the wall: where joint_walls pushes back (within the margin of the limit, or beyond).
-  const ArmModel& m = dynamics_->model();
-  const double margin = config_.wall_margin;
-  std::uint32_t bits = 0;
-  const auto mark = [&](unsigned index, double value, double lo, double hi) {
-    bits |= value < lo + margin ? shm::state_bits::joint_bound(index, false) : 0U;
-    bits |= value > hi - margin ? shm::state_bits::joint_bound(index, true) : 0U;
-  };
-  for (int i = 0; i < kJoints; ++i) {
-    const JointModel& j = m.joints[static_cast<std::size_t>(i)];
-    mark(static_cast<unsigned>(i), q(i), j.q_min, j.q_max);
-  }
-  mark(kJoints, q(1) + q(2), m.limits.coupled_j23_min, m.limits.coupled_j23_max);
-  return bits;
-}
-
-Vector6d ServoLaw::guard_passivity(const Vector6d& wrench, const Vector6d& twist,
-                                   double dt) noexcept {
-  // One-port passivity observer (Hannaford & Ryu) at the user's port, the handle: during the
-  // last period the rendered wrench was `memory_.port_wrench` while the handle moved with `twist`,
-  // so the user gave the port -w . v dt. The running total going negative means the port has
-  // delivered more energy to the hand than it received (delay, loss, sampling, an unstable
-  // client): the passivity controller then adds just enough damping on the handle's motion to
-  // dissipate the deficit, bounded by the damping the device renders stably (model limits).
-  double& energy = memory_.observed_energy;
-  energy -= memory_.port_wrench.dot(twist) * dt;
-  Vector6d w = wrench;
-  const double speed_sq = twist.squaredNorm();
-  if (config_.passivity_guard && energy < 0.0 && speed_sq > 1e-12) {
-    const ArmLimits& lim = dynamics_->model().limits;
-    const double alpha = -energy / (dt * speed_sq);
-    const double alpha_lin = std::min(alpha, lim.max_damping_linear);
-    const double alpha_ang = std::min(alpha, lim.max_damping_angular);
-    w.head<3>() -= alpha_lin * twist.head<3>();
-    w.tail<3>() -= alpha_ang * twist.tail<3>();
-    energy +=
-        (alpha_lin * twist.head<3>().squaredNorm() + alpha_ang * twist.tail<3>().squaredNorm()) *
-        dt;
-    ++counters_.passivity_active;
-  }
-  const ArmLimits& lim = dynamics_->model().limits;
-  w.head<3>() = clamp_norm(w.head<3>(), lim.force_peak);
-  w.tail<3>() = clamp_norm(w.tail<3>(), lim.torque_peak);
-  memory_.port_wrench = w;  // the rate limiter's memory keeps the wrench without this damping
-  return w;
 }
 
 void ServoLaw::express_for_client(const ClientFrame& frame, const Vector6d& twist,
@@ -561,8 +295,7 @@ void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) 
   const Vector6d limited = rate_limit(
       target, fresh ? lim.force_rate : std::min(lim.force_rate, config_.release_rate), dt);
   Vector6d wrench = limited;
-  if (out.coupled ||
-      in.client.command_type == static_cast<std::uint32_t>(shm::CommandType::kImpedance)) {
+  if (out.coupled || in.client.command == ClientCommand::kImpedance) {
     wrench = guard_passivity(wrench, twist, dt);
   } else {
     memory_.port_wrench.setZero();

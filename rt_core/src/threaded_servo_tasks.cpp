@@ -59,10 +59,10 @@ bool place_current_thread(const ThreadPlacement& placement, std::size_t stack_by
 }
 
 ThreadedServoTasks::ThreadedServoTasks(Clock& clock, ServoTask& main_task, ServoTask& degraded_task,
-                                       ServoShared& shared, TimeNs period,
+                                       OverrunInjection& overrun, TimeNs period,
                                        const ThreadPlacement& main_placement,
                                        const ThreadPlacement& degraded_placement)
-    : clock_(&clock), shared_(&shared), period_(period) {
+    : clock_(&clock), overrun_(&overrun), period_(period) {
   main_.task = &main_task;
   main_.placement = main_placement;
   degraded_.task = &degraded_task;
@@ -106,7 +106,7 @@ void ThreadedServoTasks::worker_loop(Worker& w) noexcept {
     if (w.task->role() == ServoRole::kMain) {
       // Fault injection: this SERVO overruns for K cycles (stalls (K - 0.2) periods, so that
       // exactly K consecutive cycles miss their deadline).
-      const std::uint32_t k = shared_->overrun_request.exchange(0, std::memory_order_acq_rel);
+      const std::uint32_t k = overrun_->take();
       if (k > 0) {
         clock_->sleep_until(w.release_time.load(std::memory_order_relaxed) +
                             static_cast<TimeNs>(k) * period_ - period_ / 5);

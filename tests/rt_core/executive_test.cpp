@@ -25,7 +25,7 @@ constexpr TimeNs kStart = 1'000 * kNsPerS + 123'456;  // deliberately not slot-a
 /// Everything one scenario needs, with in-process regions.
 struct Rig {
   explicit Rig(ScriptedServoTasks::Duration main_duration, ExecutiveConfig config = {})
-      : tasks(clock, main_task, degraded_task, shared, kPeriod, std::move(main_duration)),
+      : tasks(clock, main_task, degraded_task, shared.overrun, kPeriod, std::move(main_duration)),
         executive(with_defaults(config), clock, tasks, shared, arm,
                   ExecutiveOutputs{nullptr, telemetry.get(), position.get(), events.get()}, box) {}
 

@@ -48,7 +48,7 @@ TEST(NoAllocation, ArmedCyclesAllocateNothing) {
   ServoTask degraded_task(shared, ServoRole::kDegraded, ServoLaw(test::default_dynamics()));
   // Every 50th cycle overruns, so degraded cycles and discarded late commits are exercised too.
   test::ScriptedServoTasks tasks(
-      clock, main_task, degraded_task, shared, kPeriod,
+      clock, main_task, degraded_task, shared.overrun, kPeriod,
       [](std::uint64_t c) { return c % 50 == 0 ? kPeriod * 3 / 2 : 100 * kNsPerUs; });
   BlackBox box(2000);
   ExecutiveConfig config;

@@ -94,14 +94,14 @@ TEST(ClosedLoop, UnpoweredBrakesHoldUnderOperatorForce) {
 
 TEST(ClosedLoop, CouplingBalancesTheOperatorForceAgainstAFixedObject) {
   Loop loop(kReady);
-  shm::VprPayload& client = loop.in.client;
+  ClientSample& client = loop.in.client;
   const Vector3d p = loop.handle();
   client.session_id = 1;
-  client.command_type = static_cast<std::uint32_t>(shm::CommandType::kVirtmech);
-  client.flags = shm::vpr_flags::kObjectAttached;
+  client.command = ClientCommand::kVirtmech;
+  client.object_attached = true;
   client.object_pose = {p.x(), p.y(), p.z(), 0, 0, 0, 1};
   client.object_mass = 0.5;
-  client.client_time_step = 1e-3;
+  client.time_step = 1e-3;
   loop.in.client_valid = true;  // the client keeps sending the same pose: age stays 0
   const Vector6d push = (Vector6d() << 8, -3, 4, 0, 0, 0).finished();
   loop.push(push);
@@ -154,10 +154,10 @@ PassivityRun run_delayed_coupling(bool guard, int delay_ms, double loss, unsigne
   double client_in = 0.0;  // what a 1.1 client library reports (ChannelPassivity)
   std::deque<Vector3d> to_client;
   loop.in.client.session_id = 1;
-  loop.in.client.command_type = static_cast<std::uint32_t>(shm::CommandType::kVirtmech);
-  loop.in.client.flags = shm::vpr_flags::kObjectAttached;
+  loop.in.client.command = ClientCommand::kVirtmech;
+  loop.in.client.object_attached = true;
   loop.in.client.object_mass = mass;
-  loop.in.client.client_time_step = 1e-3;
+  loop.in.client.time_step = 1e-3;
   loop.in.client.object_pose = {x.x(), x.y(), x.z(), 0, 0, 0, 1};
   loop.in.client_valid = true;
   PassivityRun result;
@@ -174,7 +174,7 @@ PassivityRun run_delayed_coupling(bool guard, int delay_ms, double loss, unsigne
         // the way in; the loop is the answer's way out, the client's step and the way back.
         loop.in.client.object_pose = {state[0], state[1], state[2], 0, 0, 0, 1};
         loop.in.client.object_twist = {state[3], state[4], state[5], 0, 0, 0};
-        loop.in.client.client_energy_in = two_port ? state[6] : -1.0;
+        loop.in.client.energy_in = two_port ? state[6] : -1.0;
         loop.in.client_age = delay_ms * kNsPerMs;
         loop.in.client_silence = 0;
         loop.in.new_sample = true;

@@ -62,7 +62,7 @@ TEST(Servo, EmergencyStopCutsPowerAndLatches) {
   EXPECT_FALSE(rig.arm.supply);
   EXPECT_FALSE(rig.arm.last.enable);
   EXPECT_NE(rig.last_vp().state_word & shm::state_bits::kEmergencyStop, 0U);
-  EXPECT_EQ(rig.shared.counters.ctrl_rejected.load(), 1U);
+  EXPECT_EQ(rig.shared.to_clock.counters.ctrl_rejected.load(), 1U);
 }
 
 TEST(Servo, VpEchoesTheClientAndCarriesTheCycle) {
@@ -93,7 +93,7 @@ TEST(Servo, NonFiniteClientSampleIsRejectedAndCounted) {
   bad.object_pose[0] = std::numeric_limits<double>::quiet_NaN();
   rig.vpr->publish(bad, 0);
   rig.cycle(rig.main_task, 2);
-  EXPECT_EQ(rig.shared.counters.vpr_rejected.load(), 1U);
+  EXPECT_EQ(rig.shared.to_clock.counters.vpr_rejected.load(), 1U);
   EXPECT_EQ(rig.last_vp().echo_client_sequence, 1U) << "the last valid sample stays in use";
 }
 
@@ -105,7 +105,7 @@ TEST(Servo, ClientFrameThatIsNotARotationIsRejected) {
   bad.base_frame = {0, 0, 0, 0, 0, 0, 0};  // zero quaternion
   rig.vpr->publish(bad, 0);
   rig.cycle(rig.main_task, 1);
-  EXPECT_EQ(rig.shared.counters.vpr_rejected.load(), 1U);
+  EXPECT_EQ(rig.shared.to_clock.counters.vpr_rejected.load(), 1U);
   EXPECT_EQ(rig.last_vp().echo_client_sequence, 0U) << "never used";
 }
 
@@ -117,7 +117,7 @@ TEST(Servo, StaleClientIsFlagged) {
   rig.cycle(rig.main_task, 1);
   rig.cycle(rig.main_task, 10);  // 9 ms later, no new sample
   EXPECT_NE(rig.last_vp().state_word & shm::state_bits::kClientStale, 0U);
-  EXPECT_GT(rig.shared.counters.vpr_stale.load(), 0U);
+  EXPECT_GT(rig.shared.to_clock.counters.vpr_stale.load(), 0U);
 }
 
 TEST(Servo, LateMainCommitAfterDegradedIsDiscarded) {
@@ -130,7 +130,7 @@ TEST(Servo, LateMainCommitAfterDegradedIsDiscarded) {
   EXPECT_EQ(rig.main_task.finish(5, 0), StepResult::kDiscarded);
   EXPECT_EQ(rig.arm.sends, sends_before) << "nothing reached the arm";
   EXPECT_EQ(rig.last_vp().cycle, 6U);
-  EXPECT_EQ(rig.shared.counters.late_discarded.load(), 1U);
+  EXPECT_EQ(rig.shared.to_clock.counters.late_discarded.load(), 1U);
 }
 
 TEST(Servo, MainAndDegradedServoContinueOneRateLimitedWrench) {
@@ -164,16 +164,64 @@ TEST(Servo, MainAndDegradedServoContinueOneRateLimitedWrench) {
 TEST(Servo, InhibitFlagOverridesPower) {
   ServoRig rig;
   rig.writer.send(shm::CtrlCode::kPowerOn, 0, 0);
-  rig.shared.inhibit.store(true);
+  rig.shared.from_clock.inhibit_commands();
   rig.cycle(rig.main_task, 1);
   EXPECT_FALSE(rig.arm.last.enable);
+}
+
+TEST(Servo, TheLawSeesTheSampleConvertedAtTheEdge) {
+  ServoRig rig;
+  rig.writer.send(shm::CtrlCode::kPowerOn, 0, 0);
+  rig.cycle(rig.main_task, 1);
+  shm::PositionPayload handle;
+  ASSERT_TRUE(rig.regions.position->read(handle).ok());
+  shm::VprPayload client;
+  client.session_id = 7;
+  client.command_type = static_cast<std::uint32_t>(shm::CommandType::kVirtmech);
+  client.flags = shm::vpr_flags::kObjectAttached;
+  client.object_pose = handle.handle_pose;
+  client.object_pose[0] += 0.01;  // 1 cm along x: the coupling pulls the handle that way
+  client.object_mass = 0.5;
+  client.client_time_step = 1e-3;
+  std::uint64_t k = 2;
+  for (; k <= 200; ++k) {
+    client.client_sequence = k;
+    rig.vpr->publish(client, static_cast<TimeNs>(k) * kNsPerMs);
+    rig.cycle(rig.main_task, k);
+  }
+  shm::VpPayload vp = rig.last_vp();
+  EXPECT_NE(vp.state_word & shm::state_bits::kCoupled, 0U) << "VIRTMECH with an object couples";
+  EXPECT_LT(vp.coupling_wrench[0], 0.0) << "the object is pulled back towards the handle (-x)";
+  EXPECT_EQ(rig.shared.to_clock.committed_session.load(), 7U);
+
+  client.flags = 0;  // the object detached: the same sample without the flag
+  for (const std::uint64_t last = k + 50; k <= last; ++k) {
+    client.client_sequence = k;
+    rig.vpr->publish(client, static_cast<TimeNs>(k) * kNsPerMs);
+    rig.cycle(rig.main_task, k);
+  }
+  EXPECT_EQ(rig.last_vp().state_word & shm::state_bits::kCoupled, 0U) << "no object, no coupling";
+}
+
+TEST(Servo, WhatTheClockAnnouncesReachesTheNextPublish) {
+  ServoRig rig;
+  rig.cycle(rig.main_task, 1);
+  EXPECT_EQ(rig.last_vp().core_state, static_cast<std::uint32_t>(shm::CoreState::kRunning));
+  rig.shared.from_clock.add_state_bits(shm::state_bits::kStopping);
+  rig.shared.from_clock.announce(shm::CoreState::kStopping, shm::StopReason::kSignal);
+  rig.cycle(rig.main_task, 2);
+  const shm::VpPayload vp = rig.last_vp();
+  EXPECT_EQ(vp.core_state, static_cast<std::uint32_t>(shm::CoreState::kStopping));
+  EXPECT_EQ(vp.stop_reason, static_cast<std::uint32_t>(shm::StopReason::kSignal));
+  EXPECT_NE(vp.state_word & shm::state_bits::kStopping, 0U);
+  EXPECT_EQ(rig.shared.to_clock.committed_state_word.load(), vp.state_word);
 }
 
 TEST(Servo, ArmReadFaultIsCounted) {
   ServoRig rig;
   rig.arm.fail_reads = true;
   rig.cycle(rig.main_task, 1);
-  EXPECT_EQ(rig.shared.counters.arm_faults.load(), 1U);
+  EXPECT_EQ(rig.shared.to_clock.counters.arm_faults.load(), 1U);
 }
 
 }  // namespace

@@ -34,14 +34,14 @@ bool wait_idle(ThreadedServoTasks& tasks, ServoRole role) {
 
 TEST(ThreadedServoTasks, ReleasedCyclesRunAndCommit) {
   ThreadRig rig;
-  ThreadedServoTasks tasks(rig.clock, rig.main_task, rig.degraded_task, rig.shared, kNsPerMs, {},
-                           {});
+  ThreadedServoTasks tasks(rig.clock, rig.main_task, rig.degraded_task, rig.shared.overrun,
+                           kNsPerMs, {}, {});
   for (std::uint64_t k = 1; k <= 20; ++k) {
     ASSERT_TRUE(rig.shared.gate.grant(k));
     tasks.release(ServoRole::kMain, k, rig.clock.now());
     ASSERT_TRUE(wait_idle(tasks, ServoRole::kMain)) << "cycle " << k;
     EXPECT_GE(tasks.started_at(ServoRole::kMain), 0);
-    EXPECT_EQ(rig.shared.commit_cycle.load(), k);
+    EXPECT_EQ(rig.shared.to_clock.commit_cycle.load(), k);
     EXPECT_GE(tasks.finished_at(ServoRole::kMain, k), tasks.started_at(ServoRole::kMain))
         << "timed after the commit, arm commands included";
     EXPECT_EQ(tasks.finished_at(ServoRole::kMain, k + 1), -1) << "not finished yet";
@@ -51,9 +51,9 @@ TEST(ThreadedServoTasks, ReleasedCyclesRunAndCommit) {
 
 TEST(ThreadedServoTasks, InjectedOverrunKeepsMainBusyWhileDegradedCommits) {
   ThreadRig rig;
-  ThreadedServoTasks tasks(rig.clock, rig.main_task, rig.degraded_task, rig.shared, kNsPerMs, {},
-                           {});
-  rig.shared.overrun_request.store(20);  // ~20 ms stall
+  ThreadedServoTasks tasks(rig.clock, rig.main_task, rig.degraded_task, rig.shared.overrun,
+                           kNsPerMs, {}, {});
+  rig.shared.overrun.request(20);  // ~20 ms stall
   ASSERT_TRUE(rig.shared.gate.grant(1));
   tasks.release(ServoRole::kMain, 1, rig.clock.now());
   std::this_thread::sleep_for(std::chrono::milliseconds(2));
@@ -61,18 +61,19 @@ TEST(ThreadedServoTasks, InjectedOverrunKeepsMainBusyWhileDegradedCommits) {
   ASSERT_TRUE(rig.shared.gate.grant(2));
   tasks.release(ServoRole::kDegraded, 2, rig.clock.now());
   ASSERT_TRUE(wait_idle(tasks, ServoRole::kDegraded));
-  EXPECT_EQ(rig.shared.commit_cycle.load(), 2U);
+  EXPECT_EQ(rig.shared.to_clock.commit_cycle.load(), 2U);
   ASSERT_TRUE(wait_idle(tasks, ServoRole::kMain));
-  EXPECT_EQ(rig.shared.counters.late_discarded.load(), 1U);
-  EXPECT_EQ(rig.shared.commit_cycle.load(), 2U) << "the late main cycle 1 did not overwrite 2";
+  EXPECT_EQ(rig.shared.to_clock.counters.late_discarded.load(), 1U);
+  EXPECT_EQ(rig.shared.to_clock.commit_cycle.load(), 2U)
+      << "the late main cycle 1 did not overwrite 2";
   tasks.stop();
 }
 
 TEST(ThreadedServoTasks, StopJoinsPromptly) {
   ThreadRig rig;
-  auto tasks =
-      std::make_unique<ThreadedServoTasks>(rig.clock, rig.main_task, rig.degraded_task, rig.shared,
-                                           kNsPerMs, ThreadPlacement{}, ThreadPlacement{});
+  auto tasks = std::make_unique<ThreadedServoTasks>(rig.clock, rig.main_task, rig.degraded_task,
+                                                    rig.shared.overrun, kNsPerMs, ThreadPlacement{},
+                                                    ThreadPlacement{});
   const auto start = std::chrono::steady_clock::now();
   tasks->stop();
   EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(2));

@@ -18,10 +18,10 @@ class ScriptedServoTasks final : public rt_core::ServoTasks {
   using Duration = std::function<rt_core::TimeNs(std::uint64_t cycle)>;
 
   ScriptedServoTasks(rt_core::FakeClock& clock, rt_core::ServoTask& main_task,
-                     rt_core::ServoTask& degraded_task, rt_core::ServoShared& shared,
+                     rt_core::ServoTask& degraded_task, rt_core::OverrunInjection& overrun,
                      rt_core::TimeNs period, Duration main_duration)
       : clock_(&clock),
-        shared_(&shared),
+        overrun_(&overrun),
         period_(period),
         main_duration_(std::move(main_duration)),
         main_{&main_task},
@@ -36,7 +36,7 @@ class ScriptedServoTasks final : public rt_core::ServoTasks {
     rt_core::TimeNs duration =
         role == rt_core::ServoRole::kMain ? main_duration_(cycle) : degraded_duration;
     if (role == rt_core::ServoRole::kMain) {
-      const std::uint32_t k = shared_->overrun_request.exchange(0);
+      const std::uint32_t k = overrun_->take();
       if (k > 0) {
         duration = static_cast<rt_core::TimeNs>(k) * period_ - period_ / 5;
       }
@@ -101,7 +101,7 @@ class ScriptedServoTasks final : public rt_core::ServoTasks {
   }
 
   rt_core::FakeClock* clock_;
-  rt_core::ServoShared* shared_;
+  rt_core::OverrunInjection* overrun_;
   rt_core::TimeNs period_;
   Duration main_duration_;
   Pending main_;

@@ -119,7 +119,10 @@ class Executive {
   ExecutiveConfig config_;
   Clock* clock_;
   ServoTasks* tasks_;
-  ServoShared* shared_;
+  CycleGate* gate_;
+  GateOwnedState* gate_owned_;  ///< only once the gate is closed (the stop sequence)
+  ClockToServo* to_servo_;
+  const ServoToClock* from_servo_;
   ArmIo* arm_;
   ExecutiveOutputs outputs_;
   BlackBox* black_box_;

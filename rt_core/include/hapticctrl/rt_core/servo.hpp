@@ -8,8 +8,10 @@
 ///             law.compute()                                   (no gate held)
 ///   finish(): [gate] send commands (inhibited unless powered), publish VP/position [/gate]
 /// The main SERVO and the degraded SERVO are two ServoTask objects sharing one ServoShared; the
-/// CycleGate serialises everything shared, so they can never write the arm or a region at once,
-/// and a late main SERVO is refused at finish() once CLOCK granted a newer cycle.
+/// CycleGate serialises the state it owns, so they can never write the arm or a region at once,
+/// and a late main SERVO is refused at finish() once CLOCK granted a newer cycle. What crosses
+/// between the CLOCK and the SERVOs goes through two one-writer mailboxes (ClockToServo,
+/// ServoToClock).
 
 #include <atomic>
 #include <cstdint>
@@ -44,26 +46,93 @@ struct ServoCounters {
   std::atomic<std::uint64_t> arm_faults{0};
 };
 
-/// State shared by the main and the degraded SERVO. Fields other than the atomics are only
-/// touched inside the gate.
-struct ServoShared {
-  ServoShared(ArmIo& arm_io, shm::CtrlReader ctrl_reader, const ServoRegions& servo_regions,
-              bool allow_fault_injection) noexcept
-      : arm(&arm_io),
-        ctrl(ctrl_reader),
-        regions(servo_regions),
-        interpreter(allow_fault_injection) {}
+/// CLOCK -> SERVO: what the CLOCK tells the task that commits. The Executive holds it mutable and
+/// the SERVOs const, so the CLOCK is its one writer by construction. Every method is wait-free
+/// (one atomic operation) and safe in the cycle.
+class ClockToServo {
+ public:
+  /// CLOCK: no commit may enable the motors from now on (stop sequence, step 1).
+  void inhibit_commands() noexcept { inhibit_.store(true, std::memory_order_release); }
+  /// CLOCK: state bits (kFailSafe/kStopping) every later publish carries.
+  void add_state_bits(std::uint32_t bits) noexcept {
+    state_bits_.fetch_or(bits, std::memory_order_acq_rel);
+  }
+  /// CLOCK: the core state and stop reason VP carries from now on.
+  void announce(shm::CoreState state, shm::StopReason reason) noexcept {
+    stop_reason_.store(static_cast<std::uint32_t>(reason), std::memory_order_relaxed);
+    core_state_.store(static_cast<std::uint32_t>(state), std::memory_order_relaxed);
+  }
 
-  CycleGate gate;
+  [[nodiscard]] bool commands_inhibited() const noexcept {
+    return inhibit_.load(std::memory_order_acquire);
+  }
+  [[nodiscard]] std::uint32_t state_bits() const noexcept {
+    return state_bits_.load(std::memory_order_relaxed);
+  }
+  [[nodiscard]] std::uint32_t core_state() const noexcept {
+    return core_state_.load(std::memory_order_relaxed);
+  }
+  [[nodiscard]] std::uint32_t stop_reason() const noexcept {
+    return stop_reason_.load(std::memory_order_relaxed);
+  }
+
+ private:
+  std::atomic<bool> inhibit_{false};
+  std::atomic<std::uint32_t> state_bits_{0};
+  std::atomic<std::uint32_t> core_state_{static_cast<std::uint32_t>(shm::CoreState::kRunning)};
+  std::atomic<std::uint32_t> stop_reason_{0};
+};
+
+/// SERVO -> CLOCK: what the committing SERVO reports. Written only by a task inside the gate
+/// (the gate makes the two SERVOs one writer at a time); the Executive holds it const.
+struct ServoToClock {
+  ServoCounters counters;
+  /// What the last commit published (VP state word, client session): the CLOCK turns changes
+  /// into events.
+  std::atomic<std::uint32_t> committed_state_word{0};
+  std::atomic<std::uint64_t> committed_session{0};
+  /// A ctrl stop command was applied.
+  std::atomic<bool> stop_requested{false};
+  /// The handle stayed over the speed limit despite the brake (LawConfig::overspeed_fault_after).
+  std::atomic<bool> velocity_fault{false};
+  /// Last cycle committed by either SERVO.
+  std::atomic<std::uint64_t> commit_cycle{0};
+};
+
+/// Fault injection of an overrun (--inject-overrun CYCLE:K, or the ctrl command): the SERVO inside
+/// the gate asks for a stall of K cycles, the main SERVO's runner takes the request and stalls.
+/// One producer, one consumer; wait-free, safe in the cycle.
+class OverrunInjection {
+ public:
+  /// SERVO (inside the gate): stall the main SERVO for `cycles` cycles.
+  void request(std::uint32_t cycles) noexcept { cycles_.store(cycles, std::memory_order_release); }
+  /// The main SERVO's runner: the pending request (0: none), cleared.
+  std::uint32_t take() noexcept { return cycles_.exchange(0, std::memory_order_acq_rel); }
+
+ private:
+  std::atomic<std::uint32_t> cycles_{0};
+};
+
+/// The command-line overrun: at cycle `at_cycle` (0: never), an overrun of `cycles`.
+struct ScheduledOverrun {
+  std::uint64_t at_cycle = 0;
+  std::uint32_t cycles = 0;
+};
+
+/// Gate-owned state: touched only by whoever holds the CycleGate (a SERVO between enter() and
+/// leave(), the CLOCK once it has closed the gate), so it needs no atomics.
+struct GateOwnedState {
   ArmIo* arm;
   shm::CtrlReader ctrl;
   ServoRegions regions;
   CommandInterpreter interpreter;
   LogicalState logical;
   bool supply_on = false;
+  ScheduledOverrun scheduled_overrun;
 
   // Client (VPr) tracking.
-  shm::VprPayload last_client{};
+  shm::VprPayload last_client{};  ///< as received: its echo and link fields go back in VP
+  ClientSample client;            ///< the same, converted for the law
   bool client_valid = false;
   std::uint64_t last_client_sequence = 0;
   TimeNs last_client_arrival = 0;
@@ -71,29 +140,25 @@ struct ServoShared {
 
   /// The committed cycle's render memory; each task's law continues from it.
   RenderMemory rendered;
+};
 
-  ServoCounters counters;
-  /// Set by the CLOCK at the start of the stop sequence: motor commands stay disabled.
-  std::atomic<bool> inhibit{false};
-  /// Extra state bits the CLOCK sets (kFailSafe/kStopping) for the next publishes.
-  std::atomic<std::uint32_t> clock_state_bits{0};
-  std::atomic<std::uint32_t> core_state{static_cast<std::uint32_t>(shm::CoreState::kRunning)};
-  std::atomic<std::uint32_t> stop_reason{0};
-  /// What the last commit published (VP state word, client session): the CLOCK turns changes
-  /// into events.
-  std::atomic<std::uint32_t> committed_state_word{0};
-  std::atomic<std::uint64_t> committed_session{0};
-  /// Mirror of logical.stop_requested for the CLOCK.
-  std::atomic<bool> stop_requested{false};
-  /// The handle stayed over the speed limit despite the brake (LawConfig::overspeed_fault_after).
-  std::atomic<bool> velocity_fault{false};
-  /// Command-line fault injection: at this cycle, request an overrun of inject_cycles.
-  std::uint64_t inject_at_cycle = 0;
-  std::uint32_t inject_cycles = 0;
-  /// Fault injection taken by the main SERVO: stall for this many cycles' worth.
-  std::atomic<std::uint32_t> overrun_request{0};
-  /// Last cycle committed by anyone.
-  std::atomic<std::uint64_t> commit_cycle{0};
+/// Everything the CLOCK and the two SERVOs share, as one-writer parts: the gate, the state it
+/// guards, and a mailbox each way. Each party keeps pointers to the parts it may use, typed
+/// const where it only reads (Executive, ServoTask).
+struct ServoShared {
+  ServoShared(ArmIo& arm_io, shm::CtrlReader ctrl_reader, const ServoRegions& servo_regions,
+              bool allow_fault_injection, ScheduledOverrun scheduled = {}) noexcept
+      : state{.arm = &arm_io,
+              .ctrl = ctrl_reader,
+              .regions = servo_regions,
+              .interpreter = CommandInterpreter(allow_fault_injection),
+              .scheduled_overrun = scheduled} {}
+
+  CycleGate gate;
+  GateOwnedState state;
+  ClockToServo from_clock;
+  ServoToClock to_clock;
+  OverrunInjection overrun;
 };
 
 /// Which SERVO a task is.
@@ -110,7 +175,13 @@ enum class StepResult : std::uint8_t {
 class ServoTask {
  public:
   ServoTask(ServoShared& shared, ServoRole role, const ServoLaw& law) noexcept
-      : shared_(&shared), role_(role), law_(law) {}
+      : gate_(&shared.gate),
+        state_(&shared.state),
+        from_clock_(&shared.from_clock),
+        to_clock_(&shared.to_clock),
+        overrun_(&shared.overrun),
+        role_(role),
+        law_(law) {}
 
   /// Gate section 1 and the computation. Real-time contract: safe in the cycle.
   StepResult begin(std::uint64_t cycle, TimeNs now, TimeNs dt) noexcept;
@@ -126,7 +197,11 @@ class ServoTask {
   void exchange_client(TimeNs now) noexcept;
   void commit(std::uint64_t cycle, TimeNs now) noexcept;
 
-  ServoShared* shared_;
+  CycleGate* gate_;
+  GateOwnedState* state_;
+  const ClockToServo* from_clock_;
+  ServoToClock* to_clock_;
+  OverrunInjection* overrun_;
   ServoRole role_;
   ServoLaw law_;
   ServoInputs inputs_;

@@ -17,8 +17,8 @@
 
 #include "hapticctrl/rt_core/arm_dynamics.hpp"
 #include "hapticctrl/rt_core/arm_io.hpp"
+#include "hapticctrl/rt_core/client_sample.hpp"
 #include "hapticctrl/rt_core/logical_state.hpp"
-#include "hapticctrl/shm/payloads.hpp"
 
 namespace hapticctrl::rt_core {
 
@@ -29,7 +29,7 @@ struct ServoInputs {
   TimeNs dt = 0;
   ArmMeasures measures;
   LogicalState logical;
-  shm::VprPayload client;     ///< last valid client sample
+  ClientSample client;        ///< last valid client sample
   bool client_valid = false;  ///< a valid client sample exists
   /// True age of that sample: now - when the client computed it (network + bridge + waiting,
   /// from the protocol's timing echo; since its arrival for a client without it).
@@ -87,7 +87,7 @@ struct ClientFrame {
 };
 
 /// Real-time contract: safe in the cycle.
-ClientFrame client_frame_of(const shm::VprPayload& client) noexcept;
+ClientFrame client_frame_of(const ClientSample& client) noexcept;
 
 struct LawConfig {
   TimeNs stale_after = 5 * kNsPerMs;       ///< no new sample for this long: flagged stale
@@ -162,7 +162,7 @@ class ServoLaw {
   /// the coupling loop's delay (s), bounded by the device (model limits), then overridden
   /// (within the same bounds) by the client's non-zero overrides. Real-time contract: safe in
   /// the cycle.
-  [[nodiscard]] CouplingGains derive_gains(const shm::VprPayload& client,
+  [[nodiscard]] CouplingGains derive_gains(const ClientSample& client,
                                            double loop_delay) const noexcept;
 
   /// Net energy the user has given the rendering port at the handle (J): negative means the port
@@ -191,7 +191,7 @@ class ServoLaw {
                      double dt, ServoOutputs& out) noexcept;
   double update_engagement(const ServoInputs& in, const Vector6d& twist, double fade,
                            ServoOutputs& out) noexcept;
-  Vector6d saturate(const Coupling& c, const shm::VprPayload& client) const noexcept;
+  Vector6d saturate(const Coupling& c, const ClientSample& client) const noexcept;
   Vector6d rate_limit(const Vector6d& target, double rate, double dt) noexcept;
   Vector6d guard_passivity(const Vector6d& wrench, const Vector6d& twist, double dt) noexcept;
   Vector6d joint_walls(const Vector6d& q) const noexcept;

@@ -25,7 +25,8 @@ class ThreadedServoTasks final : public ServoTasks {
   /// 2026-11-24: under ASan with parallel tests the first 5 cycles at 10 ms missed and the core
   /// failed safe at start). Setup: allocates.
   ThreadedServoTasks(Clock& clock, ServoTask& main_task, ServoTask& degraded_task,
-                     ServoShared& shared, TimeNs period, const ThreadPlacement& main_placement,
+                     OverrunInjection& overrun, TimeNs period,
+                     const ThreadPlacement& main_placement,
                      const ThreadPlacement& degraded_placement);
   ThreadedServoTasks(const ThreadedServoTasks&) = delete;
   ThreadedServoTasks& operator=(const ThreadedServoTasks&) = delete;
@@ -59,7 +60,7 @@ class ThreadedServoTasks final : public ServoTasks {
   Worker& worker(ServoRole role) noexcept { return role == ServoRole::kMain ? main_ : degraded_; }
 
   Clock* clock_;
-  ServoShared* shared_;
+  OverrunInjection* overrun_;  ///< taken by the main SERVO after begin()
   TimeNs period_;
   std::atomic<bool> stopping_{false};
   Worker main_;

@@ -1,0 +1,344 @@
+#include "client_session.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "hapticctrl/protocol/timing.hpp"
+#include "hapticctrl/protocol/values.hpp"
+
+namespace hapticctrl::client {
+namespace {
+
+constexpr std::int64_t kNsPerMs = 1'000'000;
+
+std::string version_text(std::uint32_t v) {
+  return std::to_string(protocol::version_major(v)) + "." +
+         std::to_string(protocol::version_minor(v));
+}
+
+std::int64_t ns_of(std::chrono::milliseconds ms) {
+  return ms.count() * kNsPerMs;
+}
+
+}  // namespace
+
+ClientSession::ClientSession(ConnectOptions options, std::string peer_text)
+    : options_(std::move(options)), peer_text_(std::move(peer_text)) {}
+
+std::uint32_t ClientSession::version() const noexcept {
+  return options_.advertised_version != 0 ? options_.advertised_version : protocol::kVersion;
+}
+
+// --- handshake -----------------------------------------------------------------------------
+
+std::optional<hcp_frame> ClientSession::hello_due(std::int64_t now) {
+  if (open_ || now < next_hello_ns_) {
+    return std::nullopt;
+  }
+  hcp_frame hello = protocol::make_frame(HCP_HELLO, 0, ++hello_sequence_, now);
+  hello.header.protocol = version();
+  hcp_hello& h = hello.body.hcp_body_u.hello;
+  h.min_version =
+      options_.advertised_min_version != 0 ? options_.advertised_min_version : version();
+  h.features = protocol::kAllFeatures;
+  h.watchdog_ms = options_.watchdog_ms;
+  protocol::set_text(h.client_name, options_.client_name);
+  next_hello_ns_ = now + ns_of(options_.retransmit_after) * 2;
+  return hello;
+}
+
+HandshakeStep ClientSession::on_handshake_frame(const hcp_frame& frame, std::int64_t now) {
+  HandshakeStep step;
+  if (frame.body.type == HCP_REFUSE) {
+    const hcp_refuse& refusal = frame.body.hcp_body_u.refuse;
+    last_refusal_ = std::string(protocol::text_of(refusal.reason));
+    if (refusal.code == HCP_REFUSE_VERSION) {
+      step.fail =
+          ClientError(ErrorCode::kVersion,
+                      "controller at " + peer_text_ + " refused the connection: " + last_refusal_ +
+                          " (this client speaks " + version_text(version()) + ", the controller " +
+                          version_text(frame.header.protocol) + ")");
+    } else if (refusal.code == HCP_REFUSE_BAD_REQUEST) {  // asking again would not help
+      step.fail =
+          ClientError(ErrorCode::kRejected,
+                      "controller at " + peer_text_ + " refused the connection: " + last_refusal_);
+    } else {
+      last_refusal_code_ =
+          refusal.code == HCP_REFUSE_BUSY ? ErrorCode::kBusy : ErrorCode::kNoController;
+      // Ask again once the other session may be gone.
+      next_hello_ns_ = now + std::max<std::int64_t>(
+                                 ns_of(options_.retransmit_after),
+                                 static_cast<std::int64_t>(refusal.retry_after_ms) * kNsPerMs);
+    }
+    return step;
+  }
+  if (frame.body.type != HCP_WELCOME) {
+    return step;
+  }
+  if (protocol::version_major(frame.header.protocol) != protocol::version_major(version())) {
+    std::string reason;
+    step.reply = version_refusal(frame, now, reason);
+    step.fail =
+        ClientError(ErrorCode::kVersion, "connection to " + peer_text_ + " refused: " + reason);
+    return step;
+  }
+  welcome(frame, now);
+  step.welcomed = true;
+  return step;
+}
+
+void ClientSession::welcome(const hcp_frame& frame, std::int64_t now) noexcept {
+  const hcp_welcome& w = frame.body.hcp_body_u.welcome;
+  token_ = frame.header.token;
+  features_ = w.features;
+  watchdog_ms_ = w.watchdog_ms;
+  period_ns_ = w.period_ns;
+  controller_version_ = frame.header.protocol;
+  monitor_.set_period(period_ns_);
+  last_heard_ns_ = now;
+  open_ = true;
+}
+
+hcp_frame ClientSession::version_refusal(const hcp_frame& welcome, std::int64_t now,
+                                         std::string& reason) const {
+  reason = "protocol version mismatch: client " + version_text(version()) + ", controller " +
+           version_text(welcome.header.protocol);
+  hcp_frame refusal = protocol::make_frame(HCP_REFUSE, welcome.header.token, 1, now);
+  refusal.header.protocol = version();
+  refusal.body.hcp_body_u.refuse.code = HCP_REFUSE_VERSION;
+  refusal.body.hcp_body_u.refuse.peer_version = welcome.header.protocol;
+  protocol::set_text(refusal.body.hcp_body_u.refuse.reason, reason);
+  return refusal;
+}
+
+ClientError ClientSession::handshake_timeout() const {
+  const std::string waited = std::to_string(options_.connect_timeout.count()) + " ms";
+  if (last_refusal_.empty()) {
+    return {ErrorCode::kTimeout, "no answer from a hapticctrl controller at " + peer_text_ +
+                                     " within " + waited + ": is hapticctrl-udp running there?"};
+  }
+  return {last_refusal_code_, "controller at " + peer_text_ + " refused the connection for " +
+                                  waited + ": " + last_refusal_};
+}
+
+// --- an open session -----------------------------------------------------------------------
+
+Arrival ClientSession::on_frame(const hcp_frame& frame, std::int64_t now) noexcept {
+  if (frame.header.token != token_) {
+    monitor_.on_invalid();
+    return Arrival::kInvalid;
+  }
+  last_heard_ns_ = now;
+  switch (frame.body.type) {
+    case HCP_ANSWER:
+    case HCP_ANSWER_TIMED:
+      return on_answer(frame, now) ? Arrival::kAnswer : Arrival::kIgnored;
+    case HCP_REFUSE:  // the bridge ended the session, and says why
+      close(protocol::text_of(frame.body.hcp_body_u.refuse.reason));
+      return Arrival::kClosed;
+    case HCP_ACK: {
+      const hcp_ack& a = frame.body.hcp_body_u.ack;
+      ack_ = {a.acked_sequence, AckOutcome{a.status, std::string(protocol::text_of(a.reason))}};
+      return Arrival::kAck;
+    }
+    default:
+      return Arrival::kIgnored;
+  }
+}
+
+bool ClientSession::on_answer(const hcp_frame& frame, std::int64_t now) noexcept {
+  const bool timed = frame.body.type == HCP_ANSWER_TIMED;
+  const hcp_answer& a =
+      timed ? frame.body.hcp_body_u.answer_timed.answer : frame.body.hcp_body_u.answer;
+  if (!monitor_.on_answer(frame.header.sequence, now, a.echo_sequence, a.echo_time_ns,
+                          a.control_received)) {
+    return false;  // a duplicate or an answer older than the newest
+  }
+  StateSnapshot s;
+  s.valid = true;
+  s.cycle = a.cycle;
+  s.received_ns = now;
+  s.state_word = a.state_word;
+  s.core_state = a.core_state;
+  s.stop_reason = a.stop_reason;
+  s.command_type = static_cast<CommandType>(a.command_type);
+  protocol::from_wire(a.coupling_wrench, s.coupling_wrench);
+  if (timed) {
+    // Two-port passivity, this end: the application gets the wrench with the PC's damper.
+    report_ = frame.body.hcp_body_u.answer_timed.coupling;
+    passivity_.on_controller_energy(report_.energy_in);
+    passivity_.on_coupling_damping(report_.gains[1], report_.gains[3]);
+    s.coupling_wrench = passivity_.render(s.coupling_wrench);
+  }
+  protocol::from_wire(a.handle_pose, s.handle_pose);
+  protocol::from_wire(a.handle_twist, s.handle_twist);
+  protocol::from_wire(a.joint_position, s.joint_position);
+  protocol::from_wire(a.joint_velocity, s.joint_velocity);
+  latest_ = s;
+  return true;
+}
+
+std::optional<hcp_frame> ClientSession::keepalive_due(std::int64_t now) noexcept {
+  const std::int64_t quiet_ns = static_cast<std::int64_t>(watchdog_ms_) * kNsPerMs / 4;
+  if (!options_.keepalive || !open_ || now - last_send_ns_ <= quiet_ns) {
+    return std::nullopt;
+  }
+  return protocol::make_frame(HCP_KEEPALIVE, token_, next_control_sequence(), now);
+}
+
+bool ClientSession::close_if_silent(std::int64_t now) {
+  // A session whose bridge sends nothing at all (no answer, no refusal) for the answer timeout
+  // is over: the bridge was killed, or lost its controller without a word.
+  const std::int64_t limit_ns = ns_of(options_.answer_timeout);
+  if (limit_ns == 0 || !open_ || now - last_heard_ns_ <= limit_ns) {
+    return false;
+  }
+  close("no answer from the bridge for " + std::to_string(options_.answer_timeout.count()) + " ms");
+  return true;
+}
+
+void ClientSession::close(std::string_view reason) {
+  if (!open_) {
+    return;
+  }
+  open_ = false;
+  closed_reason_.assign(reason);
+}
+
+// --- control frames ------------------------------------------------------------------------
+
+std::optional<hcp_frame> ClientSession::checked_control(hcp_frame frame) const noexcept {
+  if (!open_ || protocol::check_control(frame.body)) {
+    return std::nullopt;
+  }
+  return frame;
+}
+
+std::optional<hcp_frame> ClientSession::object_frame(const Pose7& pose, const Vector6& twist,
+                                                     std::int64_t now) noexcept {
+  // Not a rotation: refused in both frame forms (packing would have normalised it silently).
+  const double norm_sq =
+      pose[3] * pose[3] + pose[4] * pose[4] + pose[5] * pose[5] + pose[6] * pose[6];
+  if (!open_ || !(std::abs(norm_sq - 1.0) <= protocol::kMaxQuaternionError)) {
+    return std::nullopt;
+  }
+  if ((features_ & HCP_FEATURE_TIMING) != 0) {
+    return checked_control(timed_object_frame(pose, twist, now));
+  }
+  hcp_frame f = protocol::make_frame(HCP_CONTROL_OBJECT, token_, next_control_sequence(), now);
+  protocol::to_wire(pose, f.body.hcp_body_u.object.pose);
+  protocol::to_wire(twist, f.body.hcp_body_u.object.twist);
+  return checked_control(f);
+}
+
+/// Protocol 1.1: the object state with an echo of the newest answer, from which the bridge
+/// measures the link and the core the coupling loop (docs/protocol.md).
+hcp_frame ClientSession::timed_object_frame(const Pose7& pose, const Vector6& twist,
+                                            std::int64_t now) noexcept {
+  // The step the application just took, under the wrench it got (at most 0.1 s counted).
+  if (last_object_send_ns_ != 0) {
+    const double dt = std::min(0.1, static_cast<double>(now - last_object_send_ns_) * 1e-9);
+    passivity_.on_step(twist, dt);
+  }
+  last_object_send_ns_ = now;
+  hcp_frame f =
+      protocol::make_frame(HCP_CONTROL_OBJECT_TIMED, token_, next_control_sequence(), now);
+  hcp_control_object_timed& o = f.body.hcp_body_u.timed;
+  for (std::size_t i = 0; i < 3; ++i) {
+    o.position[i] = static_cast<float>(pose[i]);
+  }
+  const protocol::PackedRotation r = protocol::pack_rotation({pose[3], pose[4], pose[5], pose[6]});
+  o.rotation[0] = r[0];
+  o.rotation[1] = r[1];
+  protocol::to_wire(twist, o.twist);
+  o.answer_echo =
+      protocol::pack_answer_echo(latest_.cycle, now - latest_.received_ns, latest_.valid);
+  o.energy_in = passivity_.energy_in_uj();
+  return f;
+}
+
+std::optional<hcp_frame> ClientSession::wrench_frame(const Vector6& wrench,
+                                                     std::int64_t now) noexcept {
+  hcp_frame f = protocol::make_frame(HCP_CONTROL_WRENCH, token_, next_control_sequence(), now);
+  protocol::to_wire(wrench, f.body.hcp_body_u.wrench.wrench);
+  return checked_control(f);
+}
+
+// --- reliable frames -----------------------------------------------------------------------
+
+hcp_frame ClientSession::param_frame(const hcp_param& param, const std::string& what) {
+  if (const auto problem = protocol::check_param(param)) {
+    throw ClientError(ErrorCode::kInvalidArgument, what + ": " + std::string(*problem));
+  }
+  if (!open_) {
+    throw closed_error(what);
+  }
+  hcp_frame frame = protocol::make_frame(HCP_PARAM, token_, ++reliable_sequence_, 0);
+  frame.body.hcp_body_u.param = param;
+  return frame;
+}
+
+hcp_frame ClientSession::bye_frame(const std::string& what) {
+  if (!open_) {
+    throw closed_error(what);
+  }
+  return protocol::make_frame(HCP_BYE, token_, ++reliable_sequence_, 0);
+}
+
+std::optional<AckOutcome> ClientSession::take_ack(std::uint32_t sequence) noexcept {
+  if (!ack_ || ack_->first != sequence) {
+    return std::nullopt;
+  }
+  std::optional<AckOutcome> outcome = std::move(ack_->second);
+  ack_.reset();
+  return outcome;
+}
+
+void ClientSession::on_param_applied(const hcp_param& param) noexcept {
+  const auto& v = param.hcp_param_u;
+  switch (param.id) {
+    case HCP_P_WATCHDOG:
+      watchdog_ms_ = v.watchdog_ms;
+      break;
+    case HCP_P_FORCE_FACTOR:
+      passivity_.set_force_factor(v.force_factor);
+      break;
+    case HCP_P_SPEED_FACTOR:
+      passivity_.set_speed_factor(v.speed_factor);
+      break;
+    case HCP_P_OBJECT:
+      if (v.object.attached != 0) {
+        passivity_.set_object(v.object.mass, std::max({v.object.inertia[0], v.object.inertia[1],
+                                                       v.object.inertia[2]}));
+      }
+      break;
+    default:
+      break;
+  }
+}
+
+ClientError ClientSession::closed_error(const std::string& what) const {
+  return {ErrorCode::kClosed, what + ": the session is closed" +
+                                  (closed_reason_.empty() ? "" : " (" + closed_reason_ + ")")};
+}
+
+// --- what the session knows ----------------------------------------------------------------
+
+LinkStatistics ClientSession::statistics() const noexcept {
+  LinkStatistics st = monitor_.statistics(control_sent_);
+  const hcp_coupling_report& r = report_;
+  st.link_delay_us = r.link_delay_s * 1e6;
+  st.link_jitter_us = r.link_jitter_s * 1e6;
+  st.link_loss = r.link_loss;
+  st.loop_delay_us = r.loop_delay_s * 1e6;
+  st.sample_age_us = r.sample_age_s * 1e6;
+  protocol::from_wire(r.gains, st.coupling_gains);
+  st.channel_energy_in = passivity_.energy_in();
+  st.channel_energy_out = passivity_.energy_out();
+  st.controller_energy_in = r.energy_in;
+  st.passivity_active_steps = passivity_.active_steps();
+  return st;
+}
+
+}  // namespace hapticctrl::client

@@ -1,0 +1,277 @@
+// The client's protocol state machine (client_session.cpp) without a socket: frames in with
+// their arrival time, frames out.
+#include "client_session.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "hapticctrl/protocol/timing.hpp"
+
+namespace hapticctrl::client {
+namespace {
+
+using namespace std::chrono_literals;
+
+constexpr std::int64_t kMs = 1'000'000;
+constexpr std::uint64_t kToken = 0x1234'5678'9abc'def0ULL;
+
+ConnectOptions options() {
+  ConnectOptions o;
+  o.retransmit_after = 20ms;
+  o.connect_timeout = 500ms;
+  o.answer_timeout = 300ms;
+  return o;
+}
+
+hcp_frame welcome(std::uint32_t version = protocol::kVersion) {
+  hcp_frame w = protocol::make_frame(HCP_WELCOME, kToken, 1, 0);
+  w.header.protocol = version;
+  w.body.hcp_body_u.welcome.features = protocol::kAllFeatures;
+  w.body.hcp_body_u.welcome.watchdog_ms = 400;
+  w.body.hcp_body_u.welcome.period_ns = kMs;
+  return w;
+}
+
+hcp_frame refusal(hcp_refuse_code code, std::uint32_t retry_ms, const char* reason) {
+  hcp_frame r = protocol::make_frame(HCP_REFUSE, 0, 1, 0);
+  r.header.protocol = protocol::make_version(2, 0);
+  r.body.hcp_body_u.refuse.code = code;
+  r.body.hcp_body_u.refuse.retry_after_ms = retry_ms;
+  protocol::set_text(r.body.hcp_body_u.refuse.reason, reason);
+  return r;
+}
+
+hcp_frame answer(std::uint32_t sequence, std::uint64_t cycle) {
+  hcp_frame f = protocol::make_frame(HCP_ANSWER_TIMED, kToken, sequence, 0);
+  hcp_answer& a = f.body.hcp_body_u.answer_timed.answer;
+  a.cycle = cycle;
+  a.core_state = 1;
+  a.handle_pose[6] = 1.0;
+  a.coupling_wrench[0] = 2.5;
+  return f;
+}
+
+hcp_frame ack(std::uint32_t sequence, hcp_ack_status status, const char* reason = "") {
+  hcp_frame f = protocol::make_frame(HCP_ACK, kToken, 9, 0);
+  f.body.hcp_body_u.ack.acked_sequence = sequence;
+  f.body.hcp_body_u.ack.status = status;
+  protocol::set_text(f.body.hcp_body_u.ack.reason, reason);
+  return f;
+}
+
+/// A session welcomed at t = 0.
+ClientSession open_session() {
+  ClientSession s(options(), "127.0.0.1:5125");
+  EXPECT_TRUE(s.hello_due(0).has_value());
+  EXPECT_TRUE(s.on_handshake_frame(welcome(), 0).welcomed);
+  s.on_sent(0);
+  return s;
+}
+
+hcp_param watchdog_param(std::uint32_t ms) {
+  hcp_param p{};
+  p.id = HCP_P_WATCHDOG;
+  p.hcp_param_u.watchdog_ms = ms;
+  return p;
+}
+
+TEST(ClientSession, HelloIsDueAtOnceThenEveryTwoRetransmitPeriods) {
+  ClientSession s(options(), "127.0.0.1:5125");
+  const auto first = s.hello_due(0);
+  ASSERT_TRUE(first.has_value());
+  EXPECT_EQ(first->body.type, HCP_HELLO);
+  EXPECT_EQ(first->header.protocol, protocol::kVersion);
+  EXPECT_EQ(first->body.hcp_body_u.hello.features, protocol::kAllFeatures);
+  EXPECT_FALSE(s.hello_due(39 * kMs).has_value());
+  const auto second = s.hello_due(40 * kMs);
+  ASSERT_TRUE(second.has_value());
+  EXPECT_EQ(second->header.sequence, first->header.sequence + 1);
+}
+
+TEST(ClientSession, AWelcomeOpensTheSessionOnTheControllersTerms) {
+  ClientSession s(options(), "127.0.0.1:5125");
+  (void)s.hello_due(0);
+  const HandshakeStep step = s.on_handshake_frame(welcome(), 5 * kMs);
+  EXPECT_TRUE(step.welcomed);
+  EXPECT_FALSE(step.reply.has_value());
+  EXPECT_FALSE(step.fail.has_value());
+  EXPECT_TRUE(s.is_open());
+  EXPECT_EQ(s.features(), protocol::kAllFeatures);
+  EXPECT_EQ(s.watchdog_ms(), 400U);
+  EXPECT_EQ(s.controller_period_ns(), kMs);
+  EXPECT_EQ(s.controller_version(), protocol::kVersion);
+  EXPECT_FALSE(s.hello_due(100 * kMs).has_value()) << "no HELLO once open";
+}
+
+TEST(ClientSession, ABusyControllerIsAskedAgainAfterItsRetryTimeAndTheTimeoutSaysWhy) {
+  ClientSession s(options(), "127.0.0.1:5125");
+  (void)s.hello_due(0);
+  const HandshakeStep step =
+      s.on_handshake_frame(refusal(HCP_REFUSE_BUSY, 100, "another client holds the arm"), kMs);
+  EXPECT_FALSE(step.welcomed);
+  EXPECT_FALSE(step.fail.has_value()) << "busy is worth asking again";
+  EXPECT_FALSE(s.hello_due(100 * kMs).has_value());
+  EXPECT_TRUE(s.hello_due(101 * kMs).has_value());
+  const ClientError e = s.handshake_timeout();
+  EXPECT_EQ(e.code(), ErrorCode::kBusy);
+  EXPECT_NE(std::string(e.what()).find("another client holds the arm"), std::string::npos);
+}
+
+TEST(ClientSession, AVersionRefusalFailsAtOnceNamingBothVersions) {
+  ClientSession s(options(), "127.0.0.1:5125");
+  (void)s.hello_due(0);
+  const HandshakeStep step = s.on_handshake_frame(refusal(HCP_REFUSE_VERSION, 0, "too old"), kMs);
+  ASSERT_TRUE(step.fail.has_value());
+  EXPECT_EQ(step.fail->code(), ErrorCode::kVersion);
+  const std::string what = step.fail->what();
+  EXPECT_NE(what.find("too old"), std::string::npos) << what;
+  EXPECT_NE(what.find("the controller 2.0"), std::string::npos) << what;
+}
+
+TEST(ClientSession, AWelcomeOfAnotherMajorVersionIsRefusedBack) {
+  ClientSession s(options(), "127.0.0.1:5125");
+  (void)s.hello_due(0);
+  const HandshakeStep step = s.on_handshake_frame(welcome(protocol::make_version(9, 0)), kMs);
+  EXPECT_FALSE(step.welcomed);
+  ASSERT_TRUE(step.reply.has_value()) << "the controller is told why";
+  EXPECT_EQ(step.reply->body.type, HCP_REFUSE);
+  EXPECT_EQ(step.reply->body.hcp_body_u.refuse.code, HCP_REFUSE_VERSION);
+  ASSERT_TRUE(step.fail.has_value());
+  EXPECT_EQ(step.fail->code(), ErrorCode::kVersion);
+  EXPECT_FALSE(s.is_open());
+}
+
+TEST(ClientSession, SilenceDuringTheHandshakeAsksWhetherTheBridgeRuns) {
+  const ClientSession s(options(), "lab-pc:5125");
+  const ClientError e = s.handshake_timeout();
+  EXPECT_EQ(e.code(), ErrorCode::kTimeout);
+  EXPECT_NE(std::string(e.what()).find("lab-pc:5125 within 500 ms: is hapticctrl-udp running"),
+            std::string::npos)
+      << e.what();
+}
+
+TEST(ClientSession, AnswersBecomeTheLatestStateAndOlderOnesAreIgnored) {
+  ClientSession s = open_session();
+  EXPECT_EQ(s.on_frame(answer(1, 100), 2 * kMs), Arrival::kAnswer);
+  EXPECT_EQ(s.on_frame(answer(2, 101), 3 * kMs), Arrival::kAnswer);
+  EXPECT_EQ(s.on_frame(answer(1, 100), 4 * kMs), Arrival::kIgnored) << "late: not newer";
+  const StateSnapshot& latest = s.latest();
+  EXPECT_TRUE(latest.valid);
+  EXPECT_EQ(latest.cycle, 101U);
+  EXPECT_EQ(latest.received_ns, 3 * kMs);
+  EXPECT_DOUBLE_EQ(latest.handle_pose[6], 1.0);
+  EXPECT_EQ(s.statistics().answers_late, 1U);
+}
+
+TEST(ClientSession, AFrameOfAnotherSessionIsCountedAndChangesNothing) {
+  ClientSession s = open_session();
+  hcp_frame stranger = answer(1, 100);
+  stranger.header.token = kToken + 1;
+  EXPECT_EQ(s.on_frame(stranger, kMs), Arrival::kInvalid);
+  s.on_invalid();  // and a datagram that did not decode
+  EXPECT_FALSE(s.latest().valid);
+  EXPECT_EQ(s.statistics().frames_invalid, 2U);
+}
+
+TEST(ClientSession, TheBridgesRefusalClosesTheSessionAndEveryCallSaysWhy) {
+  ClientSession s = open_session();
+  hcp_frame end = refusal(HCP_REFUSE_NO_CONTROLLER, 0, "the controller stopped");
+  end.header.token = kToken;
+  EXPECT_EQ(s.on_frame(end, kMs), Arrival::kClosed);
+  EXPECT_FALSE(s.is_open());
+  try {
+    (void)s.param_frame(watchdog_param(100), "set_watchdog");
+    FAIL() << "a closed session sent a parameter";
+  } catch (const ClientError& e) {
+    EXPECT_EQ(e.code(), ErrorCode::kClosed);
+    EXPECT_STREQ(e.what(), "set_watchdog: the session is closed (the controller stopped)");
+  }
+  EXPECT_FALSE(s.object_frame({0, 0, 0, 0, 0, 0, 1}, {}, 2 * kMs).has_value());
+  EXPECT_FALSE(s.wrench_frame({}, 2 * kMs).has_value());
+  EXPECT_FALSE(s.keepalive_due(1000 * kMs).has_value());
+}
+
+TEST(ClientSession, ABridgeSilentForTheAnswerTimeoutEndsTheSession) {
+  ClientSession s = open_session();
+  EXPECT_EQ(s.on_frame(answer(1, 1), 100 * kMs), Arrival::kAnswer);
+  EXPECT_FALSE(s.close_if_silent(400 * kMs)) << "300 ms since the last frame: not yet";
+  EXPECT_TRUE(s.close_if_silent(401 * kMs));
+  EXPECT_EQ(s.closed_reason(), "no answer from the bridge for 300 ms");
+  EXPECT_FALSE(s.close_if_silent(900 * kMs)) << "closed once";
+}
+
+TEST(ClientSession, AKeepaliveIsDueAfterAQuarterOfTheWatchdogWithoutSending) {
+  ClientSession s = open_session();  // watchdog 400 ms
+  EXPECT_FALSE(s.keepalive_due(100 * kMs).has_value());
+  const auto keepalive = s.keepalive_due(101 * kMs);
+  ASSERT_TRUE(keepalive.has_value());
+  EXPECT_EQ(keepalive->body.type, HCP_KEEPALIVE);
+  EXPECT_EQ(keepalive->header.token, kToken);
+  s.on_sent(101 * kMs);
+  EXPECT_FALSE(s.keepalive_due(150 * kMs).has_value()) << "the quiet time counts from a send";
+}
+
+TEST(ClientSession, AnAppliedWatchdogSetsTheKeepaliveInterval) {
+  ClientSession s = open_session();
+  const hcp_frame f = s.param_frame(watchdog_param(100), "set_watchdog");
+  EXPECT_EQ(f.body.type, HCP_PARAM);
+  EXPECT_EQ(f.header.token, kToken);
+  EXPECT_EQ(s.watchdog_ms(), 400U) << "not before the controller acknowledged it";
+  s.on_param_applied(f.body.hcp_body_u.param);
+  EXPECT_EQ(s.watchdog_ms(), 100U);
+  EXPECT_TRUE(s.keepalive_due(26 * kMs).has_value());
+}
+
+TEST(ClientSession, AcknowledgementsAreMatchedToTheirFrameAndTakenOnce) {
+  ClientSession s = open_session();
+  const hcp_frame first = s.param_frame(watchdog_param(100), "set_watchdog");
+  const hcp_frame second = s.param_frame(watchdog_param(200), "set_watchdog");
+  EXPECT_EQ(second.header.sequence, first.header.sequence + 1);
+  EXPECT_EQ(s.on_frame(ack(second.header.sequence, HCP_ACK_REJECTED, "out of range"), kMs),
+            Arrival::kAck);
+  EXPECT_FALSE(s.take_ack(first.header.sequence).has_value()) << "not this frame's";
+  const auto outcome = s.take_ack(second.header.sequence);
+  ASSERT_TRUE(outcome.has_value());
+  EXPECT_EQ(outcome->status, HCP_ACK_REJECTED);
+  EXPECT_EQ(outcome->reason, "out of range");
+  EXPECT_FALSE(s.take_ack(second.header.sequence).has_value()) << "taken once";
+}
+
+TEST(ClientSession, AValueTheProtocolRefusesNeverLeaves) {
+  ClientSession s = open_session();
+  hcp_param nan{};
+  nan.id = HCP_P_TIME_STEP;
+  nan.hcp_param_u.time_step = std::nan("");
+  try {
+    (void)s.param_frame(nan, "set_time_step");
+    FAIL() << "a NaN time step was framed";
+  } catch (const ClientError& e) {
+    EXPECT_EQ(e.code(), ErrorCode::kInvalidArgument);
+    EXPECT_EQ(std::string(e.what()).rfind("set_time_step: ", 0), 0U) << e.what();
+  }
+}
+
+TEST(ClientSession, ObjectFramesCarryTheEchoOfTheNewestAnswerAndRefuseANonRotation) {
+  ClientSession s = open_session();
+  const auto before = s.object_frame({0, 0, 0, 0, 0, 0, 1}, {}, kMs);
+  ASSERT_TRUE(before.has_value());
+  EXPECT_FALSE(protocol::unpack_answer_echo(before->body.hcp_body_u.timed.answer_echo).valid)
+      << "no answer yet: the echo says so";
+  ASSERT_EQ(s.on_frame(answer(1, 4242), 10 * kMs), Arrival::kAnswer);
+  const auto f = s.object_frame({0.1, 0.2, 0.3, 0, 0, 0, 1}, {0.01, 0, 0, 0, 0, 0}, 12 * kMs);
+  ASSERT_TRUE(f.has_value());
+  EXPECT_EQ(f->body.type, HCP_CONTROL_OBJECT_TIMED) << "the controller speaks timing";
+  const protocol::AnswerEcho echo =
+      protocol::unpack_answer_echo(f->body.hcp_body_u.timed.answer_echo);
+  EXPECT_TRUE(echo.valid);
+  EXPECT_EQ(echo.cycle_low, 4242U);
+  EXPECT_EQ(echo.hold_ns, 2 * kMs) << "held from its arrival to this send";
+  EXPECT_FLOAT_EQ(f->body.hcp_body_u.timed.position[2], 0.3F);
+  EXPECT_FALSE(s.object_frame({0, 0, 0, 0, 0, 0, 2}, {}, 13 * kMs).has_value())
+      << "a quaternion of norm 2 is not a rotation";
+}
+
+}  // namespace
+}  // namespace hapticctrl::client

@@ -7,105 +7,12 @@ usage: bench/report.py OUT_DIR      (reads OUT_DIR/raw/, writes OUT_DIR/report.m
 Every figure stands next to the baseline measured in the same run and the ratio between them.
 """
 import json
-import math
 import os
-import subprocess
 import sys
 
-PERIODS = (1000, 250, 100)
-LOADS = ("idle", "load")
-
-
-def load_json(path):
-    try:
-        with open(path, encoding="utf-8") as f:
-            text = f.read().strip()
-        return json.loads(text) if text else {}
-    except (OSError, ValueError):
-        return {}
-
-
-def read_hist(path):
-    """A cyclictest-format histogram: 'bin count' lines (1 us bins), '# Max Latencies' etc."""
-    bins, overflows, maximum = [], 0, None
-    try:
-        with open(path, encoding="utf-8") as f:
-            for line in f:
-                parts = line.split()
-                if not parts:
-                    continue
-                if parts[0][0].isdigit() and len(parts) >= 2:
-                    bins.append((int(parts[0]), int(parts[1])))
-                elif "Max Latencies" in line:
-                    maximum = int(parts[-1])
-                elif "Histogram Overflows" in line:
-                    overflows = int(parts[-1])
-    except OSError:
-        pass
-    return {"bins": bins, "overflows": overflows, "max": maximum}
-
-
-def hist_stats(h):
-    """p50/p99/p99.9 (upper bin edge, us), max and sample count of a histogram."""
-    total = sum(c for _, c in h["bins"]) + h["overflows"]
-    out = {"samples": total, "max_us": h["max"]}
-    for name, q in (("p50_us", 0.5), ("p99_us", 0.99), ("p999_us", 0.999)):
-        want, seen, value = q * total, 0, h["max"]
-        for us, count in h["bins"]:
-            seen += count
-            if total and seen >= want:
-                value = us + 1
-                break
-        out[name] = value
-    return out
-
-
-def sample_stats(values):
-    values = sorted(values)
-    if not values:
-        return {"samples": 0}
-
-    def at(q):
-        return values[min(len(values) - 1, int(q * len(values)))]
-
-    return {"samples": len(values), "p50_us": at(0.5), "p99_us": at(0.99),
-            "p999_us": at(0.999), "max_us": values[-1]}
-
-
-def read_samples(path):
-    try:
-        with open(path, encoding="utf-8") as f:
-            return [float(line) for line in f if line.strip()]
-    except (OSError, ValueError):
-        return []
-
-
-def ratio(a, b):
-    if a is None or b is None or not b:
-        return None
-    return a / b
-
-
-def fmt(v, digits=1):
-    if v is None:
-        return "n/a"
-    if isinstance(v, float) and (math.isnan(v) or math.isinf(v)):
-        return "n/a"
-    return f"{v:.{digits}f}" if isinstance(v, float) else str(v)
-
-
-def samples_at_or_beyond(h, us):
-    """Samples of a histogram at `us` or later (overflows are beyond every bin)."""
-    return sum(c for b, c in h["bins"] if b >= us) + h["overflows"]
-
-
-def fmt_ratio(v):
-    return "n/a" if v is None else f"{v:.2f}x"
-
-
-def ns_to_us(summary, key):
-    v = summary.get(key)
-    return None if v is None else v / 1000.0
+from report_data import (LOADS, PERIODS, fmt, fmt_ratio, hist_stats, load_json, ns_to_us, ratio,
+                         read_hist, read_samples, sample_stats, samples_at_or_beyond)
+from report_plots import write_plots
 
 
 def latency_results(raw):
@@ -251,79 +158,6 @@ def table(header, rows):
     lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
     lines += ["| " + " | ".join(str(c) for c in row) + " |" for row in rows]
     return "\n".join(lines)
-
-
-def write_plots(out, raw, lat):
-    """Latency histograms (core vs cyclictest, log scale) and the RTT CDF against UDP."""
-    plots = []
-    for period in PERIODS:
-        series = []
-        for load in LOADS:
-            for who, suffix in (("core", "core.hist"), ("cyclictest", "cyclictest.hist")):
-                h = read_hist(os.path.join(raw, f"lat-{period}-{load}.{suffix}"))
-                dat = os.path.join(raw, f"plot-lat-{period}-{load}-{who}.dat")
-                with open(dat, "w", encoding="utf-8") as f:
-                    for us, count in h["bins"]:
-                        if count:
-                            f.write(f"{us + 0.5} {count}\n")
-                if os.path.getsize(dat):
-                    series.append((dat, f"{who} {load}"))
-        png = f"latency-{period}us.png"
-        script = [
-            "set terminal pngcairo size 900,500" if has_pngcairo() else "set terminal png size 900,500",
-            f"set output '{os.path.join(out, png)}'",
-            f"set title 'Wake-up latency at {period} us: hapticctrl-core vs cyclictest'",
-            "set xlabel 'latency (us)'", "set ylabel 'cycles'", "set logscale y", "set logscale x",
-            "set yrange [0.5:*]",
-            "set grid",
-        ]
-        if series:
-            script.append("plot " + ", ".join(f"'{d}' using 1:2 with steps title '{t}'" for d, t in series))
-        else:
-            script.append("set label 'no samples' at graph 0.5,0.5 center")
-            script.append("plot 1 notitle")
-        run_gnuplot(script)
-        plots.append(png)
-    series = []
-    for load in LOADS:
-        for who, suffix in (("client via bridge+core", "client_rtt"), ("raw UDP", "udp_rtt")):
-            values = sorted(read_samples(os.path.join(raw, f"link-{load}.{suffix}")))
-            dat = os.path.join(raw, f"plot-cdf-{load}-{suffix}.dat")
-            with open(dat, "w", encoding="utf-8") as f:
-                step = max(1, len(values) // 2000)
-                for i in range(0, len(values), step):
-                    f.write(f"{values[i]} {(i + 1) / len(values)}\n")
-            if values:
-                series.append((dat, f"{who}, {load}"))
-    script = [
-        "set terminal pngcairo size 900,500" if has_pngcairo() else "set terminal png size 900,500",
-        f"set output '{os.path.join(out, 'rtt-cdf.png')}'",
-        "set title 'Round trip at 1 kHz: client through hapticctrl-udp and the core vs raw UDP'",
-        "set xlabel 'round-trip time (us)'", "set ylabel 'fraction of samples'", "set logscale x",
-        "set key bottom right", "set grid", "set yrange [0:1]",
-    ]
-    if series:
-        script.append("plot " + ", ".join(f"'{d}' using 1:2 with lines title '{t}'" for d, t in series))
-    else:
-        script.append("plot 1 notitle")
-    run_gnuplot(script)
-    plots.append("rtt-cdf.png")
-    return plots
-
-
-_PNGCAIRO = None
-
-
-def has_pngcairo():
-    global _PNGCAIRO
-    if _PNGCAIRO is None:
-        r = subprocess.run(["gnuplot", "-e", "set terminal"], capture_output=True, text=True, check=False)
-        _PNGCAIRO = "pngcairo" in (r.stdout + r.stderr)
-    return _PNGCAIRO
-
-
-def run_gnuplot(lines):
-    subprocess.run(["gnuplot"], input="\n".join(lines) + "\n", text=True, check=True)
 
 
 def report(out, machine, lat, link, micro, handoff, reqs, plots):

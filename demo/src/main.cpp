@@ -23,6 +23,7 @@
 #include "hapticctrl/client/connection.hpp"
 #include "hapticctrl/demo/demo_input.hpp"
 #include "hapticctrl/demo/demo_options.hpp"
+#include "hapticctrl/demo/demo_report.hpp"
 #include "hapticctrl/demo/scene_publisher.hpp"
 #include "hapticctrl/demo/sphere_scene.hpp"
 #include "hapticctrl/program/main_skeleton.hpp"
@@ -115,71 +116,6 @@ demo::SphereScene scene_at(const client::StateSnapshot& s, const demo::DemoOptio
   return {config, start};
 }
 
-void log_header(std::ofstream& log) {
-  log << "t_s,cycle,state_word,x,y,z,qx,qy,qz,qw,vx,vy,vz,contact_fx,contact_fy,contact_fz,"
-         "cpl_fx,cpl_fy,cpl_fz,cpl_tx,cpl_ty,cpl_tz,app_fx,app_fy,app_fz,app_tx,app_ty,app_tz,"
-         "handle_x,handle_y,handle_z\n";
-}
-
-void log_row(std::ofstream& log, double t, const client::StateSnapshot& s,
-             const demo::SphereScene& scene, const demo::AppliedWrench& applied) {
-  log << t << ',' << s.cycle << ',' << s.state_word;
-  for (const double v : scene.pose()) {
-    log << ',' << v;
-  }
-  const auto& st = scene.state();
-  const Eigen::Vector3d contact = scene.contact_force();
-  log << ',' << st.velocity.x() << ',' << st.velocity.y() << ',' << st.velocity.z() << ','
-      << contact.x() << ',' << contact.y() << ',' << contact.z();
-  for (const double v : s.coupling_wrench) {
-    log << ',' << v;
-  }
-  for (const double v : applied.wrench) {
-    log << ',' << v;
-  }
-  log << ',' << s.handle_pose[0] << ',' << s.handle_pose[1] << ',' << s.handle_pose[2] << '\n';
-}
-
-void print_status(FILE* out, double t, const client::StateSnapshot& s,
-                  const demo::SphereScene& scene, const char* end) {
-  const auto& p = scene.state().position;
-  const Eigen::Vector3d contact = scene.contact_force();
-  std::fprintf(out,
-               "t %6.2f s  %s  sphere (%+.4f %+.4f %+.4f) m  contact %+6.2f %+6.2f %+6.2f N  "
-               "coupling %+6.2f %+6.2f %+6.2f N%s",
-               t, s.powered() ? "powered  " : "unpowered", p.x(), p.y(), p.z(), contact.x(),
-               contact.y(), contact.z(), s.coupling_wrench[0], s.coupling_wrench[1],
-               s.coupling_wrench[2], end);
-  std::fflush(out);
-}
-
-void print_json(const client::StateSnapshot& s, const demo::SphereScene& scene,
-                const client::LinkStatistics& st, std::uint64_t steps, std::uint64_t reconnects,
-                const char* ended) {
-  const auto& p = scene.state().position;
-  const auto& v = scene.state().velocity;
-  const Eigen::Vector3d contact = scene.contact_force();
-  std::printf(
-      "{\"steps\":%llu,\"reconnects\":%llu,\"ended\":\"%s\",\"powered\":%s,\"sphere_position\":[%."
-      "9g,%.9g,%.9g],"
-      "\"sphere_velocity\":[%.9g,%.9g,%.9g],\"contact_force\":[%.9g,%.9g,%.9g],"
-      "\"penetration\":%.9g,\"coupling_wrench\":[%.9g,%.9g,%.9g,%.9g,%.9g,%.9g],"
-      "\"handle_position\":[%.9g,%.9g,%.9g],\"fixed_center\":[%.9g,%.9g,%.9g],"
-      "\"answers_received\":%llu,\"answers_lost\":%llu,\"answers_late\":%llu,"
-      "\"frames_invalid\":%llu,\"control_sent\":%llu,\"rtt_mean_us\":%.1f}\n",
-      static_cast<unsigned long long>(steps), static_cast<unsigned long long>(reconnects), ended,
-      s.powered() ? "true" : "false", p.x(), p.y(), p.z(), v.x(), v.y(), v.z(), contact.x(),
-      contact.y(), contact.z(), scene.penetration(), s.coupling_wrench[0], s.coupling_wrench[1],
-      s.coupling_wrench[2], s.coupling_wrench[3], s.coupling_wrench[4], s.coupling_wrench[5],
-      s.handle_pose[0], s.handle_pose[1], s.handle_pose[2], scene.config().fixed_center.x(),
-      scene.config().fixed_center.y(), scene.config().fixed_center.z(),
-      static_cast<unsigned long long>(st.answers_received),
-      static_cast<unsigned long long>(st.answers_lost),
-      static_cast<unsigned long long>(st.answers_late),
-      static_cast<unsigned long long>(st.frames_invalid),
-      static_cast<unsigned long long>(st.control_sent), st.rtt_mean_us);
-}
-
 /// At most this many steps are integrated for one answer (a longer gap pauses the world).
 constexpr std::uint64_t kMaxCatchUpSteps = 20;
 /// The first connection retries this long: a client that crashed holds the session until the
@@ -250,7 +186,7 @@ class DemoRun {
       if (!log_) {
         throw std::runtime_error("cannot write the log '" + o.log_path + "'");
       }
-      log_header(log_);
+      demo::write_log_header(log_);
     }
     if (o.publish_scene) {
       scene_out_.emplace(o.lcm_url, o.instance, o.scene_rate_hz);
@@ -370,11 +306,11 @@ class DemoRun {
           demo::to_scene_message(*scene_, applied_, c_->statistics(), steps_, now_us));
     }
     if (log_.is_open()) {
-      log_row(log_, t, s_, *scene_, applied_);
+      demo::write_log_row(log_, t, s_, *scene_, applied_);
     }
     if (o_.status_ms > 0 && Clock::now() >= next_status_) {
       next_status_ += std::chrono::milliseconds(o_.status_ms);
-      print_status(stderr, t, s_, *scene_, keyboard_ ? "\r" : "\n");
+      demo::print_status(stderr, t, s_, *scene_, keyboard_ ? "\r" : "\n");
     }
   }
 
@@ -388,12 +324,12 @@ class DemoRun {
     }
     const bool failed_safe = s_.fail_safe();
     close_quietly(*c_);
-    print_status(stderr, elapsed(), s_, *scene_, "\n");
+    demo::print_status(stderr, elapsed(), s_, *scene_, "\n");
     std::fprintf(stderr, "hapticctrl-demo: ended (%s) after %llu steps, %llu reconnections\n",
                  ended_, static_cast<unsigned long long>(steps_),
                  static_cast<unsigned long long>(reconnects_));
     if (o_.json) {
-      print_json(s_, *scene_, c_->statistics(), steps_, reconnects_, ended_);
+      demo::print_summary_json(stdout, s_, *scene_, c_->statistics(), steps_, reconnects_, ended_);
     }
     return failed_safe && !o_.reconnect ? 2 : 0;
   }

@@ -17,6 +17,7 @@
 #include <utility>
 
 #include "hapticctrl/shm/segment_handoff.hpp"
+#include "instance_lock.hpp"
 
 namespace hapticctrl::shm {
 namespace {
@@ -56,68 +57,6 @@ std::uint64_t try_claim(std::atomic<std::uint64_t>& word, std::uint64_t mine) {
     }
   }
   return current;
-}
-
-/// What the lock file says about the last core that held it: "pid generation".
-struct LockRecord {
-  long pid = 0;
-  std::uint64_t generation = 0;
-};
-
-LockRecord read_lock_record(int fd) {
-  std::array<char, 64> text{};
-  const ssize_t got = pread(fd, text.data(), text.size() - 1, 0);
-  LockRecord record;
-  if (got > 0) {
-    unsigned long long generation = 0;
-    if (std::sscanf(text.data(), "%ld %llu", &record.pid, &generation) == 2) {
-      record.generation = generation;
-    }
-  }
-  return record;
-}
-
-void write_lock_record(int fd, const LockRecord& record) {
-  const std::string text =
-      std::to_string(record.pid) + " " + std::to_string(record.generation) + "\n";
-  if (ftruncate(fd, 0) != 0 || pwrite(fd, text.data(), text.size(), 0) < 0) {
-    throw_system_error("write the instance lock", errno);
-  }
-}
-
-/// Takes the exclusive flock that marks the live core of an instance. An orderly stop removes
-/// the lock file while still holding it, so the lock we get must still be the file the name
-/// points to (else a core that stopped meanwhile removed it: try again). A core that died leaves
-/// the file, with its "pid generation", for the next one.
-int acquire_instance_lock(const InstancePaths& paths, const std::string& instance) {
-  for (int attempt = 0; attempt < 5; ++attempt) {
-    const int fd = open(paths.lock.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, kLockMode);
-    if (fd < 0) {
-      throw_system_error("open the instance lock " + paths.lock, errno);
-    }
-    if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
-      const int error = errno;
-      const LockRecord holder = read_lock_record(fd);
-      ::close(fd);
-      if (error == EWOULDBLOCK) {
-        throw ShmError(
-            ShmErrc::kAlreadyRunning,
-            "instance '" + instance + "' is already running" +
-                (holder.pid > 0 ? " (core pid " + std::to_string(holder.pid) + ")" : "") +
-                "; stop it first or choose another --instance");
-      }
-      throw_system_error("lock " + paths.lock, error);
-    }
-    struct stat held {};
-    struct stat named {};
-    if (fstat(fd, &held) == 0 && lstat(paths.lock.c_str(), &named) == 0 &&
-        held.st_ino == named.st_ino) {
-      return fd;
-    }
-    ::close(fd);
-  }
-  throw ShmError(ShmErrc::kSystem,
-                 "could not take the lock of instance '" + instance + "' (it kept being replaced)");
 }
 
 /// Whether the process behind a pidfd still runs (poll: readable once it has exited).

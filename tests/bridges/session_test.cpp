@@ -13,8 +13,8 @@
 
 #include "hapticctrl/protocol/codec.hpp"
 #include "hapticctrl/protocol/timing.hpp"
-#include "support/in_memory_controller.hpp"
 #include "support/reference_parameters.hpp"
+#include "support/session_client.hpp"
 
 namespace hapticctrl::udp_bridge {
 namespace {
@@ -23,70 +23,10 @@ using protocol::Endpoint;
 using protocol::FrameBuffer;
 using shm::LinkDrop;
 
-constexpr std::int64_t kMs = 1'000'000;
-
-using Controller = test::InMemoryController;
-
-/// A scripted client: builds frames, feeds them to the session, decodes the reply.
-struct Client {
-  Session* session = nullptr;
-  Endpoint from = Endpoint::resolve("127.0.0.1", 40000);
-  std::uint64_t token = 0;
-  std::uint32_t control_seq = 0;
-  std::uint32_t param_seq = 0;
-  std::int64_t now = 1000 * kMs;
-  hcp_frame reply{};
-  bool replied = false;
-  std::uint32_t asked_watchdog_ms = 0;  ///< in the HELLO (0: the bridge's default)
-
-  std::vector<std::uint8_t> bytes(hcp_frame f) const {
-    FrameBuffer b{};
-    const std::size_t n = protocol::encode(f, b);
-    return {b.begin(), b.begin() + static_cast<std::ptrdiff_t>(n)};
-  }
-  void feed(const std::vector<std::uint8_t>& data) {
-    FrameBuffer out{};
-    const std::size_t n = session->on_datagram(data, from, now, out);
-    replied = n != 0;
-    if (replied) {
-      ASSERT_EQ(protocol::decode({out.data(), n}, reply), protocol::DecodeStatus::kOk);
-    }
-  }
-  void hello(std::uint32_t version = protocol::kVersion,
-             std::uint32_t features = protocol::kAllFeatures, std::uint32_t min_version = 0) {
-    hcp_frame f = protocol::make_frame(HCP_HELLO, 0, 1, now);
-    f.header.protocol = version;
-    f.body.hcp_body_u.hello.min_version = min_version != 0 ? min_version : version;
-    f.body.hcp_body_u.hello.features = features;
-    f.body.hcp_body_u.hello.watchdog_ms = asked_watchdog_ms;
-    feed(bytes(f));
-    if (replied && reply.body.type == HCP_WELCOME) {
-      token = reply.header.token;
-    }
-  }
-  hcp_frame object(float x) {
-    hcp_frame f = protocol::make_frame(HCP_CONTROL_OBJECT, token, ++control_seq, now);
-    f.body.hcp_body_u.object.pose[0] = x;
-    f.body.hcp_body_u.object.pose[6] = 1.0F;
-    return f;
-  }
-  void send_object(float x) { feed(bytes(object(x))); }
-  hcp_frame param(hcp_param_id id) {
-    hcp_frame f = protocol::make_frame(HCP_PARAM, token, ++param_seq, now);
-    f.body.hcp_body_u.param.id = id;
-    return f;
-  }
-};
-
-struct SessionTest : ::testing::Test {
-  Controller controller;
-  std::uint64_t next_token = 0x1111;
-  Session session{{100}, [this] { return next_token++; }};
-  Client client{&session};
-
-  void SetUp() override { session.set_controller(&controller.ports, 0); }
-  std::uint64_t dropped(LinkDrop why) { return session.counters().dropped_for(why); }
-};
+using test::Client;
+using test::Controller;
+using test::kMs;
+using test::SessionTest;
 
 TEST_F(SessionTest, HelloOpensASessionWithTheBridgesTokenAndPublishesIt) {
   client.hello();
@@ -264,122 +204,6 @@ TEST_F(SessionTest, BadInputsAreDroppedCountedAndLeaveTheSessionUnharmed) {
   EXPECT_EQ(dropped(LinkDrop::kSequence), 2U);
 }
 
-TEST_F(SessionTest, EveryParameterReachesVprOrCtrl) {
-  client.hello();
-  const auto apply = [&](hcp_frame f) {
-    client.feed(client.bytes(f));
-    ASSERT_TRUE(client.replied);
-    ASSERT_EQ(client.reply.body.type, HCP_ACK);
-    EXPECT_EQ(client.reply.body.hcp_body_u.ack.acked_sequence, f.header.sequence);
-    EXPECT_EQ(client.reply.body.hcp_body_u.ack.status, HCP_ACK_OK);
-  };
-  hcp_frame f = client.param(HCP_P_TIME_STEP);
-  f.body.hcp_body_u.param.hcp_param_u.time_step = 0.002;
-  apply(f);
-  f = client.param(HCP_P_FORCE_FACTOR);
-  f.body.hcp_body_u.param.hcp_param_u.force_factor = 0.5;
-  apply(f);
-  f = client.param(HCP_P_SPEED_FACTOR);
-  f.body.hcp_body_u.param.hcp_param_u.speed_factor = 2.0;
-  apply(f);
-  f = client.param(HCP_P_BASE_FRAME);
-  f.body.hcp_body_u.param.hcp_param_u.base_frame[2] = 0.1;
-  f.body.hcp_body_u.param.hcp_param_u.base_frame[6] = 1.0;
-  apply(f);
-  f = client.param(HCP_P_OBSERVATION_FRAME);
-  f.body.hcp_body_u.param.hcp_param_u.observation_frame[0] = -0.1;
-  f.body.hcp_body_u.param.hcp_param_u.observation_frame[6] = 1.0;
-  apply(f);
-  f = client.param(HCP_P_INDEXING_MODE);
-  f.body.hcp_body_u.param.hcp_param_u.indexing_mode = 1;
-  apply(f);
-  f = client.param(HCP_P_COMMAND_TYPE);
-  f.body.hcp_body_u.param.hcp_param_u.command_type = 2;
-  apply(f);
-  f = client.param(HCP_P_OBJECT);
-  f.body.hcp_body_u.param.hcp_param_u.object = {1, 0.3, {0.001, 0.002, 0.003}};
-  apply(f);
-  f = client.param(HCP_P_GAINS);
-  f.body.hcp_body_u.param.hcp_param_u.gains[0] = 800.0;
-  apply(f);
-  f = client.param(HCP_P_FORCE_LIMITS);
-  f.body.hcp_body_u.param.hcp_param_u.force_limits[0] = 10.0;
-  apply(f);
-  f = client.param(HCP_P_WATCHDOG);
-  f.body.hcp_body_u.param.hcp_param_u.watchdog_ms = 300;
-  apply(f);
-  test::expect_reference_parameters(controller.vpr_now());
-  EXPECT_FALSE(session.check_watchdog(client.now + 250 * kMs));
-  // 1.2: the frames in single precision land in the same fields.
-  f = client.param(HCP_P_BASE_FRAME_SP);
-  f.body.hcp_body_u.param.hcp_param_u.base_frame_sp[0] = 0.25F;
-  f.body.hcp_body_u.param.hcp_param_u.base_frame_sp[6] = 1.0F;
-  apply(f);
-  f = client.param(HCP_P_OBSERVATION_FRAME_SP);
-  f.body.hcp_body_u.param.hcp_param_u.observation_frame_sp[1] = -0.5F;
-  f.body.hcp_body_u.param.hcp_param_u.observation_frame_sp[6] = 1.0F;
-  apply(f);
-  EXPECT_EQ(controller.vpr_now().base_frame[0], 0.25);
-  EXPECT_EQ(controller.vpr_now().observation_frame[1], -0.5);
-
-  f = client.param(HCP_P_POWER);
-  f.body.hcp_body_u.param.hcp_param_u.power_on = 1;
-  apply(f);
-  apply(client.param(HCP_P_EMERGENCY_STOP));
-  apply(client.param(HCP_P_EMERGENCY_RESET));
-  f = client.param(HCP_P_POWER);
-  apply(f);
-  EXPECT_EQ(controller.drain(),
-            (std::vector<shm::CtrlCode>{shm::CtrlCode::kPowerOn, shm::CtrlCode::kEmergencyStop,
-                                        shm::CtrlCode::kEmergencyReset, shm::CtrlCode::kPowerOff}));
-  EXPECT_EQ(session.counters().params_applied.load(), 17U);
-}
-
-TEST_F(SessionTest, ARetransmittedParameterIsAcknowledgedAgainButAppliedOnce) {
-  client.hello();
-  hcp_frame on = client.param(HCP_P_POWER);
-  on.body.hcp_body_u.param.hcp_param_u.power_on = 1;
-  const auto bytes = client.bytes(on);
-  client.feed(bytes);
-  client.feed(bytes);
-  ASSERT_EQ(client.reply.body.type, HCP_ACK);
-  EXPECT_EQ(client.reply.body.hcp_body_u.ack.acked_sequence, on.header.sequence);
-  EXPECT_EQ(controller.drain().size(), 1U);
-  EXPECT_EQ(session.counters().param_duplicates.load(), 1U);
-  hcp_frame older = on;
-  older.header.sequence = 0;
-  client.feed(client.bytes(older));
-  EXPECT_FALSE(client.replied);
-}
-
-TEST_F(SessionTest, AnOutOfRangeParameterIsRejectedWithTheReason) {
-  client.hello();
-  hcp_frame f = client.param(HCP_P_FORCE_FACTOR);
-  f.body.hcp_body_u.param.hcp_param_u.force_factor = -2.0;
-  client.feed(client.bytes(f));
-  ASSERT_EQ(client.reply.body.type, HCP_ACK);
-  EXPECT_EQ(client.reply.body.hcp_body_u.ack.status, HCP_ACK_REJECTED);
-  EXPECT_EQ(protocol::text_of(client.reply.body.hcp_body_u.ack.reason),
-            "force factor: between 0.001 and 1000");
-  EXPECT_DOUBLE_EQ(controller.vpr_now().force_factor, 1.0);
-  EXPECT_EQ(session.counters().params_rejected.load(), 1U);
-}
-
-TEST_F(SessionTest, AFullCtrlQueueAsksForARetryAndTheRetryApplies) {
-  client.hello();
-  for (std::size_t i = 0; i < shm::kCtrlRingSize; ++i) {
-    ASSERT_EQ(controller.writer.send(shm::CtrlCode::kPowerOff, 0, 0), shm::CtrlSendStatus::kQueued);
-  }
-  hcp_frame on = client.param(HCP_P_POWER);
-  on.body.hcp_body_u.param.hcp_param_u.power_on = 1;
-  client.feed(client.bytes(on));
-  EXPECT_EQ(client.reply.body.hcp_body_u.ack.status, HCP_ACK_RETRY);
-  controller.drain();
-  client.feed(client.bytes(on));
-  EXPECT_EQ(client.reply.body.hcp_body_u.ack.status, HCP_ACK_OK);
-  EXPECT_EQ(controller.drain(), std::vector<shm::CtrlCode>{shm::CtrlCode::kPowerOn});
-}
-
 TEST_F(SessionTest, TheWatchdogClosesASilentSessionAndTheCoreSeesNoSession) {
   client.hello();
   client.send_object(0.1F);
@@ -452,28 +276,6 @@ TEST_F(SessionTest, TimedObjectsFromASessionWithoutTimingAreDropped) {
   EXPECT_EQ(session.counters().control_accepted.load(), 0U);
 }
 
-TEST_F(SessionTest, AnswersGoToTheSessionWithTheNegotiatedFeatures) {
-  shm::VpPayload vp;
-  vp.cycle = 77;
-  vp.echo_client_sequence = 3;
-  vp.joint_position[0] = 0.5;
-  FrameBuffer out{};
-  Endpoint to;
-  EXPECT_EQ(session.answer(vp, 0, out, to), 0U);  // no session, no answer
-  client.hello(protocol::kVersion, HCP_FEATURE_LINK_STATS);
-  client.send_object(0.1F);
-  const std::size_t n = session.answer(vp, 0, out, to);
-  ASSERT_GT(n, 0U);
-  EXPECT_EQ(to, client.from);
-  hcp_frame a;
-  ASSERT_EQ(protocol::decode({out.data(), n}, a), protocol::DecodeStatus::kOk);
-  EXPECT_EQ(a.header.token, client.token);
-  EXPECT_EQ(a.body.hcp_body_u.answer.cycle, 77U);
-  EXPECT_EQ(a.body.hcp_body_u.answer.echo_sequence, 3U);
-  EXPECT_EQ(a.body.hcp_body_u.answer.control_received, 1U);
-  EXPECT_EQ(a.body.hcp_body_u.answer.joint_position[0], 0.0);  // JOINT_STATE not negotiated
-}
-
 TEST_F(SessionTest, ClosingTellsTheClientWhyWithItsToken) {
   FrameBuffer notice{};
   Endpoint to;
@@ -533,18 +335,6 @@ TEST(SessionSecurity, AClientCannotHoldAnIdleSessionBeyondTheDefaultNorAskForMor
   EXPECT_EQ(greedy.reply.body.hcp_body_u.welcome.watchdog_ms, 500U) << "capped";
   EXPECT_FALSE(session.check_watchdog(greedy.now + 100 * kMs));
   EXPECT_TRUE(session.check_watchdog(greedy.now + 101 * kMs)) << "idle: the default holds";
-}
-
-TEST_F(SessionTest, StatsReflectTheSessionAndCounters) {
-  client.hello();
-  client.send_object(0.1F);
-  shm::LinkStatsPayload s;
-  session.fill_stats(s);
-  EXPECT_EQ(s.session_id, 1U);
-  EXPECT_EQ(s.peer_port, 40000U);
-  EXPECT_EQ(s.peer_ipv4, 0x7F000001U);
-  EXPECT_EQ(s.frames_in, 2U);
-  EXPECT_EQ(s.control_accepted, 1U);
 }
 
 }  // namespace

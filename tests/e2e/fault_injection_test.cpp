@@ -1,7 +1,8 @@
 // Fault injection with every process real on loopback: processes killed at random moments and
-// restarted, the core killed under its bridges, a bridge frozen longer than the watchdog, and a
-// shared-memory writer that breaks every rule. Throughout, the forces on the handle may change
-// by no more than their rate limits allow, and the core keeps its cycle.
+// restarted, the core killed under its bridges, and a bridge frozen longer than the watchdog
+// (a shared-memory writer that breaks every rule: shared_memory_abuse_test.cpp). Throughout, the
+// forces on the handle may change by no more than their rate limits allow, and the core keeps its
+// cycle.
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -25,6 +26,7 @@
 #include "hapticctrl/shm/payloads.hpp"
 #include "hapticctrl/shm/segment_handoff.hpp"
 #include "support/controller_stack.hpp"
+#include "support/force_step_watch.hpp"
 #include "support/lcm_monitor.hpp"
 #include "support/spawned_process.hpp"
 
@@ -58,120 +60,6 @@ constexpr double kNoticeMs = 20.0;
 constexpr double kNoticeMs = 10.0;
 #endif
 
-/// Follows every cycle of a core from a thread and keeps the largest change per cycle of the
-/// force the motors put on the handle (coupling, norm) beyond what the law allows (the rate
-/// limit, plus the passivity guard's damping, which only opposes the handle's motion and comes
-/// after the rate limit: docs/control.md), the fastest change of the operator's
-/// wrench between two of its samples (per axis, by their timestamps: its writer is an ordinary
-/// process, paced by its own clock), and whether the core ever left its running state.
-class ForceStepWatch {
- public:
-  ForceStepWatch(const shm::Segment& segment, const arm_model::ArmLimits& limits)
-      : segment_(segment),
-        rate_step_(limits.force_rate * kPeriodS),
-        max_damping_(limits.max_damping_linear),
-        thread_([this] { follow(); }) {}
-  ForceStepWatch(const ForceStepWatch&) = delete;
-  ForceStepWatch& operator=(const ForceStepWatch&) = delete;
-  ~ForceStepWatch() { stop(); }
-
-  void stop() {
-    running_ = false;
-    if (thread_.joinable()) {
-      thread_.join();
-    }
-  }
-  [[nodiscard]] double largest_coupling_step() const { return coupling_step_; }
-  /// The largest amount by which a step exceeded what the law allows [N] (0 or less: none).
-  [[nodiscard]] double largest_coupling_excess() const { return coupling_excess_; }
-  [[nodiscard]] double fastest_operator_rate() const { return operator_rate_; }
-  /// Timestamp of the newest operator force sample seen (CLOCK_MONOTONIC ns).
-  [[nodiscard]] std::int64_t last_force_sample_ns() const { return last_force_ns_; }
-  [[nodiscard]] bool left_running() const { return left_running_; }
-  [[nodiscard]] std::uint64_t cycles() const { return cycles_; }
-
- private:
-  void follow() {
-    const auto& vp = segment_.region<shm::RegionId::kVp>();
-    const auto& position = segment_.region<shm::RegionId::kPosition>();
-    shm::PositionPayload last;
-    bool have_last = false;
-    while (running_) {
-      vp.wait_for_publish(vp.sequence_word(), 50ms);
-      // The header too: a core that fails safe stops publishing position before it says so.
-      if (segment_.header().core_state.load() !=
-          static_cast<std::uint32_t>(shm::CoreState::kRunning)) {
-        left_running_ = true;
-      }
-      follow_operator_force();
-      shm::PositionPayload p;
-      if (!position.read(p).ok() || (have_last && p.cycle == last.cycle)) {
-        continue;
-      }
-      if (p.core_state != static_cast<std::uint32_t>(shm::CoreState::kRunning)) {
-        left_running_ = true;
-      }
-      const bool rendering = [](const shm::PositionPayload& x) {
-        return x.core_state == static_cast<std::uint32_t>(shm::CoreState::kRunning) &&
-               (x.state_word & shm::state_bits::kPowered) != 0;
-      }(p);
-      if (have_last && p.cycle > last.cycle && rendering && last_rendering_) {
-        const auto gap = static_cast<double>(p.cycle - last.cycle);
-        const double coupling = std::hypot(p.coupling_wrench[0] - last.coupling_wrench[0],
-                                           p.coupling_wrench[1] - last.coupling_wrench[1],
-                                           p.coupling_wrench[2] - last.coupling_wrench[2]);
-        const double speed =
-            std::max(std::hypot(p.handle_twist[0], p.handle_twist[1], p.handle_twist[2]),
-                     std::hypot(last.handle_twist[0], last.handle_twist[1], last.handle_twist[2]));
-        coupling_step_ = std::max(coupling_step_.load(), coupling / gap);
-        coupling_excess_ =
-            std::max(coupling_excess_.load(), coupling / gap - rate_step_ - max_damping_ * speed);
-        ++cycles_;
-      }
-      last = p;
-      last_rendering_ = rendering;
-      have_last = true;
-    }
-  }
-
-  void follow_operator_force() {
-    shm::ForcePayload f;
-    const shm::ReadResult r = segment_.region<shm::RegionId::kForce>().read(f);
-    if (!r.ok() || r.sequence == last_force_sequence_) {
-      return;
-    }
-    if (last_force_sequence_ != 0 && r.publish_time_ns > last_force_ns_) {
-      const double dt = static_cast<double>(r.publish_time_ns - last_force_ns_) * 1e-9;
-      for (std::size_t i = 0; i < 3; ++i) {
-        const double rate = std::abs(f.wrench[i] - last_force_.wrench[i]) / dt;
-        operator_rate_ = std::max(operator_rate_.load(), rate);
-      }
-    }
-    last_force_sequence_ = r.sequence;
-    last_force_ns_ = r.publish_time_ns;
-    last_force_ = f;
-  }
-
-  const shm::Segment& segment_;
-  std::atomic<bool> running_{true};
-  double rate_step_;
-  double max_damping_;
-  std::atomic<double> coupling_step_{0.0};
-  std::atomic<double> coupling_excess_{-1e9};
-  std::atomic<double> operator_rate_{0.0};
-  bool last_rendering_ = false;
-  std::uint64_t last_force_sequence_ = 0;
-  std::atomic<std::int64_t> last_force_ns_{0};
-  shm::ForcePayload last_force_;
-  std::atomic<bool> left_running_{false};
-  std::atomic<std::uint64_t> cycles_{0};
-  std::thread thread_;
-};
-
-arm_model::ArmLimits arm_limits() {
-  return arm_model::load_arm_model(arm_model::default_arm_model_path()).limits;
-}
-/// How fast the HMI ramps the operator's force, per axis [N/s].
 double operator_rate_limit() {
   return shm::ForceLimits{}.force_rate;
 }
@@ -262,7 +150,7 @@ TEST(FaultInjection, SoftRealTimeProcessesKilledAtRandomMomentsComeBackWithoutAF
   start_demo(demo, stack);
   ASSERT_TRUE(ControllerStack::eventually([&] { return coupled(stack); }, 10s)) << demo->err();
   start_player(player, stack, sequence);
-  ForceStepWatch watch(stack.segment(), arm_limits());
+  ForceStepWatch watch(stack.segment(), arm_limits(), kPeriodS);
   const std::uint64_t misses_before = stack.telemetry().misses_total;
 
   // Each victim comes back by being started again. The demo reconnects on its own when its
@@ -421,7 +309,7 @@ TEST(FaultInjection, AFrozenBridgeIsStaleInputTheCouplingFadesAndResumesOnContin
   // Couples an object 3 cm from the handle and streams it on every answer.
   SpawnedProcess client(HAPTICCTRL_STREAMING_CLIENT, {std::to_string(stack.port())});
   ASSERT_TRUE(ControllerStack::eventually([&] { return coupled(stack); }, 10s)) << client.err();
-  ForceStepWatch watch(stack.segment(), arm_limits());
+  ForceStepWatch watch(stack.segment(), arm_limits(), kPeriodS);
   const auto stale = [&] { return (stack.vp().state_word & shm::state_bits::kClientStale) != 0; };
 
   stack.bridge().signal(SIGSTOP);  // longer than the session watchdog (100 ms)
@@ -436,184 +324,6 @@ TEST(FaultInjection, AFrozenBridgeIsStaleInputTheCouplingFadesAndResumesOnContin
   watch.stop();
   EXPECT_LE(watch.largest_coupling_excess(), kRounding);
   EXPECT_FALSE(watch.left_running());
-}
-
-TEST(FaultInjection, AMisbehavingSharedMemoryWriterIsRefusedOrLimitedAndCountedAndTheCoreStaysUp) {
-  ControllerStack stack("fi-rogue", kPeriodUs);
-  ASSERT_TRUE(stack.ready()) << stack.diagnostics();
-  stack.bridge().signal(SIGTERM);  // the rogue takes the UDP bridge's place as VPr's writer
-  ASSERT_EQ(stack.bridge().wait(5s), 0) << stack.diagnostics();
-  shm::Segment rogue = shm::Segment::attach(
-      stack.instance(),
-      shm::AttachOptions{{shm::RegionId::kVpr, shm::RegionId::kForce}, /*ctrl_writer=*/true});
-  ASSERT_EQ(rogue.ctrl_writer().send(shm::CtrlCode::kPowerOn, 0, 0), shm::CtrlSendStatus::kQueued);
-  ASSERT_TRUE(ControllerStack::eventually(
-      [&] { return (stack.vp().state_word & shm::state_bits::kPowered) != 0; }));
-  ForceStepWatch watch(stack.segment(), arm_limits());
-  auto& vpr = rogue.writable<shm::RegionId::kVpr>();
-  auto& force = rogue.writable<shm::RegionId::kForce>();
-
-  // Not-a-number and a base frame that is no rotation: refused, counted.
-  shm::VprPayload sample;
-  sample.session_id = 1;
-  sample.command_type = static_cast<std::uint32_t>(shm::CommandType::kImpedance);
-  sample.impedance_wrench[0] = std::nan("");
-  vpr.publish(sample, shm::monotonic_now_ns());
-  EXPECT_TRUE(ControllerStack::eventually([&] { return stack.telemetry().vpr_rejected == 1; }));
-  sample.impedance_wrench[0] = 0.0;
-  sample.base_frame = {0, 0, 0, 0, 0, 0, 3};
-  vpr.publish(sample, shm::monotonic_now_ns());
-  EXPECT_TRUE(ControllerStack::eventually([&] { return stack.telemetry().vpr_rejected == 2; }));
-
-  // A wrench of 1e9 N, kept fresh for half a second: saturated to the device's peak, reached no
-  // faster than the rate limit, then faded out when the writer falls silent.
-  sample.base_frame = {0, 0, 0, 0, 0, 0, 1};
-  sample.impedance_wrench = {1e9, 0, 0, 0, 0, 0};
-  const arm_model::ArmLimits limits = arm_limits();
-  double strongest = 0.0;
-  for (int i = 0; i < 50; ++i) {
-    vpr.publish(sample, shm::monotonic_now_ns());
-    const shm::PositionPayload p = stack.position();
-    strongest = std::max(
-        strongest, std::hypot(p.coupling_wrench[0], p.coupling_wrench[1], p.coupling_wrench[2]));
-    std::this_thread::sleep_for(std::chrono::microseconds(kPeriodUs));
-  }
-  EXPECT_GT(strongest, 0.5 * limits.force_peak) << "the wrench was rendered";
-  EXPECT_LE(strongest, limits.force_peak + limits.max_damping_linear * limits.max_speed);
-  EXPECT_TRUE(ControllerStack::eventually([&] {
-    // What may remain while the (rogue) session lasts is the viscous hold of a disengaged
-    // coupling: 20 N.s/m on the handle's motion (docs/control.md).
-    const shm::PositionPayload p = stack.position();
-    const double speed = std::hypot(p.handle_twist[0], p.handle_twist[1], p.handle_twist[2]);
-    return std::hypot(p.coupling_wrench[0], p.coupling_wrench[1], p.coupling_wrench[2]) <=
-           limits.max_damping_linear * speed + 1e-9;
-  })) << "faded out once the writer fell silent";
-
-  // A writer that dies in the middle of a write leaves the sequence odd: every read is torn,
-  // counted, and the core carries on without client data.
-  vpr.raw_sequence_word().fetch_add(1);
-  EXPECT_TRUE(ControllerStack::eventually([&] { return stack.telemetry().vpr_torn > 0; }));
-  vpr.raw_sequence_word().fetch_add(1);
-
-  // Operator forces that are not a number or beyond 100 N: refused and counted; the simulated
-  // hand keeps pushing with the last acceptable one (none here).
-  force.publish(shm::ForcePayload{{std::nan(""), 0, 0, 0, 0, 0}}, shm::monotonic_now_ns());
-  EXPECT_TRUE(ControllerStack::eventually([&] { return stack.telemetry().force_rejected == 1; }));
-  force.publish(shm::ForcePayload{{1e6, 0, 0, 0, 0, 0}}, shm::monotonic_now_ns());
-  EXPECT_TRUE(ControllerStack::eventually([&] { return stack.telemetry().force_rejected == 2; }));
-  EXPECT_EQ(stack.position().operator_wrench, shm::Vector6{});
-
-  // An acceptable wrench written at once, skipping the ramp its writers promise (H3: it went
-  // 0 -> 173 N in one cycle before): the core takes it to the handle at 500 N/s at most.
-  force.publish(shm::ForcePayload{{100, 100, 100, 0, 0, 0}}, shm::monotonic_now_ns());
-  double largest_step = 0.0;
-  std::uint64_t last_cycle = 0;
-  shm::Vector6 last{};
-  for (int i = 0; i < 400 && last[0] < 99.0; ++i) {
-    const shm::PositionPayload p = stack.position();
-    if (p.cycle != last_cycle && last_cycle != 0) {
-      largest_step = std::max(largest_step, (p.operator_wrench[0] - last[0]) /
-                                                static_cast<double>(p.cycle - last_cycle));
-    }
-    last_cycle = p.cycle;
-    last = p.operator_wrench;
-    std::this_thread::sleep_for(std::chrono::microseconds(kPeriodUs / 2));
-  }
-  const double per_cycle = 500.0 * kPeriodUs * 1e-6;
-  EXPECT_LE(largest_step, per_cycle + 1e-9) << "N per cycle";
-  EXPECT_GT(last[0], 5.0) << "and it does arrive";
-  force.publish(shm::ForcePayload{}, shm::monotonic_now_ns());
-
-  watch.stop();
-  EXPECT_LE(watch.largest_coupling_excess(), kRounding);
-  EXPECT_FALSE(watch.left_running()) << stack.diagnostics();
-  EXPECT_EQ(stack.telemetry().core_state, static_cast<std::uint32_t>(shm::CoreState::kRunning));
-}
-
-/// Descriptors of `pid` that are memfds named for hapticctrl (the core's segment).
-std::vector<std::string> segment_descriptors_of(pid_t pid) {
-  std::vector<std::string> found;
-  const std::filesystem::path fds = "/proc/" + std::to_string(pid) + "/fd";
-  for (const auto& entry : std::filesystem::directory_iterator(fds)) {
-    std::error_code error;
-    const std::string target = std::filesystem::read_symlink(entry.path(), error).string();
-    if (!error && target.rfind("/memfd:hapticctrl.", 0) == 0) {
-      found.push_back(entry.path().string());
-    }
-  }
-  return found;
-}
-
-/// H3: truncating the segment file killed the core and the UDP bridge with SIGBUS. A process of
-/// the group holding the segment read-write, and root through the core's own descriptors, now
-/// cannot change its size; the core and the bridge run on.
-TEST(FaultInjection, NobodyCanTruncateTheSegmentAndTheCoreAndBridgeRunOn) {
-  ControllerStack stack("fi-trunc", kPeriodUs);
-  ASSERT_TRUE(stack.ready()) << stack.diagnostics();
-  shm::HandedSegment writer = shm::request_segment(stack.instance(), true);
-  EXPECT_NE(ftruncate(writer.segment.get(), 0), 0);
-  EXPECT_EQ(errno, EPERM);
-  const std::vector<std::string> cores = segment_descriptors_of(stack.core().pid());
-  ASSERT_FALSE(cores.empty()) << "the core holds its segment as a memfd";
-  for (const std::string& path : cores) {
-    const int fd = open(path.c_str(), O_RDWR);
-    ASSERT_GE(fd, 0) << path;
-    EXPECT_NE(ftruncate(fd, 4096), 0) << path;
-    close(fd);
-  }
-  const std::uint64_t cycle = stack.telemetry().cycle;
-  EXPECT_TRUE(ControllerStack::eventually([&] { return stack.telemetry().cycle > cycle + 10; }));
-  EXPECT_EQ(stack.telemetry().core_state, static_cast<std::uint32_t>(shm::CoreState::kRunning));
-  EXPECT_EQ(stack.core().wait(0ms), -1) << "the core is still running";
-  EXPECT_EQ(stack.bridge().wait(0ms), -1) << "the bridge is still running";
-}
-
-/// H3: an unprivileged user who created and locked the instance's lock before the core started
-/// made it refuse to start, and a segment it planted was accepted by root's tools. Played here by
-/// `nobody` (root only: CI runs as root).
-TEST(FaultInjection, AnotherUserCanNeitherSquatNorPlantAnInstance) {
-  if (geteuid() != 0) {
-    GTEST_SKIP() << "needs root to play another user";
-  }
-  const std::string as_nobody = "/usr/bin/setpriv";
-  const std::vector<std::string> drop{"--reuid=65534", "--regid=65534", "--clear-groups"};
-  const std::string instance = unique_instance("squat");
-  const shm::InstancePaths paths =
-      shm::InstancePaths::in(shm::creator_runtime_directory(), instance);
-  std::vector<std::string> squat = drop;
-  squat.insert(squat.end(), {"/usr/bin/touch", paths.lock});
-  SpawnedProcess squatter(as_nobody, squat);
-  EXPECT_NE(squatter.wait(5s), 0) << "nobody may create files in " << paths.directory;
-  ASSERT_NE(access(paths.lock.c_str(), F_OK), 0);
-
-  // A "core" of nobody's, in a directory of nobody's: root's HMI refuses it.
-  const std::string planted_dir = "/tmp/hapticctrl-planted-" + std::to_string(getpid());
-  setenv("HAPTICCTRL_RUNTIME_DIR", planted_dir.c_str(), 1);
-  std::vector<std::string> plant = drop;
-  plant.insert(plant.end(), {HAPTICCTRL_CORE_BINARY, "--instance", instance, "--period-us", "10000",
-                             "--rt", "ignore", "--duration", "20"});
-  SpawnedProcess planter(as_nobody, plant);
-  const std::string planted_socket = planted_dir + "/" + instance + ".sock";
-  EXPECT_TRUE(ControllerStack::eventually([&] {
-    return access(planted_socket.c_str(), F_OK) == 0;
-  })) << planter.err();
-  SpawnedProcess hmi(HAPTICCTRL_HMI_BINARY, {"--instance", instance, "status"});
-  EXPECT_NE(hmi.wait(10s), 0);
-  EXPECT_NE(hmi.err().find("could have been planted"), std::string::npos) << hmi.err();
-  unsetenv("HAPTICCTRL_RUNTIME_DIR");
-  planter.signal(SIGTERM);
-  planter.wait(5s);
-  std::filesystem::remove_all(planted_dir);
-
-  // And root's own core of the instance nobody tried to squat starts and serves.
-  SpawnedProcess core(HAPTICCTRL_CORE_BINARY,
-                      {"--instance", instance, "--period-us", "10000", "--rt", "ignore"});
-  EXPECT_TRUE(ControllerStack::eventually([&] {
-    SpawnedProcess probe(HAPTICCTRL_HMI_BINARY, {"--instance", instance, "status"});
-    return probe.wait(5s) == 0;
-  })) << core.err();
-  core.signal(SIGTERM);
-  EXPECT_EQ(core.wait(5s), 0) << core.err();
 }
 
 }  // namespace

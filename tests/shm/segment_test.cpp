@@ -15,6 +15,7 @@
 
 #include "hapticctrl/shm/segment_handoff.hpp"
 #include "support/child_process.hpp"
+#include "support/segment_fixtures.hpp"
 
 namespace hapticctrl::shm {
 namespace {
@@ -24,63 +25,11 @@ using test::Child;
 using test::ReadyPipe;
 using test::unique_instance;
 
-InstancePaths paths_of(const std::string& instance) {
-  return InstancePaths::in(creator_runtime_directory(), instance);
-}
-
-bool exists(const std::string& path) {
-  struct stat st {};
-  return stat(path.c_str(), &st) == 0;
-}
-
-/// Expects `fn` to throw ShmError with `code` and a message containing `text`.
-template <typename Fn>
-void expect_shm_error(Fn&& fn, ShmErrc code, const std::string& text) {
-  try {
-    fn();
-    FAIL() << "expected ShmError containing '" << text << "'";
-  } catch (const ShmError& e) {
-    EXPECT_EQ(e.code(), code) << e.what();
-    EXPECT_NE(std::string(e.what()).find(text), std::string::npos) << e.what();
-  }
-}
-
-/// Maps the raw header of an instance read-write, as a process of the group that asked for a
-/// writable segment could, to forge bad segments.
-class RawHeader {
- public:
-  explicit RawHeader(const std::string& instance)
-      : handed_(request_segment(instance, true)),
-        address_(mmap(nullptr, kPageSize, PROT_READ | PROT_WRITE, MAP_SHARED, handed_.segment.get(),
-                      0)) {}
-  RawHeader(const RawHeader&) = delete;
-  RawHeader& operator=(const RawHeader&) = delete;
-  ~RawHeader() { munmap(address_, kPageSize); }
-  SegmentHeader* operator->() { return static_cast<SegmentHeader*>(address_); }
-
- private:
-  HandedSegment handed_;
-  void* address_ = nullptr;
-};
-
-/// Sets HAPTICCTRL_RUNTIME_DIR for the scope of a test (the processes it forks inherit it).
-class RuntimeDirectory {
- public:
-  explicit RuntimeDirectory(std::string path) : path_(std::move(path)) {
-    setenv("HAPTICCTRL_RUNTIME_DIR", path_.c_str(), 1);
-  }
-  RuntimeDirectory(const RuntimeDirectory&) = delete;
-  RuntimeDirectory& operator=(const RuntimeDirectory&) = delete;
-  ~RuntimeDirectory() {
-    unsetenv("HAPTICCTRL_RUNTIME_DIR");
-    std::error_code ignored;
-    std::filesystem::remove_all(path_, ignored);
-  }
-  [[nodiscard]] const std::string& path() const { return path_; }
-
- private:
-  std::string path_;
-};
+using test::exists;
+using test::expect_shm_error;
+using test::paths_of;
+using test::RawHeader;
+using test::RuntimeDirectory;
 
 TEST(Segment, CreatedSegmentIsDescribedByItsHeader) {
   const std::string name = unique_instance("hdr");
@@ -135,37 +84,6 @@ TEST(Segment, CloseRemovesEveryName) {
   EXPECT_FALSE(exists(paths_of(name).lock));
 }
 
-TEST(Segment, TheSegmentCannotBeResizedByAnyone) {
-  const std::string name = unique_instance("seal");
-  Segment core = Segment::create({.instance = name});
-  HandedSegment writer = request_segment(name, true);
-  EXPECT_NE(ftruncate(writer.segment.get(), 4096), 0) << "a writer truncating it";
-  EXPECT_EQ(errno, EPERM);
-  EXPECT_NE(ftruncate(writer.segment.get(), static_cast<off_t>(2 * kSegmentSize)), 0);
-  EXPECT_NE(fcntl(writer.segment.get(), F_ADD_SEALS, F_SEAL_WRITE), 0) << "seals are sealed";
-  // Even through the core's own descriptor table, as root could.
-  const std::string by_path = "/proc/self/fd/" + std::to_string(writer.segment.get());
-  const int reopened = open(by_path.c_str(), O_RDWR);
-  ASSERT_GE(reopened, 0);
-  EXPECT_NE(ftruncate(reopened, 0), 0);
-  close(reopened);
-  struct stat st {};
-  ASSERT_EQ(fstat(writer.segment.get(), &st), 0);
-  EXPECT_EQ(static_cast<std::size_t>(st.st_size), kSegmentSize);
-  EXPECT_TRUE(Segment::attach(name).still_current());
-}
-
-TEST(Segment, AReaderHoldsAReadOnlyDescriptor) {
-  const std::string name = unique_instance("rofd");
-  Segment core = Segment::create({.instance = name});
-  HandedSegment reader = request_segment(name, false);
-  EXPECT_EQ(fcntl(reader.segment.get(), F_GETFL) & O_ACCMODE, O_RDONLY);
-  EXPECT_EQ(mmap(nullptr, kPageSize, PROT_READ | PROT_WRITE, MAP_SHARED, reader.segment.get(), 0),
-            MAP_FAILED);
-  EXPECT_EQ(reader.core_pid, getpid());
-  EXPECT_EQ(reader.core_uid, geteuid());
-}
-
 TEST(Segment, PublishedDataReachesAnotherProcess) {
   const std::string name = unique_instance("pub");
   Segment core = Segment::create({.instance = name});
@@ -202,41 +120,12 @@ TEST(Segment, BlockedReaderOnReadOnlyMappingIsWokenByPublish) {
   EXPECT_EQ(reader.wait(5s), 0);
 }
 
-TEST(Segment, AttachWithoutControllerSaysSo) {
-  expect_shm_error([] { Segment::attach(unique_instance("none")); }, ShmErrc::kNoController,
-                   "no controller is running");
-}
-
 TEST(Segment, BadInstanceNamesAreRefused) {
   for (const std::string& bad :
        std::vector<std::string>{"", "a/b", "../x", "with space", std::string(33, 'a')}) {
     expect_shm_error([&] { Segment::attach(bad); }, ShmErrc::kBadInstanceName,
                      "invalid instance name");
   }
-}
-
-TEST(Segment, SecondLiveCoreIsRefusedWithThePid) {
-  const std::string name = unique_instance("dup");
-  Segment core = Segment::create({.instance = name});
-  expect_shm_error([&] { Segment::create({.instance = name}); }, ShmErrc::kAlreadyRunning,
-                   "already running (core pid " + std::to_string(getpid()) + ")");
-}
-
-TEST(Segment, SegmentOfDeadCoreIsDetectedThenReplaced) {
-  const std::string name = unique_instance("stale");
-  Child dead_core([&] {
-    Segment core = Segment::create({.instance = name});
-    raise(SIGKILL);  // dies holding the segment: no cleanup runs
-    return 0;
-  });
-  ASSERT_EQ(dead_core.wait(), 128 + SIGKILL);
-  ASSERT_TRUE(exists(paths_of(name).socket)) << "nothing removed it";
-  expect_shm_error([&] { Segment::attach(name); }, ShmErrc::kNoController,
-                   "left by a core that is gone");
-
-  Segment core = Segment::create({.instance = name});
-  EXPECT_EQ(core.header().generation, 2U);
-  EXPECT_NO_THROW(Segment::attach(name));
 }
 
 TEST(Segment, ReaderNoticesItsCoreStopped) {
@@ -293,89 +182,6 @@ TEST(Segment, ARuntimeDirectoryOthersMayWriteIsRefused) {
                    "may be written by its group or by others");
   ASSERT_EQ(chmod(directory.path().c_str(), 0750), 0);
   EXPECT_NO_THROW(Segment::attach(name));
-}
-
-/// In a forked child: becomes nobody/nogroup with no supplementary group (root only).
-bool become_nobody() {
-  return setgroups(0, nullptr) == 0 && setgid(65534) == 0 && setuid(65534) == 0;
-}
-
-TEST(Segment, PermissionDeniedIsExplained) {
-  const std::string name = unique_instance("perm");
-  Segment core = Segment::create({.instance = name});
-  Child other_user([&] {
-    if (geteuid() == 0) {
-      if (!become_nobody()) {
-        return 3;
-      }
-    } else {
-      chmod(paths_of(name).socket.c_str(), 0);
-    }
-    try {
-      Segment::attach(name);
-    } catch (const ShmError& e) {
-      return e.code() == ShmErrc::kPermissionDenied &&
-                     std::string(e.what()).find("permission denied") != std::string::npos
-                 ? 0
-                 : 2;
-    }
-    return 1;
-  });
-  EXPECT_EQ(other_user.wait(), 0);
-}
-
-TEST(Segment, TheCoreRefusesAProcessOutsideItsUserAndGroup) {
-  if (geteuid() != 0) {
-    GTEST_SKIP() << "needs root to play another user";
-  }
-  const RuntimeDirectory directory("/tmp/hapticctrl-test-" + std::to_string(getpid()) + "-peer");
-  const std::string name = unique_instance("peer");
-  Segment core = Segment::create({.instance = name});
-  // Open the file permissions wide, so that only the core's own credential check stands.
-  ASSERT_EQ(chmod(directory.path().c_str(), 0755), 0);
-  ASSERT_EQ(chmod(paths_of(name).socket.c_str(), 0666), 0);
-  Child stranger([&] {
-    if (!become_nobody()) {
-      return 3;
-    }
-    try {
-      Segment::attach(name);
-    } catch (const ShmError& e) {
-      return e.code() == ShmErrc::kPermissionDenied &&
-                     std::string(e.what()).find("refused this process") != std::string::npos
-                 ? 0
-                 : 2;
-    }
-    return 1;
-  });
-  EXPECT_EQ(stranger.wait(), 0);
-  EXPECT_EQ(core.refused_attaches(), 1U);
-  EXPECT_NO_THROW(Segment::attach(name)) << "the core's own user is still served";
-}
-
-TEST(Segment, AControllerPlantedByAnotherUserIsRefused) {
-  if (geteuid() != 0) {
-    GTEST_SKIP() << "needs root to play another user";
-  }
-  // An unprivileged user makes a directory of its own and starts a "core" there, hoping that
-  // root's tools attach to it.
-  const RuntimeDirectory directory("/tmp/hapticctrl-test-" + std::to_string(getpid()) + "-plant");
-  const std::string name = unique_instance("plant");
-  ReadyPipe ready;
-  Child planter([&] {
-    if (!become_nobody()) {
-      return 3;
-    }
-    Segment planted = Segment::create({.instance = name});
-    ready.signal();
-    pause();
-    return 0;
-  });
-  ASSERT_EQ(ready.wait(), 'r');
-  expect_shm_error([&] { Segment::attach(name); }, ShmErrc::kInsecure,
-                   "belongs to uid 65534, which is neither root nor this process's user");
-  expect_shm_error([&] { Segment::create({.instance = name}); }, ShmErrc::kInsecure,
-                   "could have been planted");
 }
 
 TEST(Segment, SecondLiveWriterOfARegionIsRefusedAndDeadOneTakenOver) {

@@ -1,3 +1,6 @@
+// The UDP bridge's session: the handshake, the session's life (watchdog, close, BYE) and the
+// control frames into VPr. Parameters are in session_parameters.cpp, the answer side in
+// session_answer.cpp.
 #include "hapticctrl/udp_bridge/session.hpp"
 
 #include <arpa/inet.h>
@@ -304,105 +307,6 @@ void Session::take_timed_object(const hcp_control_object_timed& o, TimeNs now) n
   }
 }
 
-std::size_t Session::on_param(const hcp_frame& in, bool values_ok, TimeNs now,
-                              std::span<std::uint8_t> reply) noexcept {
-  const std::uint32_t seq = in.header.sequence;
-  last_heard_ = now;
-  engaged_ = true;
-  if (have_param_seq_ && seq == last_ack_.sequence) {  // our ACK was lost: say it again
-    counters_.param_duplicates.fetch_add(1, std::memory_order_relaxed);
-    return ack(last_ack_, now, reply);
-  }
-  if (have_param_seq_ && !protocol::sequence_newer(seq, last_ack_.sequence)) {
-    counters_.drop(LinkDrop::kSequence);
-    return 0;
-  }
-  LastAck result{seq, HCP_ACK_OK};
-  if (!values_ok) {
-    counters_.drop(LinkDrop::kRange);
-    counters_.params_rejected.fetch_add(1, std::memory_order_relaxed);
-    result.status = HCP_ACK_REJECTED;
-    const auto problem = protocol::check_param(in.body.hcp_body_u.param);
-    protocol::set_text(result.reason, problem.value_or("value out of range"));
-  } else {
-    result.status = apply(in.body.hcp_body_u.param, now);
-    if (result.status == HCP_ACK_RETRY) {
-      return ack(result, now, reply);  // not applied, not recorded: the retransmission applies
-    }
-    counters_.params_applied.fetch_add(1, std::memory_order_relaxed);
-  }
-  last_ack_ = result;
-  have_param_seq_ = true;
-  return ack(last_ack_, now, reply);
-}
-
-hcp_ack_status Session::apply(const hcp_param& param, TimeNs now) noexcept {
-  const auto& u = param.hcp_param_u;
-  shm::CtrlCode ctrl = shm::CtrlCode::kNone;
-  switch (param.id) {
-    case HCP_P_TIME_STEP:
-      vpr_.client_time_step = u.time_step;
-      break;
-    case HCP_P_FORCE_FACTOR:
-      vpr_.force_factor = u.force_factor;
-      break;
-    case HCP_P_SPEED_FACTOR:
-      vpr_.speed_factor = u.speed_factor;
-      break;
-    case HCP_P_BASE_FRAME:
-      protocol::from_wire(u.base_frame, vpr_.base_frame);
-      break;
-    case HCP_P_OBSERVATION_FRAME:
-      protocol::from_wire(u.observation_frame, vpr_.observation_frame);
-      break;
-    case HCP_P_BASE_FRAME_SP:
-      protocol::from_wire(u.base_frame_sp, vpr_.base_frame);
-      break;
-    case HCP_P_OBSERVATION_FRAME_SP:
-      protocol::from_wire(u.observation_frame_sp, vpr_.observation_frame);
-      break;
-    case HCP_P_INDEXING_MODE:
-      vpr_.indexing_mode = u.indexing_mode;
-      break;
-    case HCP_P_COMMAND_TYPE:
-      vpr_.command_type = u.command_type;
-      break;
-    case HCP_P_OBJECT:
-      vpr_.flags = u.object.attached != 0 ? (vpr_.flags | shm::vpr_flags::kObjectAttached)
-                                          : (vpr_.flags & ~shm::vpr_flags::kObjectAttached);
-      vpr_.object_mass = u.object.mass;
-      protocol::from_wire(u.object.inertia, vpr_.object_inertia);
-      break;
-    case HCP_P_GAINS:
-      protocol::from_wire(u.gains, vpr_.gain_override);
-      break;
-    case HCP_P_FORCE_LIMITS:
-      protocol::from_wire(u.force_limits, vpr_.force_limits);
-      break;
-    case HCP_P_WATCHDOG:
-      watchdog_ms_ = std::min(u.watchdog_ms, settings_.max_watchdog_ms);
-      vpr_.watchdog_timeout_us = watchdog_ms_ * 1000U;
-      break;
-    case HCP_P_POWER:
-      ctrl = u.power_on != 0 ? shm::CtrlCode::kPowerOn : shm::CtrlCode::kPowerOff;
-      break;
-    case HCP_P_EMERGENCY_STOP:
-      ctrl = shm::CtrlCode::kEmergencyStop;
-      break;
-    case HCP_P_EMERGENCY_RESET:
-      ctrl = shm::CtrlCode::kEmergencyReset;
-      break;
-  }
-  if (ctrl != shm::CtrlCode::kNone) {
-    if (ports_.ctrl == nullptr || ports_.ctrl->send(ctrl, 0, now) != shm::CtrlSendStatus::kQueued) {
-      return HCP_ACK_RETRY;
-    }
-    return HCP_ACK_OK;
-  }
-  publish_vpr(now);
-  return HCP_ACK_OK;
-}
-
 std::size_t Session::on_bye(const hcp_frame& in, TimeNs now,
                             std::span<std::uint8_t> reply) noexcept {
   const std::size_t n = ack(LastAck{in.header.sequence, HCP_ACK_OK}, now, reply);  // session token
@@ -420,16 +324,6 @@ std::size_t Session::refuse(hcp_refuse_code code, std::uint32_t peer_version,
   r.peer_version = peer_version;
   r.retry_after_ms = retry_ms;
   protocol::set_text(r.reason, reason);
-  return protocol::encode(out, reply);
-}
-
-std::size_t Session::ack(const LastAck& result, TimeNs now,
-                         std::span<std::uint8_t> reply) noexcept {
-  hcp_frame out = protocol::make_frame(HCP_ACK, session_.token, ++reply_sequence_, now);
-  hcp_ack& a = out.body.hcp_body_u.ack;
-  a.acked_sequence = result.sequence;
-  a.status = result.status;
-  std::copy(std::begin(result.reason), std::end(result.reason), std::begin(a.reason));
   return protocol::encode(out, reply);
 }
 
@@ -454,74 +348,6 @@ void Session::publish_vpr(TimeNs now) noexcept {
 
 void Session::publish_view() noexcept {
   view_.publish_quietly(session_, 0);
-}
-
-std::size_t Session::answer(const shm::VpPayload& vp, TimeNs now, std::span<std::uint8_t> out,
-                            protocol::Endpoint& to) noexcept {
-  SessionView view;
-  if (!view_.read(view).ok() || view.token == 0) {
-    return 0;
-  }
-  to = view.peer;
-  answer_log_.record(vp.cycle, now);
-  const bool timed = (view.features & HCP_FEATURE_TIMING) != 0;
-  hcp_frame f = protocol::make_frame(timed ? HCP_ANSWER_TIMED : HCP_ANSWER, view.token,
-                                     ++answer_sequence_, now);
-  hcp_answer& a = timed ? f.body.hcp_body_u.answer_timed.answer : f.body.hcp_body_u.answer;
-  if (timed) {
-    hcp_coupling_report& c = f.body.hcp_body_u.answer_timed.coupling;
-    c.energy_in = vp.channel_energy_in;
-    c.sample_age_s = static_cast<double>(vp.sample_age_ns) * 1e-9;
-    c.loop_delay_s = static_cast<double>(vp.loop_delay_ns) * 1e-9;
-    c.link_delay_s = static_cast<double>(vp.link_delay_ns) * 1e-9;
-    c.link_jitter_s = static_cast<double>(vp.link_jitter_ns) * 1e-9;
-    c.link_loss = static_cast<double>(vp.link_loss_ppm) * 1e-6;
-    protocol::to_wire(vp.gains, c.gains);
-  }
-  a.cycle = vp.cycle;
-  a.echo_sequence = static_cast<std::uint32_t>(vp.echo_client_sequence);
-  a.echo_time_ns = vp.echo_client_time_ns;
-  a.state_word = vp.state_word;
-  a.core_state = vp.core_state;
-  a.stop_reason = vp.stop_reason;
-  a.command_type = vp.command_type;
-  if ((view.features & HCP_FEATURE_LINK_STATS) != 0) {
-    a.control_received = control_received_shared_.load(std::memory_order_relaxed);
-  }
-  protocol::to_wire(vp.coupling_wrench, a.coupling_wrench);
-  protocol::to_wire(vp.handle_pose, a.handle_pose);
-  protocol::to_wire(vp.handle_twist, a.handle_twist);
-  if ((view.features & HCP_FEATURE_JOINT_STATE) != 0) {
-    protocol::to_wire(vp.joint_position, a.joint_position);
-    protocol::to_wire(vp.joint_velocity, a.joint_velocity);
-  }
-  return protocol::encode(f, out);
-}
-
-void Session::fill_stats(shm::LinkStatsPayload& out) const noexcept {
-  const auto get = [](const std::atomic<std::uint64_t>& c) {
-    return c.load(std::memory_order_relaxed);
-  };
-  out.session_id = session_.token != 0 ? session_number_ : 0;
-  out.peer_ipv4 = session_.token != 0 ? ntohl(session_.peer.address.sin_addr.s_addr) : 0;
-  out.peer_port = session_.token != 0 ? session_.peer.port() : 0;
-  out.watchdog_ms = session_.token != 0 ? watchdog_ms_ : 0;
-  out.features = session_.features;
-  out.frames_in = get(counters_.frames_in);
-  out.frames_out = get(counters_.frames_out);
-  out.control_accepted = get(counters_.control_accepted);
-  out.params_applied = get(counters_.params_applied);
-  out.param_duplicates = get(counters_.param_duplicates);
-  out.params_rejected = get(counters_.params_rejected);
-  out.sessions_opened = get(counters_.sessions_opened);
-  out.sessions_closed = get(counters_.sessions_closed);
-  out.watchdog_expiries = get(counters_.watchdog_expiries);
-  out.refused_busy = get(counters_.refused_busy);
-  out.refused_version = get(counters_.refused_version);
-  out.send_failures = get(counters_.send_failures);
-  for (std::size_t i = 0; i < shm::kLinkDropCount; ++i) {
-    out.dropped[i] = get(counters_.dropped[i]);
-  }
 }
 
 }  // namespace hapticctrl::udp_bridge

@@ -1,0 +1,91 @@
+#pragma once
+// Helpers of the segment tests (tests/shm/segment*_test.cpp, instance_lock_test.cpp): where an
+// instance's names are, the expected errors, a forged header, a runtime directory of the test's
+// own, and playing another user.
+#include <grp.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include "hapticctrl/shm/segment.hpp"
+#include "hapticctrl/shm/segment_handoff.hpp"
+
+namespace hapticctrl::test {
+
+using shm::HandedSegment;
+using shm::InstancePaths;
+using shm::kPageSize;
+using shm::SegmentHeader;
+using shm::ShmErrc;
+using shm::ShmError;
+
+inline InstancePaths paths_of(const std::string& instance) {
+  return InstancePaths::in(shm::creator_runtime_directory(), instance);
+}
+
+inline bool exists(const std::string& path) {
+  struct stat st {};
+  return stat(path.c_str(), &st) == 0;
+}
+
+/// Expects `fn` to throw ShmError with `code` and a message containing `text`.
+template <typename Fn>
+void expect_shm_error(Fn&& fn, ShmErrc code, const std::string& text) {
+  try {
+    fn();
+    FAIL() << "expected ShmError containing '" << text << "'";
+  } catch (const ShmError& e) {
+    EXPECT_EQ(e.code(), code) << e.what();
+    EXPECT_NE(std::string(e.what()).find(text), std::string::npos) << e.what();
+  }
+}
+
+/// Maps the raw header of an instance read-write, as a process of the group that asked for a
+/// writable segment could, to forge bad segments.
+class RawHeader {
+ public:
+  explicit RawHeader(const std::string& instance)
+      : handed_(shm::request_segment(instance, true)),
+        address_(mmap(nullptr, kPageSize, PROT_READ | PROT_WRITE, MAP_SHARED, handed_.segment.get(),
+                      0)) {}
+  RawHeader(const RawHeader&) = delete;
+  RawHeader& operator=(const RawHeader&) = delete;
+  ~RawHeader() { munmap(address_, kPageSize); }
+  SegmentHeader* operator->() { return static_cast<SegmentHeader*>(address_); }
+
+ private:
+  HandedSegment handed_;
+  void* address_ = nullptr;
+};
+
+/// Sets HAPTICCTRL_RUNTIME_DIR for the scope of a test (the processes it forks inherit it).
+class RuntimeDirectory {
+ public:
+  explicit RuntimeDirectory(std::string path) : path_(std::move(path)) {
+    setenv("HAPTICCTRL_RUNTIME_DIR", path_.c_str(), 1);
+  }
+  RuntimeDirectory(const RuntimeDirectory&) = delete;
+  RuntimeDirectory& operator=(const RuntimeDirectory&) = delete;
+  ~RuntimeDirectory() {
+    unsetenv("HAPTICCTRL_RUNTIME_DIR");
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+  }
+  [[nodiscard]] const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
+/// In a forked child: becomes nobody/nogroup with no supplementary group (root only).
+inline bool become_nobody() {
+  return setgroups(0, nullptr) == 0 && setgid(65534) == 0 && setuid(65534) == 0;
+}
+
+}  // namespace hapticctrl::test

@@ -1,0 +1,84 @@
+#pragma once
+// A scripted protocol client and the fixture that drives the UDP bridge's Session with it
+// (tests/bridges/session*_test.cpp): frames built, fed as datagrams, replies decoded.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "hapticctrl/protocol/codec.hpp"
+#include "hapticctrl/udp_bridge/session.hpp"
+#include "support/in_memory_controller.hpp"
+
+namespace hapticctrl::test {
+
+using protocol::Endpoint;
+using protocol::FrameBuffer;
+using udp_bridge::Session;
+
+inline constexpr std::int64_t kMs = 1'000'000;
+
+using Controller = InMemoryController;
+
+/// A scripted client: builds frames, feeds them to the session, decodes the reply.
+struct Client {
+  Session* session = nullptr;
+  Endpoint from = Endpoint::resolve("127.0.0.1", 40000);
+  std::uint64_t token = 0;
+  std::uint32_t control_seq = 0;
+  std::uint32_t param_seq = 0;
+  std::int64_t now = 1000 * kMs;
+  hcp_frame reply{};
+  bool replied = false;
+  std::uint32_t asked_watchdog_ms = 0;  ///< in the HELLO (0: the bridge's default)
+
+  std::vector<std::uint8_t> bytes(hcp_frame f) const {
+    FrameBuffer b{};
+    const std::size_t n = protocol::encode(f, b);
+    return {b.begin(), b.begin() + static_cast<std::ptrdiff_t>(n)};
+  }
+  void feed(const std::vector<std::uint8_t>& data) {
+    FrameBuffer out{};
+    const std::size_t n = session->on_datagram(data, from, now, out);
+    replied = n != 0;
+    if (replied) {
+      ASSERT_EQ(protocol::decode({out.data(), n}, reply), protocol::DecodeStatus::kOk);
+    }
+  }
+  void hello(std::uint32_t version = protocol::kVersion,
+             std::uint32_t features = protocol::kAllFeatures, std::uint32_t min_version = 0) {
+    hcp_frame f = protocol::make_frame(HCP_HELLO, 0, 1, now);
+    f.header.protocol = version;
+    f.body.hcp_body_u.hello.min_version = min_version != 0 ? min_version : version;
+    f.body.hcp_body_u.hello.features = features;
+    f.body.hcp_body_u.hello.watchdog_ms = asked_watchdog_ms;
+    feed(bytes(f));
+    if (replied && reply.body.type == HCP_WELCOME) {
+      token = reply.header.token;
+    }
+  }
+  hcp_frame object(float x) {
+    hcp_frame f = protocol::make_frame(HCP_CONTROL_OBJECT, token, ++control_seq, now);
+    f.body.hcp_body_u.object.pose[0] = x;
+    f.body.hcp_body_u.object.pose[6] = 1.0F;
+    return f;
+  }
+  void send_object(float x) { feed(bytes(object(x))); }
+  hcp_frame param(hcp_param_id id) {
+    hcp_frame f = protocol::make_frame(HCP_PARAM, token, ++param_seq, now);
+    f.body.hcp_body_u.param.id = id;
+    return f;
+  }
+};
+
+struct SessionTest : ::testing::Test {
+  Controller controller;
+  std::uint64_t next_token = 0x1111;
+  Session session{{100}, [this] { return next_token++; }};
+  Client client{&session};
+
+  void SetUp() override { session.set_controller(&controller.ports, 0); }
+  std::uint64_t dropped(shm::LinkDrop why) { return session.counters().dropped_for(why); }
+};
+
+}  // namespace hapticctrl::test

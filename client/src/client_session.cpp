@@ -1,3 +1,6 @@
+// Implements client_session.hpp: the client's side of the protocol as a state machine with no
+// socket, no thread and no clock of its own: decoded frames come in with the time they arrived,
+// frames to send come out for the caller to send.
 #include "client_session.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// Implements demo_options.hpp: command line of hapticctrl-demo.
 #include "hapticctrl/demo/demo_options.hpp"
 
 #include <stdexcept>

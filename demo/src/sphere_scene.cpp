@@ -1,3 +1,5 @@
+// Implements sphere_scene.hpp: the demo client's physics engine: two half-rigid spheres, one fixed,
+// one mobile (mass, isotropic inertia) coupled to the arm.
 #include "hapticctrl/demo/sphere_scene.hpp"
 
 #include <cmath>

@@ -1,3 +1,5 @@
+// Implements hand_motion.hpp: a simulated operator's hand for `hapticctrl-hmi play --hand`: a
+// spring-damper grip (shm:.
 #include "hapticctrl/hmi/hand_motion.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// Implements hmi_options.hpp: command line of hapticctrl-hmi.
 #include "hapticctrl/hmi/hmi_options.hpp"
 
 #include <algorithm>

@@ -1,3 +1,6 @@
+// Implements operator.hpp: the operator's hands on one running controller: ctrl commands (power,
+// emergency stop, stop) and the operator wrench on the simulated handle, written through the
+// `force` region at a bounded rate.
 #include "hapticctrl/hmi/operator.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// Implements panel.hpp: the full-screen operator panel (ncurses).
 #include "hapticctrl/hmi/panel.hpp"
 
 #include <curses.h>

@@ -1,3 +1,6 @@
+// Implements sequence_player.hpp: plays a WrenchSequence as the operator force on the simulated
+// handle and logs the arm's response, one CSV row per controller cycle (paced by the core's VP
+// publishes).
 #include "hapticctrl/hmi/sequence_player.hpp"
 
 #include <chrono>

@@ -1,3 +1,5 @@
+// Implements status.hpp: what the operator panel shows, read from an instance's regions in one go,
+// and its JSON form (`hapticctrl-hmi status --json`).
 #include "hapticctrl/hmi/status.hpp"
 
 #include <arpa/inet.h>

@@ -1,3 +1,5 @@
+// Implements codec.hpp: encoding and decoding of hapticctrl protocol frames
+// (protocol/hapticctrl_protocol.x).
 #include "hapticctrl/protocol/codec.hpp"
 
 #include <rpc/xdr.h>

@@ -1,3 +1,5 @@
+// Implements udp_socket.hpp: the datagram transport seam shared by the UDP bridge and the client
+// library, and its UDP/IPv4 implementation.
 #include "hapticctrl/protocol/udp_socket.hpp"
 
 #include <arpa/inet.h>

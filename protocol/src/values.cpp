@@ -1,3 +1,4 @@
+// Implements values.hpp: range rules for every number a peer can send.
 #include "hapticctrl/protocol/values.hpp"
 
 #include <cmath>

@@ -1,3 +1,6 @@
+// Implements arm_simulator.hpp: rigid-body simulation of the arm: M(q) qdd + C(q, qd) qd + G(q) =
+// tau_motor + J^T w_operator + tau_friction + tau_stops, integrated with semi-implicit Euler in
+// sub-steps.
 #include "hapticctrl/rt_core/arm_simulator.hpp"
 
 #include <Eigen/Cholesky>

@@ -1,3 +1,4 @@
+// Implements core_report.hpp: human and machine-readable reports of the core's figures.
 #include "hapticctrl/rt_core/core_report.hpp"
 
 #include <sstream>

@@ -1,3 +1,5 @@
+// Implements executive.hpp: the CLOCK task (slots, late wake-ups, the periodic tasks released and
+// judged, statistics, black box, events, telemetry) and the stop sequence.
 #include "hapticctrl/rt_core/executive.hpp"
 
 #include <algorithm>
@@ -13,12 +15,18 @@ constexpr TimeNs kStaleEventHold = 20 * kNsPerMs;
 
 }  // namespace
 
-Executive::Executive(const ExecutiveConfig& config, Clock& clock, ServoTasks& tasks,
+Executive::Executive(const ExecutiveConfig& config, Clock& clock, TaskRunners& servo,
                      ServoShared& shared, ArmIo& arm, const ExecutiveOutputs& outputs,
-                     BlackBox& black_box) noexcept
+                     BlackBox& black_box)
     : config_(config),
       clock_(&clock),
-      tasks_(&tasks),
+      tasks_(config.period),
+      servo_(tasks_.add({.runners = &servo,
+                         .has_degraded = true,
+                         .period_multiple = 1,
+                         .gate = &shared.gate,
+                         .deadline = config.period * 3 / 4,
+                         .chronic = config.chronic})),
       gate_(&shared.gate),
       gate_owned_(&shared.state),
       to_servo_(&shared.from_clock),
@@ -26,8 +34,9 @@ Executive::Executive(const ExecutiveConfig& config, Clock& clock, ServoTasks& ta
       arm_(&arm),
       outputs_(outputs),
       black_box_(&black_box),
-      monitor_(config.chronic),
-      stale_(static_cast<std::uint64_t>(kStaleEventHold / std::max<TimeNs>(1, config.period))) {}
+      stale_(static_cast<std::uint64_t>(kStaleEventHold / std::max<TimeNs>(1, config.period))) {
+  tasks_.activate(servo_);
+}
 
 bool Executive::is_fault(shm::StopReason reason) noexcept {
   return reason != shm::StopReason::kStopRequested && reason != shm::StopReason::kSignal &&
@@ -58,7 +67,7 @@ ExecutiveResult Executive::run(const std::atomic<bool>* external_stop) noexcept 
       const std::uint64_t skip =
           passed + 1 - ((lateness_in_last <= static_cast<std::uint64_t>(period / 2)) ? 1U : 0U);
       skipped_slots_ += skip;
-      const MonitorVerdict verdict = monitor_.on_skipped(static_cast<std::uint32_t>(skip));
+      const MonitorVerdict verdict = tasks_.skip(static_cast<std::uint32_t>(skip));
       // The stall itself goes into the black box (before a fail-safe writes it out).
       CycleTimes stall;
       stall.scheduled = scheduled;
@@ -114,17 +123,15 @@ shm::StopReason Executive::run_slot(TimeNs scheduled, TimeNs woke) noexcept {
   times.scheduled = scheduled;
   times.woke = woke;
   times.released = clock_->now();  // before the wake syscall, so the start delay includes it
-  release_servo(times.released);
-  times.degraded = degraded_this_cycle_;
+  tasks_.release_due(cycle_, scheduled, times.released);
 
   clock_->sleep_until(scheduled + period * 3 / 4);
   times.checked = clock_->now();
-  (void)tasks_->busy(ServoRole::kMain);  // lets a scripted runner catch up to `checked`
-  if (!times.degraded) {
-    times.servo_started = tasks_->started_at(ServoRole::kMain);
-    times.finished = tasks_->finished_at(ServoRole::kMain, cycle_);
-  }
-  const MonitorVerdict verdict = monitor_.on_cycle(times);
+  const MonitorVerdict verdict = tasks_.check_deadlines(times.checked);
+  const TaskRelease& servo = tasks_.last_release(servo_);
+  times.degraded = servo.role == ServoRole::kDegraded;
+  times.servo_started = servo.started;
+  times.finished = servo.finished;
   const bool miss = verdict != MonitorVerdict::kGood;
   if (times.servo_started >= 0) {
     servo_start_delay_.add(times.servo_started - times.released);
@@ -159,21 +166,6 @@ shm::StopReason Executive::run_slot(TimeNs scheduled, TimeNs woke) noexcept {
   return shm::StopReason::kNone;
 }
 
-void Executive::release_servo(TimeNs now) noexcept {
-  // The main SERVO still busy with an older cycle: the degraded SERVO takes this one.
-  const ServoRole role = tasks_->busy(ServoRole::kMain) ? ServoRole::kDegraded : ServoRole::kMain;
-  degraded_this_cycle_ = role == ServoRole::kDegraded;
-  if (degraded_this_cycle_) {
-    ++degraded_cycles_;
-    if (tasks_->busy(ServoRole::kDegraded)) {
-      return;  // both stuck: nothing can run this cycle (a miss)
-    }
-  }
-  if (gate_->grant(cycle_)) {
-    tasks_->release(role, cycle_, now);
-  }
-}
-
 void Executive::record(const CycleTimes& times, std::uint32_t flags,
                        std::uint32_t skipped) noexcept {
   CycleRecord r;
@@ -184,7 +176,7 @@ void Executive::record(const CycleTimes& times, std::uint32_t flags,
   r.servo_execution =
       (times.finished >= 0 && times.servo_started >= 0) ? times.finished - times.servo_started : -1;
   r.flags = flags;
-  r.consecutive_misses = monitor_.consecutive_misses();
+  r.consecutive_misses = monitor().consecutive_misses();
   r.skipped = skipped;
   if (outputs_.position != nullptr) {
     shm::PositionPayload pos;
@@ -217,15 +209,16 @@ shm::TelemetryPayload Executive::telemetry() const noexcept {
   t.rt_mode = static_cast<std::uint32_t>(config_.rt_mode);
   t.core_state = static_cast<std::uint32_t>(core_state_);
   t.stop_reason = static_cast<std::uint32_t>(stop_reason_);
-  t.consecutive_misses = monitor_.consecutive_misses();
-  t.misses_total = monitor_.total_misses();
-  t.degraded_cycles = degraded_cycles_;
+  const DeadlineMonitor& servo = monitor();
+  t.consecutive_misses = servo.consecutive_misses();
+  t.misses_total = servo.total_misses();
+  t.degraded_cycles = tasks_.degraded_releases(servo_);
   t.skipped_slots = skipped_slots_;
   t.would_fail_safe = would_fail_safe_;
   t.first_would_fail_safe_cycle = first_would_fail_safe_cycle_;
   t.late_servo_discarded = from_servo_->counters.late_discarded.load(std::memory_order_relaxed);
-  t.window_miss_ppm = monitor_.window_miss_ppm();
-  t.leaky_bucket_score = monitor_.leaky_bucket_score();
+  t.window_miss_ppm = servo.window_miss_ppm();
+  t.leaky_bucket_score = servo.leaky_bucket_score();
   t.wake_latency = wake_latency_.summary();
   t.servo_start_delay = servo_start_delay_.summary();
   t.servo_execution = servo_execution_.summary();
@@ -345,7 +338,7 @@ ExecutiveResult Executive::stop_sequence(shm::StopReason reason, bool fail_safe)
   step(StopStep::kCloseProtocol);
 
   // 4. Stop the tasks.
-  tasks_->stop();
+  tasks_.stop_runners();
   step(StopStep::kStopTasks);
   return result;
 }

@@ -1,3 +1,5 @@
+// Implements rt_preflight.hpp: real-time preflight: what the machine and our privileges allow,
+// tried once at start.
 #include "hapticctrl/rt_core/rt_preflight.hpp"
 
 #include <pthread.h>

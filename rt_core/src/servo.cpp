@@ -1,3 +1,6 @@
+// Implements servo.hpp: the SERVO task's steps (DESIGN.md §4): read measures, build the logical
+// state from ctrl, exchange with the protocol regions, run the law, send commands, publish VP and
+// position.
 #include "hapticctrl/rt_core/servo.hpp"
 
 #include <cmath>

@@ -1,3 +1,5 @@
+// Implements threaded_servo_tasks.hpp: the real SERVO and degraded SERVO: one thread each, released
+// by the CLOCK through a futex.
 #include "hapticctrl/rt_core/threaded_servo_tasks.hpp"
 
 #include <pthread.h>

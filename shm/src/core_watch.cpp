@@ -1,3 +1,6 @@
+// Implements core_watch.hpp: how an attached process (the bridges) follows the core's cycles and
+// notices within a few milliseconds that the core is gone: killed, crashed or replaced by a new
+// core.
 #include "hapticctrl/shm/core_watch.hpp"
 
 #include "hapticctrl/shm/monotonic_clock.hpp"

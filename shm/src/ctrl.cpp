@@ -1,3 +1,5 @@
+// Implements ctrl.hpp: the `ctrl` region: control commands from several writer processes to the
+// core.
 #include "hapticctrl/shm/ctrl.hpp"
 
 namespace hapticctrl::shm {

@@ -1,3 +1,5 @@
+// Implements error.hpp: the one exception of the shm layer's setup code (creating, finding and
+// attaching segments).
 #include "hapticctrl/shm/error.hpp"
 
 #include <grp.h>

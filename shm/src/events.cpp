@@ -1,3 +1,5 @@
+// Implements events.hpp: the `events` region: a ring of the core's state transitions and faults, so
+// that monitors (the LCM bridge) see every event even if they read only every few cycles.
 #include "hapticctrl/shm/events.hpp"
 
 namespace hapticctrl::shm {

@@ -1,3 +1,5 @@
+// Implements futex.hpp: thin wrappers over the Linux futex syscall for words that live in shared
+// memory.
 #include "hapticctrl/shm/futex.hpp"
 
 #include <linux/futex.h>

@@ -1,3 +1,4 @@
+// Implements layout.hpp: layout of one controller instance's shared-memory segment.
 #include "hapticctrl/shm/layout.hpp"
 
 namespace hapticctrl::shm {

@@ -1,3 +1,6 @@
+// Implements rendezvous.hpp: where an instance is found: the runtime directory that holds each
+// instance's socket (which hands out the segment) and the core's lock, and who may be trusted to
+// own it.
 #include "hapticctrl/shm/rendezvous.hpp"
 
 #include <dirent.h>

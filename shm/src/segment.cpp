@@ -1,3 +1,5 @@
+// Implements segment.hpp: creating (core) and attaching (everyone else) the shared-memory segment
+// of one instance.
 #include "hapticctrl/shm/segment.hpp"
 
 #include <fcntl.h>

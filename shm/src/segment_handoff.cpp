@@ -1,3 +1,5 @@
+// Implements the core's side of segment_handoff.hpp: the sealed segment and the server that hands
+// it out to the processes allowed to map it (the attacher's side is segment_request.cpp).
 #include "hapticctrl/shm/segment_handoff.hpp"
 
 #include <fcntl.h>

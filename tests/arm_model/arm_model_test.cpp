@@ -1,3 +1,6 @@
+// Tests of arm_model.hpp: the arm model: a 6-revolute-joint serial chain with link inertias, joint
+// limits, friction, motor limits and encoders, read from a documented text file
+// (docs/arm_model.md).
 #include "hapticctrl/arm_model/arm_model.hpp"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,5 @@
+// Tests of impairment.hpp: the network model of `hapticctrl-netem`, the project's user-space
+// network impairment relay (this kernel has no netem qdisc: ../shared/PITFALLS.md).
 #include "hapticctrl/netem/impairment.hpp"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// Tests of bridge_config.hpp: command line of hapticctrl-udp.
 #include "hapticctrl/udp_bridge/bridge_config.hpp"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// Tests of hello_limiter.hpp: rate limit of handshake attempts (HELLO) per source address.
 #include "hapticctrl/udp_bridge/hello_limiter.hpp"
 
 #include <gtest/gtest.h>

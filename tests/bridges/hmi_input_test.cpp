@@ -1,3 +1,5 @@
+// Tests of hmi_input.hpp: HMI traffic from LCM into the core's `ctrl` and `force` regions,
+// validated.
 #include "hapticctrl/lcm_bridge/hmi_input.hpp"
 
 #include <gtest/gtest.h>

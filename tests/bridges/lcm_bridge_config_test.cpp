@@ -1,3 +1,4 @@
+// Tests of lcm_bridge_config.hpp: command line of hapticctrl-lcm.
 #include "hapticctrl/lcm_bridge/lcm_bridge_config.hpp"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,5 @@
+// Tests of messages.hpp: shared-memory payloads to LCM messages (lcmtypes/), and the instance's
+// channel names.
 #include "hapticctrl/lcm_bridge/messages.hpp"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// Tests of web_config.hpp: command line of hapticctrl-web.
 #include "hapticctrl/web_bridge/web_config.hpp"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,5 @@
+// Tests of channel_passivity.hpp: the client library's end of the two-port time-domain passivity of
+// the coupling channel (docs/control.md; Ryu, Artigas, Preusche).
 #include "channel_passivity.hpp"
 
 #include <gtest/gtest.h>

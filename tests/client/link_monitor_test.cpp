@@ -1,3 +1,5 @@
+// Tests of link_monitor.hpp: per-session network statistics from the answer stream (internal to the
+// client library).
 #include "link_monitor.hpp"
 
 #include <gtest/gtest.h>

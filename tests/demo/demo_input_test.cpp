@@ -1,3 +1,5 @@
+// Tests of demo_input.hpp: what the user applies to the mobile sphere, from the keyboard or from a
+// script.
 #include "hapticctrl/demo/demo_input.hpp"
 
 #include <gtest/gtest.h>

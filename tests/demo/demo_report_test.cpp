@@ -1,3 +1,5 @@
+// Tests of demo_report.hpp: what the demo tells its user: one CSV row per step (--log), a status
+// line, and the JSON summary at the end (--json).
 #include "hapticctrl/demo/demo_report.hpp"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,5 @@
+// Tests of scene_publisher.hpp: publishes the demo's scene (scene_t) on LCM so that operator views
+// (the web bridge, lcm-spy) can draw the spheres the controller's handle is coupled to.
 #include "hapticctrl/demo/scene_publisher.hpp"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,5 @@
+// Tests of hand_motion.hpp: a simulated operator's hand for `hapticctrl-hmi play --hand`: a
+// spring-damper grip (shm:.
 #include "hapticctrl/hmi/hand_motion.hpp"
 
 #include <gtest/gtest.h>

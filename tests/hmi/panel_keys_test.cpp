@@ -1,3 +1,5 @@
+// Tests of panel_keys.hpp: the operator panel's keyboard, apart from the screen so that it is
+// unit-tested: a key and the panel's force state give an action and the new force state.
 #include "hapticctrl/hmi/panel_keys.hpp"
 
 #include <gtest/gtest.h>

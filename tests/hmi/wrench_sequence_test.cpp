@@ -1,3 +1,5 @@
+// Tests of wrench_sequence.hpp: a pre-computed operator force/torque sequence (the seeds'
+// "pre-computed sequence"), loaded and validated before anything is played.
 #include "hapticctrl/hmi/wrench_sequence.hpp"
 
 #include <gtest/gtest.h>

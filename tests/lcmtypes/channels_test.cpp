@@ -1,3 +1,6 @@
+// Tests of channels.hpp: the channel names of one controller instance and LCM's local-only default
+// URL, shared by every process that publishes or subscribes (LCM bridge, web bridge, demo client,
+// tests).
 #include "hapticctrl/lcmtypes/channels.hpp"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,5 @@
+// Tests of timing.hpp: the packed fields of CONTROL_OBJECT_TIMED (protocol 1.1,
+// HCP_FEATURE_TIMING).
 #include "hapticctrl/protocol/timing.hpp"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,5 @@
+// Tests of udp_socket.hpp: the datagram transport seam shared by the UDP bridge and the client
+// library, and its UDP/IPv4 implementation.
 #include "hapticctrl/protocol/udp_socket.hpp"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// Tests of values.hpp: range rules for every number a peer can send.
 #include "hapticctrl/protocol/values.hpp"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,5 @@
+// Tests of arm_dynamics.hpp: kinematics and rigid-body dynamics of the 6R chain with fixed-size
+// Eigen types only.
 #include "hapticctrl/rt_core/arm_dynamics.hpp"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,6 @@
+// Tests of black_box.hpp: a preallocated ring of the last cycles' records, written out as CSV on
+// fail-safe, so that the seconds before a fault can be examined afterwards (the flight-recorder of
+// the core).
 #include "hapticctrl/rt_core/black_box.hpp"
 
 #include <gtest/gtest.h>

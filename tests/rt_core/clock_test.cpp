@@ -1,3 +1,6 @@
+// Tests of clock.hpp: the clock seam: the executive reads time and sleeps only through this
+// interface, so the whole cycle can run against a fake clock in unit tests (scenarios of seconds in
+// microseconds).
 #include "hapticctrl/rt_core/clock.hpp"
 
 #include <gtest/gtest.h>

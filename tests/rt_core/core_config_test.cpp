@@ -1,3 +1,4 @@
+// Tests of core_config.hpp: command line of `hapticctrl-core`, validated.
 #include "hapticctrl/rt_core/core_config.hpp"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,5 @@
+// Tests of cycle_gate.hpp: who may touch the arm and publish this cycle: the cycle-numbered token
+// that keeps a late main SERVO from overwriting the commands of a newer cycle.
 #include "hapticctrl/rt_core/cycle_gate.hpp"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,5 @@
+// Tests of deadline_monitor.hpp: deadline monitor: a pure state machine fed with each cycle's
+// times.
 #include "hapticctrl/rt_core/deadline_monitor.hpp"
 
 #include <gtest/gtest.h>

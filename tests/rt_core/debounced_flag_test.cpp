@@ -1,3 +1,6 @@
+// Tests of debounced_flag.hpp: a flag whose changes are reported only once they have held for a
+// number of cycles; shorter flips are counted as lapses and handed over with the next reported
+// change.
 #include "hapticctrl/rt_core/debounced_flag.hpp"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,5 @@
+// Tests of logical_state.hpp: the controller's logical state (power, emergency stop, stop request,
+// fault injection) and the interpretation of ctrl commands.
 #include "hapticctrl/rt_core/logical_state.hpp"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,5 @@
+// Tests of servo_law.hpp: the control law: inputs of one cycle in, motor torques and coupling
+// wrench out.
 #include "hapticctrl/rt_core/servo_law.hpp"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// Tests of ctrl.hpp: the `ctrl` region: control commands from several writer processes to the core.
 #include "hapticctrl/shm/ctrl.hpp"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,6 @@
+// Tests of force_slew.hpp: the operator wrench a writer of the `force` region applies, moved
+// towards a requested wrench at a bounded rate: whatever a panel, a script or a remote HMI asks
+// for, the simulated hand never jumps.
 #include "hapticctrl/shm/force_slew.hpp"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,5 @@
+// Tests of futex.hpp: thin wrappers over the Linux futex syscall for words that live in shared
+// memory.
 #include "hapticctrl/shm/futex.hpp"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// Tests of layout.hpp: layout of one controller instance's shared-memory segment.
 #include "hapticctrl/shm/layout.hpp"
 
 #include <gtest/gtest.h>

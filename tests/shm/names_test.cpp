@@ -1,3 +1,5 @@
+// Tests of names.hpp: human-readable names of the codes carried in the regions (core state, stop
+// reason, RT mode, events), shared by every process that reports them.
 #include "hapticctrl/shm/names.hpp"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,5 @@
+// Tests of process_identity.hpp: a process identity that survives pid reuse: pid plus the process
+// start time.
 #include "hapticctrl/shm/process_identity.hpp"
 
 #include <gtest/gtest.h>

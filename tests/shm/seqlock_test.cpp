@@ -1,3 +1,4 @@
+// Tests of seqlock.hpp: a single-writer, multi-reader seqlock cell that lives in shared memory.
 #include "hapticctrl/shm/seqlock.hpp"
 
 #include <gtest/gtest.h>

@@ -13,7 +13,7 @@
 
 namespace hapticctrl::test {
 
-class ScriptedServoTasks final : public rt_core::ServoTasks {
+class ScriptedServoTasks final : public rt_core::TaskRunners {
  public:
   using Duration = std::function<rt_core::TimeNs(std::uint64_t cycle)>;
 

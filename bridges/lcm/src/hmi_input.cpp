@@ -1,3 +1,5 @@
+// Implements hmi_input.hpp: HMI traffic from LCM into the core's `ctrl` and `force` regions,
+// validated.
 #include "hapticctrl/lcm_bridge/hmi_input.hpp"
 
 #include <lcm/lcm_coretypes.h>

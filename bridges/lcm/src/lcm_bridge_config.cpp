@@ -1,3 +1,4 @@
+// Implements lcm_bridge_config.hpp: command line of hapticctrl-lcm.
 #include "hapticctrl/lcm_bridge/lcm_bridge_config.hpp"
 
 #include "hapticctrl/program/options.hpp"

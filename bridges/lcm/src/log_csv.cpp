@@ -1,3 +1,5 @@
+// Implements log_csv.hpp: offline analysis: an LCM log (lcm-logger) to one CSV file per hapticctrl
+// channel.
 #include "hapticctrl/lcm_bridge/log_csv.hpp"
 
 #include <fstream>

@@ -1,3 +1,4 @@
+// Implements bridge_config.hpp: command line of hapticctrl-udp.
 #include "hapticctrl/udp_bridge/bridge_config.hpp"
 
 #include <arpa/inet.h>

@@ -1,3 +1,5 @@
+// Implements client_allow_list.hpp: which client addresses the UDP bridge serves (--allow-client):
+// IPv4 networks, each an address with an optional prefix length.
 #include "hapticctrl/udp_bridge/client_allow_list.hpp"
 
 #include <arpa/inet.h>

@@ -1,3 +1,4 @@
+// Implements hello_limiter.hpp: rate limit of handshake attempts (HELLO) per source address.
 #include "hapticctrl/udp_bridge/hello_limiter.hpp"
 
 #include <algorithm>

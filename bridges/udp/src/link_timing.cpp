@@ -1,3 +1,5 @@
+// Implements link_timing.hpp: how the bridge measures the client link (protocol 1.1,
+// HCP_FEATURE_TIMING): each ANSWER's send time is logged by cycle.
 #include "hapticctrl/udp_bridge/link_timing.hpp"
 
 #include <algorithm>

@@ -1,3 +1,6 @@
+// Implements model_json.hpp: the arm's kinematics for the page: each joint's origin (in the
+// previous link frame at q = 0) and axis (in its own frame), its limits, the handle point in the
+// last frame, and the workspace box.
 #include "hapticctrl/web_bridge/model_json.hpp"
 
 #include <nlohmann/json.hpp>

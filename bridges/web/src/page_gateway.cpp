@@ -1,3 +1,6 @@
+// Implements page_gateway.hpp: from a page's text message to the LCM HMI channels: validates it
+// (page_request.hpp), limits each page's force messages to kMinForceIntervalNs apart, publishes
+// what passes and counts every outcome.
 #include "hapticctrl/web_bridge/page_gateway.hpp"
 
 #include <algorithm>

@@ -1,3 +1,6 @@
+// Implements page_request.hpp: what a page may ask, validated: JSON text from a WebSocket becomes
+// an HMI command or an operator wrench for LCM (hmi_command_t, hmi_force_t), or a refusal with its
+// reason.
 #include "hapticctrl/web_bridge/page_request.hpp"
 
 #include <cmath>

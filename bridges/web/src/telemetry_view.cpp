@@ -1,3 +1,5 @@
+// Implements telemetry_view.hpp: the web bridge's picture of the controller, built from LCM
+// telemetry, and the JSON frames it pushes to pages.
 #include "hapticctrl/web_bridge/telemetry_view.hpp"
 
 #include <cstring>

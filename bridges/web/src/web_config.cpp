@@ -1,3 +1,4 @@
+// Implements web_config.hpp: command line of hapticctrl-web.
 #include "hapticctrl/web_bridge/web_config.hpp"
 
 #include <stdexcept>

@@ -1,3 +1,5 @@
+// Implements web_server.hpp: the HTTP + WebSocket server (civetweb): static files from a directory,
+// GET /api/stats and /api/model, and pages on the WebSocket /ws.
 #include "hapticctrl/web_bridge/web_server.hpp"
 
 #include <civetweb.h>

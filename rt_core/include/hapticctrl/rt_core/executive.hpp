@@ -1,9 +1,10 @@
 #pragma once
 /// @file executive.hpp
-/// The CLOCK task: the only periodic task. Per slot it wakes at the absolute deadline, releases
-/// the main SERVO (or the degraded SERVO when the main one is still busy), sleeps to 3/4 of the
-/// period, checks whether the main SERVO committed the cycle, feeds the deadline monitor,
-/// updates statistics, the heartbeat and the black box, and sleeps to the next slot.
+/// The CLOCK task. Per slot it wakes at the absolute deadline, releases the tasks due through the
+/// periodic-task manager (periodic_tasks.hpp: the SERVO is its task, released every tick, its
+/// degraded function taking a tick the main SERVO is still busy with), sleeps to 3/4 of the
+/// period, has the manager judge the deadlines, updates statistics, the heartbeat and the black
+/// box, and sleeps to the next slot.
 ///
 /// A wake-up more than half a period late for its slot skips that slot (and any slot passed
 /// meanwhile) and resumes at the next future slot: cycles never run back to back to catch up.
@@ -23,29 +24,13 @@
 #include "hapticctrl/rt_core/deadline_monitor.hpp"
 #include "hapticctrl/rt_core/debounced_flag.hpp"
 #include "hapticctrl/rt_core/latency_histogram.hpp"
+#include "hapticctrl/rt_core/periodic_tasks.hpp"
 #include "hapticctrl/rt_core/servo.hpp"
 #include "hapticctrl/shm/events.hpp"
 #include "hapticctrl/shm/layout.hpp"
 #include "hapticctrl/shm/payloads.hpp"
 
 namespace hapticctrl::rt_core {
-
-/// How the CLOCK drives the two SERVO tasks (threads in the process, a scripted fake in tests).
-class ServoTasks {
- public:
-  virtual ~ServoTasks() = default;
-  /// Releases `role` for `cycle` (the gate was granted just before). Safe in the cycle.
-  virtual void release(ServoRole role, std::uint64_t cycle, TimeNs release_time) noexcept = 0;
-  /// True while `role` has not finished the last cycle released to it.
-  virtual bool busy(ServoRole role) noexcept = 0;
-  /// Start time of the last cycle released to `role`, -1 if it has not started.
-  virtual TimeNs started_at(ServoRole role) noexcept = 0;
-  /// When `role` finished `cycle` — law, arm commands (the simulator's integration step, for
-  /// the simulated arm) and publishing all done — or -1 if it has not finished that cycle.
-  virtual TimeNs finished_at(ServoRole role, std::uint64_t cycle) noexcept = 0;
-  /// Stops and joins the tasks (fail-safe step 4). Not for the cycle.
-  virtual void stop() noexcept = 0;
-};
 
 /// The steps of the stop sequence, recorded in order with their times.
 enum class StopStep : std::uint8_t {
@@ -88,8 +73,11 @@ struct ExecutiveResult {
 
 class Executive {
  public:
-  Executive(const ExecutiveConfig& config, Clock& clock, ServoTasks& tasks, ServoShared& shared,
-            ArmIo& arm, const ExecutiveOutputs& outputs, BlackBox& black_box) noexcept;
+  /// `servo`: the runners of the main and the degraded SERVO (the law, arm commands and
+  /// publishing of a cycle: ServoTask), added as the manager's task released every tick.
+  /// Setup.
+  Executive(const ExecutiveConfig& config, Clock& clock, TaskRunners& servo, ServoShared& shared,
+            ArmIo& arm, const ExecutiveOutputs& outputs, BlackBox& black_box);
 
   /// Runs until fail-safe or stop. `external_stop` (signals) is polled once per cycle.
   /// Real-time contract: this *is* the cycle; noexcept, no allocation.
@@ -98,13 +86,13 @@ class Executive {
   /// Current figures (also what telemetry carries).
   [[nodiscard]] shm::TelemetryPayload telemetry() const noexcept;
   [[nodiscard]] const LatencyHistogram& wake_latency() const noexcept { return wake_latency_; }
-  [[nodiscard]] const DeadlineMonitor& monitor() const noexcept { return monitor_; }
+  /// The SERVO's deadline record.
+  [[nodiscard]] const DeadlineMonitor& monitor() const noexcept { return tasks_.monitor(servo_); }
   [[nodiscard]] std::uint64_t cycles() const noexcept { return cycle_; }
 
  private:
   /// Runs one slot; returns a stop reason when the cycle must end.
   shm::StopReason run_slot(TimeNs scheduled, TimeNs woke) noexcept;
-  void release_servo(TimeNs now) noexcept;
   /// One black-box record: a cycle, or a stall (kRecordStall) that skipped `skipped` slots.
   void record(const CycleTimes& times, std::uint32_t flags, std::uint32_t skipped) noexcept;
   void publish_telemetry(TimeNs now) noexcept;
@@ -118,7 +106,8 @@ class Executive {
 
   ExecutiveConfig config_;
   Clock* clock_;
-  ServoTasks* tasks_;
+  PeriodicTasks tasks_;
+  TaskId servo_;
   CycleGate* gate_;
   GateOwnedState* gate_owned_;  ///< only once the gate is closed (the stop sequence)
   ClockToServo* to_servo_;
@@ -127,18 +116,15 @@ class Executive {
   ExecutiveOutputs outputs_;
   BlackBox* black_box_;
 
-  DeadlineMonitor monitor_;
   LatencyHistogram wake_latency_;
   LatencyHistogram servo_start_delay_;
   LatencyHistogram servo_execution_;
   LatencyHistogram measured_period_;
   std::uint64_t cycle_ = 0;
-  std::uint64_t degraded_cycles_ = 0;
   std::uint64_t skipped_slots_ = 0;
   std::uint64_t would_fail_safe_ = 0;  ///< benchmark mode: miss-rule trips ridden through
   std::uint64_t first_would_fail_safe_cycle_ = 0;
   TimeNs last_woke_ = -1;
-  bool degraded_this_cycle_ = false;
   shm::StopReason stop_reason_ = shm::StopReason::kNone;
   shm::CoreState core_state_ = shm::CoreState::kRunning;
   std::uint32_t reported_state_word_ = 0;

@@ -19,6 +19,7 @@
 #include "hapticctrl/rt_core/arm_io.hpp"
 #include "hapticctrl/rt_core/cycle_gate.hpp"
 #include "hapticctrl/rt_core/logical_state.hpp"
+#include "hapticctrl/rt_core/periodic_tasks.hpp"  // ServoRole
 #include "hapticctrl/rt_core/servo_law.hpp"
 #include "hapticctrl/shm/ctrl.hpp"
 #include "hapticctrl/shm/payloads.hpp"
@@ -160,9 +161,6 @@ struct ServoShared {
   ServoToClock to_clock;
   OverrunInjection overrun;
 };
-
-/// Which SERVO a task is.
-enum class ServoRole : std::uint8_t { kMain, kDegraded };
 
 /// Outcome of one task step.
 enum class StepResult : std::uint8_t {

@@ -18,7 +18,7 @@ struct ThreadPlacement {
   int cpu = -1;           ///< -1: no affinity
 };
 
-class ThreadedServoTasks final : public ServoTasks {
+class ThreadedServoTasks final : public TaskRunners {
  public:
   /// Starts both threads and returns once both are placed and waiting for their first release
   /// (bounded by 5 s), so that CLOCK never counts a thread's start-up as deadline misses (seen

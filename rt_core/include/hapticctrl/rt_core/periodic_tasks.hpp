@@ -1,0 +1,144 @@
+#pragma once
+/// @file periodic_tasks.hpp
+/// The periodic-task manager (the seeds' "horloge"): tasks added with a period that is a
+/// multiple of the CLOCK's base tick, a normal and a degraded function (run by TaskRunners:
+/// threads in the core, scripted in tests) and a deadline; activated, forced to run once,
+/// stopped and restarted. The CLOCK (Executive) drives it once per tick: release_due() at the
+/// tick, check_deadlines() at its check point. It reads no clock: every time comes in.
+///
+/// Per release: the normal function runs unless it is still busy with an older release, then the
+/// degraded function takes it (a task without one misses it); a task with a CycleGate has the
+/// release's cycle granted first, so a late normal execution can no longer commit. A release is
+/// judged at the first check at or after its deadline: good when the normal function finished it
+/// by then, a miss otherwise (late, degraded, or not run); each task has its own DeadlineMonitor.
+///
+/// Real-time contract: add() is setup (it may throw); every other member is noexcept, allocates
+/// nothing and makes no syscall but the runners' wake-ups; safe in the cycle. stop_runners() is
+/// the exception: it joins threads (fail-safe step 4).
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+#include "hapticctrl/rt_core/clock.hpp"
+#include "hapticctrl/rt_core/cycle_gate.hpp"
+#include "hapticctrl/rt_core/deadline_monitor.hpp"
+
+namespace hapticctrl::rt_core {
+
+/// Which of a task's two functions: the normal one (the main SERVO) or the degraded one.
+enum class ServoRole : std::uint8_t { kMain, kDegraded };
+
+/// Runs a task's normal and degraded functions (threads in the process, a scripted fake in tests).
+class TaskRunners {
+ public:
+  virtual ~TaskRunners() = default;
+  /// Releases `role` for `cycle` (its gate, if any, was granted just before). Safe in the cycle.
+  virtual void release(ServoRole role, std::uint64_t cycle, TimeNs release_time) noexcept = 0;
+  /// True while `role` has not finished the last cycle released to it.
+  virtual bool busy(ServoRole role) noexcept = 0;
+  /// Start time of the last cycle released to `role`, -1 if it has not started.
+  virtual TimeNs started_at(ServoRole role) noexcept = 0;
+  /// When `role` finished `cycle` (everything the function does, its outputs included), or -1
+  /// if it has not finished that cycle.
+  virtual TimeNs finished_at(ServoRole role, std::uint64_t cycle) noexcept = 0;
+  /// Stops and joins the runners. Not for the cycle.
+  virtual void stop() noexcept = 0;
+};
+
+/// A task as it is added.
+struct PeriodicTaskSpec {
+  TaskRunners* runners = nullptr;     ///< required
+  bool has_degraded = true;           ///< a busy normal function hands its release to it
+  std::uint32_t period_multiple = 1;  ///< released every this many base ticks (>= 1)
+  CycleGate* gate = nullptr;          ///< granted each release's cycle first (optional)
+  /// Judged this long after the release's scheduled tick (0: 3/4 of the task's period).
+  TimeNs deadline = 0;
+  ChronicMissConfig chronic;
+};
+
+enum class TaskState : std::uint8_t { kAdded, kActive, kStopped };
+
+/// One release and how it went.
+struct TaskRelease {
+  std::uint64_t cycle = 0;  ///< the base tick it was released at (0: none yet)
+  ServoRole role = ServoRole::kMain;
+  bool ran = false;           ///< a function was released (false: both busy, or gate held)
+  TimeNs scheduled = 0;       ///< its tick's scheduled time
+  TimeNs released = 0;        ///< when it was released
+  TimeNs started = -1;        ///< the normal function's start, -1 if not started (at the check)
+  TimeNs finished = -1;       ///< the normal function's end, -1 if not by the check
+  TimeNs checked = -1;        ///< when it was judged (-1: not yet)
+  MonitorVerdict verdict = MonitorVerdict::kGood;
+};
+
+using TaskId = std::size_t;
+
+class PeriodicTasks {
+ public:
+  static constexpr std::size_t kMaxTasks = 8;
+
+  /// `base_period`: the CLOCK's tick.
+  explicit PeriodicTasks(TimeNs base_period) noexcept : base_period_(base_period) {}
+
+  /// Adds a task (state kAdded: not released until activated). Setup: throws
+  /// std::invalid_argument for no runners or a multiple of 0, std::length_error beyond kMaxTasks.
+  TaskId add(const PeriodicTaskSpec& spec);
+
+  /// Released from its next due tick on.
+  void activate(TaskId id) noexcept;
+  /// Released once at the next tick, due or not, active or not.
+  void force(TaskId id) noexcept;
+  /// Not released any more; an execution under way finishes; its last release is not judged.
+  void stop(TaskId id) noexcept;
+  /// Its deadline record starts afresh, then it is activated.
+  void restart(TaskId id) noexcept;
+  [[nodiscard]] TaskState state(TaskId id) const noexcept { return tasks_[id].state; }
+
+  /// CLOCK, at base tick `tick` (scheduled at `scheduled`, now `now`): releases every task due
+  /// (tick % multiple == 0, or forced).
+  void release_due(std::uint64_t tick, TimeNs scheduled, TimeNs now) noexcept;
+  /// CLOCK, at `now`: judges every release whose deadline has passed. Returns the most severe
+  /// verdict (fail-safe, chronic misses, miss, good).
+  MonitorVerdict check_deadlines(TimeNs now) noexcept;
+  /// CLOCK: `count` ticks were skipped (a late wake-up). Each is a miss for every active task
+  /// released at every tick; a task with a longer period is judged by its next release.
+  MonitorVerdict skip(std::uint32_t count) noexcept;
+
+  /// The task's last release (judged or not).
+  [[nodiscard]] const TaskRelease& last_release(TaskId id) const noexcept {
+    return tasks_[id].last;
+  }
+  [[nodiscard]] const DeadlineMonitor& monitor(TaskId id) const noexcept {
+    return tasks_[id].monitor;
+  }
+  /// Releases handed to the degraded function.
+  [[nodiscard]] std::uint64_t degraded_releases(TaskId id) const noexcept {
+    return tasks_[id].degraded_releases;
+  }
+  /// The task's runners (so that the CLOCK can time them for its own records).
+  [[nodiscard]] TaskRunners& runners(TaskId id) const noexcept { return *tasks_[id].spec.runners; }
+  /// Stops every task's runners (joins their threads). Not for the cycle.
+  void stop_runners() noexcept;
+
+ private:
+  struct Task {
+    PeriodicTaskSpec spec;
+    TaskState state = TaskState::kAdded;
+    bool forced = false;
+    bool pending_check = false;  ///< `last` awaits its judgement
+    TaskRelease last;
+    DeadlineMonitor monitor{ChronicMissConfig{}};
+    std::uint64_t degraded_releases = 0;
+  };
+
+  void release(Task& task, std::uint64_t tick, TimeNs scheduled, TimeNs now) noexcept;
+  static MonitorVerdict judge(Task& task, TimeNs now) noexcept;
+  static MonitorVerdict worse(MonitorVerdict a, MonitorVerdict b) noexcept;
+
+  TimeNs base_period_;
+  std::array<Task, kMaxTasks> tasks_;
+  std::size_t count_ = 0;
+};
+
+}  // namespace hapticctrl::rt_core

@@ -59,8 +59,7 @@ void PeriodicTasks::release_due(std::uint64_t tick, TimeNs scheduled, TimeNs now
   }
 }
 
-void PeriodicTasks::release(Task& task, std::uint64_t tick, TimeNs scheduled,
-                            TimeNs now) noexcept {
+void PeriodicTasks::release(Task& task, std::uint64_t tick, TimeNs scheduled, TimeNs now) noexcept {
   TaskRunners& runners = *task.spec.runners;
   TaskRelease& r = task.last;
   r = TaskRelease{};

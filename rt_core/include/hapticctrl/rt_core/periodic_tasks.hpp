@@ -63,12 +63,12 @@ enum class TaskState : std::uint8_t { kAdded, kActive, kStopped };
 struct TaskRelease {
   std::uint64_t cycle = 0;  ///< the base tick it was released at (0: none yet)
   ServoRole role = ServoRole::kMain;
-  bool ran = false;           ///< a function was released (false: both busy, or gate held)
-  TimeNs scheduled = 0;       ///< its tick's scheduled time
-  TimeNs released = 0;        ///< when it was released
-  TimeNs started = -1;        ///< the normal function's start, -1 if not started (at the check)
-  TimeNs finished = -1;       ///< the normal function's end, -1 if not by the check
-  TimeNs checked = -1;        ///< when it was judged (-1: not yet)
+  bool ran = false;      ///< a function was released (false: both busy, or gate held)
+  TimeNs scheduled = 0;  ///< its tick's scheduled time
+  TimeNs released = 0;   ///< when it was released
+  TimeNs started = -1;   ///< the normal function's start, -1 if not started (at the check)
+  TimeNs finished = -1;  ///< the normal function's end, -1 if not by the check
+  TimeNs checked = -1;   ///< when it was judged (-1: not yet)
   MonitorVerdict verdict = MonitorVerdict::kGood;
 };
 

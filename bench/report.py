@@ -12,6 +12,7 @@ import sys
 
 from report_data import (LOADS, PERIODS, fmt, fmt_ratio, hist_stats, load_json, ns_to_us, ratio,
                          read_hist, read_samples, sample_stats, samples_at_or_beyond)
+from report_peers import section as peers_section
 from report_plots import write_plots
 
 
@@ -160,7 +161,7 @@ def table(header, rows):
     return "\n".join(lines)
 
 
-def report(out, machine, lat, link, micro, handoff, reqs, plots):
+def report(out, machine, lat, link, micro, handoff, reqs, plots, peers_md):
     md = ["# hapticctrl system benchmark", ""]
     md.append(f"Run {machine.get('date', '?')} at {machine.get('git', '?')}: kernel "
               f"{machine.get('kernel', '?')} ({'PREEMPT_RT' if machine.get('preempt_rt') else 'not PREEMPT_RT'}), "
@@ -266,6 +267,7 @@ def report(out, machine, lat, link, micro, handoff, reqs, plots):
             rows.append([a, fmt(micro[a]), b, fmt(micro.get(b)), fmt_ratio(ratio(micro[a], micro.get(b)))])
     md.append(table(["benchmark", "ns", "same-run baseline", "ns", "ratio"], rows))
     md.append("")
+    md += peers_md
     with open(os.path.join(out, "report.md"), "w", encoding="utf-8") as f:
         f.write("\n".join(md) + "\n")
 
@@ -282,9 +284,10 @@ def main():
     handoff = load_json(os.path.join(raw, "handoff.json"))
     reqs = requirements(lat, link)
     plots = write_plots(out, raw, lat)
-    report(out, machine, lat, link, micro, handoff, reqs, plots)
+    peers_md, peers = peers_section(out, raw, table)
+    report(out, machine, lat, link, micro, handoff, reqs, plots, peers_md)
     results = {"machine": machine, "latency": lat, "servo_start_floor": handoff, "link": link,
-               "micro_ns": micro, "requirements": reqs, "plots": plots}
+               "micro_ns": micro, "requirements": reqs, "plots": plots, **peers}
     with open(os.path.join(out, "results.json"), "w", encoding="utf-8") as f:
         json.dump(results, f, indent=1, sort_keys=True)
 

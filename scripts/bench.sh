@@ -15,7 +15,10 @@
 #     while pressing, force steps, a wandering spring-damper hand), against the sampled-data
 #     stiffness bound and F / K_series (coupling.md);
 #  6. the weighted sphere at rest (bench/gravity_rest.sh, H1): `hapticctrl-demo --gravity`,
-#     nobody touching, 10 minutes (gravity.md).
+#     nobody touching, 10 minutes (gravity.md);
+#  7. the peers (H8): the seqlock regions against iceoryx, LCM and UDP, cross-process, in one
+#     run (hapticctrl-bench-peers: latency, read and publish costs, CPU per 1000 messages, a
+#     stopped and a killed reader), in report.md's section 5.
 #
 # usage: scripts/bench.sh [--out DIR] [--build DIR] [--seconds N] [--long] [--smoke]
 #   default about 35 minutes (8 s per latency run, 15 s per link run, 14 coupling cases of
@@ -47,7 +50,7 @@ fi
 cmake --build "$BUILD" -j "$(nproc)" --target hapticctrl-core hapticctrl-udp hapticctrl-hmi \
   hapticctrl-bench-link hapticctrl-netem hapticctrl-demo \
   hapticctrl-bench-handoff hapticctrl-bench-shm hapticctrl-bench-protocol hapticctrl-bench-rt-core \
-  >/dev/null
+  hapticctrl-bench-peers >/dev/null
 rm -rf "$RAW"
 mkdir -p "$RAW"
 
@@ -169,6 +172,11 @@ bench/coupling.sh "$OUT" "$BUILD" $SMOKE
 # 6: the weighted sphere at rest.
 echo "bench: the weighted sphere at rest (hapticctrl-demo --gravity)" >&2
 bench/gravity_rest.sh "$OUT" "$BUILD" $SMOKE
+
+# 7: the peers.
+echo "bench: the seqlock regions against iceoryx, LCM and UDP (hapticctrl-bench-peers)" >&2
+"$BUILD/bench/hapticctrl-bench-peers" $SMOKE >"$RAW/peers.json" 2>"$RAW/peers.err" ||
+  echo "bench: hapticctrl-bench-peers failed (see $RAW/peers.err)" >&2
 
 python3 bench/report.py "$OUT"
 python3 bench/coupling_report.py "$OUT" >/dev/null

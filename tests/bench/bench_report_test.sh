@@ -15,6 +15,7 @@ out = sys.argv[1]
 report = open(os.path.join(out, "report.md"), encoding="utf-8").read()
 for heading in ("## The seeds' requirements", "## 1. Wake-up latency", "## 2. SERVO start delay",
                 "## 3. End to end at 1 kHz", "## 4. Micro-benchmarks",
+                "## 5. Side by side with the peers",
                 "## Coupling over an impaired link (H1)", "## The weighted sphere at rest (H1)"):
     assert heading in report, f"report.md lacks '{heading}'"
 for period in (1000, 250, 100):
@@ -56,6 +57,18 @@ for c in cases:
                 "recouple_ms", "speed_after_return"):
         assert c.get(key) is not None, (key, c)
     assert not c["contact_held"] or c["k_rendered"] > 0 and c["penetration_mm"] > 0, c
+# The peers (H8): every transport and read mode measured in the same run, none left out.
+peers = r["peers"]["cases"]
+names = sorted((c["transport"], c["mode"]) for c in peers)
+assert names == [("iceoryx", "poll"), ("iceoryx", "wake"), ("lcm", "wake"), ("seqlock", "poll"),
+                 ("seqlock", "wake"), ("udp", "wake")], names
+for c in peers:
+    assert not c["error"], c
+    assert c["latency_us"]["p50"] > 0 and c["latency_us"]["delivered"] > 0.9, c
+    assert c["publish_ns"]["p50"] > 0 and c["read_ns"]["p50"] > 0, c
+    assert c["cpu_us_per_1000"]["10000"]["messages"] > 0, c
+    assert c["stall"]["stopped"]["publishes"] > 0 and c["stall"]["killed"]["publishes"] > 0, c
+assert os.path.getsize(os.path.join(out, r["peers_plot"])) > 0
 rest = json.load(open(os.path.join(out, "gravity.json"), encoding="utf-8"))
 assert rest["judged"] and rest["seconds"] > 15 and rest["stalls_ridden"] is not None, rest
 assert rest["chatter"] is not None and rest["weight_n"] > 0, rest

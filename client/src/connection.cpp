@@ -4,6 +4,7 @@
 #include "hapticctrl/client/connection.hpp"
 
 #include <memory>
+#include <optional>
 #include <utility>
 
 #include "connection_impl.hpp"
@@ -33,13 +34,21 @@ void Connection::close() {
 }
 
 bool Connection::send_object_state(const Pose7& pose, const Vector6& twist) noexcept {
-  const std::lock_guard lock(impl_->session_mutex);
-  return impl_->send_control(impl_->session.object_frame(pose, twist, monotonic_ns()));
+  std::optional<hcp_frame> frame;
+  {
+    const std::lock_guard lock(impl_->session_mutex);
+    frame = impl_->session.object_frame(pose, twist, monotonic_ns());
+  }
+  return impl_->send_control(frame);
 }
 
 bool Connection::send_wrench(const Vector6& wrench) noexcept {
-  const std::lock_guard lock(impl_->session_mutex);
-  return impl_->send_control(impl_->session.wrench_frame(wrench, monotonic_ns()));
+  std::optional<hcp_frame> frame;
+  {
+    const std::lock_guard lock(impl_->session_mutex);
+    frame = impl_->session.wrench_frame(wrench, monotonic_ns());
+  }
+  return impl_->send_control(frame);
 }
 
 StateSnapshot Connection::snapshot() const noexcept {

@@ -60,11 +60,16 @@ struct Connection::Impl {
   Impl(Impl&&) = delete;
   Impl& operator=(Impl&&) = delete;
 
-  /// Sends `frame`; the caller holds session_mutex (the session counts the quiet time from it).
-  bool send_locked(hcp_frame frame) noexcept {  // a copy: the XDR encoder takes it mutable
+  /// Encodes and sends `frame`; touches no session state, so it runs without session_mutex.
+  bool transmit(hcp_frame frame) noexcept {  // a copy: the XDR encoder takes it mutable
     protocol::FrameBuffer out;  // NOLINT(cppcoreguidelines-pro-type-member-init): encode() fills it
     const std::size_t n = protocol::encode(frame, out);
-    if (n == 0 || !socket.send_to({out.data(), n}, bridge)) {
+    return n != 0 && socket.send_to({out.data(), n}, bridge);
+  }
+
+  /// Sends `frame`; the caller holds session_mutex (the session counts the quiet time from it).
+  bool send_locked(const hcp_frame& frame) noexcept {
+    if (!transmit(frame)) {
       return false;
     }
     session.on_sent(protocol::monotonic_ns());
@@ -167,10 +172,14 @@ struct Connection::Impl {
     }
   }
 
+  /// A control frame the session built (nothing: it refused), sent without holding
+  /// session_mutex, so that the receive thread never waits for this send's syscall.
   bool send_control(const std::optional<hcp_frame>& frame) noexcept {
-    if (!frame || !send_locked(*frame)) {
+    if (!frame || !transmit(*frame)) {
       return false;
     }
+    const std::lock_guard lock(session_mutex);
+    session.on_sent(protocol::monotonic_ns());
     session.on_control_sent();
     return true;
   }

@@ -15,6 +15,8 @@ PACKAGES=(
   default-jdk-headless libjchart2d-java gnuplot-nox rt-tests stress-ng procps util-linux python3
   # the peer benchmark (H8): iceoryx, its C++ API and its broker RouDi
   iceoryx libiceoryx-posh-dev libiceoryx-hoofs-dev
+  # the multi-host tests (H7): network namespaces, and a page fetched from another host
+  iproute2 curl
   # the installed systemd units are checked with systemd-analyze and systemd-sysusers
   systemd
   # the web view (bridges/web): HTTP/WebSocket server, JSON, and the browser its test drives

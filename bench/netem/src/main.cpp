@@ -161,6 +161,17 @@ sockaddr_in endpoint(const std::string& text, bool allow_remote) {
   return a;
 }
 
+/// Where the relay's own socket towards the bridge is bound: loopback for a bridge on loopback,
+/// otherwise any address, so that the kernel sends from the interface that reaches the bridge
+/// (a relay on a client's host in front of a remote bridge: tests/multihost).
+sockaddr_in towards(const sockaddr_in& bridge) {
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr.s_addr =
+      (ntohl(bridge.sin_addr.s_addr) >> 24U) == 127U ? htonl(INADDR_LOOPBACK) : htonl(INADDR_ANY);
+  return a;
+}
+
 int bound_socket(const sockaddr_in& at) {
   const int fd = socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
   if (fd < 0 || bind(fd, reinterpret_cast<const sockaddr*>(&at), sizeof at) != 0) {
@@ -193,7 +204,7 @@ class Relay {
   explicit Relay(const Options& o)
       : options_(o),
         front_(bound_socket(endpoint(o.listen, o.allow_remote))),
-        back_(bound_socket(endpoint("127.0.0.1:0", true))),
+        back_(bound_socket(towards(endpoint(o.to, o.allow_remote)))),
         bridge_(endpoint(o.to, o.allow_remote)),
         links_{Impairment(o.link, o.seed), Impairment(o.link, o.seed * 7919 + 1)} {}
   ~Relay() {
@@ -273,6 +284,9 @@ class Relay {
       if (direction == 0) {
         client_ = from;
         have_client_ = true;
+      } else if (from.sin_addr.s_addr != bridge_.sin_addr.s_addr ||
+                 from.sin_port != bridge_.sin_port) {
+        continue;  // only the bridge answers on this socket
       }
       Counters& c = counters_[direction];
       ++c.received;

@@ -21,7 +21,7 @@
 #     stopped and a killed reader), in report.md's section 5.
 #
 # usage: scripts/bench.sh [--out DIR] [--build DIR] [--seconds N] [--long] [--smoke]
-#   default about 35 minutes (8 s per latency run, 15 s per link run, 14 coupling cases of
+#   default about 38 minutes (8 s per latency run, 15 s per link run, 14 coupling cases of
 #   ~90 s, 10 minutes at rest); --long: 60 s and 120 s latency and link runs; --smoke: 1 s runs,
 #   2 coupling cases with 8 s of hand motion, 20 s at rest (checks the pipeline, not the
 #   machine).

@@ -24,8 +24,6 @@
 namespace hapticctrl::shm {
 namespace {
 
-constexpr mode_t kLockMode = 0600;
-
 void* map_part(int fd, std::size_t offset, std::size_t length, bool writable,
                const std::string& what) {
   const int prot = writable ? (PROT_READ | PROT_WRITE) : PROT_READ;

@@ -11,8 +11,6 @@ namespace {
 
 using protocol::Endpoint;
 using protocol::FrameBuffer;
-using shm::LinkDrop;
-using test::kMs;
 using test::SessionTest;
 
 TEST_F(SessionTest, AnswersGoToTheSessionWithTheNegotiatedFeatures) {

@@ -13,9 +13,7 @@
 namespace hapticctrl::udp_bridge {
 namespace {
 
-using protocol::Endpoint;
 using protocol::FrameBuffer;
-using shm::LinkDrop;
 using test::kMs;
 using test::SessionTest;
 

@@ -10,12 +10,8 @@
 namespace hapticctrl::rt_core {
 namespace {
 
-using test::chain_at;
 using test::coupled_to_object_ahead;
 using test::default_dynamics;
-using test::kReady;
-using test::powered_at;
-using test::virtmech_client;
 
 TEST(ServoLaw, TheChannelsPassivityControllerLetsTheImageGiveWayWhenTheClientGaveNothing) {
   // The object runs away from the handle (+x) while the client reports no energy put into the

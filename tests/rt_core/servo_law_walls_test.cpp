@@ -11,11 +11,9 @@ namespace hapticctrl::rt_core {
 namespace {
 
 using test::chain_at;
-using test::coupled_to_object_ahead;
 using test::default_dynamics;
 using test::kReady;
 using test::powered_at;
-using test::virtmech_client;
 
 TEST(ServoLaw, JointBoundsNameTheJointsInTheirWallsAndTheJ23Sum) {
   ServoLaw law(default_dynamics());

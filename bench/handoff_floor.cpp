@@ -3,8 +3,6 @@
 // as release-to-start latency over N hand-offs. Prints one JSON object.
 //
 // usage: hapticctrl-bench-handoff [--iterations N] [--cpu-a A] [--cpu-b B] [--priority P]
-#include <pthread.h>
-#include <sched.h>
 
 #include <algorithm>
 #include <atomic>
@@ -16,23 +14,12 @@
 #include <thread>
 #include <vector>
 
+#include "hapticctrl/rt_core/threaded_servo_tasks.hpp"  // place_current_thread
 #include "hapticctrl/shm/futex.hpp"
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-void place(int cpu, int priority) {
-  if (cpu >= 0) {
-    cpu_set_t set;
-    CPU_ZERO(&set);
-    CPU_SET(static_cast<unsigned>(cpu), &set);
-    pthread_setaffinity_np(pthread_self(), sizeof(set), &set);
-  }
-  sched_param param{};
-  param.sched_priority = priority;
-  pthread_setschedparam(pthread_self(), SCHED_FIFO, &param);
-}
 
 long long percentile(std::vector<long long>& v, double p) {
   const auto index = static_cast<std::size_t>(p * static_cast<double>(v.size() - 1));
@@ -64,7 +51,7 @@ int main(int argc, char** argv) {
   std::atomic<std::int64_t> started_ns{0};
   std::atomic<bool> stop{false};
   std::thread worker([&] {
-    place(cpu_b, priority - 1);
+    hapticctrl::rt_core::place_current_thread({.fifo_priority = priority - 1, .cpu = cpu_b});
     std::uint32_t seen = 0;
     while (!stop.load()) {
       hapticctrl::shm::futex_wait(release, seen, std::chrono::milliseconds(100));
@@ -76,7 +63,7 @@ int main(int argc, char** argv) {
       started_ns.store(Clock::now().time_since_epoch().count(), std::memory_order_release);
     }
   });
-  place(cpu_a, priority);
+  hapticctrl::rt_core::place_current_thread({.fifo_priority = priority, .cpu = cpu_a});
   std::vector<long long> delays;
   delays.reserve(static_cast<std::size_t>(iterations));
   for (int i = 0; i < iterations; ++i) {

@@ -2,7 +2,6 @@
 // in a shared mapping for the parent to collect.
 #include "peers/peer_runner.hpp"
 
-#include <sched.h>
 #include <signal.h>
 #include <sys/mman.h>
 #include <sys/resource.h>
@@ -19,6 +18,7 @@
 #include <new>
 #include <thread>
 
+#include "hapticctrl/rt_core/threaded_servo_tasks.hpp"  // place_current_thread
 #include "hapticctrl/shm/monotonic_clock.hpp"
 
 namespace hapticctrl::bench {
@@ -65,20 +65,6 @@ void say_error(Shared& shared, const char* what) {
   std::snprintf(shared.error.data(), shared.error.size(), "%s", what);
 }
 
-void place(int cpu, int priority) {
-  if (cpu >= 0) {
-    cpu_set_t set;
-    CPU_ZERO(&set);
-    CPU_SET(static_cast<unsigned>(cpu), &set);
-    sched_setaffinity(0, sizeof set, &set);
-  }
-  if (priority > 0) {
-    sched_param p{};
-    p.sched_priority = priority;
-    sched_setscheduler(0, SCHED_FIFO, &p);
-  }
-}
-
 void sleep_until(std::int64_t t) {
   timespec ts{static_cast<time_t>(t / 1'000'000'000), static_cast<long>(t % 1'000'000'000)};
   while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
@@ -106,7 +92,7 @@ void signal_reader(const Shared& shared, Phase from, Phase to) {
 
 void writer_main(PeerTransport& transport, const RunConfig& config, int cpu, int priority,
                  Shared& shared) {
-  place(cpu, priority);
+  rt_core::place_current_thread({.fifo_priority = priority, .cpu = cpu});
   std::unique_ptr<PeerWriter> writer = transport.make_writer(config.mode);
   Message m{};
   // Warm-up: until the reader has seen one (a subscription takes effect, a multicast group is
@@ -178,7 +164,8 @@ void reader_main(PeerTransport& transport, const RunConfig& config, int cpu, int
   // A polling reader spins: at SCHED_FIFO it lost 50 ms of every second to RT throttling, and
   // starved iceoryx's own runtime thread until RouDi dropped its subscriber after ~1.5 s (30 % of
   // the messages delivered, 2026-12-02). Polling readers therefore spin at SCHED_OTHER.
-  place(cpu, config.mode == ReadMode::kPoll ? 0 : priority);
+  rt_core::place_current_thread(
+      {.fifo_priority = config.mode == ReadMode::kPoll ? 0 : priority, .cpu = cpu});
   std::unique_ptr<PeerReader> reader = transport.make_reader(config.mode);
   const std::uint32_t last = std::min(config.messages, kMaxMessages);
   ReaderCpu account;

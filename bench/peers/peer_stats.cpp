@@ -8,6 +8,27 @@
 namespace hapticctrl::bench {
 namespace {
 
+/// The q-quantile (0..1) of `values` (nearest rank); 0 for none.
+double quantile(std::vector<std::int64_t> values, double q) {
+  if (values.empty()) {
+    return 0.0;
+  }
+  const auto rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(values.size())) -
+                                             (q > 0.0 ? 1.0 : 0.0));
+  const std::size_t k = std::min(rank, values.size() - 1);
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
+  return static_cast<double>(values[k]);
+}
+
+/// The median of `values`; 0 for none.
+double median_of(std::vector<double> values) {
+  if (values.empty()) {
+    return 0.0;
+  }
+  std::sort(values.begin(), values.end());
+  return values[values.size() / 2];
+}
+
 struct Latency {
   double p50 = 0;
   double p99 = 0;
@@ -71,25 +92,6 @@ std::string first_error(const std::vector<RunResult>& latency, const RunResult& 
 }
 
 }  // namespace
-
-double quantile(std::vector<std::int64_t> values, double q) {
-  if (values.empty()) {
-    return 0.0;
-  }
-  const auto rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(values.size())) -
-                                             (q > 0.0 ? 1.0 : 0.0));
-  const std::size_t k = std::min(rank, values.size() - 1);
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
-  return static_cast<double>(values[k]);
-}
-
-double median_of(std::vector<double> values) {
-  if (values.empty()) {
-    return 0.0;
-  }
-  std::sort(values.begin(), values.end());
-  return values[values.size() / 2];
-}
 
 void print_case_json(std::FILE* out, const std::string& transport, const char* mode,
                      std::uint32_t messages, const std::vector<RunResult>& latency,

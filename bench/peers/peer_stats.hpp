@@ -13,11 +13,6 @@
 
 namespace hapticctrl::bench {
 
-/// The q-quantile (0..1) of `values` (nearest rank); 0 for none.
-double quantile(std::vector<std::int64_t> values, double q);
-/// The median of `values`; 0 for none.
-double median_of(std::vector<double> values);
-
 /// Writes one case: `latency` are the repeated latency runs (1 kHz, `messages` each), `cpu_1k`
 /// and `cpu_10k` the CPU-time runs, `stall` the run with the reader stopped then killed.
 void print_case_json(std::FILE* out, const std::string& transport, const char* mode,

@@ -116,8 +116,6 @@ class PeriodicTasks {
   [[nodiscard]] std::uint64_t degraded_releases(TaskId id) const noexcept {
     return tasks_[id].degraded_releases;
   }
-  /// The task's runners (so that the CLOCK can time them for its own records).
-  [[nodiscard]] TaskRunners& runners(TaskId id) const noexcept { return *tasks_[id].spec.runners; }
   /// Stops every task's runners (joins their threads). Not for the cycle.
   void stop_runners() noexcept;
 

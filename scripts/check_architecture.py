@@ -11,18 +11,20 @@ import re
 import sys
 
 # The contracts (ground floor) use nothing of the project; each process room may use these.
-CONTRACTS = {"shm", "protocol", "lcmtypes", "arm_model"}
+CONTRACTS = {"shm", "protocol", "lcmtypes", "arm_model", "ros2types"}
 ALLOWED = {
     "program": set(),  # scaffolding (options, main skeleton): every process may use it
     "shm": set(),
     "protocol": set(),
     "lcmtypes": set(),
     "arm_model": set(),
+    "ros2types": set(),
     "rt_core": {"shm", "arm_model", "program"},
     "client": {"protocol"},  # it runs on another machine: never shm/ or rt_core/
     "bridges/udp": CONTRACTS | {"program"},
     "bridges/lcm": CONTRACTS | {"program"},
     "bridges/web": CONTRACTS | {"program"},
+    "bridges/dds": CONTRACTS | {"program"},
     "hmi": {"shm", "lcmtypes", "program"},
     "demo": {"client", "lcmtypes", "program"},  # an application of the client library
     "bench/netem": {"protocol", "program"},  # the impairment relay the tests and benchmarks use
@@ -51,6 +53,7 @@ def include_owners(root: pathlib.Path) -> dict[str, str]:
             for entry in top.iterdir() if top.is_dir() else []:
                 owners[f"{top.name}/{entry.name}"] = room
     owners["hapticctrl_lcm"] = "lcmtypes"  # lcm-gen's headers, generated at build time
+    owners["ros2_messages.h"] = "ros2types"  # idlc's header, generated at build time
     return owners
 
 

@@ -17,6 +17,8 @@ PACKAGES=(
   iceoryx libiceoryx-posh-dev libiceoryx-hoofs-dev
   # the multi-host tests (H7): network namespaces, and a page fetched from another host
   iproute2 curl
+  # the DDS bridge (H7): Cyclone DDS, its IDL compiler, and ddsperf for a look at the wire
+  cyclonedds-dev cyclonedds-tools
   # the installed systemd units are checked with systemd-analyze and systemd-sysusers
   systemd
   # the web view (bridges/web): HTTP/WebSocket server, JSON, and the browser its test drives

@@ -51,36 +51,19 @@ bool last_string_is_sound(const void* data, std::size_t size) noexcept {
 
 }  // namespace
 
-HmiInput::HmiInput(const HmiSettings& settings, shm::CtrlWriter* ctrl,
-                   shm::SeqlockCell<shm::ForcePayload>* force) noexcept
-    : settings_(settings), ctrl_(ctrl), force_(force), slew_(settings.force_limits) {}
-
 void HmiInput::on_command(const void* data, std::size_t size, std::int64_t now_ns) noexcept {
   Command m{};
   try {
     if (!last_string_is_sound<Command>(data, size) ||
         m.decode(data, 0, static_cast<int>(size)) < 0) {
-      counters_.malformed.fetch_add(1, std::memory_order_relaxed);
+      remote_.malformed();
       return;
     }
   } catch (...) {  // LCM's string decoding may throw bad_alloc on absurd lengths
-    counters_.malformed.fetch_add(1, std::memory_order_relaxed);
+    remote_.malformed();
     return;
   }
-  const shm::CtrlCode code = ctrl_code_of(m.command);
-  if (code == shm::CtrlCode::kNone) {
-    counters_.commands_invalid.fetch_add(1, std::memory_order_relaxed);
-    return;
-  }
-  if (code != shm::CtrlCode::kEmergencyStop && !settings_.allow_remote_commands) {
-    counters_.commands_refused.fetch_add(1, std::memory_order_relaxed);
-    return;
-  }
-  if (ctrl_ == nullptr || ctrl_->send(code, 0, now_ns) != shm::CtrlSendStatus::kQueued) {
-    counters_.commands_queue_full.fetch_add(1, std::memory_order_relaxed);
-    return;
-  }
-  counters_.commands_applied.fetch_add(1, std::memory_order_relaxed);
+  remote_.command(ctrl_code_of(m.command), now_ns);
 }
 
 void HmiInput::on_force(const void* data, std::size_t size, std::int64_t now_ns) noexcept {
@@ -88,40 +71,16 @@ void HmiInput::on_force(const void* data, std::size_t size, std::int64_t now_ns)
   try {
     if (!last_string_is_sound<hapticctrl_lcm::hmi_force_t>(data, size) ||
         m.decode(data, 0, static_cast<int>(size)) < 0) {
-      counters_.malformed.fetch_add(1, std::memory_order_relaxed);
+      remote_.malformed();
       return;
     }
   } catch (...) {
-    counters_.malformed.fetch_add(1, std::memory_order_relaxed);
-    return;
-  }
-  if (!settings_.allow_remote_commands) {
-    counters_.forces_refused.fetch_add(1, std::memory_order_relaxed);
+    remote_.malformed();
     return;
   }
   shm::Vector6 requested{};
   std::copy_n(m.wrench, 6, requested.begin());
-  if (!slew_.set_target(requested)) {
-    counters_.forces_invalid.fetch_add(1, std::memory_order_relaxed);
-    return;
-  }
-  last_force_ns_ = now_ns;
-  force_active_ = true;
-  counters_.forces_accepted.fetch_add(1, std::memory_order_relaxed);
-}
-
-void HmiInput::tick(std::int64_t now_ns) noexcept {
-  const double dt = ticked_ ? static_cast<double>(now_ns - last_tick_ns_) / 1e9 : 0.0;
-  last_tick_ns_ = now_ns;
-  ticked_ = true;
-  if (force_active_ && now_ns - last_force_ns_ > settings_.force_timeout_ns) {
-    slew_.set_target({});  // the HMI went quiet: let go, at the same bounded rate
-    force_active_ = false;
-    counters_.force_timeouts.fetch_add(1, std::memory_order_relaxed);
-  }
-  if (slew_.step(dt) && force_ != nullptr) {
-    force_->publish_quietly(shm::ForcePayload{slew_.applied()}, now_ns);
-  }
+  remote_.force(requested, now_ns);
 }
 
 }  // namespace hapticctrl::lcm_bridge

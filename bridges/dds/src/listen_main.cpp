@@ -1,0 +1,261 @@
+// hapticctrl-dds-listen: what a ROS 2 node would see of a hapticctrl-dds instance, without
+// ROS 2: subscribes to every topic of a namespace with ROS 2's type names and QoS (the same
+// ros2types/ definitions), for a while, and prints what arrived (counts, rates, the last values,
+// the age of each sample against the controller's stamp) as one JSON line. It can send a command
+// and an operator wrench back, as `ros2 topic pub` would. Exit: 0 done, 64 usage, 1 error.
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "hapticctrl/program/main_skeleton.hpp"
+#include "hapticctrl/program/options.hpp"
+#include "hapticctrl/ros2types/names.hpp"
+#include "hapticctrl/ros2types/participant.hpp"
+#include "hapticctrl/ros2types/qos.hpp"
+#include "hapticctrl/shm/monotonic_clock.hpp"
+
+namespace {
+
+namespace r2 = hapticctrl::ros2types;
+using hapticctrl::shm::monotonic_now_ns;
+
+struct ListenConfig {
+  std::string ros_namespace = "/hapticctrl/default";
+  std::int32_t domain_id = 0;
+  double duration_s = 2.0;
+  std::string command;  ///< sent once the bridge's reader is matched
+  std::vector<double> wrench;  ///< sent at 100 Hz while listening
+  bool help = false;
+};
+
+void declare(hapticctrl::program::Options& o, ListenConfig& c) {
+  o.custom(
+      "--namespace", "NS",
+      [&c](const std::string& v) {
+        if (!r2::valid_namespace(v)) {
+          throw std::invalid_argument("'" + v + "' is not a ROS 2 namespace");
+        }
+        c.ros_namespace = v;
+      },
+      "ROS 2 namespace of the instance (default /hapticctrl/default)");
+  o.number("--domain-id", c.domain_id, std::int32_t{0}, std::int32_t{232}, "DDS domain");
+  o.number("--duration", c.duration_s, 0.1, 3600.0, "listen for S seconds (default 2)");
+  o.text("--command", c.command, "send this command (power_on, emergency_stop, ...) once");
+  o.custom(
+      "--wrench", "FX,FY,FZ,TX,TY,TZ",
+      [&c](const std::string& v) {
+        c.wrench.clear();
+        std::size_t at = 0;
+        while (at <= v.size() && c.wrench.size() < 6) {
+          const std::size_t comma = std::min(v.find(',', at), v.size());
+          c.wrench.push_back(hapticctrl::program::number_in<double>(
+              "--wrench", v.substr(at, comma - at), -1e6, 1e6));
+          at = comma + 1;
+        }
+        if (c.wrench.size() != 6) {
+          throw std::invalid_argument("six comma-separated numbers expected");
+        }
+      },
+      "send this operator wrench at 100 Hz while listening");
+}
+
+/// Arrivals on one topic: count, first and last arrival, and each sample's age at arrival.
+struct Arrivals {
+  std::uint64_t count = 0;
+  std::int64_t first_ns = 0;
+  std::int64_t last_ns = 0;
+  std::string frame;
+  std::vector<double> age_us;
+
+  void saw(const std_msgs_msg_dds__Header_& h, std::int64_t now) {
+    first_ns = count++ == 0 ? now : first_ns;
+    last_ns = now;
+    frame = h.frame_id != nullptr ? h.frame_id : "";
+    const std::int64_t stamp = std::int64_t{h.stamp.sec} * 1'000'000'000 + h.stamp.nanosec;
+    age_us.push_back(static_cast<double>(now - stamp) * 1e-3);
+  }
+  [[nodiscard]] double rate_hz() const {
+    return count > 1 ? static_cast<double>(count - 1) * 1e9 / static_cast<double>(last_ns - first_ns)
+                     : 0.0;
+  }
+  [[nodiscard]] double age_quantile(double q) const {
+    if (age_us.empty()) {
+      return 0.0;
+    }
+    std::vector<double> sorted = age_us;
+    std::sort(sorted.begin(), sorted.end());
+    return sorted[static_cast<std::size_t>(q * static_cast<double>(sorted.size() - 1))];
+  }
+};
+
+template <typename Message, typename Seen>
+void take_all(dds_entity_t reader, Seen seen) {
+  std::array<void*, 16> samples{};
+  std::array<dds_sample_info_t, 16> infos{};
+  for (;;) {
+    samples.fill(nullptr);
+    const dds_return_t n = dds_take(reader, samples.data(), infos.data(), 16, 16);
+    if (n <= 0) {
+      return;
+    }
+    for (std::size_t i = 0; i < static_cast<std::size_t>(n); ++i) {
+      if (infos[i].valid_data) {
+        seen(*static_cast<const Message*>(samples[i]));
+      }
+    }
+    dds_return_loan(reader, samples.data(), n);
+  }
+}
+
+void print_topic(const char* name, const char* type, const Arrivals& a) {
+  std::printf("\"%s_type\":\"%s\",\"%s_count\":%llu,\"%s_rate_hz\":%.2f,\"%s_frame\":\"%s\","
+              "\"%s_age_p50_us\":%.1f,\"%s_age_p99_us\":%.1f,",
+              name, type, name, static_cast<unsigned long long>(a.count), name, a.rate_hz(), name,
+              a.frame.c_str(), name, a.age_quantile(0.5), name, a.age_quantile(0.99));
+}
+
+void print_wrench(const char* name, const geometry_msgs_msg_dds__Wrench_& w) {
+  std::printf("\"%s\":[%.6g,%.6g,%.6g,%.6g,%.6g,%.6g],", name, w.force.x, w.force.y, w.force.z,
+              w.torque.x, w.torque.y, w.torque.z);
+}
+
+/// Whether `writer` has a matched reader within `timeout_ns` (a reliable sample sent before
+/// discovery finished would reach nobody).
+bool matched(dds_entity_t writer, std::int64_t timeout_ns) {
+  const std::int64_t until = monotonic_now_ns() + timeout_ns;
+  dds_publication_matched_status_t status{};
+  while (monotonic_now_ns() < until) {
+    if (dds_get_publication_matched_status(writer, &status) == 0 && status.current_count > 0) {
+      return true;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return false;
+}
+
+int listen(const ListenConfig& c) {
+  r2::Participant p(static_cast<std::uint32_t>(c.domain_id));
+  const r2::Qos sensor = r2::sensor_data_qos();
+  const r2::Qos commands = r2::command_qos();
+  namespace t = r2::topic;
+  const auto& ns = c.ros_namespace;
+  const dds_entity_t pose_r = p.reader(geometry_msgs_msg_dds__PoseStamped__desc,
+                                       r2::dds_topic(ns, t::kHandlePose), sensor.get());
+  const dds_entity_t rendered_r = p.reader(geometry_msgs_msg_dds__WrenchStamped__desc,
+                                           r2::dds_topic(ns, t::kRenderedWrench), sensor.get());
+  const dds_entity_t operator_r = p.reader(geometry_msgs_msg_dds__WrenchStamped__desc,
+                                           r2::dds_topic(ns, t::kOperatorWrench), sensor.get());
+  const dds_entity_t joints_r = p.reader(sensor_msgs_msg_dds__JointState__desc,
+                                         r2::dds_topic(ns, t::kJointStates), sensor.get());
+  const dds_entity_t diag_r = p.reader(diagnostic_msgs_msg_dds__DiagnosticArray__desc,
+                                       r2::dds_topic(ns, t::kDiagnostics), sensor.get());
+  const dds_entity_t command_w =
+      p.writer(std_msgs_msg_dds__String__desc, r2::dds_topic(ns, t::kCommand), commands.get());
+  const dds_entity_t wrench_w = p.writer(geometry_msgs_msg_dds__WrenchStamped__desc,
+                                         r2::dds_topic(ns, t::kOperatorWrenchCommand),
+                                         commands.get());
+  bool command_sent = false;
+  if (!c.command.empty() && matched(command_w, 3'000'000'000)) {
+    std::string text = c.command;
+    std_msgs_msg_dds__String_ m{text.data()};
+    command_sent = dds_write(command_w, &m) == 0;
+  }
+  Arrivals pose;
+  Arrivals rendered;
+  Arrivals operator_wrench;
+  Arrivals joints;
+  Arrivals diagnostics;
+  geometry_msgs_msg_dds__PoseStamped_ last_pose{};
+  geometry_msgs_msg_dds__Wrench_ last_rendered{};
+  geometry_msgs_msg_dds__Wrench_ last_operator{};
+  std::vector<double> joint_position;
+  std::vector<std::string> joint_names;
+  std::string diag_text;
+  int diag_level = -1;
+  const std::int64_t end = monotonic_now_ns() + static_cast<std::int64_t>(c.duration_s * 1e9);
+  std::int64_t next_wrench = 0;
+  while (monotonic_now_ns() < end) {
+    const std::int64_t now = monotonic_now_ns();
+    take_all<geometry_msgs_msg_dds__PoseStamped_>(pose_r, [&](const auto& m) {
+      pose.saw(m.header, now);
+      last_pose = m;
+    });
+    take_all<geometry_msgs_msg_dds__WrenchStamped_>(rendered_r, [&](const auto& m) {
+      rendered.saw(m.header, now);
+      last_rendered = m.wrench;
+    });
+    take_all<geometry_msgs_msg_dds__WrenchStamped_>(operator_r, [&](const auto& m) {
+      operator_wrench.saw(m.header, now);
+      last_operator = m.wrench;
+    });
+    take_all<sensor_msgs_msg_dds__JointState_>(joints_r, [&](const auto& m) {
+      joints.saw(m.header, now);
+      joint_position.assign(m.position._buffer, m.position._buffer + m.position._length);
+      joint_names.assign(m.name._buffer, m.name._buffer + m.name._length);
+    });
+    take_all<diagnostic_msgs_msg_dds__DiagnosticArray_>(diag_r, [&](const auto& m) {
+      diagnostics.saw(m.header, now);
+      if (m.status._length > 0) {
+        const auto& s = m.status._buffer[0];
+        diag_level = s.level;
+        diag_text = std::string(s.message) + " |";
+        for (std::uint32_t i = 0; i < s.values._length; ++i) {
+          diag_text += std::string(" ") + s.values._buffer[i].key + "=" + s.values._buffer[i].value;
+        }
+      }
+    });
+    if (c.wrench.size() == 6 && now >= next_wrench) {
+      next_wrench = now + 10'000'000;
+      geometry_msgs_msg_dds__WrenchStamped_ w{};
+      std::string frame = r2::base_frame(ns);
+      w.header = {r2::stamp_of(now), frame.data()};
+      w.wrench = {{c.wrench[0], c.wrench[1], c.wrench[2]}, {c.wrench[3], c.wrench[4], c.wrench[5]}};
+      dds_write(wrench_w, &w);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  std::printf("{");
+  print_topic("handle_pose", geometry_msgs_msg_dds__PoseStamped__desc.m_typename, pose);
+  print_topic("rendered_wrench", geometry_msgs_msg_dds__WrenchStamped__desc.m_typename, rendered);
+  print_topic("operator_wrench", geometry_msgs_msg_dds__WrenchStamped__desc.m_typename,
+              operator_wrench);
+  print_topic("joint_states", sensor_msgs_msg_dds__JointState__desc.m_typename, joints);
+  print_topic("diagnostics", diagnostic_msgs_msg_dds__DiagnosticArray__desc.m_typename,
+              diagnostics);
+  const auto& q = last_pose.pose;
+  std::printf("\"pose\":[%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g],", q.position.x, q.position.y,
+              q.position.z, q.orientation.x, q.orientation.y, q.orientation.z, q.orientation.w);
+  print_wrench("rendered", last_rendered);
+  print_wrench("operator", last_operator);
+  std::printf("\"joint_position\":[");
+  for (std::size_t i = 0; i < joint_position.size(); ++i) {
+    std::printf("%s%.6g", i == 0 ? "" : ",", joint_position[i]);
+  }
+  std::printf("],\"joint_names\":\"");
+  for (const auto& n : joint_names) {
+    std::printf("%s ", n.c_str());
+  }
+  std::printf("\",\"diagnostics_level\":%d,\"diagnostics_text\":\"%s\",\"command_sent\":%d}\n",
+              diag_level, diag_text.c_str(), command_sent ? 1 : 0);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  constexpr const char* kProgram = "hapticctrl-dds-listen";
+  constexpr const char* kDescription =
+      "What a ROS 2 node sees of a hapticctrl-dds instance, without ROS 2: every topic for a "
+      "while, as one JSON line; optionally a command and an operator wrench sent back.";
+  return hapticctrl::program::main_skeleton<ListenConfig>(
+      kProgram, argc, argv,
+      [&](const std::vector<std::string>& args, ListenConfig& c) {
+        return hapticctrl::program::parse_into(c, args, kProgram, kDescription, declare);
+      },
+      [&] { return hapticctrl::program::help_of<ListenConfig>(kProgram, kDescription, declare); },
+      listen);
+}

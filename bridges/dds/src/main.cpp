@@ -1,0 +1,258 @@
+// hapticctrl-dds: the controller's arm state out as ROS 2 topics over DDS (Cyclone DDS), and
+// commands and the operator wrench in, so a ROS 2 node on another machine sees the arm without
+// any hapticctrl package (docs/ros2.md).
+//
+// Threads: a publisher thread blocks on VP publishes (one per controller cycle), reads the
+// regions it needs into local copies and writes what is due; this thread waits on the command
+// readers and ramps the operator wrench. The core never waits for either. Exit: 0 on signal or
+// --duration, 64 usage, 1 error.
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "hapticctrl/dds_bridge/commands.hpp"
+#include "hapticctrl/dds_bridge/dds_bridge_config.hpp"
+#include "hapticctrl/dds_bridge/endpoints.hpp"
+#include "hapticctrl/dds_bridge/messages.hpp"
+#include "hapticctrl/program/main_skeleton.hpp"
+#include "hapticctrl/ros2types/names.hpp"
+#include "hapticctrl/shm/core_watch.hpp"
+#include "hapticctrl/shm/monotonic_clock.hpp"
+#include "hapticctrl/shm/names.hpp"
+#include "hapticctrl/shm/remote_commands.hpp"
+#include "hapticctrl/shm/segment.hpp"
+
+namespace {
+
+namespace shm = hapticctrl::shm;
+namespace db = hapticctrl::dds_bridge;
+using hapticctrl::dds_bridge::DdsBridgeConfig;
+using hapticctrl::dds_bridge::Endpoints;
+using hapticctrl::shm::monotonic_now_ns;
+
+std::atomic<bool> g_stop{false};
+void on_signal(int /*sig*/) {
+  g_stop.store(true);
+}
+
+struct PublishCounters {
+  std::atomic<std::uint64_t> arm_samples{0};  ///< each: pose, two wrenches, joint states
+  std::atomic<std::uint64_t> diagnostics{0};
+  std::atomic<std::uint64_t> write_errors{0};
+};
+
+void write(dds_entity_t writer, const void* sample, PublishCounters& counters) {
+  if (dds_write(writer, sample) < 0) {
+    counters.write_errors.fetch_add(1, std::memory_order_relaxed);
+  }
+}
+
+/// What the publisher thread owns: the messages it fills in place, and its schedule.
+struct Publisher {
+  Publisher(const DdsBridgeConfig& config, const std::string& frame)
+      : arm(frame),
+        diagnostics("hapticctrl-core", config.instance, frame),
+        arm_every_ns(config.rate_hz > 0.0 ? static_cast<std::int64_t>(1e9 / config.rate_hz) : 0),
+        diagnostics_every_ns(static_cast<std::int64_t>(1e9 / config.diagnostics_rate_hz)) {}
+  db::ArmMessages arm;
+  db::DiagnosticsMessage diagnostics;
+  std::int64_t arm_every_ns;
+  std::int64_t diagnostics_every_ns;
+};
+
+/// Writes what is due after each controller cycle, until `running` clears or the core is gone
+/// (then writes a last, STALE diagnostics and sets `core_gone`).
+void publish_loop(const shm::Segment& seg, const Endpoints& ep, Publisher& pub,
+                  const std::atomic<bool>& running, std::atomic<bool>& core_gone,
+                  PublishCounters& counters) {
+  std::int64_t next_arm = 0;
+  std::int64_t next_diagnostics = 0;
+  shm::CoreWatch watch(seg);
+  shm::TelemetryPayload telemetry;
+  while (running.load(std::memory_order_relaxed)) {
+    const shm::CoreWatch::Wake wake = watch.wait();
+    const std::int64_t now = monotonic_now_ns();
+    if (wake == shm::CoreWatch::Wake::kCycle && now >= next_arm) {
+      next_arm = pub.arm_every_ns == 0 ? 0 : std::max(next_arm + pub.arm_every_ns, now - pub.arm_every_ns);
+      shm::PositionPayload position;
+      const shm::ReadResult r = seg.region<shm::RegionId::kPosition>().read(position);
+      if (r.ok()) {
+        pub.arm.fill(position, r.publish_time_ns);
+        write(ep.handle_pose, &pub.arm.pose, counters);
+        write(ep.rendered_wrench, &pub.arm.rendered_wrench, counters);
+        write(ep.operator_wrench, &pub.arm.operator_wrench, counters);
+        write(ep.joint_states, &pub.arm.joints, counters);
+        counters.arm_samples.fetch_add(1, std::memory_order_relaxed);
+      }
+    }
+    const bool gone = wake == shm::CoreWatch::Wake::kCoreGone;
+    if (now >= next_diagnostics || gone) {
+      next_diagnostics = now + pub.diagnostics_every_ns;
+      const shm::ReadResult r = seg.region<shm::RegionId::kTelemetry>().read(telemetry);
+      pub.diagnostics.fill(telemetry, !gone, r.ok() && !gone ? r.publish_time_ns : now);
+      write(ep.diagnostics, &pub.diagnostics.array, counters);
+      counters.diagnostics.fetch_add(1, std::memory_order_relaxed);
+    }
+    if (gone) {
+      std::fprintf(stderr, "hapticctrl-dds: controller '%s' is gone (%s); waiting for the next\n",
+                   seg.instance().c_str(), shm::stop_reason_name(watch.stop_reason()));
+      core_gone.store(true);
+      return;
+    }
+  }
+}
+
+/// Applies every sample waiting on `reader` (loaned by DDS, returned at once).
+template <typename Message, typename Apply>
+void take_all(dds_entity_t reader, Apply apply) {
+  constexpr std::size_t kBatch = 8;
+  std::array<void*, kBatch> samples{};
+  std::array<dds_sample_info_t, kBatch> infos{};
+  for (;;) {
+    samples.fill(nullptr);  // null: DDS lends its own buffers
+    const dds_return_t n = dds_take(reader, samples.data(), infos.data(), kBatch, kBatch);
+    if (n <= 0) {
+      return;
+    }
+    for (std::size_t i = 0; i < static_cast<std::size_t>(n); ++i) {
+      if (infos[i].valid_data) {
+        apply(*static_cast<const Message*>(samples[i]));
+      }
+    }
+    dds_return_loan(reader, samples.data(), n);
+  }
+}
+
+/// The bridge writes `force` only when remote commands are enabled (it would refuse remote forces
+/// anyway): by default the local HMI (hapticctrl-hmi) is the force region's writer.
+std::optional<shm::Segment> try_attach(const std::string& instance, bool remote_force) {
+  std::vector<shm::RegionId> writes;
+  if (remote_force) {
+    writes.push_back(shm::RegionId::kForce);
+  }
+  try {
+    return shm::Segment::attach(instance, shm::AttachOptions{writes, /*ctrl_writer=*/true});
+  } catch (const shm::ShmError& e) {
+    if (e.code() == shm::ShmErrc::kNoController) {
+      return std::nullopt;
+    }
+    throw;
+  }
+}
+
+/// Serves one controller until it goes away, the bridge is told to stop, or `end_ns` passes.
+/// Returns the counters of the commands this attachment applied.
+std::string run_attached(shm::Segment& seg, const Endpoints& ep, Publisher& pub,
+                         dds_entity_t waitset, const DdsBridgeConfig& config, std::int64_t end_ns,
+                         PublishCounters& counters) {
+  shm::RemoteCommandSettings settings;
+  settings.allow_remote_commands = config.allow_remote_commands;
+  shm::RemoteCommands remote(
+      settings, &seg.ctrl_writer(),
+      config.allow_remote_commands ? &seg.writable<shm::RegionId::kForce>() : nullptr);
+  std::atomic<bool> publishing{true};
+  std::atomic<bool> core_gone{false};
+  std::thread publisher([&] { publish_loop(seg, ep, pub, publishing, core_gone, counters); });
+  while (!g_stop.load() && !core_gone.load()) {
+    dds_waitset_wait(waitset, nullptr, 0, DDS_MSECS(2));
+    const std::int64_t now = monotonic_now_ns();
+    take_all<std_msgs_msg_dds__String_>(
+        ep.command, [&](const auto& m) { remote.command(db::command_of(m), now); });
+    take_all<geometry_msgs_msg_dds__WrenchStamped_>(
+        ep.operator_wrench_command, [&](const auto& m) { remote.force(db::wrench_of(m), now); });
+    remote.tick(now);
+    if (end_ns != 0 && now >= end_ns) {
+      g_stop.store(true);
+    }
+  }
+  publishing.store(false);
+  publisher.join();
+  const auto& c = remote.counters();
+  const auto get = [](const std::atomic<std::uint64_t>& v) {
+    return static_cast<unsigned long long>(v.load());
+  };
+  char text[384];  // NOLINT(*-avoid-c-arrays)
+  std::snprintf(text, sizeof text,
+                "\"commands_applied\":%llu,\"commands_refused\":%llu,\"commands_invalid\":%llu,"
+                "\"commands_queue_full\":%llu,\"forces_accepted\":%llu,\"forces_refused\":%llu,"
+                "\"forces_invalid\":%llu,\"force_timeouts\":%llu",
+                get(c.commands_applied), get(c.commands_refused), get(c.commands_invalid),
+                get(c.commands_queue_full), get(c.forces_accepted), get(c.forces_refused),
+                get(c.forces_invalid), get(c.force_timeouts));
+  return text;
+}
+
+int run(const DdsBridgeConfig& config) {
+  hapticctrl::ros2types::Participant participant(config.domain());
+  const Endpoints ep(participant, config.ros_namespace);
+  const dds_entity_t waitset =
+      hapticctrl::ros2types::checked(dds_create_waitset(participant.handle()), "DDS waitset");
+  for (const dds_entity_t reader : {ep.command, ep.operator_wrench_command}) {
+    const dds_entity_t condition = hapticctrl::ros2types::checked(
+        dds_create_readcondition(reader, DDS_ANY_STATE), "DDS read condition");
+    hapticctrl::ros2types::checked(dds_waitset_attach(waitset, condition, condition),
+                                   "DDS waitset attach");
+  }
+  Publisher pub(config, hapticctrl::ros2types::base_frame(config.ros_namespace));
+  PublishCounters counters;
+  std::string commands_json = "\"commands_applied\":0";
+  const std::int64_t end_ns =
+      config.duration_s > 0.0
+          ? monotonic_now_ns() + static_cast<std::int64_t>(config.duration_s * 1e9)
+          : 0;
+  std::fprintf(stderr,
+               "hapticctrl-dds: instance '%s', DDS domain %u, ROS 2 namespace %s, remote "
+               "commands %s\n",
+               config.instance.c_str(), config.domain(), config.ros_namespace.c_str(),
+               config.allow_remote_commands ? "enabled" : "disabled (emergency stop only)");
+  bool said_waiting = false;
+  while (!g_stop.load()) {
+    std::optional<shm::Segment> seg = try_attach(config.instance, config.allow_remote_commands);
+    if (seg) {
+      said_waiting = false;
+      commands_json = run_attached(*seg, ep, pub, waitset, config, end_ns, counters);
+      continue;
+    }
+    if (!said_waiting) {
+      std::fprintf(stderr, "hapticctrl-dds: no controller for instance '%s' yet; waiting\n",
+                   config.instance.c_str());
+      said_waiting = true;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    if (end_ns != 0 && monotonic_now_ns() >= end_ns) {
+      g_stop.store(true);
+    }
+  }
+  if (config.json) {
+    std::printf("{\"arm_samples\":%llu,\"diagnostics\":%llu,\"write_errors\":%llu,%s}\n",
+                static_cast<unsigned long long>(counters.arm_samples.load()),
+                static_cast<unsigned long long>(counters.diagnostics.load()),
+                static_cast<unsigned long long>(counters.write_errors.load()),
+                commands_json.c_str());
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return hapticctrl::program::main_skeleton<DdsBridgeConfig>(
+      "hapticctrl-dds", argc, argv,
+      [](const std::vector<std::string>& args, DdsBridgeConfig& c) {
+        c = DdsBridgeConfig::parse(args);
+        return !c.help;
+      },
+      &DdsBridgeConfig::usage,
+      [](const DdsBridgeConfig& c) {
+        std::signal(SIGINT, on_signal);
+        std::signal(SIGTERM, on_signal);
+        return run(c);
+      });
+}

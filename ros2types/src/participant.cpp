@@ -1,0 +1,42 @@
+// Implements participant.hpp: a DDS participant and its writers and readers.
+#include "hapticctrl/ros2types/participant.hpp"
+
+#include <stdexcept>
+
+namespace hapticctrl::ros2types {
+
+dds_entity_t checked(dds_return_t rc, const std::string& what) {
+  if (rc < 0) {
+    throw std::runtime_error(what + ": " + dds_strretcode(rc));
+  }
+  return rc;
+}
+
+Participant::Participant(std::uint32_t domain)
+    : participant_(checked(dds_create_participant(domain, nullptr, nullptr),
+                           "DDS participant in domain " + std::to_string(domain) +
+                               " (see $CYCLONEDDS_URI)")) {}
+
+Participant::~Participant() {
+  dds_delete(participant_);
+}
+
+dds_entity_t Participant::topic(const dds_topic_descriptor_t& type, const std::string& name,
+                                const dds_qos_t* qos) {
+  return checked(dds_create_topic(participant_, &type, name.c_str(), qos, nullptr),
+                 "DDS topic " + name);
+}
+
+dds_entity_t Participant::writer(const dds_topic_descriptor_t& type, const std::string& topic_name,
+                                 const dds_qos_t* qos) {
+  return checked(dds_create_writer(participant_, topic(type, topic_name, qos), qos, nullptr),
+                 "DDS writer on " + topic_name);
+}
+
+dds_entity_t Participant::reader(const dds_topic_descriptor_t& type, const std::string& topic_name,
+                                 const dds_qos_t* qos) {
+  return checked(dds_create_reader(participant_, topic(type, topic_name, qos), qos, nullptr),
+                 "DDS reader on " + topic_name);
+}
+
+}  // namespace hapticctrl::ros2types

@@ -1,0 +1,54 @@
+// Implements remote_commands.hpp: one rule for commands and forces from another host.
+#include "hapticctrl/shm/remote_commands.hpp"
+
+namespace hapticctrl::shm {
+
+RemoteCommands::RemoteCommands(const RemoteCommandSettings& settings, CtrlWriter* ctrl,
+                               SeqlockCell<ForcePayload>* force) noexcept
+    : settings_(settings), ctrl_(ctrl), force_(force), slew_(settings.force_limits) {}
+
+void RemoteCommands::command(CtrlCode code, std::int64_t now_ns) noexcept {
+  if (code == CtrlCode::kNone) {
+    counters_.commands_invalid.fetch_add(1, std::memory_order_relaxed);
+    return;
+  }
+  if (code != CtrlCode::kEmergencyStop && !settings_.allow_remote_commands) {
+    counters_.commands_refused.fetch_add(1, std::memory_order_relaxed);
+    return;
+  }
+  if (ctrl_ == nullptr || ctrl_->send(code, 0, now_ns) != CtrlSendStatus::kQueued) {
+    counters_.commands_queue_full.fetch_add(1, std::memory_order_relaxed);
+    return;
+  }
+  counters_.commands_applied.fetch_add(1, std::memory_order_relaxed);
+}
+
+void RemoteCommands::force(const Vector6& requested, std::int64_t now_ns) noexcept {
+  if (!settings_.allow_remote_commands) {
+    counters_.forces_refused.fetch_add(1, std::memory_order_relaxed);
+    return;
+  }
+  if (!slew_.set_target(requested)) {
+    counters_.forces_invalid.fetch_add(1, std::memory_order_relaxed);
+    return;
+  }
+  last_force_ns_ = now_ns;
+  force_active_ = true;
+  counters_.forces_accepted.fetch_add(1, std::memory_order_relaxed);
+}
+
+void RemoteCommands::tick(std::int64_t now_ns) noexcept {
+  const double dt = ticked_ ? static_cast<double>(now_ns - last_tick_ns_) / 1e9 : 0.0;
+  last_tick_ns_ = now_ns;
+  ticked_ = true;
+  if (force_active_ && now_ns - last_force_ns_ > settings_.force_timeout_ns) {
+    slew_.set_target({});  // the sender went quiet: let go, at the same bounded rate
+    force_active_ = false;
+    counters_.force_timeouts.fetch_add(1, std::memory_order_relaxed);
+  }
+  if (slew_.step(dt) && force_ != nullptr) {
+    force_->publish_quietly(ForcePayload{slew_.applied()}, now_ns);
+  }
+}
+
+}  // namespace hapticctrl::shm

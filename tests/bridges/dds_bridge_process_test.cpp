@@ -1,0 +1,165 @@
+// hapticctrl-dds with the real core, seen through hapticctrl-dds-listen (the same ROS 2 type
+// definitions a ROS 2 node would match): topic names, types, rates and values, commands and the
+// operator wrench back, the remote-command switch, and a core restart. DDS stays on loopback,
+// in a domain of this test process's own (support/dds_loopback.hpp).
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <csignal>
+#include <string>
+#include <vector>
+
+#include "support/controller_stack.hpp"
+#include "support/dds_loopback.hpp"
+#include "support/json_fields.hpp"
+
+namespace hapticctrl {
+namespace {
+
+using namespace std::chrono_literals;
+using test::ControllerStack;
+using test::json_number;
+using test::json_numbers;
+using test::SpawnedProcess;
+
+struct DdsStack {
+  std::uint32_t domain = test::use_loopback_dds();
+  ControllerStack controller;
+  std::string ns;
+  SpawnedProcess bridge;
+
+  DdsStack(const std::string& tag, const std::vector<std::string>& extra)
+      : controller(tag),
+        ns("/test/" + tag),
+        bridge(HAPTICCTRL_DDS_BINARY, args(extra)) {}
+  std::vector<std::string> args(const std::vector<std::string>& extra) const {
+    std::vector<std::string> a{"--instance", controller.instance(), "--namespace", ns,
+                               "--domain-id", std::to_string(domain), "--json"};
+    a.insert(a.end(), extra.begin(), extra.end());
+    return a;
+  }
+  /// Starts a listener on the bridge's namespace for `seconds`, with `extra` options.
+  SpawnedProcess listener(double seconds, const std::vector<std::string>& extra = {}) const {
+    std::vector<std::string> a{"--namespace", ns, "--domain-id", std::to_string(domain),
+                               "--duration", std::to_string(seconds)};
+    a.insert(a.end(), extra.begin(), extra.end());
+    return SpawnedProcess(HAPTICCTRL_DDS_LISTEN_BINARY, a);
+  }
+  /// Listens for `seconds` and returns the listener's JSON line.
+  std::string listen(double seconds, const std::vector<std::string>& extra = {}) const {
+    SpawnedProcess l = listener(seconds, extra);
+    EXPECT_EQ(l.wait(std::chrono::milliseconds(static_cast<int>(seconds * 1000)) + 10s), 0)
+        << l.err();
+    return l.out();
+  }
+  /// Stops the bridge (SIGTERM) and returns its final JSON counters.
+  std::string stop_bridge() {
+    bridge.signal(SIGTERM);
+    EXPECT_EQ(bridge.wait(5s), 0) << bridge.err();
+    return bridge.out();
+  }
+};
+
+TEST(DdsBridgeProcess, EveryTopicArrivesWithRos2NamesAtTheConfiguredRate) {
+  DdsStack s("ddsrates", {"--rate-hz", "50", "--diagnostics-rate-hz", "5"});
+  ASSERT_TRUE(s.controller.ready()) << s.controller.diagnostics();
+  const std::string json = s.listen(3.0);
+  // 50 Hz on a 100 Hz controller (10 ms cycles): every other cycle; diagnostics at 5 Hz.
+  for (const char* topic : {"handle_pose", "rendered_wrench", "operator_wrench", "joint_states"}) {
+    EXPECT_NEAR(json_number(json, std::string(topic) + "_rate_hz"), 50.0, 5.0) << topic << json;
+    EXPECT_GT(json_number(json, std::string(topic) + "_count"), 100) << topic << json;
+    EXPECT_NE(json.find("\"" + std::string(topic) + "_frame\":\"test/ddsrates/base\""),
+              std::string::npos)
+        << json;
+  }
+  EXPECT_NEAR(json_number(json, "diagnostics_rate_hz"), 5.0, 1.0) << json;
+  EXPECT_NE(json.find("\"handle_pose_type\":\"geometry_msgs::msg::dds_::PoseStamped_\""),
+            std::string::npos);
+  EXPECT_NE(json.find("\"operator_wrench_type\":\"geometry_msgs::msg::dds_::WrenchStamped_\""),
+            std::string::npos);
+  EXPECT_NE(json.find("\"joint_states_type\":\"sensor_msgs::msg::dds_::JointState_\""),
+            std::string::npos);
+  EXPECT_NE(json.find("\"diagnostics_type\":\"diagnostic_msgs::msg::dds_::DiagnosticArray_\""),
+            std::string::npos);
+  EXPECT_NE(json.find("\"joint_names\":\"joint1 joint2 joint3 joint4 joint5 joint6 \""),
+            std::string::npos);
+  EXPECT_EQ(json_number(json, "diagnostics_level"), 0) << json;
+  EXPECT_NE(json.find("core_state=running"), std::string::npos) << json;
+  // The arm rests unpowered: what arrived is what the core publishes now.
+  const shm::PositionPayload p = s.controller.position();
+  const std::vector<double> pose = json_numbers(json, "pose");
+  const std::vector<double> joints = json_numbers(json, "joint_position");
+  ASSERT_EQ(pose.size(), 7U) << json;
+  ASSERT_EQ(joints.size(), 6U) << json;
+  for (std::size_t i = 0; i < 7; ++i) {
+    EXPECT_NEAR(pose[i], p.handle_pose[i], 1e-5) << i;
+  }
+  for (std::size_t i = 0; i < 6; ++i) {
+    EXPECT_NEAR(joints[i], p.joint_position[i], 1e-5) << i;
+  }
+  const std::string counters = s.stop_bridge();
+  EXPECT_EQ(json_number(counters, "write_errors"), 0) << counters;
+}
+
+TEST(DdsBridgeProcess, CommandsAndTheOperatorWrenchFlowBackThroughTheCore) {
+  DdsStack s("ddscmd", {"--allow-remote-commands"});
+  ASSERT_TRUE(s.controller.ready()) << s.controller.diagnostics();
+  const std::string powered = s.listen(1.0, {"--command", "power_on"});
+  EXPECT_EQ(json_number(powered, "command_sent"), 1) << powered;
+  ASSERT_TRUE(ControllerStack::eventually(
+      [&] { return (s.controller.position().state_word & shm::state_bits::kPowered) != 0; }))
+      << s.bridge.err();
+  // The wrench goes out over DDS, through the bridge into the force region, into the core's
+  // simulated hand, and comes back as the operator wrench the core publishes.
+  const std::string pushed = s.listen(2.0, {"--wrench", "4,0,0,0,0,0"});
+  const std::vector<double> back = json_numbers(pushed, "operator");
+  ASSERT_EQ(back.size(), 6U) << pushed;
+  EXPECT_NEAR(back[0], 4.0, 1e-6) << pushed;
+  const std::string junk = s.listen(0.5, {"--command", "reboot"});
+  EXPECT_EQ(json_number(junk, "command_sent"), 1) << junk;
+  const std::string counters = s.stop_bridge();
+  EXPECT_EQ(json_number(counters, "commands_applied"), 1) << counters;
+  EXPECT_EQ(json_number(counters, "commands_invalid"), 1) << counters;
+  EXPECT_GT(json_number(counters, "forces_accepted"), 50) << counters;
+}
+
+TEST(DdsBridgeProcess, WithoutRemoteCommandsOnlyTheEmergencyStopActs) {
+  DdsStack s("ddsestop", {});
+  ASSERT_TRUE(s.controller.ready()) << s.controller.diagnostics();
+  const std::string refused = s.listen(1.0, {"--command", "power_on", "--wrench", "5,0,0,0,0,0"});
+  EXPECT_EQ(json_number(refused, "command_sent"), 1) << refused;
+  EXPECT_EQ(s.controller.position().state_word & shm::state_bits::kPowered, 0U) << "refused";
+  EXPECT_EQ(json_numbers(refused, "operator").at(0), 0.0) << refused;
+  (void)s.listen(0.5, {"--command", "emergency_stop"});
+  EXPECT_TRUE(ControllerStack::eventually([&] {
+    return (s.controller.position().state_word & shm::state_bits::kEmergencyStop) != 0;
+  })) << "the emergency stop is always accepted";
+  const std::string counters = s.stop_bridge();
+  EXPECT_EQ(json_number(counters, "commands_refused"), 1) << counters;
+  EXPECT_EQ(json_number(counters, "commands_applied"), 1) << counters;
+  EXPECT_GT(json_number(counters, "forces_refused"), 10) << counters;
+}
+
+TEST(DdsBridgeProcess, SurvivesACoreRestart) {
+  DdsStack s("ddsrestart", {"--diagnostics-rate-hz", "10"});
+  ASSERT_TRUE(s.controller.ready()) << s.controller.diagnostics();
+  SpawnedProcess across = s.listener(3.0);
+  std::this_thread::sleep_for(1s);
+  s.controller.core().signal(SIGKILL);
+  ASSERT_GE(s.controller.core().wait(5s), 0);
+  ASSERT_TRUE(ControllerStack::eventually(
+      [&] { return s.bridge.err().find("is gone") != std::string::npos; }))
+      << s.bridge.err();
+  ASSERT_EQ(across.wait(10s), 0) << across.err();
+  EXPECT_EQ(json_number(across.out(), "diagnostics_level"), 3) << "STALE: " << across.out();
+  EXPECT_NE(across.out().find("core_state=gone"), std::string::npos) << across.out();
+
+  s.controller.start_core();
+  ASSERT_TRUE(s.controller.ready()) << s.controller.diagnostics();
+  const std::string after = s.listen(2.0);
+  EXPECT_GT(json_number(after, "handle_pose_count"), 50) << after << s.bridge.err();
+  EXPECT_EQ(json_number(after, "diagnostics_level"), 0) << after;
+}
+
+}  // namespace
+}  // namespace hapticctrl

@@ -1,0 +1,123 @@
+// Tests of dds_bridge/messages.hpp: the controller's regions as ROS 2 messages, filled in place.
+#include "hapticctrl/dds_bridge/messages.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "hapticctrl/shm/names.hpp"
+#include "support/allocation_counter.hpp"
+
+namespace hapticctrl::dds_bridge {
+namespace {
+
+shm::PositionPayload sample_position() {
+  shm::PositionPayload p;
+  p.cycle = 42;
+  p.handle_pose = {0.5, -0.1, 0.25, 0.0, 0.0, 0.7071067811865476, 0.7071067811865476};
+  for (std::size_t i = 0; i < 6; ++i) {
+    p.joint_position[i] = 0.1 * static_cast<double>(i);
+    p.joint_velocity[i] = -0.2 * static_cast<double>(i);
+    p.joint_torque[i] = 1.5 + static_cast<double>(i);
+  }
+  p.coupling_wrench = {1, 2, 3, 0.1, 0.2, 0.3};
+  p.operator_wrench = {-4, -5, -6, -0.4, -0.5, -0.6};
+  return p;
+}
+
+TEST(DdsMessages, ArmMessagesCarryThePositionSampleAndTheControllersStamp) {
+  ArmMessages m("hapticctrl/default/base");
+  m.fill(sample_position(), 7'250'000'000);
+  EXPECT_EQ(m.pose.header.stamp.sec, 7);
+  EXPECT_EQ(m.pose.header.stamp.nanosec, 250'000'000U);
+  EXPECT_STREQ(m.pose.header.frame_id, "hapticctrl/default/base");
+  EXPECT_DOUBLE_EQ(m.pose.pose.position.x, 0.5);
+  EXPECT_DOUBLE_EQ(m.pose.pose.position.y, -0.1);
+  EXPECT_DOUBLE_EQ(m.pose.pose.orientation.z, 0.7071067811865476);  // x y z w, as ROS 2
+  EXPECT_DOUBLE_EQ(m.pose.pose.orientation.w, 0.7071067811865476);
+  EXPECT_DOUBLE_EQ(m.rendered_wrench.wrench.force.y, 2.0);
+  EXPECT_DOUBLE_EQ(m.rendered_wrench.wrench.torque.z, 0.3);
+  EXPECT_DOUBLE_EQ(m.operator_wrench.wrench.force.x, -4.0);
+  EXPECT_DOUBLE_EQ(m.operator_wrench.wrench.torque.y, -0.5);
+  ASSERT_EQ(m.joints.name._length, 6U);
+  ASSERT_EQ(m.joints.position._length, 6U);
+  ASSERT_EQ(m.joints.velocity._length, 6U);
+  ASSERT_EQ(m.joints.effort._length, 6U);
+  EXPECT_STREQ(m.joints.name._buffer[0], "joint1");
+  EXPECT_STREQ(m.joints.name._buffer[5], "joint6");
+  EXPECT_DOUBLE_EQ(m.joints.position._buffer[3], 0.3);
+  EXPECT_DOUBLE_EQ(m.joints.velocity._buffer[2], -0.4);
+  EXPECT_DOUBLE_EQ(m.joints.effort._buffer[4], 5.5);
+  EXPECT_FALSE(m.joints.position._release) << "DDS must not free the holder's storage";
+}
+
+TEST(DdsMessages, FillingAllocatesNothing) {
+  ArmMessages arm("f");
+  DiagnosticsMessage diagnostics("hapticctrl-core", "default", "f");
+  const shm::PositionPayload p = sample_position();
+  shm::TelemetryPayload t;
+  t.core_state = static_cast<std::uint32_t>(shm::CoreState::kRunning);
+  test::allocations = 0;
+  test::counting = true;
+  for (int i = 0; i < 100; ++i) {
+    arm.fill(p, i);
+    diagnostics.fill(t, true, i);
+  }
+  test::counting = false;
+  EXPECT_EQ(test::allocations.load(), 0U);
+}
+
+std::string value_of(const DiagnosticsMessage& m, const std::string& key) {
+  const auto& s = m.array.status._buffer[0];
+  for (std::uint32_t i = 0; i < s.values._length; ++i) {
+    if (key == s.values._buffer[i].key) {
+      return s.values._buffer[i].value;
+    }
+  }
+  return "<absent>";
+}
+
+TEST(DdsMessages, DiagnosticsSayTheStateAndTheCycleStatistics) {
+  DiagnosticsMessage m("hapticctrl-core", "arm1", "hapticctrl/arm1/base");
+  shm::TelemetryPayload t;
+  t.core_state = static_cast<std::uint32_t>(shm::CoreState::kRunning);
+  t.cycle = 1234;
+  t.period_ns = 1'000'000;
+  t.wake_latency.p99_ns = 61'500;
+  t.misses_total = 3;
+  m.fill(t, true, 0);
+  ASSERT_EQ(m.array.status._length, 1U);
+  const auto& s = m.array.status._buffer[0];
+  EXPECT_EQ(s.level, static_cast<std::uint8_t>(DiagnosticLevel::kOk));
+  EXPECT_STREQ(s.name, "hapticctrl-core");
+  EXPECT_STREQ(s.hardware_id, "arm1");
+  EXPECT_STREQ(s.message, "running");
+  EXPECT_EQ(s.values._length, DiagnosticsMessage::kValues);
+  EXPECT_EQ(value_of(m, "cycle"), "1234");
+  EXPECT_EQ(value_of(m, "period_us"), "1000.0");
+  EXPECT_EQ(value_of(m, "wake_latency_p99_us"), "61.5");
+  EXPECT_EQ(value_of(m, "misses_total"), "3");
+  EXPECT_STREQ(m.array.header.frame_id, "hapticctrl/arm1/base");
+}
+
+TEST(DdsMessages, DiagnosticLevelsFollowTheController) {
+  DiagnosticsMessage m("hapticctrl-core", "arm1", "f");
+  const auto level = [&] { return m.array.status._buffer[0].level; };
+  shm::TelemetryPayload t;
+  t.core_state = static_cast<std::uint32_t>(shm::CoreState::kRunning);
+  t.window_miss_ppm = 1000;
+  m.fill(t, true, 0);
+  EXPECT_EQ(level(), static_cast<std::uint8_t>(DiagnosticLevel::kWarn));
+  t.core_state = static_cast<std::uint32_t>(shm::CoreState::kFailSafe);
+  t.stop_reason = static_cast<std::uint32_t>(shm::StopReason::kConsecutiveMisses);
+  m.fill(t, true, 0);
+  EXPECT_EQ(level(), static_cast<std::uint8_t>(DiagnosticLevel::kError));
+  EXPECT_EQ(std::string(m.array.status._buffer[0].message),
+            std::string("fail-safe: ") + shm::stop_reason_name(t.stop_reason));
+  m.fill(t, false, 0);
+  EXPECT_EQ(level(), static_cast<std::uint8_t>(DiagnosticLevel::kStale));
+  EXPECT_EQ(value_of(m, "core_state"), "gone");
+}
+
+}  // namespace
+}  // namespace hapticctrl::dds_bridge

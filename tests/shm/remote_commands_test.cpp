@@ -1,0 +1,106 @@
+// Tests of remote_commands.hpp: the one rule for commands and an operator wrench from another
+// host, whatever the transport.
+#include "hapticctrl/shm/remote_commands.hpp"
+
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <memory>
+#include <vector>
+
+namespace hapticctrl::shm {
+namespace {
+
+constexpr std::int64_t kMs = 1'000'000;
+
+struct RemoteCommandsTest : ::testing::Test {
+  std::unique_ptr<CtrlRegion> ctrl = std::make_unique<CtrlRegion>();
+  std::unique_ptr<CtrlAckRegion> acks = std::make_unique<CtrlAckRegion>();
+  CtrlWriter writer{ctrl->slots[0], acks->slots[0], 0};
+  std::unique_ptr<SeqlockCell<ForcePayload>> force_cell =
+      std::make_unique<SeqlockCell<ForcePayload>>();
+
+  RemoteCommands make(bool allow) {
+    RemoteCommandSettings s;
+    s.allow_remote_commands = allow;
+    return RemoteCommands(s, &writer, force_cell.get());
+  }
+  std::vector<CtrlCode> drain() {
+    std::vector<CtrlCode> codes;
+    CtrlReader(*ctrl, *acks).drain([&](const CtrlCommand& c) {
+      codes.push_back(c.code);
+      return true;
+    });
+    return codes;
+  }
+  Vector6 applied_force() const {
+    ForcePayload f;
+    (void)force_cell->read(f);
+    return f.wrench;
+  }
+};
+
+TEST_F(RemoteCommandsTest, WithoutRemoteCommandsOnlyTheEmergencyStopIsApplied) {
+  RemoteCommands remote = make(false);
+  for (const CtrlCode c : {CtrlCode::kPowerOn, CtrlCode::kPowerOff, CtrlCode::kEmergencyReset,
+                           CtrlCode::kStop, CtrlCode::kEmergencyStop}) {
+    remote.command(c, 0);
+  }
+  remote.force({5, 0, 0, 0, 0, 0}, 0);
+  remote.tick(0);
+  remote.tick(100 * kMs);
+  EXPECT_EQ(drain(), std::vector<CtrlCode>{CtrlCode::kEmergencyStop});
+  EXPECT_EQ(remote.counters().commands_refused.load(), 4U);
+  EXPECT_EQ(remote.counters().commands_applied.load(), 1U);
+  EXPECT_EQ(remote.counters().forces_refused.load(), 1U);
+  EXPECT_EQ(applied_force(), Vector6{});
+}
+
+TEST_F(RemoteCommandsTest, UnknownCommandsAndMissingRegionsAreCounted) {
+  RemoteCommands remote = make(true);
+  remote.command(CtrlCode::kNone, 0);
+  remote.malformed();
+  EXPECT_EQ(remote.counters().commands_invalid.load(), 1U);
+  EXPECT_EQ(remote.counters().malformed.load(), 1U);
+  RemoteCommands without_regions(RemoteCommandSettings{true}, nullptr, nullptr);
+  without_regions.command(CtrlCode::kEmergencyStop, 0);
+  without_regions.force({1, 0, 0, 0, 0, 0}, 0);
+  without_regions.tick(10 * kMs);  // nowhere to publish: nothing breaks
+  EXPECT_EQ(without_regions.counters().commands_queue_full.load(), 1U);
+  EXPECT_TRUE(drain().empty());
+}
+
+TEST_F(RemoteCommandsTest, OutOfRangeOrNonFiniteForcesAreRefused) {
+  RemoteCommands remote = make(true);
+  for (const double bad :
+       {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(), 100.5}) {
+    remote.force({bad, 0, 0, 0, 0, 0}, 0);
+  }
+  remote.force({1, 0, 0, 0, 0, 10.5}, 0);
+  EXPECT_EQ(remote.counters().forces_invalid.load(), 4U);
+  remote.tick(1 * kMs);
+  remote.tick(100 * kMs);
+  EXPECT_EQ(applied_force(), Vector6{});
+}
+
+TEST_F(RemoteCommandsTest, ForceIsRateLimitedAndDecaysWhenRequestsStop) {
+  RemoteCommands remote = make(true);
+  const Vector6 f{20, 0, 0, 0, 0, 0};
+  remote.tick(0);
+  remote.force(f, 0);
+  remote.tick(10 * kMs);  // 500 N/s: at most 5 N after 10 ms
+  EXPECT_NEAR(applied_force()[0], 5.0, 1e-9);
+  for (std::int64_t t = 20; t <= 100; t += 10) {
+    remote.force(f, t * kMs);
+    remote.tick(t * kMs);
+  }
+  EXPECT_NEAR(applied_force()[0], 20.0, 1e-9);
+  remote.tick(301 * kMs);  // silent for more than 200 ms: let go at the same rate
+  EXPECT_EQ(remote.counters().force_timeouts.load(), 1U);
+  EXPECT_GE(applied_force()[0], 0.0);
+  remote.tick(400 * kMs);
+  EXPECT_EQ(applied_force()[0], 0.0);
+}
+
+}  // namespace
+}  // namespace hapticctrl::shm

@@ -1,5 +1,5 @@
 """The peer benchmark's section of the report (H8): hapticctrl's seqlock regions side by side
-with iceoryx, LCM and UDP, from OUT_DIR/raw/peers.json (hapticctrl-bench-peers), with every figure
+with iceoryx, LCM, UDP and DDS (the middleware of hapticctrl-dds, H7), from OUT_DIR/raw/peers.json (hapticctrl-bench-peers), with every figure
 as a ratio against the best peer in the same run, and the latency distributions' plot."""
 import os
 
@@ -68,11 +68,24 @@ def write_plot(out, raw, cases):
     return png
 
 
+def dds_added(cases):
+    """What the DDS path (hapticctrl-dds's Cyclone DDS, sensor-data QoS) adds against the
+    telemetry bus (LCM) and the client protocol's transport (UDP), woken readers all."""
+    woken = {c["transport"]: c["latency_us"] for c in cases if c["mode"] == "wake"}
+    if "dds" not in woken:
+        return []
+    d = woken["dds"]
+    against = [f"{d[q] - woken[peer][q]:+.1f} us at {label} against {peer.upper()}"
+               for peer in ("lcm", "udp") if peer in woken for q, label in (("p50", "p50"), ("p99", "p99"))]
+    return ["", f"The DDS path (H7, hapticctrl-dds's middleware: Cyclone DDS, ROS 2's sensor-data QoS) "
+                f"adds, message for message in this run: " + ", ".join(against) + "."]
+
+
 def section(out, raw, table):
     """The report's lines, and what results.json keeps."""
     doc, cases = cases_of(raw)
     failed = [c for c in doc.get("cases", []) if c.get("error")]
-    md = ["", "## 5. Side by side with the peers: seqlock regions, iceoryx, LCM, UDP", ""]
+    md = ["", "## 5. Side by side with the peers: seqlock regions, iceoryx, LCM, UDP, DDS", ""]
     if not doc:
         return md + ["Not run (no raw/peers.json).", ""], {}
     md.append(f"One run of `hapticctrl-bench-peers`: writer on CPU {doc.get('writer_cpu')}, reader on "
@@ -87,6 +100,7 @@ def section(out, raw, table):
         f"{name_of(c)} {c['stall']['failed_publishes']}" for c in cases) + ".")
     for c in failed:
         md.append(f"- {c['transport']}: not measured: {c['error']}")
+    md += dds_added(cases)
     png = write_plot(out, raw, cases)
     md += ["", f"![latency distributions]({png})", ""]
     return md, {"peers": doc, "peers_plot": png}

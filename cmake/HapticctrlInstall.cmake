@@ -9,7 +9,7 @@ set(HAPTICCTRL_DOCDIR ${CMAKE_INSTALL_FULL_DOCDIR})
 # the installed tree works wherever it lands (a staging root, a prefix without ldconfig).
 set_target_properties(hapticctrl-demo PROPERTIES INSTALL_RPATH "$ORIGIN/../${CMAKE_INSTALL_LIBDIR}")
 install(TARGETS hapticctrl-core hapticctrl-udp hapticctrl-lcm hapticctrl-log2csv hapticctrl-web
-                hapticctrl-hmi hapticctrl-demo
+                hapticctrl-hmi hapticctrl-demo hapticctrl-dds hapticctrl-dds-listen
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(FILES ${PROJECT_SOURCE_DIR}/arm_model/models/virtuose6d_class.arm
         DESTINATION ${CMAKE_INSTALL_DATADIR}/hapticctrl/models)
@@ -20,7 +20,7 @@ file(GLOB doc_files ${PROJECT_SOURCE_DIR}/docs/*.md)
 install(FILES ${doc_files} DESTINATION ${CMAKE_INSTALL_DOCDIR})
 
 set(unit_files "")
-foreach(unit core udp lcm web)
+foreach(unit core udp lcm web dds)
   set(unit_file ${PROJECT_BINARY_DIR}/systemd/hapticctrl-${unit}@.service)
   configure_file(${PROJECT_SOURCE_DIR}/scripts/systemd/hapticctrl-${unit}@.service.in ${unit_file}
                  @ONLY)

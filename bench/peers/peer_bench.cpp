@@ -47,7 +47,7 @@ void declare(program::Options& o, PeerBenchConfig& c) {
       .number("--writer-cpu", c.writer_cpu, -1, 1023, "the writer's CPU (-1: the last)")
       .number("--reader-cpu", c.reader_cpu, -1, 1023, "the reader's CPU (-1: the first)")
       .number("--priority", c.priority, 0, 98, "SCHED_FIFO priority of both (0: SCHED_OTHER)")
-      .text("--only", c.only, "run this transport only (seqlock, iceoryx, lcm, udp)")
+      .text("--only", c.only, "run this transport only (seqlock, iceoryx, lcm, udp, dds)")
       .text("--roudi", c.roudi, "iceoryx's broker to start (its path)")
       .flag("--smoke", c.smoke, "short runs: checks the pipeline, not the machine");
 }
@@ -137,6 +137,7 @@ int run(const PeerBenchConfig& config) {
   transports.push_back(make_iceoryx_transport());
   transports.push_back(make_lcm_transport());
   transports.push_back(make_udp_transport());
+  transports.push_back(make_dds_transport());
   std::printf(
       "{\"clock_read_ns\":%lld,\"writer_cpu\":%d,\"reader_cpu\":%d,\"priority\":%d,"
       "\"messages\":%u,\"repeats\":%u,\"cpu_seconds\":%g,\"stall_messages\":%u,\n"
@@ -174,7 +175,8 @@ int run(const PeerBenchConfig& config) {
 int main(int argc, char** argv) {
   using hapticctrl::bench::PeerBenchConfig;
   constexpr const char* kProgram = "hapticctrl-bench-peers";
-  constexpr const char* kAbout = "The seqlock regions against iceoryx, LCM and UDP, in one run.";
+  constexpr const char* kAbout =
+      "The seqlock regions against iceoryx, LCM, UDP and DDS, in one run.";
   return hapticctrl::program::main_skeleton<PeerBenchConfig>(
       kProgram, argc, argv,
       [&](const std::vector<std::string>& args, PeerBenchConfig& c) {

@@ -1,10 +1,10 @@
 #pragma once
 /// @file peer_transport.hpp
 /// The transports the peer benchmark sets side by side (H8): hapticctrl's seqlock region, iceoryx
-/// publish/subscribe, LCM (udpm, ttl=0) and UDP loopback, each behind the same two small
-/// interfaces so that one measurement serves them all. A message is a VP payload as the core
-/// publishes it, with the message number in `cycle` and its publish time (CLOCK_MONOTONIC) in
-/// `echo_client_time_ns`.
+/// publish/subscribe, LCM (udpm, ttl=0), UDP loopback, and DDS (H7: hapticctrl-dds's middleware),
+/// each behind the same two small interfaces so that one measurement serves them all. A message is
+/// a VP payload as the core publishes it, with the message number in `cycle` and its publish time
+/// (CLOCK_MONOTONIC) in `echo_client_time_ns`.
 ///
 /// A transport is set up in the parent before the processes fork (setup()), then each process
 /// makes its own end after the fork (make_writer(), make_reader()). Not for a real-time cycle:
@@ -67,6 +67,7 @@ std::unique_ptr<PeerTransport> make_seqlock_transport();
 std::unique_ptr<PeerTransport> make_iceoryx_transport();
 std::unique_ptr<PeerTransport> make_lcm_transport();
 std::unique_ptr<PeerTransport> make_udp_transport();
+std::unique_ptr<PeerTransport> make_dds_transport();
 
 [[nodiscard]] inline const char* mode_name(ReadMode mode) {
   return mode == ReadMode::kPoll ? "poll" : "wake";

@@ -13,9 +13,9 @@ dds_entity_t checked(dds_return_t rc, const std::string& what) {
 }
 
 Participant::Participant(std::uint32_t domain)
-    : participant_(checked(dds_create_participant(domain, nullptr, nullptr),
-                           "DDS participant in domain " + std::to_string(domain) +
-                               " (see $CYCLONEDDS_URI)")) {}
+    : participant_(checked(
+          dds_create_participant(domain, nullptr, nullptr),
+          "DDS participant in domain " + std::to_string(domain) + " (see $CYCLONEDDS_URI)")) {}
 
 Participant::~Participant() {
   dds_delete(participant_);

@@ -18,6 +18,7 @@ for heading in ("## The seeds' requirements", "## 1. Wake-up latency", "## 2. SE
                 "## 5. Side by side with the peers",
                 "## Coupling over an impaired link (H1)", "## The weighted sphere at rest (H1)"):
     assert heading in report, f"report.md lacks '{heading}'"
+assert "The DDS path (H7" in report and "against LCM" in report and "against UDP" in report
 for period in (1000, 250, 100):
     assert report.count(f"| {period} us | ") >= 4, f"report.md lacks the {period} us rows"
 r = json.load(open(os.path.join(out, "results.json"), encoding="utf-8"))
@@ -60,8 +61,8 @@ for c in cases:
 # The peers (H8): every transport and read mode measured in the same run, none left out.
 peers = r["peers"]["cases"]
 names = sorted((c["transport"], c["mode"]) for c in peers)
-assert names == [("iceoryx", "poll"), ("iceoryx", "wake"), ("lcm", "wake"), ("seqlock", "poll"),
-                 ("seqlock", "wake"), ("udp", "wake")], names
+assert names == [("dds", "wake"), ("iceoryx", "poll"), ("iceoryx", "wake"), ("lcm", "wake"),
+                 ("seqlock", "poll"), ("seqlock", "wake"), ("udp", "wake")], names
 for c in peers:
     assert not c["error"], c
     # "delivered" is the share of messages a reader observed as the newest: a reader woken late

@@ -68,14 +68,14 @@ TEST(DdsBridgeConfig, TheDomainComesFromRosDomainIdUnlessGiven) {
 }
 
 TEST(DdsBridgeConfig, BadValuesNameTheOption) {
-  for (const auto& args : std::initializer_list<std::vector<std::string>>{
-           {"--namespace", "lab"},
-           {"--namespace", "/lab/"},
-           {"--namespace", "/1arm"},
-           {"--domain-id", "233"},
-           {"--rate-hz", "-1"},
-           {"--diagnostics-rate-hz", "0"},
-           {"--bogus"}}) {
+  for (const auto& args :
+       std::initializer_list<std::vector<std::string>>{{"--namespace", "lab"},
+                                                       {"--namespace", "/lab/"},
+                                                       {"--namespace", "/1arm"},
+                                                       {"--domain-id", "233"},
+                                                       {"--rate-hz", "-1"},
+                                                       {"--diagnostics-rate-hz", "0"},
+                                                       {"--bogus"}}) {
     try {
       (void)DdsBridgeConfig::parse(args);
       ADD_FAILURE() << args.front() << " accepted";

@@ -29,19 +29,17 @@ struct DdsStack {
   SpawnedProcess bridge;
 
   DdsStack(const std::string& tag, const std::vector<std::string>& extra)
-      : controller(tag),
-        ns("/test/" + tag),
-        bridge(HAPTICCTRL_DDS_BINARY, args(extra)) {}
+      : controller(tag), ns("/test/" + tag), bridge(HAPTICCTRL_DDS_BINARY, args(extra)) {}
   std::vector<std::string> args(const std::vector<std::string>& extra) const {
-    std::vector<std::string> a{"--instance", controller.instance(), "--namespace", ns,
+    std::vector<std::string> a{"--instance",  controller.instance(),  "--namespace", ns,
                                "--domain-id", std::to_string(domain), "--json"};
     a.insert(a.end(), extra.begin(), extra.end());
     return a;
   }
   /// Starts a listener on the bridge's namespace for `seconds`, with `extra` options.
   SpawnedProcess listener(double seconds, const std::vector<std::string>& extra = {}) const {
-    std::vector<std::string> a{"--namespace", ns, "--domain-id", std::to_string(domain),
-                               "--duration", std::to_string(seconds)};
+    std::vector<std::string> a{"--namespace",          ns,           "--domain-id",
+                               std::to_string(domain), "--duration", std::to_string(seconds)};
     a.insert(a.end(), extra.begin(), extra.end());
     return SpawnedProcess(HAPTICCTRL_DDS_LISTEN_BINARY, a);
   }
@@ -106,9 +104,9 @@ TEST(DdsBridgeProcess, CommandsAndTheOperatorWrenchFlowBackThroughTheCore) {
   ASSERT_TRUE(s.controller.ready()) << s.controller.diagnostics();
   const std::string powered = s.listen(1.0, {"--command", "power_on"});
   EXPECT_EQ(json_number(powered, "command_sent"), 1) << powered;
-  ASSERT_TRUE(ControllerStack::eventually(
-      [&] { return (s.controller.position().state_word & shm::state_bits::kPowered) != 0; }))
-      << s.bridge.err();
+  ASSERT_TRUE(ControllerStack::eventually([&] {
+    return (s.controller.position().state_word & shm::state_bits::kPowered) != 0;
+  })) << s.bridge.err();
   // The wrench goes out over DDS, through the bridge into the force region, into the core's
   // simulated hand, and comes back as the operator wrench the core publishes.
   const std::string pushed = s.listen(2.0, {"--wrench", "4,0,0,0,0,0"});
@@ -147,9 +145,9 @@ TEST(DdsBridgeProcess, SurvivesACoreRestart) {
   std::this_thread::sleep_for(1s);
   s.controller.core().signal(SIGKILL);
   ASSERT_GE(s.controller.core().wait(5s), 0);
-  ASSERT_TRUE(ControllerStack::eventually(
-      [&] { return s.bridge.err().find("is gone") != std::string::npos; }))
-      << s.bridge.err();
+  ASSERT_TRUE(ControllerStack::eventually([&] {
+    return s.bridge.err().find("is gone") != std::string::npos;
+  })) << s.bridge.err();
   ASSERT_EQ(across.wait(10s), 0) << across.err();
   EXPECT_EQ(json_number(across.out(), "diagnostics_level"), 3) << "STALE: " << across.out();
   EXPECT_NE(across.out().find("core_state=gone"), std::string::npos) << across.out();

@@ -49,8 +49,8 @@ TEST(DdsEndpoints, EveryTopicHasItsRos2NameTypeAndQos) {
   EXPECT_EQ(topic_of(e.command), "rt/lab/arm1/command");
   EXPECT_EQ(type_of(e.command), "std_msgs::msg::dds_::String_");
   EXPECT_EQ(topic_of(e.operator_wrench_command), "rt/lab/arm1/operator_wrench_command");
-  for (const dds_entity_t out : {e.handle_pose, e.rendered_wrench, e.operator_wrench,
-                                 e.joint_states, e.diagnostics}) {
+  for (const dds_entity_t out :
+       {e.handle_pose, e.rendered_wrench, e.operator_wrench, e.joint_states, e.diagnostics}) {
     EXPECT_EQ(reliability_of(out), DDS_RELIABILITY_BEST_EFFORT) << topic_of(out);
   }
   EXPECT_EQ(reliability_of(e.command), DDS_RELIABILITY_RELIABLE);

@@ -18,7 +18,7 @@ DESTDIR=$stage cmake --install "$BUILD" >/dev/null
 prefix=$(sed -n 's/^CMAKE_INSTALL_PREFIX:PATH=//p' "$BUILD/CMakeCache.txt")
 root=$stage$prefix
 
-for program in core udp lcm log2csv web hmi demo; do
+for program in core udp lcm log2csv web hmi demo dds dds-listen; do
   "$root/bin/hapticctrl-$program" --help >/dev/null 2>&1 || fail "hapticctrl-$program --help failed"
 done
 [[ -f $root/share/hapticctrl/models/virtuose6d_class.arm ]] || fail "the arm model is not installed"
@@ -32,7 +32,7 @@ mkdir "$units"
 for unit in "$root"/lib/systemd/system/hapticctrl-*@.service; do
   sed "s|$prefix/|$root/|g" "$unit" >"$units/$(basename "$unit")"
 done
-[[ $(ls "$units" | wc -l) -eq 4 ]] || fail "expected 4 units, found: $(ls "$units")"
+[[ $(ls "$units" | wc -l) -eq 5 ]] || fail "expected 5 units, found: $(ls "$units")"
 instances=()
 for unit in "$units"/*@.service; do
   instances+=("${unit%@.service}@lab.service")
@@ -43,4 +43,4 @@ grep -q "^Restart=no" "$units/hapticctrl-core@.service" ||
   fail "the core's unit must not restart a core that failed safe"
 
 report=$(systemd-sysusers --dry-run "$root/lib/sysusers.d/hapticctrl.conf" 2>&1) || fail "$report"
-echo "install test: 4 units verified, sysusers file valid, 7 programs installed under $prefix"
+echo "install test: 5 units verified, sysusers file valid, 9 programs installed under $prefix"

@@ -6,7 +6,10 @@
 #  2. a client outside the allow-list is never answered;
 #  3. LCM telemetry with ttl=1 reaches an lcm-logger on the other host, every channel;
 #  4. the web view is served beyond loopback only when asked (--allow-remote);
-#  5. hapticctrl-netem on the link (20 ms one way): the remote client still couples.
+#  5. hapticctrl-netem on the link (20 ms one way): the remote client still couples;
+#  6. hapticctrl-dds: a DDS subscriber on the lab host (hapticctrl-dds-listen, ROS 2's type and
+#     topic names, Cyclone DDS's default discovery) gets every topic, and its operator wrench
+#     goes back through the core.
 # Needs root for namespaces: exits 77 (ctest: skipped) with the reason where there is none.
 # usage: two_hosts_test.sh BUILD_DIR
 set -euo pipefail
@@ -156,4 +159,27 @@ d = json.loads(open(sys.argv[1]).read().strip().splitlines()[-1])
 assert d["steps"] > 50 and d["rtt_mean_us"] > 40000, d
 PY
 echo "two hosts: the remote client coupled through hapticctrl-netem (20 ms each way)"
+# 6. DDS across hosts, in ROS 2's default domain, with Cyclone DDS's default configuration (each
+# host's one interface, multicast discovery), as two ROS 2 machines would be set up.
+unset CYCLONEDDS_URI ROS_DOMAIN_ID
+start "$CTL" "$OUT/dds.log" "$BUILD/bridges/dds/hapticctrl-dds" --instance "$HAPTICCTRL_INSTANCE" \
+  --namespace /lab/arm --allow-remote-commands --json
+on "$LAB" "$BUILD/bridges/dds/hapticctrl-dds-listen" --namespace /lab/arm --duration 3 \
+  --wrench 3,0,0,0,0,0 >"$OUT/dds.json" 2>"$OUT/dds-listen.err" ||
+  fail "the lab host's DDS listener failed: $(cat "$OUT/dds-listen.err")"
+python3 - "$OUT/dds.json" <<'PY' || fail "DDS did not cross hosts: $(cat "$OUT/dds.json") $(cat "$OUT/dds.log")"
+import json, sys
+d = json.loads(open(sys.argv[1]).read())
+types = {"handle_pose": "geometry_msgs::msg::dds_::PoseStamped_",
+         "rendered_wrench": "geometry_msgs::msg::dds_::WrenchStamped_",
+         "operator_wrench": "geometry_msgs::msg::dds_::WrenchStamped_",
+         "joint_states": "sensor_msgs::msg::dds_::JointState_",
+         "diagnostics": "diagnostic_msgs::msg::dds_::DiagnosticArray_"}
+for topic, t in types.items():
+    assert d[topic + "_type"] == t and d[topic + "_count"] > 0, (topic, d)
+assert d["handle_pose_count"] > 100 and d["joint_states_rate_hz"] > 50, d
+assert abs(d["operator"][0] - 3.0) < 1e-6, d["operator"]
+PY
+echo "two hosts: a DDS subscriber on $LAB_IP got every ROS 2 topic of the controller on $CTL_IP" \
+  "($(python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); print("pose %d at %.0f Hz, age p50 %.0f us" % (d["handle_pose_count"], d["handle_pose_rate_hz"], d["handle_pose_age_p50_us"]))' "$OUT/dds.json")), and its wrench came back"
 echo "two hosts: ok"

@@ -12,8 +12,8 @@ TEST(Ros2Names, NamespacesFollowRos2Rules) {
   for (const char* ok : {"/", "/arm", "/lab/arm1", "/hapticctrl/default", "/_x/y_2"}) {
     EXPECT_TRUE(valid_namespace(ok)) << ok;
   }
-  for (const char* bad : {"", "arm", "/arm/", "//arm", "/a//b", "/1arm", "/lab/2", "/a-b",
-                          "/a b", "/a.b", "/ä"}) {
+  for (const char* bad :
+       {"", "arm", "/arm/", "//arm", "/a//b", "/1arm", "/lab/2", "/a-b", "/a b", "/a.b", "/ä"}) {
     EXPECT_FALSE(valid_namespace(bad)) << bad;
   }
 }

@@ -21,12 +21,12 @@ Endpoints::Endpoints(ros2types::Participant& p, const std::string& ns) {
                              dds_topic(ns, topic::kRenderedWrench), sensor.get());
   operator_wrench = p.writer(geometry_msgs_msg_dds__WrenchStamped__desc,
                              dds_topic(ns, topic::kOperatorWrench), sensor.get());
-  joint_states = p.writer(sensor_msgs_msg_dds__JointState__desc,
-                          dds_topic(ns, topic::kJointStates), sensor.get());
+  joint_states = p.writer(sensor_msgs_msg_dds__JointState__desc, dds_topic(ns, topic::kJointStates),
+                          sensor.get());
   diagnostics = p.writer(diagnostic_msgs_msg_dds__DiagnosticArray__desc,
                          dds_topic(ns, topic::kDiagnostics), sensor.get());
-  command = p.reader(std_msgs_msg_dds__String__desc, dds_topic(ns, topic::kCommand),
-                     commands.get());
+  command =
+      p.reader(std_msgs_msg_dds__String__desc, dds_topic(ns, topic::kCommand), commands.get());
   operator_wrench_command = p.reader(geometry_msgs_msg_dds__WrenchStamped__desc,
                                      dds_topic(ns, topic::kOperatorWrenchCommand), commands.get());
 }

@@ -27,7 +27,7 @@ struct ListenConfig {
   std::string ros_namespace = "/hapticctrl/default";
   std::int32_t domain_id = 0;
   double duration_s = 2.0;
-  std::string command;  ///< sent once the bridge's reader is matched
+  std::string command;         ///< sent once the bridge's reader is matched
   std::vector<double> wrench;  ///< sent at 100 Hz while listening
   bool help = false;
 };
@@ -79,8 +79,9 @@ struct Arrivals {
     age_us.push_back(static_cast<double>(now - stamp) * 1e-3);
   }
   [[nodiscard]] double rate_hz() const {
-    return count > 1 ? static_cast<double>(count - 1) * 1e9 / static_cast<double>(last_ns - first_ns)
-                     : 0.0;
+    return count > 1
+               ? static_cast<double>(count - 1) * 1e9 / static_cast<double>(last_ns - first_ns)
+               : 0.0;
   }
   [[nodiscard]] double age_quantile(double q) const {
     if (age_us.empty()) {
@@ -112,10 +113,11 @@ void take_all(dds_entity_t reader, Seen seen) {
 }
 
 void print_topic(const char* name, const char* type, const Arrivals& a) {
-  std::printf("\"%s_type\":\"%s\",\"%s_count\":%llu,\"%s_rate_hz\":%.2f,\"%s_frame\":\"%s\","
-              "\"%s_age_p50_us\":%.1f,\"%s_age_p99_us\":%.1f,",
-              name, type, name, static_cast<unsigned long long>(a.count), name, a.rate_hz(), name,
-              a.frame.c_str(), name, a.age_quantile(0.5), name, a.age_quantile(0.99));
+  std::printf(
+      "\"%s_type\":\"%s\",\"%s_count\":%llu,\"%s_rate_hz\":%.2f,\"%s_frame\":\"%s\","
+      "\"%s_age_p50_us\":%.1f,\"%s_age_p99_us\":%.1f,",
+      name, type, name, static_cast<unsigned long long>(a.count), name, a.rate_hz(), name,
+      a.frame.c_str(), name, a.age_quantile(0.5), name, a.age_quantile(0.99));
 }
 
 void print_wrench(const char* name, const geometry_msgs_msg_dds__Wrench_& w) {
@@ -155,9 +157,9 @@ int listen(const ListenConfig& c) {
                                        r2::dds_topic(ns, t::kDiagnostics), sensor.get());
   const dds_entity_t command_w =
       p.writer(std_msgs_msg_dds__String__desc, r2::dds_topic(ns, t::kCommand), commands.get());
-  const dds_entity_t wrench_w = p.writer(geometry_msgs_msg_dds__WrenchStamped__desc,
-                                         r2::dds_topic(ns, t::kOperatorWrenchCommand),
-                                         commands.get());
+  const dds_entity_t wrench_w =
+      p.writer(geometry_msgs_msg_dds__WrenchStamped__desc,
+               r2::dds_topic(ns, t::kOperatorWrenchCommand), commands.get());
   bool command_sent = false;
   if (!c.command.empty() && matched(command_w, 3'000'000'000)) {
     std::string text = c.command;

@@ -80,7 +80,8 @@ void publish_loop(const shm::Segment& seg, const Endpoints& ep, Publisher& pub,
     const shm::CoreWatch::Wake wake = watch.wait();
     const std::int64_t now = monotonic_now_ns();
     if (wake == shm::CoreWatch::Wake::kCycle && now >= next_arm) {
-      next_arm = pub.arm_every_ns == 0 ? 0 : std::max(next_arm + pub.arm_every_ns, now - pub.arm_every_ns);
+      next_arm =
+          pub.arm_every_ns == 0 ? 0 : std::max(next_arm + pub.arm_every_ns, now - pub.arm_every_ns);
       shm::PositionPayload position;
       const shm::ReadResult r = seg.region<shm::RegionId::kPosition>().read(position);
       if (r.ok()) {

@@ -13,12 +13,20 @@ namespace {
 constexpr std::array<const char*, 6> kJointNames{"joint1", "joint2", "joint3",
                                                  "joint4", "joint5", "joint6"};
 // The keys of the diagnostics values, in the order fill() sets them.
-constexpr std::array<const char*, DiagnosticsMessage::kValues> kKeys{
-    "core_state",           "stop_reason",           "rt_mode",
-    "cycle",                "period_us",             "misses_total",
-    "consecutive_misses",   "window_miss_ppm",       "wake_latency_p99_us",
-    "servo_execution_p99_us", "servo_start_delay_p99_us", "degraded_cycles",
-    "client_stale_cycles",  "force_rejected"};
+constexpr std::array<const char*, DiagnosticsMessage::kValues> kKeys{"core_state",
+                                                                     "stop_reason",
+                                                                     "rt_mode",
+                                                                     "cycle",
+                                                                     "period_us",
+                                                                     "misses_total",
+                                                                     "consecutive_misses",
+                                                                     "window_miss_ppm",
+                                                                     "wake_latency_p99_us",
+                                                                     "servo_execution_p99_us",
+                                                                     "servo_start_delay_p99_us",
+                                                                     "degraded_cycles",
+                                                                     "client_stale_cycles",
+                                                                     "force_rejected"};
 
 /// Points a message string at storage the holder owns. Cyclone's C types declare `char*`; a
 /// write only reads it.
@@ -84,8 +92,7 @@ void ArmMessages::fill(const shm::PositionPayload& p, std::int64_t stamp_ns) noe
   effort_ = p.joint_torque;
 }
 
-DiagnosticsMessage::DiagnosticsMessage(std::string name, std::string hardware_id,
-                                       std::string frame)
+DiagnosticsMessage::DiagnosticsMessage(std::string name, std::string hardware_id, std::string frame)
     : frame_(std::move(frame)), name_(std::move(name)), hardware_id_(std::move(hardware_id)) {
   for (std::size_t i = 0; i < kValues; ++i) {
     values_[i].key = const_cast<char*>(kKeys[i]);  // NOLINT(*-const-cast): read by the write

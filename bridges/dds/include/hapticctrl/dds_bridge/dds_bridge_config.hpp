@@ -13,7 +13,7 @@ struct DdsBridgeConfig {
   std::string ros_namespace;  ///< empty: ros2types::default_namespace(instance)
   /// DDS domain; -1: $ROS_DOMAIN_ID, or 0 without it (as a ROS 2 node chooses).
   std::int32_t domain_id = -1;
-  double rate_hz = 100.0;             ///< pose, wrenches and joint states; 0: every cycle
+  double rate_hz = 100.0;            ///< pose, wrenches and joint states; 0: every cycle
   double diagnostics_rate_hz = 1.0;  ///< the diagnostics array (ROS 2's usual 1 Hz)
   bool allow_remote_commands = false;
   double duration_s = 0.0;  ///< 0: until SIGINT/SIGTERM

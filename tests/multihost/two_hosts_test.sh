@@ -164,7 +164,7 @@ echo "two hosts: the remote client coupled through hapticctrl-netem (20 ms each 
 unset CYCLONEDDS_URI ROS_DOMAIN_ID
 start "$CTL" "$OUT/dds.log" "$BUILD/bridges/dds/hapticctrl-dds" --instance "$HAPTICCTRL_INSTANCE" \
   --namespace /lab/arm --allow-remote-commands --json
-on "$LAB" "$BUILD/bridges/dds/hapticctrl-dds-listen" --namespace /lab/arm --duration 3 \
+on "$LAB" "$BUILD/bridges/dds/hapticctrl-dds-listen" --namespace /lab/arm --duration 4 \
   --wrench 3,0,0,0,0,0 >"$OUT/dds.json" 2>"$OUT/dds-listen.err" ||
   fail "the lab host's DDS listener failed: $(cat "$OUT/dds-listen.err")"
 python3 - "$OUT/dds.json" <<'PY' || fail "DDS did not cross hosts: $(cat "$OUT/dds.json") $(cat "$OUT/dds.log")"

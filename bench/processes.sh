@@ -19,10 +19,16 @@ port_of() {  # file: the port a program printed after "listening on 127.0.0.1:" 
 }
 
 start_core_and_bridge() {  # instance dir: a 1 ms core in benchmark mode and a UDP bridge on a
-  # free port (DIR/udp.out says which), their logs in DIR
+  # free port (DIR/udp.out says which), their logs in DIR. Returns once the core runs: a program
+  # that maps its regions at once (hapticctrl-hmi play) would otherwise find no controller
+  # (bench.report.smoke's weighted sphere, 2026-12-02).
   "$BUILD/rt_core/hapticctrl-core" --instance "$1" --rt warn --priority 80 --benchmark-mode \
     --blackbox-dir "$2" 2>"$2/core.err" &
   PIDS+=($!)
+  for _ in $(seq 1 200); do
+    grep -q "instance '$1' running" "$2/core.err" 2>/dev/null && break
+    sleep 0.05
+  done
   "$BUILD/bridges/udp/hapticctrl-udp" --instance "$1" --port 0 >"$2/udp.out" 2>"$2/udp.err" &
   PIDS+=($!)
 }

@@ -3,6 +3,15 @@
 
 namespace hapticctrl::shm {
 
+AttachOptions RemoteCommands::attach_options(bool allow_remote_commands) {
+  AttachOptions options;
+  options.ctrl_writer = true;
+  if (allow_remote_commands) {
+    options.write.push_back(RegionId::kForce);
+  }
+  return options;
+}
+
 RemoteCommands::RemoteCommands(const RemoteCommandSettings& settings, CtrlWriter* ctrl,
                                SeqlockCell<ForcePayload>* force) noexcept
     : settings_(settings), ctrl_(ctrl), force_(force), slew_(settings.force_limits) {}

@@ -129,6 +129,18 @@ Segment Segment::create(const CreateOptions& options) {
   return seg;
 }
 
+std::optional<Segment> Segment::try_attach(std::string_view instance,
+                                           const AttachOptions& options) {
+  try {
+    return attach(instance, options);
+  } catch (const ShmError& e) {
+    if (e.code() == ShmErrc::kNoController) {
+      return std::nullopt;
+    }
+    throw;
+  }
+}
+
 Segment Segment::attach(std::string_view instance, const AttachOptions& options) {
   Segment seg;
   seg.instance_ = std::string(instance);

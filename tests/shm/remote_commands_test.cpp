@@ -56,6 +56,15 @@ TEST_F(RemoteCommandsTest, WithoutRemoteCommandsOnlyTheEmergencyStopIsApplied) {
   EXPECT_EQ(applied_force(), Vector6{});
 }
 
+TEST(RemoteCommandsAttach, TheForceRegionIsClaimedOnlyWithRemoteCommands) {
+  const AttachOptions local = RemoteCommands::attach_options(false);
+  EXPECT_TRUE(local.ctrl_writer);
+  EXPECT_TRUE(local.write.empty());
+  const AttachOptions remote = RemoteCommands::attach_options(true);
+  EXPECT_TRUE(remote.ctrl_writer);
+  EXPECT_EQ(remote.write, std::vector<RegionId>{RegionId::kForce});
+}
+
 TEST_F(RemoteCommandsTest, UnknownCommandsAndMissingRegionsAreCounted) {
   RemoteCommands remote = make(true);
   remote.command(CtrlCode::kNone, 0);

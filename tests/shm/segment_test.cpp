@@ -130,6 +130,14 @@ TEST(Segment, BadInstanceNamesAreRefused) {
   }
 }
 
+TEST(Segment, TryAttachWaitsOutOnlyAMissingController) {
+  const std::string name = unique_instance("try");
+  EXPECT_FALSE(Segment::try_attach(name).has_value());
+  Segment core = Segment::create({.instance = name});
+  EXPECT_TRUE(Segment::try_attach(name).has_value());
+  EXPECT_THROW((void)Segment::try_attach("bad/name"), ShmError);
+}
+
 TEST(Segment, ReaderNoticesItsCoreStopped) {
   const std::string name = unique_instance("repl");
   ReadyPipe ready;

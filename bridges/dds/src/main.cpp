@@ -131,23 +131,6 @@ void take_all(dds_entity_t reader, Apply apply) {
   }
 }
 
-/// The bridge writes `force` only when remote commands are enabled (it would refuse remote forces
-/// anyway): by default the local HMI (hapticctrl-hmi) is the force region's writer.
-std::optional<shm::Segment> try_attach(const std::string& instance, bool remote_force) {
-  std::vector<shm::RegionId> writes;
-  if (remote_force) {
-    writes.push_back(shm::RegionId::kForce);
-  }
-  try {
-    return shm::Segment::attach(instance, shm::AttachOptions{writes, /*ctrl_writer=*/true});
-  } catch (const shm::ShmError& e) {
-    if (e.code() == shm::ShmErrc::kNoController) {
-      return std::nullopt;
-    }
-    throw;
-  }
-}
-
 /// Serves one controller until it goes away, the bridge is told to stop, or `end_ns` passes.
 /// Returns the counters of the commands this attachment applied.
 std::string run_attached(shm::Segment& seg, const Endpoints& ep, Publisher& pub,
@@ -215,7 +198,8 @@ int run(const DdsBridgeConfig& config) {
                config.allow_remote_commands ? "enabled" : "disabled (emergency stop only)");
   bool said_waiting = false;
   while (!g_stop.load()) {
-    std::optional<shm::Segment> seg = try_attach(config.instance, config.allow_remote_commands);
+    std::optional<shm::Segment> seg = shm::Segment::try_attach(
+        config.instance, shm::RemoteCommands::attach_options(config.allow_remote_commands));
     if (seg) {
       said_waiting = false;
       commands_json = run_attached(*seg, ep, pub, waitset, config, end_ns, counters);

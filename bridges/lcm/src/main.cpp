@@ -135,23 +135,6 @@ void publish_loop(const shm::Segment& seg, lcm::LCM& lcm, const Channels& ch,
   }
 }
 
-/// The bridge writes `force` only when remote commands are enabled (it would refuse remote forces
-/// anyway): by default the local HMI (hapticctrl-hmi) is the force region's writer.
-std::optional<shm::Segment> try_attach(const std::string& instance, bool remote_force) {
-  std::vector<shm::RegionId> writes;
-  if (remote_force) {
-    writes.push_back(shm::RegionId::kForce);
-  }
-  try {
-    return shm::Segment::attach(instance, shm::AttachOptions{writes, /*ctrl_writer=*/true});
-  } catch (const shm::ShmError& e) {
-    if (e.code() == shm::ShmErrc::kNoController) {
-      return std::nullopt;
-    }
-    throw;
-  }
-}
-
 /// Serves one controller until it goes away, the bridge is told to stop, or `end_ns` passes.
 void run_attached(shm::Segment& seg, lcm::LCM& lcm, const Channels& ch,
                   const LcmBridgeConfig& config, std::int64_t end_ns, PublishCounters& counters,
@@ -221,7 +204,8 @@ int run(const LcmBridgeConfig& config) {
                config.allow_remote_commands ? "enabled" : "disabled (emergency stop only)");
   bool said_waiting = false;
   while (!g_stop.load()) {
-    std::optional<shm::Segment> seg = try_attach(config.instance, config.allow_remote_commands);
+    std::optional<shm::Segment> seg = shm::Segment::try_attach(
+        config.instance, shm::RemoteCommands::attach_options(config.allow_remote_commands));
     if (seg) {
       said_waiting = false;
       run_attached(*seg, lcm, ch, config, end_ns, counters, settings, hmi_json);

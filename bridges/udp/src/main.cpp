@@ -175,18 +175,6 @@ void run_attached(shm::Segment& segment, UdpSocket& socket, Session& session, st
   }
 }
 
-std::optional<shm::Segment> try_attach(const std::string& instance) {
-  try {
-    return shm::Segment::attach(
-        instance, shm::AttachOptions{{shm::RegionId::kVpr, shm::RegionId::kLinkStats}, true});
-  } catch (const shm::ShmError& e) {
-    if (e.code() == shm::ShmErrc::kNoController) {
-      return std::nullopt;
-    }
-    throw;
-  }
-}
-
 void print_json(const Session& session) {
   shm::LinkStatsPayload s;
   session.fill_stats(s);
@@ -246,7 +234,9 @@ int run(const BridgeConfig& config) {
                               : 0;
   bool said_waiting = false;
   while (!g_stop.load()) {
-    std::optional<shm::Segment> segment = try_attach(config.instance);
+    std::optional<shm::Segment> segment = shm::Segment::try_attach(
+        config.instance,
+        shm::AttachOptions{{shm::RegionId::kVpr, shm::RegionId::kLinkStats}, /*ctrl_writer=*/true});
     if (segment) {
       said_waiting = false;
       run_attached(*segment, socket, session, end_ns);

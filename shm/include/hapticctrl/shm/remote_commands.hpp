@@ -18,6 +18,7 @@
 #include "hapticctrl/shm/ctrl.hpp"
 #include "hapticctrl/shm/force_slew.hpp"
 #include "hapticctrl/shm/payloads.hpp"
+#include "hapticctrl/shm/segment.hpp"
 #include "hapticctrl/shm/seqlock.hpp"
 
 namespace hapticctrl::shm {
@@ -42,6 +43,11 @@ struct RemoteCommandCounters {
 
 class RemoteCommands {
  public:
+  /// What a bridge taking remote input attaches with: a ctrl slot always (the emergency stop is
+  /// always accepted), the `force` region only with remote commands allowed; otherwise the local
+  /// HMI (hapticctrl-hmi) stays the force region's writer. Setup code: allocates.
+  static AttachOptions attach_options(bool allow_remote_commands);
+
   /// `ctrl` or `force` may be null (that region is not this process's to write): a command is
   /// then counted as queue-full, a force is still validated but never published.
   RemoteCommands(const RemoteCommandSettings& settings, CtrlWriter* ctrl,

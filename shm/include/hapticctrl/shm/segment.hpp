@@ -55,6 +55,10 @@ class Segment {
   /// checks the header. Regions not in `options.write` are mapped read-only, and a process that
   /// writes nothing holds a read-only descriptor.
   static Segment attach(std::string_view instance, const AttachOptions& options = {});
+  /// attach(), or nullopt while no controller runs for the instance (a bridge waiting for its
+  /// core); every other error throws as attach() does.
+  static std::optional<Segment> try_attach(std::string_view instance,
+                                           const AttachOptions& options = {});
 
   Segment(Segment&& other) noexcept;
   Segment& operator=(Segment&& other) noexcept;

@@ -113,12 +113,17 @@ TEST(DdsBridgeProcess, CommandsAndTheOperatorWrenchFlowBackThroughTheCore) {
   const std::vector<double> back = json_numbers(pushed, "operator");
   ASSERT_EQ(back.size(), 6U) << pushed;
   EXPECT_NEAR(back[0], 4.0, 1e-6) << pushed;
+  // Beyond the device's 100 N: refused, and the applied wrench only ever lets go of the 4 N.
+  const std::string spike = s.listen(1.0, {"--wrench", "500,0,0,0,0,0"});
+  ASSERT_EQ(json_numbers(spike, "operator").size(), 6U) << spike;
+  EXPECT_LE(json_numbers(spike, "operator")[0], 4.0 + 1e-9) << spike;
   const std::string junk = s.listen(0.5, {"--command", "reboot"});
   EXPECT_EQ(json_number(junk, "command_sent"), 1) << junk;
   const std::string counters = s.stop_bridge();
   EXPECT_EQ(json_number(counters, "commands_applied"), 1) << counters;
   EXPECT_EQ(json_number(counters, "commands_invalid"), 1) << counters;
   EXPECT_GT(json_number(counters, "forces_accepted"), 50) << counters;
+  EXPECT_GT(json_number(counters, "forces_invalid"), 50) << counters;
 }
 
 TEST(DdsBridgeProcess, WithoutRemoteCommandsOnlyTheEmergencyStopActs) {

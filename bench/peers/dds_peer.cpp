@@ -48,33 +48,20 @@ class DdsReader final : public PeerReader {
   DdsReader(std::uint32_t domain, const std::string& topic) : participant_(domain) {
     const ros2types::Qos qos = ros2types::sensor_data_qos();
     reader_ = participant_.reader(hapticctrl_bench_PeerSample_desc, topic, qos.get());
-    waitset_ = ros2types::checked(dds_create_waitset(participant_.handle()), "DDS waitset");
-    const dds_entity_t condition =
-        ros2types::checked(dds_create_readcondition(reader_, DDS_ANY_STATE), "DDS read condition");
-    ros2types::checked(dds_waitset_attach(waitset_, condition, condition), "DDS attach");
+    waitset_ = participant_.waitset_for({reader_});
   }
   bool wait(std::chrono::milliseconds timeout) override {
     return dds_waitset_wait(waitset_, nullptr, 0, DDS_MSECS(timeout.count())) > 0;
   }
   bool read(Message& out) override {
     bool got = false;
-    std::array<void*, 8> samples{};
-    std::array<dds_sample_info_t, 8> infos{};
-    for (;;) {
-      samples.fill(nullptr);
-      const dds_return_t n = dds_take(reader_, samples.data(), infos.data(), 8, 8);
-      if (n <= 0) {
-        return got;
+    ros2types::take_each<hapticctrl_bench_PeerSample>(reader_, [&](const auto& s) {
+      if (s.bytes._length == sizeof out) {
+        std::memcpy(&out, s.bytes._buffer, sizeof out);
+        got = true;
       }
-      for (std::size_t i = 0; i < static_cast<std::size_t>(n); ++i) {
-        const auto& s = *static_cast<const hapticctrl_bench_PeerSample*>(samples[i]);
-        if (infos[i].valid_data && s.bytes._length == sizeof out) {
-          std::memcpy(&out, s.bytes._buffer, sizeof out);
-          got = true;
-        }
-      }
-      dds_return_loan(reader_, samples.data(), n);
-    }
+    });
+    return got;
   }
 
  private:

@@ -50,4 +50,14 @@ dds_entity_t Participant::reader(const dds_topic_descriptor_t& type, const std::
                  "DDS reader on " + topic_name);
 }
 
+dds_entity_t Participant::waitset_for(std::initializer_list<dds_entity_t> readers) {
+  const dds_entity_t waitset = checked(dds_create_waitset(participant_), "DDS waitset");
+  for (const dds_entity_t reader : readers) {
+    const dds_entity_t condition =
+        checked(dds_create_readcondition(reader, DDS_ANY_STATE), "DDS read condition");
+    checked(dds_waitset_attach(waitset, condition, condition), "DDS waitset attach");
+  }
+  return waitset;
+}
+
 }  // namespace hapticctrl::ros2types

@@ -4,10 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <array>
-#include <chrono>
 #include <stdexcept>
 #include <string>
-#include <thread>
 
 #include "hapticctrl/ros2types/names.hpp"
 #include "hapticctrl/ros2types/qos.hpp"
@@ -35,22 +33,19 @@ TEST(Ros2Participant, ASampleWrittenIsTakenWithItsRos2TypeName) {
   sent.pose.position = {0.1, 0.2, 0.3};
   sent.pose.orientation = {0, 0, 0, 1};
   ASSERT_EQ(dds_write(writer, &sent), 0);
-  std::array<void*, 1> samples{};
-  std::array<dds_sample_info_t, 1> infos{};
-  dds_return_t n = 0;
-  for (int i = 0; i < 200 && n <= 0; ++i) {  // bounded: 2 s
-    n = dds_take(reader, samples.data(), infos.data(), 1, 1);
-    if (n <= 0) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-  }
-  ASSERT_EQ(n, 1);
-  const auto& got = *static_cast<const geometry_msgs_msg_dds__PoseStamped_*>(samples[0]);
-  EXPECT_EQ(got.header.stamp.sec, 1);
-  EXPECT_EQ(got.header.stamp.nanosec, 500'000'000U);
-  EXPECT_STREQ(got.header.frame_id, "f");
-  EXPECT_DOUBLE_EQ(got.pose.position.z, 0.3);
-  dds_return_loan(reader, samples.data(), n);
+  const dds_entity_t waitset = p.waitset_for({reader});
+  ASSERT_GT(dds_waitset_wait(waitset, nullptr, 0, DDS_SECS(2)), 0) << "woken by the sample";
+  int taken = 0;
+  take_each<geometry_msgs_msg_dds__PoseStamped_>(reader, [&](const auto& got) {
+    ++taken;
+    EXPECT_EQ(got.header.stamp.sec, 1);
+    EXPECT_EQ(got.header.stamp.nanosec, 500'000'000U);
+    EXPECT_STREQ(got.header.frame_id, "f");
+    EXPECT_DOUBLE_EQ(got.pose.position.z, 0.3);
+  });
+  EXPECT_EQ(taken, 1);
+  take_each<geometry_msgs_msg_dds__PoseStamped_>(reader, [&](const auto&) { ++taken; });
+  EXPECT_EQ(taken, 1) << "taken once";
 }
 
 TEST(Ros2Participant, FailuresThrowWithDdsReason) {

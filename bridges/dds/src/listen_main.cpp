@@ -93,25 +93,6 @@ struct Arrivals {
   }
 };
 
-template <typename Message, typename Seen>
-void take_all(dds_entity_t reader, Seen seen) {
-  std::array<void*, 16> samples{};
-  std::array<dds_sample_info_t, 16> infos{};
-  for (;;) {
-    samples.fill(nullptr);
-    const dds_return_t n = dds_take(reader, samples.data(), infos.data(), 16, 16);
-    if (n <= 0) {
-      return;
-    }
-    for (std::size_t i = 0; i < static_cast<std::size_t>(n); ++i) {
-      if (infos[i].valid_data) {
-        seen(*static_cast<const Message*>(samples[i]));
-      }
-    }
-    dds_return_loan(reader, samples.data(), n);
-  }
-}
-
 void print_topic(const char* name, const char* type, const Arrivals& a) {
   std::printf(
       "\"%s_type\":\"%s\",\"%s_count\":%llu,\"%s_rate_hz\":%.2f,\"%s_frame\":\"%s\","
@@ -182,24 +163,24 @@ int listen(const ListenConfig& c) {
   std::int64_t next_wrench = 0;
   while (monotonic_now_ns() < end) {
     const std::int64_t now = monotonic_now_ns();
-    take_all<geometry_msgs_msg_dds__PoseStamped_>(pose_r, [&](const auto& m) {
+    r2::take_each<geometry_msgs_msg_dds__PoseStamped_>(pose_r, [&](const auto& m) {
       pose.saw(m.header, now);
       last_pose = m;
     });
-    take_all<geometry_msgs_msg_dds__WrenchStamped_>(rendered_r, [&](const auto& m) {
+    r2::take_each<geometry_msgs_msg_dds__WrenchStamped_>(rendered_r, [&](const auto& m) {
       rendered.saw(m.header, now);
       last_rendered = m.wrench;
     });
-    take_all<geometry_msgs_msg_dds__WrenchStamped_>(operator_r, [&](const auto& m) {
+    r2::take_each<geometry_msgs_msg_dds__WrenchStamped_>(operator_r, [&](const auto& m) {
       operator_wrench.saw(m.header, now);
       last_operator = m.wrench;
     });
-    take_all<sensor_msgs_msg_dds__JointState_>(joints_r, [&](const auto& m) {
+    r2::take_each<sensor_msgs_msg_dds__JointState_>(joints_r, [&](const auto& m) {
       joints.saw(m.header, now);
       joint_position.assign(m.position._buffer, m.position._buffer + m.position._length);
       joint_names.assign(m.name._buffer, m.name._buffer + m.name._length);
     });
-    take_all<diagnostic_msgs_msg_dds__DiagnosticArray_>(diag_r, [&](const auto& m) {
+    r2::take_each<diagnostic_msgs_msg_dds__DiagnosticArray_>(diag_r, [&](const auto& m) {
       diagnostics.saw(m.header, now);
       if (m.status._length > 0) {
         const auto& s = m.status._buffer[0];

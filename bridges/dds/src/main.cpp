@@ -110,27 +110,6 @@ void publish_loop(const shm::Segment& seg, const Endpoints& ep, Publisher& pub,
   }
 }
 
-/// Applies every sample waiting on `reader` (loaned by DDS, returned at once).
-template <typename Message, typename Apply>
-void take_all(dds_entity_t reader, Apply apply) {
-  constexpr std::size_t kBatch = 8;
-  std::array<void*, kBatch> samples{};
-  std::array<dds_sample_info_t, kBatch> infos{};
-  for (;;) {
-    samples.fill(nullptr);  // null: DDS lends its own buffers
-    const dds_return_t n = dds_take(reader, samples.data(), infos.data(), kBatch, kBatch);
-    if (n <= 0) {
-      return;
-    }
-    for (std::size_t i = 0; i < static_cast<std::size_t>(n); ++i) {
-      if (infos[i].valid_data) {
-        apply(*static_cast<const Message*>(samples[i]));
-      }
-    }
-    dds_return_loan(reader, samples.data(), n);
-  }
-}
-
 /// Serves one controller until it goes away, the bridge is told to stop, or `end_ns` passes.
 /// Returns the counters of the commands this attachment applied.
 std::string run_attached(shm::Segment& seg, const Endpoints& ep, Publisher& pub,
@@ -147,9 +126,9 @@ std::string run_attached(shm::Segment& seg, const Endpoints& ep, Publisher& pub,
   while (!g_stop.load() && !core_gone.load()) {
     dds_waitset_wait(waitset, nullptr, 0, DDS_MSECS(2));
     const std::int64_t now = monotonic_now_ns();
-    take_all<std_msgs_msg_dds__String_>(
+    hapticctrl::ros2types::take_each<std_msgs_msg_dds__String_>(
         ep.command, [&](const auto& m) { remote.command(db::command_of(m), now); });
-    take_all<geometry_msgs_msg_dds__WrenchStamped_>(
+    hapticctrl::ros2types::take_each<geometry_msgs_msg_dds__WrenchStamped_>(
         ep.operator_wrench_command, [&](const auto& m) { remote.force(db::wrench_of(m), now); });
     remote.tick(now);
     if (end_ns != 0 && now >= end_ns) {
@@ -176,14 +155,7 @@ std::string run_attached(shm::Segment& seg, const Endpoints& ep, Publisher& pub,
 int run(const DdsBridgeConfig& config) {
   hapticctrl::ros2types::Participant participant(config.domain());
   const Endpoints ep(participant, config.ros_namespace);
-  const dds_entity_t waitset =
-      hapticctrl::ros2types::checked(dds_create_waitset(participant.handle()), "DDS waitset");
-  for (const dds_entity_t reader : {ep.command, ep.operator_wrench_command}) {
-    const dds_entity_t condition = hapticctrl::ros2types::checked(
-        dds_create_readcondition(reader, DDS_ANY_STATE), "DDS read condition");
-    hapticctrl::ros2types::checked(dds_waitset_attach(waitset, condition, condition),
-                                   "DDS waitset attach");
-  }
+  const dds_entity_t waitset = participant.waitset_for({ep.command, ep.operator_wrench_command});
   Publisher pub(config, hapticctrl::ros2types::base_frame(config.ros_namespace));
   PublishCounters counters;
   std::string commands_json = "\"commands_applied\":0";

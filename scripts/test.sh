@@ -33,8 +33,8 @@ echo "== build and test (RelWithDebInfo)"
 # Two attempts: on these 2 vCPUs without a real-time kernel a whole-VM stall of 50 ms or more
 # now and then fails a timing-bound integration test of the plain build too (2026-12-02, a full
 # run: the demo's core failed safe on 5 missed 10 ms deadlines, and two H1 cases measured a 1 ms
-# link at 2.8 ms with 0.75 ms jitter and missed "still" by 10 %; each passed 14 times out of 14
-# alone). A functional failure fails both attempts.
+# link at 2.8 ms with 0.75 ms jitter and missed "still" by 10 %; the 1 ms case passed 14 times
+# out of 14 alone). A functional failure fails both attempts.
 configure_build_test build 'unit|sim|integration|bench' 2
 
 if [[ "${CI:-}" == "true" ]]; then

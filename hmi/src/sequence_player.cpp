@@ -67,10 +67,14 @@ PlayResult play_sequence(Operator& op, const WrenchSequence& sequence, std::ostr
   const std::int64_t start = monotonic_now_ns();
   const std::int64_t end = start + static_cast<std::int64_t>(sequence.duration() * 1e9);
   std::uint64_t last_cycle = 0;
-  for (std::int64_t now = start; now <= end; now = monotonic_now_ns()) {
+  // The last pass plays the sequence's last sample: t is held at the end once it is reached (a
+  // pass that began just before the end once stopped the player at 0.79997 s of 0.8, CI
+  // 2026-12-02).
+  for (bool last = false; !last;) {
     (void)vp.wait_for_publish(vp.sequence_word(), std::chrono::milliseconds(20));
-    now = monotonic_now_ns();
-    const double t = static_cast<double>(now - start) / 1e9;
+    const std::int64_t now = monotonic_now_ns();
+    last = now >= end;
+    const double t = last ? sequence.duration() : static_cast<double>(now - start) / 1e9;
     const shm::Vector6 requested = sequence.at(t);
     (void)op.request_force(requested);  // validated at load: cannot be refused
     if (motion) {

@@ -40,6 +40,15 @@ bool valid_namespace(std::string_view ns) {
   return true;
 }
 
+std::string checked_namespace(std::string_view ns) {
+  if (!valid_namespace(ns)) {
+    throw std::invalid_argument("'" + std::string(ns) +
+                                "' is not a ROS 2 namespace (\"/\" then tokens of letters, digits "
+                                "and '_' not starting with a digit, e.g. /lab/arm1)");
+  }
+  return std::string(ns);
+}
+
 std::string default_namespace(std::string_view instance) {
   std::string token;
   for (const char c : instance) {
@@ -52,11 +61,7 @@ std::string default_namespace(std::string_view instance) {
 }
 
 std::string dds_topic(std::string_view ns, std::string_view name) {
-  if (!valid_namespace(ns)) {
-    throw std::invalid_argument("'" + std::string(ns) +
-                                "' is not a ROS 2 namespace (\"/\" then tokens of letters, digits "
-                                "and '_' not starting with a digit, e.g. /lab/arm1)");
-  }
+  (void)checked_namespace(ns);
   std::string topic = "rt";
   topic += ns == "/" ? "" : ns;
   topic += '/';

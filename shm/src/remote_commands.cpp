@@ -1,7 +1,25 @@
 // Implements remote_commands.hpp: one rule for commands and forces from another host.
 #include "hapticctrl/shm/remote_commands.hpp"
 
+#include <array>
+#include <cstdio>
+
 namespace hapticctrl::shm {
+
+std::string counters_json(const RemoteCommandCounters& c) {
+  const auto get = [](const std::atomic<std::uint64_t>& v) {
+    return static_cast<unsigned long long>(v.load());
+  };
+  std::array<char, 512> text{};
+  std::snprintf(text.data(), text.size(),
+                "\"commands_applied\":%llu,\"commands_refused\":%llu,\"commands_invalid\":%llu,"
+                "\"commands_queue_full\":%llu,\"forces_accepted\":%llu,\"forces_refused\":%llu,"
+                "\"forces_invalid\":%llu,\"force_timeouts\":%llu,\"malformed\":%llu",
+                get(c.commands_applied), get(c.commands_refused), get(c.commands_invalid),
+                get(c.commands_queue_full), get(c.forces_accepted), get(c.forces_refused),
+                get(c.forces_invalid), get(c.force_timeouts), get(c.malformed));
+  return text.data();
+}
 
 AttachOptions RemoteCommands::attach_options(bool allow_remote_commands) {
   AttachOptions options;

@@ -18,6 +18,17 @@ TEST(Ros2Names, NamespacesFollowRos2Rules) {
   }
 }
 
+TEST(Ros2Names, CheckedNamespacesSayWhatANamespaceIs) {
+  EXPECT_EQ(checked_namespace("/lab/arm1"), "/lab/arm1");
+  try {
+    (void)checked_namespace("lab");
+    ADD_FAILURE() << "accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("'lab' is not a ROS 2 namespace"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(Ros2Names, TheDefaultNamespaceIsValidForAnyInstance) {
   EXPECT_EQ(default_namespace("default"), "/hapticctrl/default");
   EXPECT_EQ(default_namespace("arm-1"), "/hapticctrl/arm_1");

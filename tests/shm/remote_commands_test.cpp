@@ -79,6 +79,17 @@ TEST_F(RemoteCommandsTest, UnknownCommandsAndMissingRegionsAreCounted) {
   EXPECT_TRUE(drain().empty());
 }
 
+TEST_F(RemoteCommandsTest, TheCountersReadAsJsonMembers) {
+  RemoteCommands remote = make(false);
+  remote.command(CtrlCode::kPowerOn, 0);
+  remote.command(CtrlCode::kEmergencyStop, 0);
+  remote.malformed();
+  EXPECT_EQ(counters_json(remote.counters()),
+            "\"commands_applied\":1,\"commands_refused\":1,\"commands_invalid\":0,"
+            "\"commands_queue_full\":0,\"forces_accepted\":0,\"forces_refused\":0,"
+            "\"forces_invalid\":0,\"force_timeouts\":0,\"malformed\":1");
+}
+
 TEST_F(RemoteCommandsTest, OutOfRangeOrNonFiniteForcesAreRefused) {
   RemoteCommands remote = make(true);
   for (const double bad :

@@ -2,7 +2,6 @@
 #include "hapticctrl/dds_bridge/dds_bridge_config.hpp"
 
 #include <cstdlib>
-#include <stdexcept>
 
 #include "hapticctrl/program/options.hpp"
 #include "hapticctrl/ros2types/names.hpp"
@@ -22,12 +21,7 @@ void declare(program::Options& o, DdsBridgeConfig& c) {
   o.text("--instance", c.instance, "controller instance (default: default)");
   o.custom(
       "--namespace", "NS",
-      [&c](const std::string& v) {
-        if (!ros2types::valid_namespace(v)) {
-          throw std::invalid_argument("'" + v + "' is not a ROS 2 namespace (e.g. /lab/arm1)");
-        }
-        c.ros_namespace = v;
-      },
+      [&c](const std::string& v) { c.ros_namespace = ros2types::checked_namespace(v); },
       "ROS 2 namespace of the topics (default: /hapticctrl/<instance>)");
   o.number("--domain-id", c.domain_id, std::int32_t{0}, kMaxDomain,
            "DDS domain (default: $ROS_DOMAIN_ID, else 0)");

@@ -7,6 +7,7 @@
 #include <array>
 #include <chrono>
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -35,12 +36,7 @@ struct ListenConfig {
 void declare(hapticctrl::program::Options& o, ListenConfig& c) {
   o.custom(
       "--namespace", "NS",
-      [&c](const std::string& v) {
-        if (!r2::valid_namespace(v)) {
-          throw std::invalid_argument("'" + v + "' is not a ROS 2 namespace");
-        }
-        c.ros_namespace = v;
-      },
+      [&c](const std::string& v) { c.ros_namespace = r2::checked_namespace(v); },
       "ROS 2 namespace of the instance (default /hapticctrl/default)");
   o.number("--domain-id", c.domain_id, std::int32_t{0}, std::int32_t{232}, "DDS domain");
   o.number("--duration", c.duration_s, 0.1, 3600.0, "listen for S seconds (default 2)");

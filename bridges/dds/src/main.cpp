@@ -137,23 +137,12 @@ std::string run_attached(shm::Segment& seg, const Endpoints& ep, Publisher& pub,
   }
   publishing.store(false);
   publisher.join();
-  const auto& c = remote.counters();
-  const auto get = [](const std::atomic<std::uint64_t>& v) {
-    return static_cast<unsigned long long>(v.load());
-  };
-  char text[384];  // NOLINT(*-avoid-c-arrays)
-  std::snprintf(text, sizeof text,
-                "\"commands_applied\":%llu,\"commands_refused\":%llu,\"commands_invalid\":%llu,"
-                "\"commands_queue_full\":%llu,\"forces_accepted\":%llu,\"forces_refused\":%llu,"
-                "\"forces_invalid\":%llu,\"force_timeouts\":%llu",
-                get(c.commands_applied), get(c.commands_refused), get(c.commands_invalid),
-                get(c.commands_queue_full), get(c.forces_accepted), get(c.forces_refused),
-                get(c.forces_invalid), get(c.force_timeouts));
-  return text;
+  return shm::counters_json(remote.counters());
 }
 
 int run(const DdsBridgeConfig& config) {
-  hapticctrl::ros2types::Participant participant(config.domain());
+  const std::uint32_t domain = config.domain();
+  hapticctrl::ros2types::Participant participant(domain);
   const Endpoints ep(participant, config.ros_namespace);
   const dds_entity_t waitset = participant.waitset_for({ep.command, ep.operator_wrench_command});
   Publisher pub(config, hapticctrl::ros2types::base_frame(config.ros_namespace));
@@ -166,7 +155,7 @@ int run(const DdsBridgeConfig& config) {
   std::fprintf(stderr,
                "hapticctrl-dds: instance '%s', DDS domain %u, ROS 2 namespace %s, remote "
                "commands %s\n",
-               config.instance.c_str(), config.domain(), config.ros_namespace.c_str(),
+               config.instance.c_str(), domain, config.ros_namespace.c_str(),
                config.allow_remote_commands ? "enabled" : "disabled (emergency stop only)");
   bool said_waiting = false;
   while (!g_stop.load()) {

@@ -169,19 +169,7 @@ void run_attached(shm::Segment& seg, lcm::LCM& lcm, const Channels& ch,
   publisher.join();
   lcm.unsubscribe(command_sub);
   lcm.unsubscribe(force_sub);
-  const auto& c = hmi.counters();
-  const auto get = [](const std::atomic<std::uint64_t>& v) {
-    return static_cast<unsigned long long>(v.load());
-  };
-  char text[512];  // NOLINT(*-avoid-c-arrays)
-  std::snprintf(text, sizeof text,
-                "\"commands_applied\":%llu,\"commands_refused\":%llu,\"commands_invalid\":%llu,"
-                "\"commands_queue_full\":%llu,\"forces_accepted\":%llu,\"forces_refused\":%llu,"
-                "\"forces_invalid\":%llu,\"force_timeouts\":%llu,\"malformed\":%llu",
-                get(c.commands_applied), get(c.commands_refused), get(c.commands_invalid),
-                get(c.commands_queue_full), get(c.forces_accepted), get(c.forces_refused),
-                get(c.forces_invalid), get(c.force_timeouts), get(c.malformed));
-  hmi_json = text;
+  hmi_json = shm::counters_json(hmi.counters());
 }
 
 int run(const LcmBridgeConfig& config) {

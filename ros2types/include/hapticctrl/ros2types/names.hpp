@@ -29,6 +29,10 @@ inline constexpr std::string_view kOperatorWrenchCommand = "operator_wrench_comm
 /// root namespace.
 [[nodiscard]] bool valid_namespace(std::string_view ns);
 
+/// `ns` itself when valid_namespace(ns); otherwise throws std::invalid_argument saying what a
+/// ROS 2 namespace is.
+[[nodiscard]] std::string checked_namespace(std::string_view ns);
+
 /// "/hapticctrl/<instance>", with every character a ROS 2 name cannot hold replaced by '_'
 /// (and '_' before a leading digit): "arm-1" -> "/hapticctrl/arm_1".
 [[nodiscard]] std::string default_namespace(std::string_view instance);

@@ -14,6 +14,7 @@
 /// thread); every member is noexcept and allocation-free.
 #include <atomic>
 #include <cstdint>
+#include <string>
 
 #include "hapticctrl/shm/ctrl.hpp"
 #include "hapticctrl/shm/force_slew.hpp"
@@ -40,6 +41,10 @@ struct RemoteCommandCounters {
   std::atomic<std::uint64_t> force_timeouts{0};
   std::atomic<std::uint64_t> malformed{0};  ///< messages the transport could not decode
 };
+
+/// The counters as JSON members without braces ("\"commands_applied\":3,..."), for a bridge's
+/// --json summary. Setup code: allocates.
+[[nodiscard]] std::string counters_json(const RemoteCommandCounters& c);
 
 class RemoteCommands {
  public:

@@ -50,6 +50,90 @@ void ChannelPassivity::set_speed_factor(double factor) noexcept {
   speed_factor_ = std::isfinite(factor) && factor > 0.0 ? factor : 1.0;
 }
 
+double ChannelPassivity::book(double power, double dt) noexcept {
+  (power >= 0.0 ? energy_in_ : energy_out_) += std::abs(power) * dt;
+  return energy_out_ - controller_in_;
+}
+
+double ChannelPassivity::on_image_step(const Vector6& force, const Vector6& flow,
+                                       const Vector6& stretch, double dt) noexcept {
+  drift_rate_ = {};
+  if (!(dt > 0.0) || !std::isfinite(dt)) {
+    return 0.0;
+  }
+  double power = 0.0;
+  double force_sq = 0.0;
+  for (std::size_t i = 0; i < 6; ++i) {
+    power += force[i] * flow[i];
+    force_sq += force[i] * force[i];
+  }
+  if (!std::isfinite(power) || !std::isfinite(force_sq)) {
+    return 0.0;
+  }
+  const double excess = book(power, dt);
+  Vector6 rate{};
+  if (excess > 0.0) {
+    ++active_steps_;
+    if (force_sq > 1e-12) {
+      // The image gives way along the client's force, as fast as dissipates the excess in one
+      // step, no further than relaxing the object's spring (a stretch of zero: no bound).
+      for (std::size_t i = 0; i < 6; ++i) {
+        rate[i] = force[i] * excess / (dt * force_sq);
+      }
+      for (std::size_t from = 0; from < 6; from += 3) {
+        double moved = 0.0;
+        double room = 0.0;
+        for (std::size_t i = from; i < from + 3; ++i) {
+          moved += rate[i] * rate[i];
+          room += stretch[i] * stretch[i];
+        }
+        moved = std::sqrt(moved) * dt;
+        room = std::sqrt(room);
+        if (room > 0.0 && moved > room) {
+          for (std::size_t i = from; i < from + 3; ++i) {
+            rate[i] *= room / moved;
+          }
+        }
+      }
+    }
+  } else {
+    // Give the drift back, slowly (2 cm/s, 0.2 rad/s), within the budget: it costs energy.
+    double cost = 0.0;
+    for (std::size_t from = 0; from < 6; from += 3) {
+      const double speed = from == 0 ? 0.02 : 0.2;
+      double norm = 0.0;
+      for (std::size_t i = from; i < from + 3; ++i) {
+        norm += drift_[i] * drift_[i];
+      }
+      norm = std::sqrt(norm);
+      const double step = norm > 0.0 ? std::min(norm / dt, speed) / norm : 0.0;
+      for (std::size_t i = from; i < from + 3; ++i) {
+        rate[i] = -drift_[i] * step;
+        cost -= force[i] * rate[i] * dt;
+      }
+    }
+    if (cost > -excess && cost > 0.0) {
+      for (double& r : rate) {
+        r *= -excess / cost;
+      }
+    }
+  }
+  double dissipated = 0.0;
+  for (std::size_t i = 0; i < 6; ++i) {
+    dissipated += force[i] * rate[i] * dt;
+    drift_[i] += rate[i] * dt;
+  }
+  drift_rate_ = rate;
+  energy_out_ -= dissipated;
+  return std::max(0.0, excess - std::max(0.0, dissipated));
+}
+
+void ChannelPassivity::on_cut(double joules) noexcept {
+  if (std::isfinite(joules) && joules > 0.0) {
+    energy_out_ -= joules;
+  }
+}
+
 Vector6 ChannelPassivity::render(const Vector6& wrench) noexcept {
   raw_ = wrench;
   Vector6 out = wrench;

@@ -3,6 +3,8 @@
 // frames to send come out for the caller to send.
 #include "client_session.hpp"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -22,6 +24,65 @@ std::string version_text(std::uint32_t v) {
 
 std::int64_t ns_of(std::chrono::milliseconds ms) {
   return ms.count() * kNsPerMs;
+}
+
+/// The features a client of `version` knows (an older version advertised for compatibility
+/// testing asks only for its own).
+std::uint32_t features_of(std::uint32_t version) {
+  std::uint32_t f = protocol::kAllFeatures;
+  if (version < protocol::make_version(1, 3)) {
+    f &= ~static_cast<std::uint32_t>(HCP_FEATURE_LOCAL_COUPLING);
+  }
+  if (version < protocol::make_version(1, 1)) {
+    f &= ~static_cast<std::uint32_t>(HCP_FEATURE_TIMING);
+  }
+  return f;
+}
+
+Vector6 sum(const Vector6& a, const Vector6& b) noexcept {
+  Vector6 s{};
+  for (std::size_t i = 0; i < 6; ++i) {
+    s[i] = a[i] + b[i];
+  }
+  return s;
+}
+
+/// `pose` shifted by a drift (linear, rotation vector), client frame.
+Pose7 drifted(const Pose7& pose, const Vector6& drift) noexcept {
+  const Eigen::Vector3d turn(drift[3], drift[4], drift[5]);
+  Eigen::Quaterniond q(pose[6], pose[3], pose[4], pose[5]);
+  if (turn.norm() > 1e-12) {
+    q = Eigen::Quaterniond(Eigen::AngleAxisd(turn.norm(), turn.normalized())) * q;
+  }
+  return {pose[0] + drift[0], pose[1] + drift[1], pose[2] + drift[2], q.x(), q.y(), q.z(), q.w()};
+}
+
+/// The object's spring's stretch: handle image - object (linear, rotation vector).
+Vector6 stretch_of(const Pose7& image, const Pose7& object) noexcept {
+  const Eigen::Quaterniond qi(image[6], image[3], image[4], image[5]);
+  const Eigen::Quaterniond qo(object[6], object[3], object[4], object[5]);
+  const Eigen::AngleAxisd turn(qi.normalized() * qo.normalized().conjugate());
+  const Eigen::Vector3d r = turn.axis() * turn.angle();
+  return {image[0] - object[0], image[1] - object[1], image[2] - object[2], r.x(), r.y(), r.z()};
+}
+
+/// Removes from `wrench` the share that gives power along `flow`, as much as `energy` J over
+/// `dt` (at most all of it). Returns the energy taken.
+double cut_along(Vector6& wrench, const Vector6& flow, double energy, double dt) noexcept {
+  double power = 0.0;
+  double flow_sq = 0.0;
+  for (std::size_t i = 0; i < 6; ++i) {
+    power += wrench[i] * flow[i];
+    flow_sq += flow[i] * flow[i];
+  }
+  if (!(power > 0.0) || !(energy > 0.0) || !(dt > 0.0) || flow_sq < 1e-18) {
+    return 0.0;
+  }
+  const double taken = std::min(power, energy / dt);
+  for (std::size_t i = 0; i < 6; ++i) {
+    wrench[i] -= flow[i] * taken / flow_sq;
+  }
+  return taken * dt;
 }
 
 }  // namespace
@@ -44,7 +105,7 @@ std::optional<hcp_frame> ClientSession::hello_due(std::int64_t now) {
   hcp_hello& h = hello.body.hcp_body_u.hello;
   h.min_version =
       options_.advertised_min_version != 0 ? options_.advertised_min_version : version();
-  h.features = protocol::kAllFeatures;
+  h.features = features_of(version());
   h.watchdog_ms = options_.watchdog_ms;
   protocol::set_text(h.client_name, options_.client_name);
   next_hello_ns_ = now + ns_of(options_.retransmit_after) * 2;
@@ -136,6 +197,7 @@ Arrival ClientSession::on_frame(const hcp_frame& frame, std::int64_t now) noexce
   switch (frame.body.type) {
     case HCP_ANSWER:
     case HCP_ANSWER_TIMED:
+    case HCP_ANSWER_COUPLED:
       return on_answer(frame, now) ? Arrival::kAnswer : Arrival::kIgnored;
     case HCP_REFUSE:  // the bridge ended the session, and says why
       close(protocol::text_of(frame.body.hcp_body_u.refuse.reason));
@@ -151,9 +213,11 @@ Arrival ClientSession::on_frame(const hcp_frame& frame, std::int64_t now) noexce
 }
 
 bool ClientSession::on_answer(const hcp_frame& frame, std::int64_t now) noexcept {
-  const bool timed = frame.body.type == HCP_ANSWER_TIMED;
-  const hcp_answer& a =
-      timed ? frame.body.hcp_body_u.answer_timed.answer : frame.body.hcp_body_u.answer;
+  const auto& u = frame.body.hcp_body_u;
+  const bool coupled = frame.body.type == HCP_ANSWER_COUPLED;
+  const bool timed = coupled || frame.body.type == HCP_ANSWER_TIMED;
+  const hcp_answer& a = coupled ? u.answer_coupled.answer
+                                : (timed ? u.answer_timed.answer : u.answer);
   if (!monitor_.on_answer(frame.header.sequence, now, a.echo_sequence, a.echo_time_ns,
                           a.control_received)) {
     return false;  // a duplicate or an answer older than the newest
@@ -167,19 +231,53 @@ bool ClientSession::on_answer(const hcp_frame& frame, std::int64_t now) noexcept
   s.stop_reason = a.stop_reason;
   s.command_type = static_cast<CommandType>(a.command_type);
   protocol::from_wire(a.coupling_wrench, s.coupling_wrench);
-  if (timed) {
-    // Two-port passivity, this end: the application gets the wrench with the PC's damper.
-    report_ = frame.body.hcp_body_u.answer_timed.coupling;
-    passivity_.on_controller_energy(report_.energy_in);
-    passivity_.on_coupling_damping(report_.gains[1], report_.gains[3]);
-    s.coupling_wrench = passivity_.render(s.coupling_wrench);
-  }
   protocol::from_wire(a.handle_pose, s.handle_pose);
   protocol::from_wire(a.handle_twist, s.handle_twist);
   protocol::from_wire(a.joint_position, s.joint_position);
   protocol::from_wire(a.joint_velocity, s.joint_velocity);
+  if (timed) {
+    report_ = coupled ? u.answer_coupled.coupling : u.answer_timed.coupling;
+    passivity_.on_controller_energy(report_.energy_in);
+    passivity_.on_coupling_damping(report_.gains[1], report_.gains[3]);
+  }
+  if (coupled) {
+    local_ = u.answer_coupled.local;
+    terms_ = terms_of(report_, local_);
+    channel_pose_ = s.handle_pose;  // the channel's flow at this end: the handle image
+    channel_twist_ = s.handle_twist;
+    latest_ = s;
+    close_locally();
+    return true;
+  }
+  if (timed) {
+    // Two-port passivity, this end (1.1): the application gets the wrench with the PC's damper.
+    s.coupling_wrench = passivity_.render(s.coupling_wrench);
+  }
   latest_ = s;
   return true;
+}
+
+void ClientSession::close_locally() noexcept {
+  // Protocol 1.3: the object's wrench from its own newest state and the handle image; an
+  // IMPEDANCE application sees the handle image as the passivity controller lets it give way.
+  StateSnapshot& s = latest_;
+  const Pose7 image = drifted(channel_pose_, passivity_.drift());
+  if (s.command_type == CommandType::kImpedance) {
+    s.handle_pose = image;
+    s.handle_twist = sum(channel_twist_, passivity_.drift_rate());
+    return;
+  }
+  if (!s.coupled() || !have_object_) {
+    object_wrench_ = {};
+    s.coupling_wrench = object_wrench_;
+    return;
+  }
+  Vector6 w = object_wrench(terms_, image, channel_twist_, object_pose_, object_twist_,
+                            speed_factor_, force_factor_);
+  passivity_.on_cut(cut_along(w, channel_twist_, cut_pending_, cut_dt_));
+  cut_pending_ = 0.0;
+  object_wrench_ = w;
+  s.coupling_wrench = w;
 }
 
 std::optional<hcp_frame> ClientSession::keepalive_due(std::int64_t now) noexcept {
@@ -242,9 +340,26 @@ hcp_frame ClientSession::timed_object_frame(const Pose7& pose, const Vector6& tw
   // The step the application just took, under the wrench it got (at most 0.1 s counted).
   if (last_object_send_ns_ != 0) {
     const double dt = std::min(0.1, static_cast<double>(now - last_object_send_ns_) * 1e-9);
-    passivity_.on_step(twist, dt);
+    if (local()) {
+      // The object's spring pushed the handle image with the opposite of the object's wrench.
+      Vector6 on_image{};
+      for (std::size_t i = 0; i < 6; ++i) {
+        on_image[i] = -object_wrench_[i];
+      }
+      const Vector6 stretch = stretch_of(drifted(channel_pose_, passivity_.drift()), object_pose_);
+      cut_pending_ = passivity_.on_image_step(on_image, channel_twist_, stretch, dt);
+      cut_dt_ = dt;
+    } else {
+      passivity_.on_step(twist, dt);
+    }
   }
   last_object_send_ns_ = now;
+  object_pose_ = pose;
+  object_twist_ = twist;
+  have_object_ = true;
+  if (local() && latest_.valid) {
+    close_locally();  // the wrench for the next step, on the state just sent
+  }
   hcp_frame f =
       protocol::make_frame(HCP_CONTROL_OBJECT_TIMED, token_, next_control_sequence(), now);
   hcp_control_object_timed& o = f.body.hcp_body_u.timed;
@@ -255,16 +370,39 @@ hcp_frame ClientSession::timed_object_frame(const Pose7& pose, const Vector6& tw
   o.rotation[0] = r[0];
   o.rotation[1] = r[1];
   protocol::to_wire(twist, o.twist);
-  o.answer_echo =
-      protocol::pack_answer_echo(latest_.cycle, now - latest_.received_ns, latest_.valid);
+  o.answer_echo = answer_echo(now);
   o.energy_in = passivity_.energy_in_uj();
   return f;
 }
 
+std::uint32_t ClientSession::answer_echo(std::int64_t now) const noexcept {
+  return protocol::pack_answer_echo(latest_.cycle, now - latest_.received_ns, latest_.valid);
+}
+
 std::optional<hcp_frame> ClientSession::wrench_frame(const Vector6& wrench,
                                                      std::int64_t now) noexcept {
-  hcp_frame f = protocol::make_frame(HCP_CONTROL_WRENCH, token_, next_control_sequence(), now);
-  protocol::to_wire(wrench, f.body.hcp_body_u.wrench.wrench);
+  if (!local()) {
+    hcp_frame f = protocol::make_frame(HCP_CONTROL_WRENCH, token_, next_control_sequence(), now);
+    protocol::to_wire(wrench, f.body.hcp_body_u.wrench.wrench);
+    return checked_control(f);
+  }
+  // Protocol 1.3: the wrench held since the last one pushed the handle image; the image gives
+  // way along it when the channel gave this end more than the controller put in.
+  if (last_wrench_send_ns_ != 0) {
+    const double dt = std::min(0.1, static_cast<double>(now - last_wrench_send_ns_) * 1e-9);
+    (void)passivity_.on_image_step(held_wrench_, channel_twist_, Vector6{}, dt);
+  }
+  last_wrench_send_ns_ = now;
+  held_wrench_ = wrench;
+  if (latest_.valid) {
+    close_locally();
+  }
+  hcp_frame f =
+      protocol::make_frame(HCP_CONTROL_WRENCH_TIMED, token_, next_control_sequence(), now);
+  hcp_control_wrench_timed& w = f.body.hcp_body_u.wrench_timed;
+  protocol::to_wire(wrench, w.wrench);
+  w.answer_echo = answer_echo(now);
+  w.energy_in = passivity_.energy_in_uj();
   return checked_control(f);
 }
 
@@ -306,9 +444,11 @@ void ClientSession::on_param_applied(const hcp_param& param) noexcept {
       break;
     case HCP_P_FORCE_FACTOR:
       passivity_.set_force_factor(v.force_factor);
+      force_factor_ = v.force_factor;
       break;
     case HCP_P_SPEED_FACTOR:
       passivity_.set_speed_factor(v.speed_factor);
+      speed_factor_ = v.speed_factor;
       break;
     case HCP_P_OBJECT:
       if (v.object.attached != 0) {

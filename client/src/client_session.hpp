@@ -14,6 +14,7 @@
 #include <string>
 
 #include "channel_passivity.hpp"
+#include "local_coupling.hpp"
 #include "hapticctrl/client/connection.hpp"
 #include "hapticctrl/protocol/codec.hpp"
 #include "link_monitor.hpp"
@@ -113,7 +114,13 @@ class ClientSession {
   [[nodiscard]] hcp_frame version_refusal(const hcp_frame& welcome, std::int64_t now,
                                           std::string& reason) const;
   bool on_answer(const hcp_frame& frame, std::int64_t now) noexcept;
+  /// Protocol 1.3: the object's wrench (or an IMPEDANCE client's handle image) in latest_.
+  void close_locally() noexcept;
+  [[nodiscard]] bool local() const noexcept {
+    return (features_ & HCP_FEATURE_LOCAL_COUPLING) != 0;
+  }
   hcp_frame timed_object_frame(const Pose7& pose, const Vector6& twist, std::int64_t now) noexcept;
+  [[nodiscard]] std::uint32_t answer_echo(std::int64_t now) const noexcept;
   std::uint32_t next_control_sequence() noexcept { return ++control_sequence_; }
   std::optional<hcp_frame> checked_control(hcp_frame frame) const noexcept;
 
@@ -147,6 +154,22 @@ class ClientSession {
   ChannelPassivity passivity_;
   hcp_coupling_report report_{};  ///< the controller's, from the newest ANSWER_TIMED
   std::int64_t last_object_send_ns_ = 0;
+
+  // Protocol 1.3: the object's side of the coupling, closed here (local_coupling.hpp).
+  hcp_local_coupling local_{};  ///< from the newest ANSWER_COUPLED
+  CouplingTerms terms_;
+  Pose7 channel_pose_{0, 0, 0, 0, 0, 0, 1};  ///< the handle as the newest answer gave it
+  Vector6 channel_twist_{};
+  Pose7 object_pose_{0, 0, 0, 0, 0, 0, 1};  ///< the object's newest state, as sent
+  Vector6 object_twist_{};
+  bool have_object_ = false;
+  Vector6 object_wrench_{};  ///< the wrench the object got last (its spring's, on the image)
+  double cut_pending_ = 0.0;  ///< J to cut from the next object wrench (the PC's remainder)
+  double cut_dt_ = 0.0;
+  Vector6 held_wrench_{};     ///< IMPEDANCE: the wrench sent last
+  std::int64_t last_wrench_send_ns_ = 0;
+  double speed_factor_ = 1.0;
+  double force_factor_ = 1.0;
 };
 
 }  // namespace hapticctrl::client

@@ -74,6 +74,53 @@ Problem check_control(const hcp_body& body) noexcept {
       return "wrench: finite, within 1000 N and 1000 N.m";
     }
   }
+  if (body.type == HCP_CONTROL_WRENCH_TIMED) {
+    if (!all_within(body.hcp_body_u.wrench_timed.wrench, kMaxWrench)) {
+      return "wrench: finite, within 1000 N and 1000 N.m";
+    }
+  }
+  if (body.type == HCP_CONTROL_CONTACT) {
+    return check_contact(body.hcp_body_u.contact);
+  }
+  return std::nullopt;
+}
+
+ContactSlots contact_slots(std::uint32_t word) noexcept {
+  return {word & 0xFU, (word >> 8U) & 0xFU};
+}
+
+std::uint32_t pack_contact_slots(std::uint32_t slot, std::uint32_t count) noexcept {
+  return (slot & 0xFU) | ((count & 0xFU) << 8U);
+}
+
+Problem check_contact(const hcp_control_contact& frame) noexcept {
+  const ContactSlots s = contact_slots(frame.slots);
+  if ((frame.slots & ~0xF0FU) != 0 || s.count > HCP_MAX_CONTACTS ||
+      (s.count > 0 && s.slot >= s.count)) {
+    return "contact: slot 0-7 below a count of 0-8, other bits 0";
+  }
+  if (s.count == 0) {
+    return std::nullopt;  // clears every slot: the contact is not looked at
+  }
+  const hcp_contact& c = frame.contact;
+  if (!all_within(c.point, kMaxPosition) || !within(c.distance, -kMaxContactDistance,
+                                                     kMaxContactDistance)) {
+    return "contact: point within 100 m, distance within 1 m";
+  }
+  double norm_sq = 0.0;
+  for (const float n : c.normal) {
+    norm_sq += static_cast<double>(n) * static_cast<double>(n);
+  }
+  if (!(std::abs(norm_sq - 1.0) <= kMaxQuaternionError)) {
+    return "contact: the normal must be a unit vector";
+  }
+  if (!within(c.stiffness, kMinContactStiffness, kMaxGain) ||
+      !within(c.damping, 0.0, kMaxGain)) {
+    return "contact: stiffness 1 to 1e6 N/m, damping 0 to 1e6 N.s/m";
+  }
+  if (!within(c.friction[0], 0.0, kMaxFriction) || !within(c.friction[1], 0.0, c.friction[0])) {
+    return "contact: friction 0 to 10, the dynamic one at most the static one";
+  }
   return std::nullopt;
 }
 
@@ -163,11 +210,23 @@ Problem check_coupling_report(const hcp_coupling_report& c) noexcept {
   return ok ? Problem{} : Problem{"answer: coupling report non-finite or out of range"};
 }
 
+Problem check_local_coupling(const hcp_local_coupling& l) noexcept {
+  const bool ok = all_within(l.contact_normal, 1.0 + kMaxQuaternionError) &&
+                  within(l.normal_gains[0], 0.0, kMaxGain) &&
+                  within(l.normal_gains[1], 0.0, kMaxGain) && within(l.limits[0], 0.0, kMaxGain) &&
+                  within(l.limits[1], 0.0, kMaxGain) &&
+                  within(l.max_contact_stiffness, 0.0, kMaxGain) &&
+                  l.contacts <= HCP_MAX_CONTACTS;
+  return ok ? Problem{} : Problem{"answer: local coupling non-finite or out of range"};
+}
+
 Problem check_body(const hcp_body& body) noexcept {
   switch (body.type) {
     case HCP_CONTROL_OBJECT:
     case HCP_CONTROL_OBJECT_TIMED:
     case HCP_CONTROL_WRENCH:
+    case HCP_CONTROL_WRENCH_TIMED:
+    case HCP_CONTROL_CONTACT:
       return check_control(body);
     case HCP_PARAM:
       return check_param(body.hcp_body_u.param);
@@ -180,6 +239,14 @@ Problem check_body(const hcp_body& body) noexcept {
         return p;
       }
       return check_coupling_report(body.hcp_body_u.answer_timed.coupling);
+    case HCP_ANSWER_COUPLED:
+      if (auto p = check_answer(body.hcp_body_u.answer_coupled.answer)) {
+        return p;
+      }
+      if (auto p = check_coupling_report(body.hcp_body_u.answer_coupled.coupling)) {
+        return p;
+      }
+      return check_local_coupling(body.hcp_body_u.answer_coupled.local);
     default:
       return std::nullopt;
   }

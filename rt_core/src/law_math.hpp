@@ -24,6 +24,12 @@ inline Vector3d clamp_norm(const Vector3d& v, double limit) noexcept {
   return n > limit && n > 0.0 ? Vector3d(v * (limit / n)) : v;
 }
 
+/// The rotation vector (axis * angle) of a rotation matrix.
+inline Vector3d rotation_vector(const Matrix3d& r) noexcept {
+  const Eigen::AngleAxisd a(r);
+  return a.axis() * a.angle();
+}
+
 /// The client object's twist in our base frame (linear de-scaled by the speed factor).
 inline Vector6d object_twist_in_base(const ClientSample& c, const ClientFrame& frame) noexcept {
   const Vector6d env = to_vector(c.object_twist);

@@ -25,6 +25,20 @@ bool unit_quaternion(const shm::Pose7& pose) noexcept {
   return std::abs(norm_sq - 1.0) <= 0.02;
 }
 
+/// A contact slot is usable if its numbers are finite, its normal a unit vector (2 %) and its
+/// stiffness positive and at most `max_stiffness`, the stiffest the device renders.
+bool contact_valid(const shm::ContactSlot& c, double max_stiffness) noexcept {
+  double norm_sq = 0.0;
+  for (const double n : c.normal) {
+    norm_sq += n * n;
+  }
+  return all_finite(c.point) && all_finite(c.normal) && all_finite(c.friction) &&
+         all_finite(c.object_pose) && unit_quaternion(c.object_pose) &&
+         std::abs(norm_sq - 1.0) <= 0.02 && std::isfinite(c.distance) &&
+         std::isfinite(c.damping) && c.damping >= 0.0 && c.stiffness > 0.0 &&
+         c.stiffness <= max_stiffness && c.friction[0] >= 0.0 && c.friction[1] >= 0.0;
+}
+
 /// A client sample is usable only if every number in it is finite and in a sane range.
 bool client_sample_valid(const shm::VprPayload& s) noexcept {
   return s.command_type <= static_cast<std::uint32_t>(shm::CommandType::kVirtmech) &&
@@ -58,6 +72,33 @@ TimeNs loop_delay_of(const shm::VprPayload& s, std::uint64_t cycle, TimeNs perio
   return static_cast<TimeNs>(cycle - s.echo_cycle) * period;
 }
 
+/// The law's view of the sample's contacts: the valid ones in their slots (an invalid one is
+/// left empty and counted in `rejected`, once per contact frame it came with).
+void take_contacts(const shm::VprPayload& s, double max_stiffness, ClientSample& c,
+                   std::uint64_t& rejected) noexcept {
+  c.contact_count = std::min<std::uint32_t>(s.contact_count, kMaxClientContacts);
+  for (std::size_t i = 0; i < kMaxClientContacts; ++i) {
+    const shm::ContactSlot& from = s.contacts[i];
+    ClientContact& to = c.contacts[i];
+    to = ClientContact{};
+    if (i >= c.contact_count || from.stiffness == 0.0) {
+      continue;
+    }
+    if (!contact_valid(from, max_stiffness)) {
+      ++rejected;
+      continue;
+    }
+    to.point = from.point;
+    to.normal = from.normal;
+    to.distance = from.distance;
+    to.stiffness = from.stiffness;
+    to.damping = from.damping;
+    to.friction = from.friction;
+    to.object_pose = from.object_pose;
+    to.received_ns = from.received_time_ns;
+  }
+}
+
 /// The law's view of a valid sample (client_sample.hpp): the ABI stops here.
 ClientSample client_sample_of(const shm::VprPayload& s) noexcept {
   ClientSample c;
@@ -86,6 +127,7 @@ ClientSample client_sample_of(const shm::VprPayload& s) noexcept {
   c.gain_override = s.gain_override;
   c.force_limits = s.force_limits;
   c.energy_in = s.client_energy_in;
+  c.local_coupling = (s.flags & shm::vpr_flags::kLocalCoupling) != 0;
   return c;
 }
 
@@ -96,6 +138,12 @@ void copy_to(const Vector6d& from, std::array<double, 6>& to) noexcept {
 }
 
 }  // namespace
+
+double ServoTask::max_contact_stiffness(double speed_factor) const noexcept {
+  // In the client's units: a surface of K N per client metre is K * speed_factor per our metre.
+  return law_.dynamics().model().limits.max_stiffness_linear /
+         (speed_factor > 0.0 ? speed_factor : 1.0);
+}
 
 StepResult ServoTask::begin(std::uint64_t cycle, TimeNs now, TimeNs dt) noexcept {
   if (!gate_->enter(cycle)) {
@@ -176,13 +224,28 @@ void ServoTask::exchange_client(TimeNs now) noexcept {
     } else if (r.ok() && r.sequence != s.last_client_sequence) {
       s.last_client_sequence = r.sequence;
       if (client_sample_valid(sample)) {
+        // A new object state (or wrench) only when the client's sequence moved: a contact frame
+        // republishes VPr with the same sample.
+        const bool new_state = !s.client_valid || sample.session_id != s.last_client.session_id ||
+                               sample.client_sequence != s.last_client.client_sequence;
+        const bool new_contacts = sample.contact_frames != s.last_client.contact_frames;
+        if (sample.session_id != s.last_client.session_id) {
+          s.contacts_rejected = 0;  // counted per session, as the client sees it
+        }
         s.last_client = sample;
         s.client = client_sample_of(sample);
+        std::uint64_t rejected = 0;
+        take_contacts(sample, max_contact_stiffness(sample.speed_factor), s.client, rejected);
+        if (new_contacts && rejected > 0) {
+          ++s.contacts_rejected;
+        }
         s.client_valid = true;
-        s.last_client_arrival = now;
-        s.last_client_time = sample_time_of(sample, now);
-        inputs_.new_sample = true;
-        inputs_.loop_delay = loop_delay_of(sample, inputs_.cycle, inputs_.dt);
+        if (new_state) {
+          s.last_client_arrival = now;
+          s.last_client_time = sample_time_of(sample, now);
+          inputs_.new_sample = true;
+          inputs_.loop_delay = loop_delay_of(sample, inputs_.cycle, inputs_.dt);
+        }
       } else {
         counters.vpr_rejected.fetch_add(1, std::memory_order_relaxed);
       }
@@ -252,6 +315,13 @@ void ServoTask::commit(std::uint64_t cycle, TimeNs now) noexcept {
     vp.gains = {g.k_linear, g.b_linear, g.k_angular, g.b_angular};
     vp.channel_energy_in = outputs_.channel_energy_in;
     vp.channel_energy_out = outputs_.channel_energy_out;
+    const Vector3d normal = client_frame_of(s.client).rotation * outputs_.contact_normal;
+    vp.contact_normal = {normal.x(), normal.y(), normal.z()};
+    vp.normal_gains = {outputs_.normal_stiffness, outputs_.normal_damping};
+    vp.limits = {outputs_.force_limit, outputs_.torque_limit};
+    vp.max_contact_stiffness = max_contact_stiffness(s.client.speed_factor);
+    vp.contacts = outputs_.contacts;
+    vp.contacts_rejected = s.contacts_rejected;
     s.regions.vp->publish(vp, now);  // the UDP bridge blocks on VP: notify
   }
   if (s.regions.position != nullptr) {

@@ -1,6 +1,7 @@
 // The servo law's cycle (ServoLaw::compute) and the coupling it renders: the client's wrench,
-// the fade of a silent link, engagement, saturation and the rate limit. Its gains, passivity
-// and walls live in servo_law_gains.cpp, servo_law_passivity.cpp and servo_law_walls.cpp.
+// the fade of a silent link, engagement, saturation and the rate limit. Its gains, passivity,
+// contacts and walls live in servo_law_gains.cpp, servo_law_passivity.cpp,
+// servo_law_contact.cpp and servo_law_walls.cpp.
 #include "hapticctrl/rt_core/servo_law.hpp"
 
 #include <algorithm>
@@ -13,6 +14,7 @@ namespace {
 
 using law_math::clamp_norm;
 using law_math::object_twist_in_base;
+using law_math::rotation_vector;
 using law_math::to_quaternion;
 using law_math::to_vector;
 
@@ -56,6 +58,32 @@ ClientFrame client_frame_of(const ClientSample& c) noexcept {
 ServoLaw::ServoLaw(const ArmDynamics& dynamics, const LawConfig& config) noexcept
     : dynamics_(&dynamics), config_(config) {}
 
+ServoLaw::ObjectImage ServoLaw::object_image(const ServoInputs& in,
+                                             const ClientFrame& frame) const noexcept {
+  const ClientSample& c = in.client;
+  // Client poses are in its environment frame; base_frame is our base in that frame. Positions
+  // are de-scaled by the speed factor.
+  const Matrix3d base_r = frame.rotation.toRotationMatrix();
+  ObjectImage image;
+  const Vector3d object_p_env(c.object_pose[0], c.object_pose[1], c.object_pose[2]);
+  image.position = base_r.transpose() * (object_p_env - frame.origin) / frame.speed_factor;
+  image.rotation = base_r.transpose() * to_quaternion(c.object_pose).normalized().toRotationMatrix();
+  image.twist = object_twist_in_base(c, frame);
+  // Best estimate of where the object is now: extrapolate over the sample's true age (bounded).
+  const double horizon =
+      static_cast<double>(std::clamp<TimeNs>(in.client_age, 0, config_.extrapolate_max)) * 1e-9;
+  const Vector3d w = image.twist.tail<3>();
+  image.position += image.twist.head<3>() * horizon + memory_.drift.head<3>();
+  if (w.norm() * horizon > 1e-12) {
+    image.rotation = Eigen::AngleAxisd(w.norm() * horizon, w.normalized()) * image.rotation;
+  }
+  const Vector3d turned = memory_.drift.tail<3>();  // the channel PC's share (guard_channel)
+  if (turned.norm() > 1e-12) {
+    image.rotation = Eigen::AngleAxisd(turned.norm(), turned.normalized()) * image.rotation;
+  }
+  return image;
+}
+
 ServoLaw::Coupling ServoLaw::client_wrench(const ServoInputs& in, const ClientFrame& frame,
                                            const ChainState& chain, const Vector6d& twist,
                                            ServoOutputs& out) noexcept {
@@ -71,9 +99,7 @@ ServoLaw::Coupling ServoLaw::client_wrench(const ServoInputs& in, const ClientFr
     out.fade = 0.0;
     return coupling;
   }
-  // Client poses are in its environment frame; base_frame is our base in that frame.
   const Matrix3d base_r = frame.rotation.toRotationMatrix();
-  const double speed_factor = frame.speed_factor;
   const double scale = frame.force_factor;
 
   if (c.command == ClientCommand::kImpedance) {
@@ -82,42 +108,42 @@ ServoLaw::Coupling ServoLaw::client_wrench(const ServoInputs& in, const ClientFr
     coupling.spring *= scale;
     return coupling;
   }
-  if (c.command != ClientCommand::kVirtmech || !c.object_attached) {
-    return coupling;  // VIRTMECH couples an attached object only
+  if (c.command != ClientCommand::kVirtmech || !c.object_attached ||
+      to_quaternion(c.object_pose).norm() < 0.5) {
+    return coupling;  // VIRTMECH couples an attached object only (and refuses a non-rotation)
   }
-  const Eigen::Quaterniond object_q_env = to_quaternion(c.object_pose);
-  if (object_q_env.norm() < 0.5) {
-    return coupling;  // not a rotation: refuse rather than guess
-  }
-  // Object state in the base frame (positions de-scaled by the speed factor).
-  const Vector3d object_p_env(c.object_pose[0], c.object_pose[1], c.object_pose[2]);
-  Vector3d object_p = base_r.transpose() * (object_p_env - frame.origin) / speed_factor;
-  Matrix3d object_r = base_r.transpose() * object_q_env.normalized().toRotationMatrix();
-  const Vector6d object_twist = object_twist_in_base(c, frame);
-  const Vector3d object_v = object_twist.head<3>();
-  const Vector3d object_w = object_twist.tail<3>();
-  // Best estimate of where the object is now: extrapolate over the sample's true age (bounded).
-  const double horizon =
-      static_cast<double>(std::clamp<TimeNs>(in.client_age, 0, config_.extrapolate_max)) * 1e-9;
-  object_p += object_v * horizon + memory_.drift.head<3>();
-  if (object_w.norm() * horizon > 1e-12) {
-    object_r = Eigen::AngleAxisd(object_w.norm() * horizon, object_w.normalized()) * object_r;
-  }
-  const Vector3d turned = memory_.drift.tail<3>();  // the channel PC's share (guard_channel)
-  if (turned.norm() > 1e-12) {
-    object_r = Eigen::AngleAxisd(turned.norm(), turned.normalized()) * object_r;
-  }
-
+  const ObjectImage image = object_image(in, frame);
   const CouplingGains g =
       slew_gains(derive_gains(c, static_cast<double>(memory_.design_delay) * 1e-9), in.dt);
   out.gains = g;
-  const Vector3d e_p = object_p - chain.handle_position;
-  const Eigen::AngleAxisd e_rot(object_r * chain.handle_rotation.transpose());
-  const Vector3d e_r = e_rot.axis() * e_rot.angle();
-  coupling.spring << g.k_linear * e_p, g.k_angular * e_r;
-  coupling.damper << g.b_linear * (object_v - twist.head<3>()),
-      g.b_angular * (object_w - twist.tail<3>());
+  Vector6d stretch;
+  stretch << image.position - chain.handle_position,
+      rotation_vector(image.rotation * chain.handle_rotation.transpose());
+  const Vector6d used = stretch_in_use(stretch, static_cast<double>(in.dt) * 1e-9);
+  coupling.stretch = used;
+  Vector6d relative = image.twist - twist;
+  coupling.spring << g.k_linear * used.head<3>(), g.k_angular * used.tail<3>();
+  coupling.object_spring << g.k_linear * stretch.head<3>(), g.k_angular * stretch.tail<3>();
+  coupling.damper << g.b_linear * relative.head<3>(), g.b_angular * relative.tail<3>();
+  // Along a contact the object is held by its surface: the coupling may be as stiff as the
+  // device allows there (unilateral: only while it pushes the object into the surface).
+  const Stiffening stiff = contact_stiffening(in, frame, image, g);
+  out.contacts = stiff.fresh;
+  if (stiff.stiffness > 0.0 || stiff.damping > 0.0) {
+    const Vector3d& n = stiff.normal;
+    const double depth = used.head<3>().dot(n);  // > 0: the handle presses into the surface
+    const double object_depth = stretch.head<3>().dot(n);
+    // The damper comes in over the first 0.5 mm, so that touching is not a step.
+    const double engaged = std::clamp(depth / 5e-4, 0.0, 1.0);
+    coupling.spring.head<3>() += stiff.stiffness * std::max(0.0, depth) * n;
+    coupling.object_spring.head<3>() += stiff.stiffness * std::max(0.0, object_depth) * n;
+    coupling.damper.head<3>() += engaged * stiff.damping * relative.head<3>().dot(n) * n;
+    out.contact_normal = n;
+    out.normal_stiffness = stiff.stiffness;
+    out.normal_damping = stiff.damping;
+  }
   coupling.spring *= scale;
+  coupling.object_spring *= scale;
   coupling.damper *= scale;
   out.coupled = true;
   return coupling;
@@ -180,19 +206,22 @@ double ServoLaw::update_engagement(const ServoInputs& in, const Vector6d& twist,
   return m.engage;
 }
 
-Vector6d ServoLaw::saturate(const Coupling& c, const ClientSample& client) const noexcept {
+void ServoLaw::set_limits(const ClientSample& client, ServoOutputs& out) const noexcept {
   const ArmLimits& lim = dynamics_->model().limits;
-  const double force_limit = client.force_limits[0] > 0.0
-                                 ? std::min(client.force_limits[0], lim.force_peak)
-                                 : lim.force_peak;
-  const double torque_limit = client.force_limits[1] > 0.0
-                                  ? std::min(client.force_limits[1], lim.torque_peak)
-                                  : lim.torque_peak;
+  out.force_limit = client.force_limits[0] > 0.0 ? std::min(client.force_limits[0], lim.force_peak)
+                                                 : lim.force_peak;
+  out.torque_limit = client.force_limits[1] > 0.0
+                         ? std::min(client.force_limits[1], lim.torque_peak)
+                         : lim.torque_peak;
+}
+
+Vector6d ServoLaw::saturate(const Vector6d& spring, const Vector6d& damper,
+                            const ServoOutputs& out) const noexcept {
   // The damper keeps its share: saturating the sum cut the damping of a heavy object that
   // pulled the spring to the limit (a 3 kg object kept a +-1 m swing, H1).
   Vector6d w;
-  w << saturate_keeping_damper(c.spring.head<3>(), c.damper.head<3>(), force_limit),
-      saturate_keeping_damper(c.spring.tail<3>(), c.damper.tail<3>(), torque_limit);
+  w << saturate_keeping_damper(spring.head<3>(), damper.head<3>(), out.force_limit),
+      saturate_keeping_damper(spring.tail<3>(), damper.tail<3>(), out.torque_limit);
   return w;
 }
 
@@ -223,7 +252,7 @@ void ServoLaw::express_for_client(const ClientFrame& frame, const Vector6d& twis
       frame.rotation * twist.tail<3>();
 }
 
-void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) noexcept {
+void ServoLaw::compute(const ServoInputs& in, bool /*degraded*/, ServoOutputs& out) noexcept {
   const double dt = static_cast<double>(in.dt) * 1e-9;
   const Vector6d& q = in.measures.position;
   const Vector6d& qd = in.measures.velocity;
@@ -248,6 +277,11 @@ void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) 
   out.saturated = false;
   out.joint_bounds = joint_bounds(q);
   out.gains = CouplingGains{};
+  out.contact_normal.setZero();
+  out.normal_stiffness = 0.0;
+  out.normal_damping = 0.0;
+  out.contacts = 0;
+  set_limits(in.client, out);
   track_loop_delay(in);
   out.loop_delay = memory_.design_delay;
   if (!out.commands.enable || dt <= 0.0) {
@@ -257,24 +291,27 @@ void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) 
     return;
   }
 
-  const Coupling coupling = degraded ? Coupling{} : client_wrench(in, frame, chain_, twist, out);
-  const Vector6d saturated = saturate(coupling, in.client);
+  // A degraded cycle (the main SERVO missed) renders the same coupling from the same last
+  // sample, extrapolated and faded as it ages: rendering nothing dipped a carried weight by
+  // about 1 N at every VM stall (J1 review of f3c5aec).
+  const Coupling coupling = client_wrench(in, frame, chain_, twist, out);
+  const Vector6d saturated = saturate(coupling.spring, coupling.damper, out);
   out.saturated = (saturated - (coupling.spring + coupling.damper)).squaredNorm() > kClipped;
-  if (!degraded && out.fade > 0.0) {  // 0: no session, or its link lost
+  if (out.fade > 0.0) {  // 0: no session, or its link lost
     out.fade = fade_of(in.client_silence, saturated);
   }
-  // A degraded cycle renders no coupling but leaves the engagement as it was: one miss must not
-  // send the coupling back through the whole ramp.
-  const double engage = degraded ? memory_.engage : update_engagement(in, twist, out.fade, out);
-  if (!degraded) {
-    guard_channel(in, frame, -saturated, dt, out);
-  }
-  out.channel_energy_in = memory_.channel_in;
-  out.channel_energy_out = memory_.channel_out;
   // The engagement follows the fade down (and ramps back up after it): the handle gets the fade
   // once. Multiplying a faded force by it made the fade quadratic, twice as steep at its start
   // as the slope it was designed for.
+  const double engage = update_engagement(in, twist, out.fade, out);
   Vector6d target = saturated * engage;
+  if (out.coupled) {
+    target = guard_channel(in, frame, target, coupling.stretch, dt);
+  } else if (two_port_impedance(in)) {
+    target = guard_impedance(in, frame, target, twist, dt);
+  }
+  out.channel_energy_in = memory_.channel_in;
+  out.channel_energy_out = memory_.channel_out;
   const ArmLimits& lim = dynamics_->model().limits;
   if (out.braking) {
     // Speed safety: a damped brake on the handle while the coupling is disengaged; the object
@@ -282,7 +319,7 @@ void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) 
     // the coupling back through the engagement ramp.
     target.head<3>() -= lim.max_damping_linear * twist.head<3>();
     ++counters_.speed_limited;
-  } else if (in.client_valid && in.client.session_id != 0 && !degraded) {
+  } else if (in.client_valid && in.client.session_id != 0) {
     // A session whose coupling is (partly) disengaged (link lost, ramping back) holds the handle
     // in a viscous field instead of letting it drift: released from the wall that carried a
     // weighted object, the handle coasted 3-5 cm during a 300 ms blackout and fell back at
@@ -291,25 +328,31 @@ void ServoLaw::compute(const ServoInputs& in, bool degraded, ServoOutputs& out) 
     target.head<3>() -= hold * lim.max_damping_linear * twist.head<3>();
     target.tail<3>() -= hold * lim.max_damping_angular * twist.tail<3>();
   }
-  const bool fresh = out.fade >= 1.0 && !out.braking && out.coupled;
-  const Vector6d limited = rate_limit(
-      target, fresh ? lim.force_rate : std::min(lim.force_rate, config_.release_rate), dt);
-  Vector6d wrench = limited;
-  if (out.coupled || in.client.command == ClientCommand::kImpedance) {
-    wrench = guard_passivity(wrench, twist, dt);
-  } else {
-    memory_.port_wrench.setZero();
+  // The one-port guard at the handle for what the two-port does not cover (a VIRTMECH object's
+  // port to the hand, an IMPEDANCE client that reports no energy). Its damping goes through the
+  // rate limit like every other term: after it, it stepped the force by up to 20 N.s/m x |v| in
+  // one cycle (1.1 m/s after a blackout: 22 N, J1 review).
+  if (out.coupled || (in.client.command == ClientCommand::kImpedance && !two_port_impedance(in))) {
+    target = guard_passivity(target, twist, dt);
   }
+  const bool fresh = out.fade >= 1.0 && !out.braking && out.coupled;
+  Vector6d wrench = rate_limit(
+      target, fresh ? lim.force_rate : std::min(lim.force_rate, config_.release_rate), dt);
+  wrench.head<3>() = clamp_norm(wrench.head<3>(), lim.force_peak);
+  wrench.tail<3>() = clamp_norm(wrench.tail<3>(), lim.torque_peak);
+  memory_.port_wrench = wrench;
   if (out.coupled) {
-    // The object feels the opposite of the coupling, in the client's frame, unscaled: neither
-    // the brake nor the passivity guard's damping (they brake the handle; mirrored onto the
-    // object they would push it along with the handle's motion), nor the fade: like a brake, it
-    // protects the hand, and the object keeps its spring to the handle. Faded, the weighted
-    // sphere lost its support for the catch-up steps the demo took after a 60 ms stall of its
-    // process, fell, and bounced back at 0.16 m/s when the coupling returned
-    // (bench/gravity_rest.sh, 2026-12-02).
-    out.coupling_wrench << -(frame.rotation * saturated.head<3>()) / frame.force_factor,
-        -(frame.rotation * saturated.tail<3>()) / frame.force_factor;
+    // The object feels the opposite of the coupling on its true stretch (not re-anchored), in
+    // the client's frame, unscaled: neither the brake nor the passivity guard's damping (they
+    // brake the handle; mirrored onto the object they would push it along with the handle's
+    // motion), nor the fade: like a brake, it protects the hand, and the object keeps its spring
+    // to the handle. Faded, the weighted sphere lost its support for the catch-up steps the demo
+    // took after a 60 ms stall of its process, fell, and bounced back at 0.16 m/s when the
+    // coupling returned (bench/gravity_rest.sh, 2026-12-02). A protocol 1.3 client computes this
+    // side itself, on its own object state (docs/control.md).
+    const Vector6d object = saturate(coupling.object_spring, coupling.damper, out);
+    out.coupling_wrench << -(frame.rotation * object.head<3>()) / frame.force_factor,
+        -(frame.rotation * object.tail<3>()) / frame.force_factor;
   }
   out.handle_wrench = wrench;
 

@@ -1,5 +1,7 @@
-// Passivity: the channel's two-port controller (the core's end of the link) and the one-port
-// guard on the handle (ServoLaw::guard_channel, guard_passivity; docs/control.md, H1).
+// Passivity: the core's end of the channel's two-port (ServoLaw::guard_channel for a VIRTMECH
+// object, guard_impedance for an IMPEDANCE client that reports its energy) and the one-port
+// guard on the handle (guard_passivity); docs/control.md, H1 and J1.
+#include <algorithm>
 #include <cmath>
 
 #include "hapticctrl/rt_core/servo_law.hpp"
@@ -7,60 +9,146 @@
 
 namespace hapticctrl::rt_core {
 
-using law_math::clamp_norm;
 using law_math::object_twist_in_base;
 
-void ServoLaw::guard_channel(const ServoInputs& in, const ClientFrame& frame,
-                             const Vector6d& object_force, double dt, ServoOutputs& out) noexcept {
-  // Two-port time-domain passivity (Ryu, Artigas, Preusche): the channel between the coupling
-  // and the client's object must not give either end more energy than the other end put in.
-  // Here the core's end: the coupling pushes the object image with `object_force` while the
-  // image moves with the client's twist; the energy that came out of the
-  // channel may not exceed what the client reports having put in (ClientSample::energy_in, which
-  // arrives a link delay late). When it would, a series passivity controller lets the image
-  // give way along the force (it "drifts" towards the handle), dissipating exactly the excess;
-  // the drift is given back slowly while the budget allows. Energies in the client's units
-  // (speed and force factors), as the client counts them.
-  RenderMemory& m = memory_;
-  if (!(in.client.energy_in >= 0.0) || !out.coupled) {
-    return;  // a 1.0 client reports no energy: the one-port guard at the handle remains
-  }
-  // The channel's own flow (the client's twist, in the base frame) and the power in the
-  // client's units (force / force factor, speed * speed factor). The PC's drift is not part of
-  // the channel: what it takes or gives back is booked separately below (Ryu's observer).
-  const Vector6d image_twist = object_twist_in_base(in.client, frame);
+namespace {
+
+/// Converts base-frame forces and twists into the client's units (force / force factor, speed *
+/// speed factor), as it counts its energy.
+Vector6d client_units(const ClientFrame& frame) noexcept {
   Vector6d weight;
   weight << Vector3d::Constant(frame.speed_factor / frame.force_factor),
       Vector3d::Constant(1.0 / frame.force_factor);
-  const Vector6d force = object_force.cwiseProduct(weight);
-  const double power = force.dot(image_twist);
+  return weight;
+}
+
+/// Removes from `force` the share that delivers power along `flow`, as much as dissipates
+/// `energy` in one period (at most all of it): power = (force . weight) . flow. Returns the
+/// energy it dissipated.
+double cut_output(Vector6d& force, const Vector6d& weight, const Vector6d& flow, double energy,
+                  double dt) noexcept {
+  const double power = force.cwiseProduct(weight).dot(flow);
+  const Vector6d along = flow.cwiseProduct(weight);
+  const double along_sq = along.squaredNorm();
+  if (!(power > 0.0) || !(energy > 0.0) || along_sq < 1e-18) {
+    return 0.0;
+  }
+  const double taken = std::min(power, energy / dt);
+  force -= along * (taken / along_sq);
+  return taken * dt;
+}
+
+}  // namespace
+
+bool ServoLaw::two_port_impedance(const ServoInputs& in) noexcept {
+  return in.client_valid && in.client.command == ClientCommand::kImpedance &&
+         in.client.local_coupling && in.client.energy_in >= 0.0;
+}
+
+double ServoLaw::book_channel_power(double power, double budget, double dt) noexcept {
+  RenderMemory& m = memory_;
   (power >= 0.0 ? m.channel_in : m.channel_out) += std::abs(power) * dt;
-  const double excess = m.channel_out - in.client.energy_in;
-  const double force_sq = force.dot(object_force);
+  return m.channel_out - budget;
+}
+
+Vector6d ServoLaw::guard_channel(const ServoInputs& in, const ClientFrame& frame,
+                                 const Vector6d& handle_force, const Vector6d& stretch,
+                                 double dt) noexcept {
+  // Two-port time-domain passivity (Ryu, Artigas, Preusche): the channel between the coupling
+  // and the client's object must not give either end more energy than the other end put in.
+  // Here the core's end: the handle's spring pushes the object image with -handle_force while
+  // the image moves with the client's twist; the energy that came out of the channel may not
+  // exceed what the client reports having put in (ClientSample::energy_in, which arrives a link
+  // delay late). When it would, a series passivity controller lets the image give way along the
+  // force (it drifts towards the handle) and dissipates the whole excess: as far as relaxing
+  // the spring in one period, and what that cannot take (the damper's share) is cut from the
+  // force along the image's motion. Nothing bounds it but that: bounded (0.5 m/s, 5 cm until
+  // 2026-12-03), it let the balance break in contact (the core's end gave 7.1-25.8 J for the
+  // client's 3.9-7.6 J at 10-20 ms, J1 review). The drift is given back slowly while the budget
+  // allows. Energies in the client's units, as the client counts them.
+  RenderMemory& m = memory_;
+  if (!(in.client.energy_in >= 0.0)) {
+    return handle_force;  // a 1.0 client reports no energy: the one-port guard at the handle
+  }
+  const Vector6d flow = object_twist_in_base(in.client, frame);
+  const Vector6d weight = client_units(frame);
+  const Vector6d on_image = -handle_force;  // what the handle's spring does to the image
+  const double excess =
+      book_channel_power(on_image.cwiseProduct(weight).dot(flow), in.client.energy_in, dt);
+  const double force_sq = on_image.cwiseProduct(weight).dot(on_image);
   Vector6d rate = Vector6d::Zero();
-  if (excess > 0.0 && force_sq > 1e-12) {
-    rate = object_force * (excess / (dt * force_sq));
-    // Bounded like everything the device renders: the image gives way at 0.5 m/s, 5 rad/s.
-    rate.head<3>() = clamp_norm(rate.head<3>(), 0.5);
-    rate.tail<3>() = clamp_norm(rate.tail<3>(), 5.0);
+  Vector6d force = handle_force;
+  if (excess > 0.0) {
     ++counters_.channel_pc_active;
-  } else if (excess < 0.0 && m.drift.squaredNorm() > 0.0) {
+    if (force_sq > 1e-12) {
+      rate = on_image * (excess / (dt * force_sq));
+      // No further than relaxing the spring in one period: beyond, the image would pull the
+      // other way, and that is no longer giving way.
+      const double lin = rate.head<3>().norm() * dt;
+      const double ang = rate.tail<3>().norm() * dt;
+      if (lin > stretch.head<3>().norm()) {
+        rate.head<3>() *= stretch.head<3>().norm() / lin;
+      }
+      if (ang > stretch.tail<3>().norm()) {
+        rate.tail<3>() *= stretch.tail<3>().norm() / ang;
+      }
+    }
+    const double drifted = on_image.cwiseProduct(weight).dot(rate) * dt;
+    const double cut = cut_output(force, weight, flow, excess - drifted, dt);
+    if (cut > 0.0) {
+      ++counters_.channel_force_cut;
+    }
+    m.channel_out -= cut;
+  } else if (m.drift.squaredNorm() > 0.0) {
     // Give the drift back, slowly (2 cm/s, 0.2 rad/s), within the budget: it costs energy.
-    rate.head<3>() = -clamp_norm(m.drift.head<3>() / dt, 0.02);
-    rate.tail<3>() = -clamp_norm(m.drift.tail<3>() / dt, 0.2);
-    const double cost = -force.dot(rate) * dt;
+    rate.head<3>() = -law_math::clamp_norm(m.drift.head<3>() / dt, 0.02);
+    rate.tail<3>() = -law_math::clamp_norm(m.drift.tail<3>() / dt, 0.2);
+    const double cost = -on_image.cwiseProduct(weight).dot(rate) * dt;
     if (cost > -excess) {
       rate *= -excess / cost;
     }
   }
-  // The drift never exceeds 5 cm / 0.5 rad: beyond, the PC is saturated and the one-port guard
-  // at the handle is what remains.
-  Vector6d drift = m.drift + rate * dt;
-  drift.head<3>() = clamp_norm(drift.head<3>(), 0.05);
-  drift.tail<3>() = clamp_norm(drift.tail<3>(), 0.5);
-  rate = (drift - m.drift) / dt;
-  m.channel_out -= force.dot(rate) * dt;  // dissipated by the PC (> 0), or given back (< 0)
-  m.drift = drift;
+  m.channel_out -= on_image.cwiseProduct(weight).dot(rate) * dt;  // dissipated (> 0) or given back
+  m.drift += rate * dt;
+  return force;
+}
+
+Vector6d ServoLaw::guard_impedance(const ServoInputs& in, const ClientFrame& frame,
+                                   const Vector6d& handle_force, const Vector6d& twist,
+                                   double dt) noexcept {
+  // The IMPEDANCE client's two-port (protocol 1.3, J1): its wrench enters the channel at its
+  // end against the handle's motion as the answers showed it, and comes out here against the
+  // handle's motion now. The client reports the energy its wrench put in (CONTROL_WRENCH_TIMED);
+  // what the rendered wrench gives the handle may not exceed it. When it would, a damper on the
+  // handle (the device's stable damping at most) and then a cut of the wrench's share along
+  // the motion dissipate the whole excess. A commanded force that does work is paid for by the
+  // client's report, so in free space the command is rendered whole (the one-port guard took
+  // 11 % of 6 N and 44 % of 1 N, J1 review), and a client wall that the delay makes active is
+  // damped at this end.
+  RenderMemory& m = memory_;
+  const Vector6d weight = client_units(frame);
+  // The channel gives the handle power handle_force . twist: that is its output here.
+  const double excess = book_channel_power(-handle_force.cwiseProduct(weight).dot(twist),
+                                           in.client.energy_in, dt);
+  Vector6d force = handle_force;
+  if (excess > 0.0 && twist.squaredNorm() > 1e-12) {
+    ++counters_.channel_pc_active;
+    const ArmLimits& lim = dynamics_->model().limits;
+    const double lin_sq = twist.head<3>().squaredNorm() * weight(0);
+    const double ang_sq = twist.tail<3>().squaredNorm() * weight(3);
+    const double alpha = excess / (dt * (lin_sq + ang_sq));
+    const double alpha_lin = std::min(alpha, lim.max_damping_linear);
+    const double alpha_ang = std::min(alpha, lim.max_damping_angular);
+    force.head<3>() -= alpha_lin * twist.head<3>();
+    force.tail<3>() -= alpha_ang * twist.tail<3>();
+    const double damped = (alpha_lin * lin_sq + alpha_ang * ang_sq) * dt;
+    const double cut = cut_output(force, weight, twist, excess - damped, dt);
+    if (cut > 0.0) {
+      ++counters_.channel_force_cut;
+    }
+    m.channel_out -= damped + cut;
+  }
+  return force;
 }
 
 Vector6d ServoLaw::guard_passivity(const Vector6d& wrench, const Vector6d& twist,
@@ -71,6 +159,7 @@ Vector6d ServoLaw::guard_passivity(const Vector6d& wrench, const Vector6d& twist
   // delivered more energy to the hand than it received (delay, loss, sampling, an unstable
   // client): the passivity controller then adds just enough damping on the handle's motion to
   // dissipate the deficit, bounded by the damping the device renders stably (model limits).
+  // The rate limit comes after it (compute()).
   double& energy = memory_.observed_energy;
   energy -= memory_.port_wrench.dot(twist) * dt;
   Vector6d w = wrench;
@@ -87,10 +176,6 @@ Vector6d ServoLaw::guard_passivity(const Vector6d& wrench, const Vector6d& twist
         dt;
     ++counters_.passivity_active;
   }
-  const ArmLimits& lim = dynamics_->model().limits;
-  w.head<3>() = clamp_norm(w.head<3>(), lim.force_peak);
-  w.tail<3>() = clamp_norm(w.tail<3>(), lim.torque_peak);
-  memory_.port_wrench = w;  // the rate limiter's memory keeps the wrench without this damping
   return w;
 }
 

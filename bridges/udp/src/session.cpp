@@ -100,9 +100,10 @@ std::size_t Session::on_datagram(std::span<const std::uint8_t> bytes,
     case HCP_CONTROL_OBJECT:
     case HCP_CONTROL_OBJECT_TIMED:
     case HCP_CONTROL_WRENCH:
+    case HCP_CONTROL_WRENCH_TIMED:
+    case HCP_CONTROL_CONTACT:
     case HCP_KEEPALIVE:
-      if (!from_session(in, from) || (in.body.type == HCP_CONTROL_OBJECT_TIMED &&
-                                      (session_.features & HCP_FEATURE_TIMING) == 0)) {
+      if (!from_session(in, from) || !negotiated(in.body.type)) {
         counters_.drop(LinkDrop::kToken);
         return 0;
       }
@@ -130,11 +131,24 @@ std::size_t Session::on_datagram(std::span<const std::uint8_t> bytes,
     case HCP_WELCOME:
     case HCP_ANSWER:
     case HCP_ANSWER_TIMED:
+    case HCP_ANSWER_COUPLED:
     case HCP_ACK:
       break;
   }
   counters_.drop(LinkDrop::kUnexpected);
   return 0;
+}
+
+bool Session::negotiated(hcp_frame_type type) const noexcept {
+  switch (type) {
+    case HCP_CONTROL_OBJECT_TIMED:
+      return (session_.features & HCP_FEATURE_TIMING) != 0;
+    case HCP_CONTROL_WRENCH_TIMED:
+    case HCP_CONTROL_CONTACT:
+      return (session_.features & HCP_FEATURE_LOCAL_COUPLING) != 0;
+    default:
+      return true;
+  }
 }
 
 bool Session::from_session(const hcp_frame& in, const protocol::Endpoint& from) const noexcept {
@@ -187,6 +201,9 @@ void Session::open(const hcp_frame& hello, const protocol::Endpoint& from, TimeN
   session_.token = token;
   session_.peer = from;
   session_.features = hello.body.hcp_body_u.hello.features & protocol::kAllFeatures;
+  if ((session_.features & HCP_FEATURE_TIMING) == 0) {
+    session_.features &= ~static_cast<std::uint32_t>(HCP_FEATURE_LOCAL_COUPLING);  // builds on it
+  }
   const std::uint32_t asked = hello.body.hcp_body_u.hello.watchdog_ms;
   watchdog_ms_ =
       std::min(asked != 0 ? asked : settings_.default_watchdog_ms, settings_.max_watchdog_ms);
@@ -202,6 +219,9 @@ void Session::open(const hcp_frame& hello, const protocol::Endpoint& from, TimeN
   energy_in_total_ = 0.0;
   vpr_ = fresh_vpr(++session_number_);
   vpr_.watchdog_timeout_us = watchdog_ms_ * 1000U;
+  if ((session_.features & HCP_FEATURE_LOCAL_COUPLING) != 0) {
+    vpr_.flags |= shm::vpr_flags::kLocalCoupling;
+  }
   publish_vpr(now);
   publish_view();
   counters_.sessions_opened.fetch_add(1, std::memory_order_relaxed);
@@ -258,25 +278,68 @@ void Session::on_control(const hcp_frame& in, TimeNs now) noexcept {
   if (in.body.type == HCP_KEEPALIVE) {
     return;  // feeds the watchdog only: the core keeps judging the freshness of client data
   }
+  if (in.body.type == HCP_CONTROL_CONTACT) {
+    take_contact(in.body.hcp_body_u.contact, now);  // a contact is not a new object sample
+  } else {
+    take_sample(in, now);
+  }
+  publish_vpr(now);
+  ++control_received_;
+  control_received_shared_.store(control_received_, std::memory_order_relaxed);
+  counters_.control_accepted.fetch_add(1, std::memory_order_relaxed);
+}
+
+void Session::take_sample(const hcp_frame& in, TimeNs now) noexcept {
   vpr_.sample_time_ns = 0;
   vpr_.echo_cycle = 0;
-  if (in.body.type == HCP_CONTROL_OBJECT) {
-    protocol::from_wire(in.body.hcp_body_u.object.pose, vpr_.object_pose);
-    protocol::from_wire(in.body.hcp_body_u.object.twist, vpr_.object_twist);
-  } else if (in.body.type == HCP_CONTROL_OBJECT_TIMED) {
-    take_timed_object(in.body.hcp_body_u.timed, now);
-  } else {
-    protocol::from_wire(in.body.hcp_body_u.wrench.wrench, vpr_.impedance_wrench);
+  const hcp_body& b = in.body;
+  switch (b.type) {
+    case HCP_CONTROL_OBJECT:
+      protocol::from_wire(b.hcp_body_u.object.pose, vpr_.object_pose);
+      protocol::from_wire(b.hcp_body_u.object.twist, vpr_.object_twist);
+      break;
+    case HCP_CONTROL_OBJECT_TIMED:
+      take_timed_object(b.hcp_body_u.timed, now);
+      break;
+    case HCP_CONTROL_WRENCH_TIMED:
+      protocol::from_wire(b.hcp_body_u.wrench_timed.wrench, vpr_.impedance_wrench);
+      take_timing(b.hcp_body_u.wrench_timed.answer_echo, b.hcp_body_u.wrench_timed.energy_in, now);
+      break;
+    default:  // CONTROL_WRENCH
+      protocol::from_wire(b.hcp_body_u.wrench.wrench, vpr_.impedance_wrench);
+      break;
   }
   vpr_.link_delay_ns = link_.delay();
   vpr_.link_jitter_ns = link_.jitter();
   vpr_.link_loss_ppm = link_.loss_ppm();
   vpr_.client_sequence = control_seq_high_;
   vpr_.client_time_ns = in.header.sender_time_ns;
-  publish_vpr(now);
-  ++control_received_;
-  control_received_shared_.store(control_received_, std::memory_order_relaxed);
-  counters_.control_accepted.fetch_add(1, std::memory_order_relaxed);
+}
+
+void Session::take_contact(const hcp_control_contact& c, TimeNs now) noexcept {
+  // The decoder checked the slot word and the values (values.cpp).
+  const protocol::ContactSlots slots = protocol::contact_slots(c.slots);
+  vpr_.contact_count = slots.count;
+  ++vpr_.contact_frames;
+  for (std::size_t i = slots.count; i < shm::kMaxContacts; ++i) {
+    vpr_.contacts[i] = shm::ContactSlot{};  // slots at and above the count are empty
+  }
+  if (slots.count == 0) {
+    return;
+  }
+  shm::ContactSlot& to = vpr_.contacts[slots.slot];
+  const hcp_contact& from = c.contact;
+  protocol::from_wire(from.point, to.point);
+  protocol::from_wire(from.normal, to.normal);
+  to.distance = static_cast<double>(from.distance);
+  to.stiffness = static_cast<double>(from.stiffness);
+  to.damping = static_cast<double>(from.damping);
+  protocol::from_wire(from.friction, to.friction);
+  to.object_pose = vpr_.object_pose;
+  to.received_time_ns = now;
+  const SampleTiming timing =
+      LinkEstimator::time_sample(protocol::unpack_answer_echo(c.answer_echo), answer_log_, now);
+  to.sample_time_ns = timing.measured ? timing.sample_time : 0;
 }
 
 void Session::take_timed_object(const hcp_control_object_timed& o, TimeNs now) noexcept {
@@ -289,17 +352,22 @@ void Session::take_timed_object(const hcp_control_object_timed& o, TimeNs now) n
   }
   vpr_.object_pose[6] = q[3];
   protocol::from_wire(o.twist, vpr_.object_twist);
+  take_timing(o.answer_echo, o.energy_in, now);
+}
+
+void Session::take_timing(std::uint32_t answer_echo, std::uint32_t energy_in_uj,
+                          TimeNs now) noexcept {
   // The client's cumulative energy, modulo 2^32 uJ: add up the differences. A difference beyond
   // 4 J in one frame (35 N at 100 m/s for 1 ms is 3.5 J) is not physical: not counted.
-  const std::uint32_t step_uj = o.energy_in - energy_in_last_;
+  const std::uint32_t step_uj = energy_in_uj - energy_in_last_;
   if (have_energy_ && step_uj <= kMaxEnergyStepUj) {
     energy_in_total_ += static_cast<double>(step_uj) * 1e-6;
   }
   have_energy_ = true;
-  energy_in_last_ = o.energy_in;
+  energy_in_last_ = energy_in_uj;
   vpr_.client_energy_in = energy_in_total_;
   const SampleTiming timing =
-      LinkEstimator::time_sample(protocol::unpack_answer_echo(o.answer_echo), answer_log_, now);
+      LinkEstimator::time_sample(protocol::unpack_answer_echo(answer_echo), answer_log_, now);
   link_.add(timing);
   if (timing.measured) {
     vpr_.sample_time_ns = timing.sample_time;

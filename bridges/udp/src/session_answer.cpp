@@ -7,6 +7,19 @@
 #include "hapticctrl/udp_bridge/session.hpp"
 
 namespace hapticctrl::udp_bridge {
+namespace {
+
+void fill_report(const shm::VpPayload& vp, hcp_coupling_report& c) noexcept {
+  c.energy_in = vp.channel_energy_in;
+  c.sample_age_s = static_cast<double>(vp.sample_age_ns) * 1e-9;
+  c.loop_delay_s = static_cast<double>(vp.loop_delay_ns) * 1e-9;
+  c.link_delay_s = static_cast<double>(vp.link_delay_ns) * 1e-9;
+  c.link_jitter_s = static_cast<double>(vp.link_jitter_ns) * 1e-9;
+  c.link_loss = static_cast<double>(vp.link_loss_ppm) * 1e-6;
+  protocol::to_wire(vp.gains, c.gains);
+}
+
+}  // namespace
 
 std::size_t Session::answer(const shm::VpPayload& vp, TimeNs now, std::span<std::uint8_t> out,
                             protocol::Endpoint& to) noexcept {
@@ -17,18 +30,23 @@ std::size_t Session::answer(const shm::VpPayload& vp, TimeNs now, std::span<std:
   to = view.peer;
   answer_log_.record(vp.cycle, now);
   const bool timed = (view.features & HCP_FEATURE_TIMING) != 0;
-  hcp_frame f = protocol::make_frame(timed ? HCP_ANSWER_TIMED : HCP_ANSWER, view.token,
-                                     ++answer_sequence_, now);
-  hcp_answer& a = timed ? f.body.hcp_body_u.answer_timed.answer : f.body.hcp_body_u.answer;
+  const bool coupled = timed && (view.features & HCP_FEATURE_LOCAL_COUPLING) != 0;
+  const hcp_frame_type type = coupled ? HCP_ANSWER_COUPLED : timed ? HCP_ANSWER_TIMED : HCP_ANSWER;
+  hcp_frame f = protocol::make_frame(type, view.token, ++answer_sequence_, now);
+  auto& u = f.body.hcp_body_u;
+  hcp_answer& a = coupled ? u.answer_coupled.answer
+                          : (timed ? u.answer_timed.answer : u.answer);
   if (timed) {
-    hcp_coupling_report& c = f.body.hcp_body_u.answer_timed.coupling;
-    c.energy_in = vp.channel_energy_in;
-    c.sample_age_s = static_cast<double>(vp.sample_age_ns) * 1e-9;
-    c.loop_delay_s = static_cast<double>(vp.loop_delay_ns) * 1e-9;
-    c.link_delay_s = static_cast<double>(vp.link_delay_ns) * 1e-9;
-    c.link_jitter_s = static_cast<double>(vp.link_jitter_ns) * 1e-9;
-    c.link_loss = static_cast<double>(vp.link_loss_ppm) * 1e-6;
-    protocol::to_wire(vp.gains, c.gains);
+    fill_report(vp, coupled ? u.answer_coupled.coupling : u.answer_timed.coupling);
+  }
+  if (coupled) {
+    hcp_local_coupling& l = u.answer_coupled.local;
+    protocol::to_wire(vp.contact_normal, l.contact_normal);
+    protocol::to_wire(vp.normal_gains, l.normal_gains);
+    protocol::to_wire(vp.limits, l.limits);
+    l.max_contact_stiffness = vp.max_contact_stiffness;
+    l.contacts = vp.contacts;
+    l.contacts_rejected = vp.contacts_rejected;
   }
   a.cycle = vp.cycle;
   a.echo_sequence = static_cast<std::uint32_t>(vp.echo_client_sequence);

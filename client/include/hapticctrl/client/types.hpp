@@ -64,6 +64,8 @@ struct StateSnapshot {
   [[nodiscard]] bool fail_safe() const noexcept {
     return (state_word & state_bits::kFailSafe) != 0;
   }
+  /// The controller rendered the coupling to the virtual object this cycle.
+  [[nodiscard]] bool coupled() const noexcept { return (state_word & state_bits::kCoupled) != 0; }
 };
 
 /// Network statistics of the session, as seen by this client.

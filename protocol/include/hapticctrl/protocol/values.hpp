@@ -6,6 +6,7 @@
 /// static text naming the field and its range.
 ///
 /// Real-time contract: pure functions, no allocation; safe in a cycle.
+#include <cstdint>
 #include <optional>
 #include <string_view>
 
@@ -33,6 +34,9 @@ inline constexpr double kMaxInertia = 1000.0;   ///< kg.m^2
 inline constexpr double kMaxGain = 1e6;
 inline constexpr double kMaxForceLimit = 1e4;
 inline constexpr double kMaxEnergy = 1e12;  ///< J, a coupling channel's cumulative energy
+inline constexpr double kMaxContactDistance = 1.0;   ///< m, |gap| of a contact
+inline constexpr double kMinContactStiffness = 1.0;  ///< N/m
+inline constexpr double kMaxFriction = 10.0;         ///< Coulomb coefficient
 inline constexpr unsigned kMinWatchdogMs = 10;
 inline constexpr unsigned kMaxWatchdogMs = 60000;
 
@@ -42,12 +46,27 @@ template <typename T>
 
 /// A twist: finite, within kMaxLinearSpeed and kMaxAngularSpeed per component.
 [[nodiscard]] Problem check_twist(const float (&twist)[6]) noexcept;  // NOLINT(*-avoid-c-arrays)
-/// CONTROL_OBJECT, CONTROL_OBJECT_TIMED (position, packed rotation, twist) or CONTROL_WRENCH.
+/// CONTROL_OBJECT, CONTROL_OBJECT_TIMED (position, packed rotation, twist), CONTROL_WRENCH(_TIMED)
+/// or CONTROL_CONTACT.
 [[nodiscard]] Problem check_control(const hcp_body& body) noexcept;
+
+/// A CONTROL_CONTACT's slot word: this contact's slot and how many slots are in use.
+struct ContactSlots {
+  std::uint32_t slot = 0;
+  std::uint32_t count = 0;
+};
+[[nodiscard]] ContactSlots contact_slots(std::uint32_t word) noexcept;
+[[nodiscard]] std::uint32_t pack_contact_slots(std::uint32_t slot, std::uint32_t count) noexcept;
+/// CONTROL_CONTACT: a slot below the count (or a count of 0, which clears every slot), a point
+/// within kMaxPosition, a unit normal (+-2 %), a gap within kMaxContactDistance, stiffness
+/// kMinContactStiffness..kMaxGain, damping 0..kMaxGain, friction 0..kMaxFriction with the
+/// dynamic coefficient at most the static one. The controller's own stiffness limit is its check.
+[[nodiscard]] Problem check_contact(const hcp_control_contact& frame) noexcept;
 [[nodiscard]] Problem check_param(const hcp_param& param) noexcept;
 [[nodiscard]] Problem check_hello(const hcp_hello& hello) noexcept;
 [[nodiscard]] Problem check_answer(const hcp_answer& answer) noexcept;
 [[nodiscard]] Problem check_coupling_report(const hcp_coupling_report& report) noexcept;
+[[nodiscard]] Problem check_local_coupling(const hcp_local_coupling& local) noexcept;
 
 /// Dispatches on the body's type: the rules above, or none for bodies without numbers.
 [[nodiscard]] Problem check_body(const hcp_body& body) noexcept;

@@ -16,6 +16,22 @@ enum class ClientCommand : std::uint8_t {
   kVirtmech,   ///< couple the handle to the client's object (spring-damper)
 };
 
+/// Contact slots a client may use (protocol 1.3).
+inline constexpr std::size_t kMaxClientContacts = 8;
+
+/// A contact of the client's object: a plane through point - distance * normal, perpendicular to
+/// normal, that the object touches (distance <= 0) or is near (client's environment frame).
+struct ClientContact {
+  std::array<double, 3> point{};   ///< on the object [m]
+  std::array<double, 3> normal{};  ///< unit: the direction in which the surface pushes the object
+  double distance = 0.0;           ///< signed gap along normal [m]
+  double stiffness = 0.0;          ///< [N/m]; 0: no contact in this slot
+  double damping = 0.0;            ///< [N·s/m]
+  std::array<double, 2> friction{};                        ///< static, dynamic
+  std::array<double, 7> object_pose{0, 0, 0, 0, 0, 0, 1};  ///< the object when it came
+  std::int64_t received_ns = 0;  ///< when it arrived (our clock): it fades 30 ms after
+};
+
 /// One client sample (units SI; poses x, y, z, qx, qy, qz, qw; twists and wrenches linear first).
 struct ClientSample {
   std::uint64_t session_id = 0;  ///< 0: no client session
@@ -35,6 +51,11 @@ struct ClientSample {
   /// Energy the client's object has put into the coupling channel since the session began (J;
   /// negative: not reported, no two-port passivity).
   double energy_in = -1.0;
+  /// Protocol 1.3: the client closes its object's side of the coupling itself (the core then
+  /// stiffens the coupling along a contact, and an IMPEDANCE wrench is inside the two-port).
+  bool local_coupling = false;
+  std::uint32_t contact_count = 0;  ///< slots in use (the valid ones have stiffness > 0)
+  std::array<ClientContact, kMaxClientContacts> contacts{};
 };
 
 }  // namespace hapticctrl::rt_core

@@ -138,6 +138,7 @@ struct GateOwnedState {
   std::uint64_t last_client_sequence = 0;
   TimeNs last_client_arrival = 0;
   TimeNs last_client_time = 0;  ///< when the client computed it, our clock (see VprPayload)
+  std::uint32_t contacts_rejected = 0;  ///< contact frames with a contact refused, this session
 
   /// The committed cycle's render memory; each task's law continues from it.
   RenderMemory rendered;
@@ -193,6 +194,8 @@ class ServoTask {
  private:
   void gather(std::uint64_t cycle, TimeNs now, TimeNs dt) noexcept;
   void exchange_client(TimeNs now) noexcept;
+  /// The stiffest contact the device renders, in the client's units (N per client metre).
+  [[nodiscard]] double max_contact_stiffness(double speed_factor) const noexcept;
   void commit(std::uint64_t cycle, TimeNs now) noexcept;
 
   CycleGate* gate_;

@@ -6,12 +6,13 @@
 ///
 /// Per cycle: forward kinematics, Jacobian and handle twist; gravity compensation (always when
 /// powered); the client's command (NONE, IMPEDANCE wrench, or VIRTMECH spring-damper coupling to
-/// the virtual object, with gains from the measured coupling loop, extrapolation over the
-/// sample's true age and a fade on silence); saturation that keeps the damper; the channel's
-/// two-port passivity controller; engagement ramp, viscous hold and speed brake; rate limit;
-/// passivity guard on the handle port; workspace and soft joint-limit walls; joint torque
-/// saturation. The degraded SERVO runs the same code with `degraded = true`:
-/// coupling off, gravity compensation and joint damping only.
+/// the virtual object, with gains from the measured coupling loop, stiffer along a contact the
+/// client reports, extrapolation over the sample's true age and a fade on silence); saturation
+/// that keeps the damper; engagement ramp with a re-anchored spring, viscous hold and speed
+/// brake; the channel's two-port passivity controller; the passivity guard on the handle port;
+/// rate limit; workspace and soft joint-limit walls; joint torque saturation. The degraded SERVO
+/// runs the same law (`degraded` is reported, not treated apart): a missed cycle keeps rendering
+/// the coupling from the last sample, extrapolated and faded as it ages.
 
 #include <cstdint>
 
@@ -71,6 +72,15 @@ struct ServoOutputs {
   std::uint32_t joint_bounds = 0;
   CouplingGains gains;    ///< gains in force this cycle (zero when not coupled)
   TimeNs loop_delay = 0;  ///< loop delay the gains are designed for
+  /// The coupling is stiffer along `contact_normal` (base frame, unit; zero: no contact in
+  /// force) by `normal_stiffness` / `normal_damping` while it pushes the object into the contact
+  /// (protocol 1.3: a client that closes its object's side mirrors it).
+  Vector3d contact_normal = Vector3d::Zero();
+  double normal_stiffness = 0.0;
+  double normal_damping = 0.0;
+  std::uint32_t contacts = 0;  ///< the client's contacts in force (fresh)
+  double force_limit = 0.0;    ///< the coupling's force and torque limits in force
+  double torque_limit = 0.0;
   /// Two-port passivity, the core's end of the channel (J since the session began).
   double channel_energy_in = 0.0;
   double channel_energy_out = 0.0;
@@ -91,6 +101,17 @@ ClientFrame client_frame_of(const ClientSample& client) noexcept;
 
 struct LawConfig {
   TimeNs stale_after = 5 * kNsPerMs;       ///< no new sample for this long: flagged stale
+  /// A contact not refreshed for this long fades out over the next contact_fade (as the link).
+  TimeNs contact_fresh = 30 * kNsPerMs;
+  TimeNs contact_fade = 15 * kNsPerMs;
+  /// The coupling along a contact is at most this share of the contact's stiffness: the loop
+  /// through the object and back (its surface, the spring, the delay) keeps a gain below 1 at
+  /// any delay (small gain, docs/control.md).
+  double contact_share = 0.5;
+  /// After a full disengagement the spring restarts relaxed where the handle is and regains its
+  /// stretch at these speeds at most (re-anchoring, J1): the handle is never snapped back.
+  double restretch_speed = 0.05;          ///< m/s
+  double restretch_angular_speed = 0.5;   ///< rad/s
   TimeNs extrapolate_max = 50 * kNsPerMs;  ///< extrapolation horizon (sample age)
   /// Without a new sample the coupling force is zero by fade_after + fade_duration (45 ms; H1:
   /// 50 ms) and fades no faster than the device's peaks over fade_duration (1 N/ms), and over
@@ -101,9 +122,11 @@ struct LawConfig {
   TimeNs shortest_fade = 15 * kNsPerMs;
   double release_rate = 1000.0;  ///< N/s: force change limit while fading, braking or released
   /// Every re-engagement (fresh data after a fade, the end of a brake, a new session, power-on)
-  /// gives the handle its coupling back through a ramp this long (50 ms let a handle that
-  /// drifted during a 300 ms blackout fall back at 0.16 m/s; 150 ms: 0.11 m/s, 2026-12-02).
-  TimeNs engage_duration = 150 * kNsPerMs;
+  /// gives the handle its coupling back through a ramp this long; the viscous hold releases with
+  /// it. The spring restarts relaxed (re-anchoring), so the ramp only smooths the damper's
+  /// return: 150 ms until 2026-12-03 (before re-anchoring, a handle that drifted during a
+  /// 300 ms blackout fell back at 0.16 m/s with 50 ms).
+  TimeNs engage_duration = 50 * kNsPerMs;
   TimeNs overspeed_fault_after = 250 * kNsPerMs;  ///< braking this long: kVelocityLimit
   double brake_release_ratio = 0.8;  ///< the brake lets go below this share of max_speed
   /// Loop delay assumed for a client that does not echo answers (protocol 1.0).
@@ -136,6 +159,11 @@ struct RenderMemory {
   double channel_in = 0.0;            ///< J the coupling put into the channel
   double channel_out = 0.0;           ///< J the channel gave the coupling
   Vector6d drift = Vector6d::Zero();  ///< the channel PC's shift of the object image
+  /// Re-anchoring: while `anchored`, the handle's spring renders the true stretch less `stretch`
+  /// (linear, rotation vector: what it was at the re-engagement), which shrinks at a bounded
+  /// speed and never exceeds the true stretch along its own direction.
+  bool anchored = false;
+  Vector6d stretch = Vector6d::Zero();
   static constexpr std::size_t kLoopSamples = 15;
   std::array<TimeNs, kLoopSamples> loop_samples{};  ///< the newest measured loops (median)
   std::uint64_t loop_next = 0;
@@ -149,6 +177,8 @@ struct LawCounters {
   std::uint64_t rate_limited = 0;
   std::uint64_t workspace_walls = 0;    ///< cycles with the handle outside the workspace box
   std::uint64_t channel_pc_active = 0;  ///< cycles the two-port passivity controller acted
+  std::uint64_t channel_force_cut = 0;  ///< of those, cycles it also cut the coupling's force
+  std::uint64_t reanchored = 0;         ///< re-engagements that restarted the spring relaxed
 };
 
 class ServoLaw {
@@ -174,24 +204,56 @@ class ServoLaw {
   [[nodiscard]] const RenderMemory& memory() const noexcept { return memory_; }
   [[nodiscard]] const LawCounters& counters() const noexcept { return counters_; }
   [[nodiscard]] const LawConfig& config() const noexcept { return config_; }
+  [[nodiscard]] const ArmDynamics& dynamics() const noexcept { return *dynamics_; }
 
  private:
-  /// The coupling's spring and damper parts (base frame), before limits.
+  /// The coupling's spring and damper parts (base frame), before limits: on the handle, and
+  /// the object's (the true stretch, without re-anchoring: what a protocol 1.1 client's object
+  /// receives, opposite).
   struct Coupling {
     Vector6d spring = Vector6d::Zero();
     Vector6d damper = Vector6d::Zero();
+    Vector6d object_spring = Vector6d::Zero();
+    Vector6d stretch = Vector6d::Zero();  ///< the stretch the handle's spring renders
+  };
+  /// Where the client's object is now, as the coupling sees it (base frame).
+  struct ObjectImage {
+    Vector3d position = Vector3d::Zero();
+    Matrix3d rotation = Matrix3d::Identity();
+    Vector6d twist = Vector6d::Zero();
+  };
+  /// The stiffening along the dominant contact (base frame).
+  struct Stiffening {
+    Vector3d normal = Vector3d::Zero();
+    double stiffness = 0.0;
+    double damping = 0.0;
+    std::uint32_t fresh = 0;
   };
   Coupling client_wrench(const ServoInputs& in, const ClientFrame& frame, const ChainState& chain,
                          const Vector6d& twist, ServoOutputs& out) noexcept;
+  ObjectImage object_image(const ServoInputs& in, const ClientFrame& frame) const noexcept;
+  [[nodiscard]] Stiffening contact_stiffening(const ServoInputs& in, const ClientFrame& frame,
+                                              const ObjectImage& image,
+                                              const CouplingGains& g) const noexcept;
+  Vector6d stretch_in_use(const Vector6d& stretch, double dt) noexcept;
   void track_loop_delay(const ServoInputs& in) noexcept;
   CouplingGains slew_gains(const CouplingGains& target, TimeNs dt) noexcept;
   [[nodiscard]] double fade_of(TimeNs silence, const Vector6d& wrench) const noexcept;
   void follow_session(const ServoInputs& in) noexcept;
-  void guard_channel(const ServoInputs& in, const ClientFrame& frame, const Vector6d& object_force,
-                     double dt, ServoOutputs& out) noexcept;
+  Vector6d guard_channel(const ServoInputs& in, const ClientFrame& frame,
+                         const Vector6d& handle_force, const Vector6d& stretch,
+                         double dt) noexcept;
+  Vector6d guard_impedance(const ServoInputs& in, const ClientFrame& frame,
+                           const Vector6d& handle_force, const Vector6d& twist,
+                           double dt) noexcept;
+  /// Books one period's channel power at the core's end (>= 0: in) and returns the excess of
+  /// the energy out over `budget`, the client's reported energy in.
+  double book_channel_power(double power, double budget, double dt) noexcept;
   double update_engagement(const ServoInputs& in, const Vector6d& twist, double fade,
                            ServoOutputs& out) noexcept;
-  Vector6d saturate(const Coupling& c, const ClientSample& client) const noexcept;
+  Vector6d saturate(const Vector6d& spring, const Vector6d& damper,
+                    const ServoOutputs& out) const noexcept;
+  void set_limits(const ClientSample& client, ServoOutputs& out) const noexcept;
   Vector6d rate_limit(const Vector6d& target, double rate, double dt) noexcept;
   Vector6d guard_passivity(const Vector6d& wrench, const Vector6d& twist, double dt) noexcept;
   Vector6d joint_walls(const Vector6d& q) const noexcept;
@@ -199,6 +261,9 @@ class ServoLaw {
   Vector6d workspace_wall(const Vector3d& velocity) noexcept;
   void express_for_client(const ClientFrame& frame, const Vector6d& twist,
                           ServoOutputs& out) const noexcept;
+  /// Whether the client reports its channel energy with an IMPEDANCE wrench (protocol 1.3): the
+  /// two-port covers it instead of the one-port guard.
+  [[nodiscard]] static bool two_port_impedance(const ServoInputs& in) noexcept;
 
   const ArmDynamics* dynamics_;
   LawConfig config_;

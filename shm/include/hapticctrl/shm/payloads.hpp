@@ -66,12 +66,37 @@ inline constexpr std::uint32_t kJointBoundsMask = 0x3FFFU << kJointBoundsShift;
 /// Bits of VprPayload::flags.
 namespace vpr_flags {
 inline constexpr std::uint32_t kObjectAttached = 1U << 0;  ///< VIRTMECH couples only when set
+/// The session negotiated protocol 1.3's local coupling: the client closes its object's side of
+/// the coupling, reports its IMPEDANCE energy and may send contacts.
+inline constexpr std::uint32_t kLocalCoupling = 1U << 1;
 }  // namespace vpr_flags
+
+/// Contact slots a client may use (protocol 1.3, HCP_MAX_CONTACTS).
+inline constexpr std::size_t kMaxContacts = 8;
+
+/// One contact of the client's object (protocol 1.3 CONTROL_CONTACT) as the bridge took it: a
+/// plane through point - distance * normal, perpendicular to normal, that the object touches or
+/// is near. Client environment frame. stiffness 0: the slot is empty.
+struct ContactSlot {
+  std::array<double, 3> point{};   ///< on the object [m]
+  std::array<double, 3> normal{};  ///< unit: the direction in which the surface pushes the object
+  double distance = 0.0;           ///< signed gap along normal [m]: < 0 penetrating
+  double stiffness = 0.0;          ///< [N/m]; 0: empty slot
+  double damping = 0.0;            ///< [N.s/m]
+  std::array<double, 2> friction{};  ///< static, dynamic Coulomb coefficients
+  /// The object's pose when the contact came (the newest object state of the session).
+  Pose7 object_pose{0, 0, 0, 0, 0, 0, 1};
+  std::int64_t received_time_ns = 0;  ///< bridge receive time, CLOCK_MONOTONIC
+  /// When the client computed it, on this host's clock (as VprPayload::sample_time_ns); 0: unknown.
+  std::int64_t sample_time_ns = 0;
+};
 
 /// VPr: client -> core. Written by the UDP bridge from validated control frames.
 struct VprPayload {
-  std::uint64_t session_id = 0;       ///< 0: no client session
-  std::uint64_t client_sequence = 0;  ///< sequence number of the client frame this came from
+  std::uint64_t session_id = 0;  ///< 0: no client session
+  /// Sequence number of the client frame the object state (or IMPEDANCE wrench) came from: a new
+  /// value is a new sample (a contact frame leaves it as it is).
+  std::uint64_t client_sequence = 0;
   std::int64_t client_time_ns = 0;    ///< the client's sender timestamp (its own clock)
   std::int64_t received_time_ns = 0;  ///< bridge receive time, CLOCK_MONOTONIC
   /// When the client computed this state, on this host's CLOCK_MONOTONIC: received_time_ns less
@@ -104,6 +129,10 @@ struct VprPayload {
   Pose7 observation_frame{0, 0, 0, 0, 0, 0, 1};
   std::array<double, 4> gain_override{};  ///< k_lin, b_lin, k_ang, b_ang; 0 = derived
   std::array<double, 2> force_limits{};   ///< max force [N], max torque [N·m]; 0 = model's
+  /// Contacts of the object (protocol 1.3): slots below contact_count are in use.
+  std::uint32_t contact_count = 0;
+  std::uint32_t contact_frames = 0;  ///< CONTROL_CONTACT frames taken this session (wraps)
+  std::array<ContactSlot, kMaxContacts> contacts{};
 };
 
 /// VP: core -> client (read by the UDP bridge once per cycle).
@@ -132,6 +161,16 @@ struct VpPayload {
   /// core put in (sent to the client, which bounds its output by it) and took out.
   double channel_energy_in = 0.0;
   double channel_energy_out = 0.0;
+  /// Protocol 1.3, the coupling as the client closes its object's side (ANSWER_COUPLED): the
+  /// coupling is stiffer along contact_normal (client frame; 0 0 0: none) by normal_gains
+  /// (stiffness N/m, damping N.s/m, base frame units as `gains`) while it pushes the object into
+  /// a contact; the force and torque limits in force.
+  std::array<double, 3> contact_normal{};
+  std::array<double, 2> normal_gains{};
+  std::array<double, 2> limits{};
+  double max_contact_stiffness = 0.0;  ///< N/m, the stiffest contact the core accepts
+  std::uint32_t contacts = 0;           ///< contact slots in force (fresh)
+  std::uint32_t contacts_rejected = 0;  ///< contacts refused this session (stiffer than the limit)
 };
 
 /// A spring-damper hand gripping the simulated handle: it pulls the handle point towards
@@ -269,8 +308,9 @@ struct LinkStatsPayload {
 };
 
 // Layout pins: a change here is an ABI change (bump kAbiVersion in layout.hpp).
-static_assert(sizeof(VprPayload) == 464);
-static_assert(sizeof(VpPayload) == 376);
+static_assert(sizeof(ContactSlot) == 160);
+static_assert(sizeof(VprPayload) == 1752);
+static_assert(sizeof(VpPayload) == 448);
 static_assert(sizeof(ForcePayload) == 112);
 static_assert(sizeof(PositionPayload) == 360);
 static_assert(sizeof(LatencySummary) == 64);

@@ -140,8 +140,16 @@ class Session {
                        std::span<std::uint8_t> reply) noexcept;
   std::size_t on_bye(const hcp_frame& in, TimeNs now, std::span<std::uint8_t> reply) noexcept;
   void on_control(const hcp_frame& in, TimeNs now) noexcept;
+  /// An object state or an IMPEDANCE wrench: a new sample in vpr_, with its sequence and timing.
+  void take_sample(const hcp_frame& in, TimeNs now) noexcept;
   /// CONTROL_OBJECT_TIMED: the pose, twist and the sample's timing into vpr_.
   void take_timed_object(const hcp_control_object_timed& o, TimeNs now) noexcept;
+  /// The answer echo and the client's channel energy of a timed frame into vpr_ and the link.
+  void take_timing(std::uint32_t answer_echo, std::uint32_t energy_in_uj, TimeNs now) noexcept;
+  /// CONTROL_CONTACT: one contact slot (and the count in use) into vpr_.
+  void take_contact(const hcp_control_contact& c, TimeNs now) noexcept;
+  /// Whether this session negotiated the feature a control frame type needs.
+  [[nodiscard]] bool negotiated(hcp_frame_type type) const noexcept;
   [[nodiscard]] bool from_session(const hcp_frame& in,
                                   const protocol::Endpoint& from) const noexcept;
   hcp_ack_status apply(const hcp_param& param, TimeNs now) noexcept;

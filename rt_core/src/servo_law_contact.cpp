@@ -1,0 +1,120 @@
+// The coupling where the client's object touches something, and after the coupling let go:
+// the stiffening along a contact the client reports (ServoLaw::contact_stiffening) and the
+// re-anchored spring after a full disengagement (ServoLaw::stretch_in_use); docs/control.md, J1.
+#include <algorithm>
+#include <cmath>
+
+#include "hapticctrl/rt_core/servo_law.hpp"
+#include "law_math.hpp"
+
+namespace hapticctrl::rt_core {
+namespace {
+
+using law_math::clamp_norm;
+
+/// A contact counts as touching from this gap down (its stiffening comes in over it): the
+/// object image arrives at the surface at the speed of the hand, and a stiffening switched on in
+/// one cycle would step the force by k x its first penetration.
+constexpr double kTouchBand = 1e-3;  // m
+
+/// Share of the contact a slot still has after `silence` without a refresh: 1 while fresh,
+/// falling linearly to 0 over the fade (a contact that stops coming fades as the link does).
+double contact_weight(TimeNs silence, const LawConfig& config) noexcept {
+  if (silence <= config.contact_fresh) {
+    return 1.0;
+  }
+  const auto left = static_cast<double>(config.contact_fresh + config.contact_fade - silence);
+  return std::clamp(left / static_cast<double>(config.contact_fade), 0.0, 1.0);
+}
+
+}  // namespace
+
+ServoLaw::Stiffening ServoLaw::contact_stiffening(const ServoInputs& in, const ClientFrame& frame,
+                                                  const ObjectImage& image,
+                                                  const CouplingGains& g) const noexcept {
+  // Held by a surface of stiffness K, the object moves little whatever the coupling does, so the
+  // loop through it (the object's surface, the spring, the delay, the handle) keeps a gain below
+  // 1 at any delay as long as the coupling along the surface's normal stays well below K: there
+  // the coupling may be as stiff as contact_share * K and the device allow, whatever the delay
+  // (small gain; the free-mass bound of derive_gains() is about the directions the object is
+  // free in). One normal, the stiffest contact's: a client that closes its object's side mirrors
+  // it (protocol 1.3).
+  const ArmLimits& lim = dynamics_->model().limits;
+  const ClientSample& c = in.client;
+  const Matrix3d to_base = frame.rotation.conjugate().toRotationMatrix();
+  Stiffening best;
+  for (std::size_t i = 0; i < std::min<std::size_t>(c.contact_count, c.contacts.size()); ++i) {
+    const ClientContact& contact = c.contacts[i];
+    if (!(contact.stiffness > 0.0)) {
+      continue;
+    }
+    const double weight = contact_weight(in.now - contact.received_ns, config_);
+    if (weight <= 0.0) {
+      continue;
+    }
+    ++best.fresh;
+    const Vector3d normal =
+        (to_base * Vector3d(contact.normal[0], contact.normal[1], contact.normal[2])).normalized();
+    // The gap now: as reported, less how far the object moved towards the surface since.
+    const Vector3d at_report =
+        to_base * (Vector3d(contact.object_pose[0], contact.object_pose[1],
+                            contact.object_pose[2]) -
+                   frame.origin) /
+        frame.speed_factor;
+    const double gap =
+        contact.distance / frame.speed_factor - (image.position - at_report).dot(normal);
+    const double touching = std::clamp((kTouchBand - gap) / kTouchBand, 0.0, 1.0);
+    // The surface's stiffness in the coupling's units (the client's force per base metre).
+    const double surface = contact.stiffness * frame.speed_factor;
+    const double stiffness =
+        weight * touching *
+        std::max(0.0, std::min(lim.max_stiffness_linear, config_.contact_share * surface) -
+                          g.k_linear);
+    if (stiffness > best.stiffness) {
+      best.normal = normal;
+      best.stiffness = stiffness;
+      best.damping = weight * touching * std::max(0.0, lim.max_damping_linear - g.b_linear);
+    }
+  }
+  return best;
+}
+
+Vector6d ServoLaw::stretch_in_use(const Vector6d& stretch, double dt) noexcept {
+  // After a full disengagement (the link lost, a brake, a new session, power-on) the handle may
+  // be far from where the coupling would hold it: a hand that pushed 5 N into a 3000 N/m wall
+  // through a 2 s blackout went 30 cm through it, and the returning spring snapped it back at
+  // up to 1.1 m/s with 10 N steps (J1 review of f3c5aec). So the spring restarts where the
+  // handle is: the stretch it had then is hidden (memory_.stretch) and comes back at
+  // restretch_speed at most, while every new motion of the handle or the object stretches the
+  // spring at once. The hidden part never exceeds the true stretch along its own direction: when
+  // the object comes to the handle or the hand goes back, it shrinks with it (the spring never
+  // pulls the other way).
+  RenderMemory& m = memory_;
+  if (m.engage <= 0.0) {
+    if (!m.anchored) {
+      ++counters_.reanchored;
+    }
+    m.anchored = true;  // fully disengaged: the whole stretch is hidden, the spring relaxed
+    m.stretch = stretch;
+    return Vector6d::Zero();
+  }
+  if (!m.anchored) {
+    return stretch;
+  }
+  const auto release = [&stretch, dt](Vector6d& hidden, int from, double speed) {
+    Vector3d h = hidden.segment<3>(from);
+    h -= clamp_norm(h, speed * dt);
+    const double length = h.norm();
+    if (length > 0.0) {
+      const double along = stretch.segment<3>(from).dot(h / length);
+      h *= std::clamp(along, 0.0, length) / length;
+    }
+    hidden.segment<3>(from) = h;
+  };
+  release(m.stretch, 0, config_.restretch_speed);
+  release(m.stretch, 3, config_.restretch_angular_speed);
+  m.anchored = m.stretch.squaredNorm() > 0.0;
+  return stretch - m.stretch;
+}
+
+}  // namespace hapticctrl::rt_core

@@ -1,0 +1,66 @@
+// Tests of client/src/local_coupling.cpp: the object's side of the coupling the library closes
+// itself (protocol 1.3).
+#include "local_coupling.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace hapticctrl::client {
+namespace {
+
+CouplingTerms terms(double k, double b) {
+  CouplingTerms t;
+  t.gains = {k, b, 2.0, 0.1};
+  t.limits = {35.0, 3.0};
+  return t;
+}
+
+const Pose7 kAt{0.5, 0.0, 0.2, 0, 0, 0, 1};
+
+TEST(LocalCoupling, TheSpringPullsTheObjectToTheHandleImage) {
+  const Pose7 handle{0.51, 0.0, 0.2, 0, 0, 0, 1};
+  const Vector6 w = object_wrench(terms(1000.0, 10.0), handle, {}, kAt, {}, 1.0, 1.0);
+  EXPECT_NEAR(w[0], 10.0, 1e-9);
+  EXPECT_NEAR(w[1], 0.0, 1e-12);
+}
+
+TEST(LocalCoupling, TheDamperActsOnTheObjectsOwnVelocityNow) {
+  const Vector6 moving{0.1, 0, 0, 0, 0, 0};
+  const Vector6 w = object_wrench(terms(1000.0, 10.0), kAt, {}, kAt, moving, 1.0, 1.0);
+  EXPECT_NEAR(w[0], -1.0, 1e-9) << "b x (v_handle - v_object)";
+}
+
+TEST(LocalCoupling, SpeedFactorDescalesThePositionsAndNoForceFactorReachesTheObject) {
+  const Pose7 handle{0.52, 0.0, 0.2, 0, 0, 0, 1};  // 2 cm in the client's units
+  const Vector6 w = object_wrench(terms(1000.0, 0.0), handle, {}, kAt, {}, 2.0, 3.0);
+  EXPECT_NEAR(w[0], 10.0, 1e-9) << "k x 2 cm / speed factor 2";
+}
+
+TEST(LocalCoupling, TheContactStiffensOnlyWhileThePushIsIntoTheSurface) {
+  CouplingTerms t = terms(100.0, 0.0);
+  t.contact_normal = {-1.0, 0.0, 0.0};  // the surface pushes the object along -x
+  t.normal_gains = {900.0, 0.0};
+  const Pose7 pressing{0.51, 0.0, 0.2, 0, 0, 0, 1};  // the handle 1 cm into the surface
+  EXPECT_NEAR(object_wrench(t, pressing, {}, kAt, {}, 1.0, 1.0)[0], 10.0, 1e-9)
+      << "(100 + 900) N/m x 1 cm";
+  const Pose7 pulling{0.49, 0.0, 0.2, 0, 0, 0, 1};
+  EXPECT_NEAR(object_wrench(t, pulling, {}, kAt, {}, 1.0, 1.0)[0], -1.0, 1e-9)
+      << "pulled off the surface: the free spring only";
+}
+
+TEST(LocalCoupling, TheWrenchIsClampedToTheLimitsInTheApplicationsUnits) {
+  const Pose7 far{1.5, 0.0, 0.2, 0, 0, 0, 1};
+  const Vector6 w = object_wrench(terms(1000.0, 0.0), far, {}, kAt, {}, 1.0, 2.0);
+  EXPECT_NEAR(w[0], 17.5, 1e-9) << "35 N / force factor 2";
+}
+
+TEST(LocalCoupling, ARotationStretchGivesATorqueAboutItsAxis) {
+  const double s = std::sin(0.05);
+  const Pose7 turned{0.5, 0.0, 0.2, 0, 0, s, std::cos(0.05)};  // 0.1 rad about z
+  const Vector6 w = object_wrench(terms(0.0, 0.0), turned, {}, kAt, {}, 1.0, 1.0);
+  EXPECT_NEAR(w[5], 0.2, 1e-9) << "2 N.m/rad x 0.1 rad";
+}
+
+}  // namespace
+}  // namespace hapticctrl::client

@@ -1,5 +1,5 @@
-// Implements channel_passivity.hpp: the client library's end of the two-port time-domain passivity
-// of the coupling channel (docs/control.md; Ryu, Artigas, Preusche).
+// Implements channel_passivity.hpp: the client library's end of the two-port time-domain
+// passivity of the coupling channel (docs/control.md; Ryu, Artigas, Preusche).
 #include "channel_passivity.hpp"
 
 #include <algorithm>
@@ -9,19 +9,14 @@ namespace hapticctrl::client {
 namespace {
 
 /// A damper alpha on a mass m integrated at dt is stable for alpha dt / m < 1 (explicit); the PC
-/// stays at half of that.
+/// stays at half of that, with dt the time the application held the wrench (catch-up steps
+/// included: a damper held over 20 steps as if over one drove the weighted sphere to 77 m/s at
+/// 20 ms with 10 % loss, H1; bounded by the time between two sends alone, two sends 10 us apart
+/// after a burst of answers let it reach 25 000 N.s/m on the demo's sphere, J1 2026-12-03).
 constexpr double kDamperShare = 0.5;
 
-/// The damper the PC may add: what it wants, within the integration's bound and, when the
-/// controller reports one, the coupling's own damping. Taking the whole working share at once
-/// (up to m / 2 dt = 250 N·s/m for the demo's sphere) removed the 5.9 N that held the weighted
-/// sphere whenever it rose by a few mm/s; the PC kept the force chattering between 0 and 6 N, the
-/// sphere at 20-40 mm/s and the handle on its joint wall at up to 8 mm/s (20 ms one way, +-2 ms
-/// jitter, 10 % loss, 2026-12-02). Within the coupling's damping it settles to 1 mm/s in 1.5 s
-/// and dissipates the excess over a few steps instead of one.
-double bounded(double wanted, double integration, double coupling) noexcept {
-  const double bound = coupling > 0.0 ? std::min(integration, coupling) : integration;
-  return std::min(wanted, bound);
+double dot3(const Vector6& a, const Vector6& b, std::size_t from) noexcept {
+  return a[from] * b[from] + a[from + 1] * b[from + 1] + a[from + 2] * b[from + 2];
 }
 
 }  // namespace
@@ -37,82 +32,135 @@ void ChannelPassivity::on_controller_energy(double joules) noexcept {
   }
 }
 
-void ChannelPassivity::on_coupling_damping(double linear, double angular) noexcept {
-  coupling_linear_ = std::isfinite(linear) && linear > 0.0 ? linear : 0.0;
-  coupling_angular_ = std::isfinite(angular) && angular > 0.0 ? angular : 0.0;
+void ChannelPassivity::set_loop(double seconds) noexcept {
+  loop_ns_ = std::isfinite(seconds) && seconds > 0.0 ? static_cast<std::int64_t>(seconds * 1e9) : 0;
 }
 
-void ChannelPassivity::set_force_factor(double factor) noexcept {
-  force_factor_ = std::isfinite(factor) && factor > 0.0 ? factor : 1.0;  // as the core reads it
+double ChannelPassivity::output_ago(std::int64_t now_ns) const noexcept {
+  // The newest entry at or before now - loop (the oldest kept if the loop is longer).
+  const std::int64_t when = now_ns - loop_ns_;
+  double found = energy_out_ + dissipated_;
+  for (std::size_t k = 1; k <= past_.size(); ++k) {
+    const Past& p = past_[(past_next_ + past_.size() - k) % past_.size()];
+    if (p.at_ns == 0) {
+      break;
+    }
+    found = p.out;
+    if (p.at_ns <= when) {
+      break;
+    }
+  }
+  return found;
 }
 
-void ChannelPassivity::set_speed_factor(double factor) noexcept {
-  speed_factor_ = std::isfinite(factor) && factor > 0.0 ? factor : 1.0;
-}
-
-double ChannelPassivity::book(double power, double dt) noexcept {
-  (power >= 0.0 ? energy_in_ : energy_out_) += std::abs(power) * dt;
+double ChannelPassivity::book_output(double power, double dt) noexcept {
+  (power >= 0.0 ? energy_out_ : energy_in_) += std::abs(power) * dt;
   return energy_out_ - controller_in_;
 }
 
-double ChannelPassivity::on_image_step(const Vector6& force, const Vector6& flow,
-                                       const Vector6& stretch, double dt) noexcept {
+Vector6 ChannelPassivity::render(const Vector6& wrench) noexcept {
+  raw_ = wrench;
+  Vector6 out = wrench;
+  for (std::size_t i = 0; i < 6; ++i) {
+    out[i] -= (i < 3 ? alpha_linear_ : alpha_angular_) * twist_[i];
+  }
+  // What the damper cannot dissipate is cut from the wrench's share along the motion, force and
+  // torque each at most down to none along their own motion: a cut spread over the whole twist
+  // pushed against the sphere's spin with far more than its inertia bears (it blew up, J1).
+  double left = cut_power_;
+  for (std::size_t from = 0; from < 6 && left > 0.0; from += 3) {
+    const double v_sq = dot3(twist_, twist_, from);
+    const double working = dot3(out, twist_, from);
+    if (working > 0.0 && v_sq > 1e-15) {
+      const double taken = std::min(working, left);
+      for (std::size_t i = from; i < from + 3; ++i) {
+        out[i] -= twist_[i] * taken / v_sq;
+      }
+      left -= taken;
+    }
+  }
+  rendered_ = out;
+  return out;
+}
+
+void ChannelPassivity::on_step(const Vector6& twist, double dt, double held,
+                               std::int64_t now_ns) noexcept {
+  if (!(dt > 0.0) || !std::isfinite(dt)) {
+    return;
+  }
+  held = std::isfinite(held) ? std::max(held, dt) : dt;
+  // The channel's power into the object, with the channel's wrench (Ryu's observer); the PC's
+  // damping and cut are booked apart: what they took leaves the output account.
+  double power = 0.0;
+  double damped = 0.0;
+  for (std::size_t i = 0; i < 6; ++i) {
+    power += raw_[i] * twist[i];
+    damped += (raw_[i] - rendered_[i]) * twist[i];
+  }
+  if (!std::isfinite(power) || !std::isfinite(damped)) {
+    return;
+  }
+  book_output(power, dt);
+  energy_out_ -= damped * dt;
+  dissipated_ += damped * dt;
+  past_[past_next_] = {now_ns, energy_out_ + dissipated_};
+  past_next_ = (past_next_ + 1) % past_.size();
+  // The controller's report covers the object's motion up to a loop ago (the object's state went
+  // out, the controller took it, its answer came back): compared with the output of now, every
+  // push into a wall looked like a loop's worth of excess, and the PC chattered the object's
+  // wrench between 0 and 12 N at 100 ms one way (J1, 2026-12-03).
+  const double excess = output_ago(now_ns) - dissipated_ - controller_in_;
+  twist_ = twist;
+  alpha_linear_ = 0.0;
+  alpha_angular_ = 0.0;
+  cut_power_ = 0.0;
+  const double lin_sq = dot3(twist, twist, 0);
+  const double ang_sq = dot3(twist, twist, 3);
+  if (excess > 0.0 && lin_sq + ang_sq > 1e-15) {
+    // The damper for the next step: enough to dissipate the excess at this motion, within what
+    // the object's integration bears; the rest is cut from the wrench.
+    const double alpha = excess / ((lin_sq + ang_sq) * dt);
+    alpha_linear_ = std::min(alpha, kDamperShare * mass_ / held);
+    alpha_angular_ = std::min(alpha, kDamperShare * inertia_ / held);
+    const double damping = (alpha_linear_ * lin_sq + alpha_angular_ * ang_sq) * dt;
+    cut_power_ = std::max(0.0, excess - damping) / dt;
+    ++active_steps_;
+  }
+}
+
+void ChannelPassivity::on_image_step(const Vector6& wrench, const Vector6& flow,
+                                     double dt) noexcept {
   drift_rate_ = {};
   if (!(dt > 0.0) || !std::isfinite(dt)) {
-    return 0.0;
+    return;
   }
-  double power = 0.0;
-  double force_sq = 0.0;
-  for (std::size_t i = 0; i < 6; ++i) {
-    power += force[i] * flow[i];
-    force_sq += force[i] * force[i];
-  }
+  // The channel gives this end power when the handle image moves against the application's
+  // wrench (-wrench . flow > 0: it compresses the application's wall, say).
+  const double power = -(dot3(wrench, flow, 0) + dot3(wrench, flow, 3));
+  const double force_sq = dot3(wrench, wrench, 0) + dot3(wrench, wrench, 3);
   if (!std::isfinite(power) || !std::isfinite(force_sq)) {
-    return 0.0;
+    return;
   }
-  const double excess = book(power, dt);
+  const double excess = book_output(power, dt);
   Vector6 rate{};
-  if (excess > 0.0) {
+  if (excess > 0.0 && force_sq > 1e-12) {
+    // The image gives way along the wrench, as fast as dissipates the excess in one step.
+    for (std::size_t i = 0; i < 6; ++i) {
+      rate[i] = wrench[i] * excess / (dt * force_sq);
+    }
     ++active_steps_;
-    if (force_sq > 1e-12) {
-      // The image gives way along the client's force, as fast as dissipates the excess in one
-      // step, no further than relaxing the object's spring (a stretch of zero: no bound).
-      for (std::size_t i = 0; i < 6; ++i) {
-        rate[i] = force[i] * excess / (dt * force_sq);
-      }
-      for (std::size_t from = 0; from < 6; from += 3) {
-        double moved = 0.0;
-        double room = 0.0;
-        for (std::size_t i = from; i < from + 3; ++i) {
-          moved += rate[i] * rate[i];
-          room += stretch[i] * stretch[i];
-        }
-        moved = std::sqrt(moved) * dt;
-        room = std::sqrt(room);
-        if (room > 0.0 && moved > room) {
-          for (std::size_t i = from; i < from + 3; ++i) {
-            rate[i] *= room / moved;
-          }
-        }
-      }
-    }
-  } else {
+  } else if (excess < 0.0) {
     // Give the drift back, slowly (2 cm/s, 0.2 rad/s), within the budget: it costs energy.
-    double cost = 0.0;
     for (std::size_t from = 0; from < 6; from += 3) {
+      const double norm = std::sqrt(dot3(drift_, drift_, from));
       const double speed = from == 0 ? 0.02 : 0.2;
-      double norm = 0.0;
+      const double share = norm > 0.0 ? std::min(norm / dt, speed) / norm : 0.0;
       for (std::size_t i = from; i < from + 3; ++i) {
-        norm += drift_[i] * drift_[i];
-      }
-      norm = std::sqrt(norm);
-      const double step = norm > 0.0 ? std::min(norm / dt, speed) / norm : 0.0;
-      for (std::size_t i = from; i < from + 3; ++i) {
-        rate[i] = -drift_[i] * step;
-        cost -= force[i] * rate[i] * dt;
+        rate[i] = -drift_[i] * share;
       }
     }
-    if (cost > -excess && cost > 0.0) {
+    const double cost = -(dot3(wrench, rate, 0) + dot3(wrench, rate, 3)) * dt;
+    if (cost > -excess) {
       for (double& r : rate) {
         r *= -excess / cost;
       }
@@ -120,81 +168,11 @@ double ChannelPassivity::on_image_step(const Vector6& force, const Vector6& flow
   }
   double dissipated = 0.0;
   for (std::size_t i = 0; i < 6; ++i) {
-    dissipated += force[i] * rate[i] * dt;
+    dissipated += wrench[i] * rate[i] * dt;
     drift_[i] += rate[i] * dt;
   }
   drift_rate_ = rate;
-  energy_out_ -= dissipated;
-  return std::max(0.0, excess - std::max(0.0, dissipated));
-}
-
-void ChannelPassivity::on_cut(double joules) noexcept {
-  if (std::isfinite(joules) && joules > 0.0) {
-    energy_out_ -= joules;
-  }
-}
-
-Vector6 ChannelPassivity::render(const Vector6& wrench) noexcept {
-  raw_ = wrench;
-  Vector6 out = wrench;
-  // The damper removes at most the share of the wrench that does work on the object's motion:
-  // it stops the channel's output without ever pushing against the motion itself. A full damper
-  // held over the application's catch-up steps (the demo integrates several cycles with one
-  // wrench after a lost answer) drove the weighted sphere to 77 m/s at 20 ms with 10 % loss.
-  const auto limited = [&](std::size_t from, double alpha) {
-    double along = 0.0;
-    double v_sq = 0.0;
-    for (std::size_t i = from; i < from + 3; ++i) {
-      along += wrench[i] * twist_[i];
-      v_sq += twist_[i] * twist_[i];
-    }
-    const double working = v_sq > 1e-15 ? std::max(0.0, along / v_sq) : 0.0;
-    const double a = std::min(alpha, working);
-    for (std::size_t i = from; i < from + 3; ++i) {
-      out[i] -= a * twist_[i];
-    }
-  };
-  limited(0, alpha_linear_);
-  limited(3, alpha_angular_);
-  rendered_ = out;
-  return out;
-}
-
-void ChannelPassivity::on_step(const Vector6& twist, double dt) noexcept {
-  if (!(dt > 0.0) || !std::isfinite(dt)) {
-    return;
-  }
-  // The channel's power into the object, with the controller's wrench (Ryu's observer); the
-  // PC's damper is booked apart: what it took leaves the output account.
-  double power = 0.0;
-  double damped = 0.0;
-  double v_sq = 0.0;
-  double w_sq = 0.0;
-  for (std::size_t i = 0; i < 6; ++i) {
-    power += raw_[i] * twist[i];
-    damped += (raw_[i] - rendered_[i]) * twist[i];
-    (i < 3 ? v_sq : w_sq) += twist[i] * twist[i];
-  }
-  if (!std::isfinite(power) || !std::isfinite(damped)) {
-    return;
-  }
-  (power >= 0.0 ? energy_out_ : energy_in_) += std::abs(power) * dt;
-  energy_out_ -= damped * dt;
-  twist_ = twist;
-  alpha_linear_ = 0.0;
-  alpha_angular_ = 0.0;
-  // The damper for the next step: enough to dissipate the excess at this motion, within the
-  // bounds the object's integration bears.
-  const double excess = energy_out_ - controller_in_;
-  const double motion = (v_sq + w_sq) * dt;
-  if (excess > 0.0 && motion > 1e-15) {
-    const double alpha = excess / motion;
-    alpha_linear_ = bounded(alpha, kDamperShare * mass_ / dt,
-                            coupling_linear_ / (force_factor_ * speed_factor_));
-    alpha_angular_ =
-        bounded(alpha, kDamperShare * inertia_ / dt, coupling_angular_ / force_factor_);
-    ++active_steps_;
-  }
+  energy_out_ -= dissipated;  // dissipated (> 0) or given back (< 0)
 }
 
 std::uint32_t ChannelPassivity::energy_in_uj() const noexcept {

@@ -57,34 +57,6 @@ Pose7 drifted(const Pose7& pose, const Vector6& drift) noexcept {
   return {pose[0] + drift[0], pose[1] + drift[1], pose[2] + drift[2], q.x(), q.y(), q.z(), q.w()};
 }
 
-/// The object's spring's stretch: handle image - object (linear, rotation vector).
-Vector6 stretch_of(const Pose7& image, const Pose7& object) noexcept {
-  const Eigen::Quaterniond qi(image[6], image[3], image[4], image[5]);
-  const Eigen::Quaterniond qo(object[6], object[3], object[4], object[5]);
-  const Eigen::AngleAxisd turn(qi.normalized() * qo.normalized().conjugate());
-  const Eigen::Vector3d r = turn.axis() * turn.angle();
-  return {image[0] - object[0], image[1] - object[1], image[2] - object[2], r.x(), r.y(), r.z()};
-}
-
-/// Removes from `wrench` the share that gives power along `flow`, as much as `energy` J over
-/// `dt` (at most all of it). Returns the energy taken.
-double cut_along(Vector6& wrench, const Vector6& flow, double energy, double dt) noexcept {
-  double power = 0.0;
-  double flow_sq = 0.0;
-  for (std::size_t i = 0; i < 6; ++i) {
-    power += wrench[i] * flow[i];
-    flow_sq += flow[i] * flow[i];
-  }
-  if (!(power > 0.0) || !(energy > 0.0) || !(dt > 0.0) || flow_sq < 1e-18) {
-    return 0.0;
-  }
-  const double taken = std::min(power, energy / dt);
-  for (std::size_t i = 0; i < 6; ++i) {
-    wrench[i] -= flow[i] * taken / flow_sq;
-  }
-  return taken * dt;
-}
-
 }  // namespace
 
 ClientSession::ClientSession(ConnectOptions options, std::string peer_text)
@@ -238,7 +210,7 @@ bool ClientSession::on_answer(const hcp_frame& frame, std::int64_t now) noexcept
   if (timed) {
     report_ = coupled ? u.answer_coupled.coupling : u.answer_timed.coupling;
     passivity_.on_controller_energy(report_.energy_in);
-    passivity_.on_coupling_damping(report_.gains[1], report_.gains[3]);
+    passivity_.set_loop(report_.loop_delay_s);
   }
   if (coupled) {
     local_ = u.answer_coupled.local;
@@ -258,26 +230,21 @@ bool ClientSession::on_answer(const hcp_frame& frame, std::int64_t now) noexcept
 }
 
 void ClientSession::close_locally() noexcept {
-  // Protocol 1.3: the object's wrench from its own newest state and the handle image; an
-  // IMPEDANCE application sees the handle image as the passivity controller lets it give way.
+  // Protocol 1.3: the object's wrench from its own newest state and the handle as the answer
+  // gives it; an IMPEDANCE application sees the handle image as the passivity controller lets it
+  // give way.
   StateSnapshot& s = latest_;
-  const Pose7 image = drifted(channel_pose_, passivity_.drift());
   if (s.command_type == CommandType::kImpedance) {
-    s.handle_pose = image;
+    s.handle_pose = drifted(channel_pose_, passivity_.drift());
     s.handle_twist = sum(channel_twist_, passivity_.drift_rate());
     return;
   }
-  if (!s.coupled() || !have_object_) {
-    object_wrench_ = {};
-    s.coupling_wrench = object_wrench_;
-    return;
+  Vector6 w{};
+  if (s.coupled() && have_object_) {
+    w = object_wrench(terms_, channel_pose_, channel_twist_, object_pose_, object_twist_,
+                      speed_factor_, force_factor_);
   }
-  Vector6 w = object_wrench(terms_, image, channel_twist_, object_pose_, object_twist_,
-                            speed_factor_, force_factor_);
-  passivity_.on_cut(cut_along(w, channel_twist_, cut_pending_, cut_dt_));
-  cut_pending_ = 0.0;
-  object_wrench_ = w;
-  s.coupling_wrench = w;
+  s.coupling_wrench = passivity_.render(w);
 }
 
 std::optional<hcp_frame> ClientSession::keepalive_due(std::int64_t now) noexcept {
@@ -340,20 +307,15 @@ hcp_frame ClientSession::timed_object_frame(const Pose7& pose, const Vector6& tw
   // The step the application just took, under the wrench it got (at most 0.1 s counted).
   if (last_object_send_ns_ != 0) {
     const double dt = std::min(0.1, static_cast<double>(now - last_object_send_ns_) * 1e-9);
-    if (local()) {
-      // The object's spring pushed the handle image with the opposite of the object's wrench.
-      Vector6 on_image{};
-      for (std::size_t i = 0; i < 6; ++i) {
-        on_image[i] = -object_wrench_[i];
-      }
-      const Vector6 stretch = stretch_of(drifted(channel_pose_, passivity_.drift()), object_pose_);
-      cut_pending_ = passivity_.on_image_step(on_image, channel_twist_, stretch, dt);
-      cut_dt_ = dt;
-    } else {
-      passivity_.on_step(twist, dt);
-    }
+    // How long the application may have held one wrench: its step, the time since the last
+    // send, or the controller's cycles meanwhile (the demo integrates one step per cycle).
+    const double cycles =
+        static_cast<double>(latest_.cycle - std::min(latest_.cycle, last_send_cycle_)) *
+        static_cast<double>(period_ns_) * 1e-9;
+    passivity_.on_step(twist, dt, std::max({dt, time_step_, std::min(0.1, cycles)}), now);
   }
   last_object_send_ns_ = now;
+  last_send_cycle_ = latest_.cycle;
   object_pose_ = pose;
   object_twist_ = twist;
   have_object_ = true;
@@ -390,7 +352,7 @@ std::optional<hcp_frame> ClientSession::wrench_frame(const Vector6& wrench,
   // way along it when the channel gave this end more than the controller put in.
   if (last_wrench_send_ns_ != 0) {
     const double dt = std::min(0.1, static_cast<double>(now - last_wrench_send_ns_) * 1e-9);
-    (void)passivity_.on_image_step(held_wrench_, channel_twist_, Vector6{}, dt);
+    passivity_.on_image_step(held_wrench_, channel_twist_, dt);
   }
   last_wrench_send_ns_ = now;
   held_wrench_ = wrench;
@@ -404,6 +366,93 @@ std::optional<hcp_frame> ClientSession::wrench_frame(const Vector6& wrench,
   w.answer_echo = answer_echo(now);
   w.energy_in = passivity_.energy_in_uj();
   return checked_control(f);
+}
+
+namespace {
+
+/// Contacts are refreshed at least this often: the controller fades one not refreshed in 30 ms.
+constexpr std::int64_t kContactRefreshNs = 5 * kNsPerMs;
+
+hcp_contact wire_contact(const Contact& c) noexcept {
+  hcp_contact w{};
+  protocol::to_wire(c.point, w.point);
+  protocol::to_wire(c.normal, w.normal);
+  w.distance = static_cast<float>(c.distance);
+  w.stiffness = static_cast<float>(c.stiffness);
+  w.damping = static_cast<float>(c.damping);
+  w.friction[0] = static_cast<float>(c.friction_static);
+  w.friction[1] = static_cast<float>(c.friction_dynamic);
+  return w;
+}
+
+bool same_contact(const hcp_contact& a, const hcp_contact& b) noexcept {
+  return std::equal(std::begin(a.point), std::end(a.point), std::begin(b.point)) &&
+         std::equal(std::begin(a.normal), std::end(a.normal), std::begin(b.normal)) &&
+         a.distance == b.distance && a.stiffness == b.stiffness && a.damping == b.damping &&
+         a.friction[0] == b.friction[0] && a.friction[1] == b.friction[1];
+}
+
+}  // namespace
+
+ContactResult ClientSession::set_contacts(std::span<const Contact> contacts) noexcept {
+  if (!local()) {
+    return ContactResult::kUnsupported;
+  }
+  if (contacts.size() > kMaxContacts) {
+    return ContactResult::kTooMany;
+  }
+  const auto count = static_cast<std::uint32_t>(contacts.size());
+  std::array<hcp_contact, kMaxContacts> next{};
+  for (std::uint32_t i = 0; i < count; ++i) {
+    hcp_control_contact frame{};
+    frame.slots = protocol::pack_contact_slots(i, count);
+    frame.contact = wire_contact(contacts[i]);
+    if (protocol::check_contact(frame)) {
+      return ContactResult::kInvalid;
+    }
+    const double limit = local_.max_contact_stiffness;
+    if (limit > 0.0 && static_cast<double>(frame.contact.stiffness) > limit) {
+      return ContactResult::kTooStiff;
+    }
+    next[i] = frame.contact;
+  }
+  for (std::uint32_t i = 0; i < count; ++i) {
+    contact_changed_[i] = i >= contact_count_ || !same_contact(next[i], contacts_[i]);
+  }
+  contacts_clear_due_ = count == 0 && contact_count_ > 0;
+  if (count != contact_count_) {
+    contact_changed_.fill(true);  // every frame carries the count
+  }
+  contacts_ = next;
+  contact_count_ = count;
+  return ContactResult::kAccepted;
+}
+
+std::optional<hcp_frame> ClientSession::contact_frame_due(std::int64_t now) noexcept {
+  if (!open_ || !local()) {
+    return std::nullopt;
+  }
+  if (contacts_clear_due_) {
+    contacts_clear_due_ = false;
+    hcp_frame f = protocol::make_frame(HCP_CONTROL_CONTACT, token_, next_control_sequence(), now);
+    f.body.hcp_body_u.contact.slots = protocol::pack_contact_slots(0, 0);
+    f.body.hcp_body_u.contact.answer_echo = answer_echo(now);
+    return checked_control(f);
+  }
+  for (std::uint32_t i = 0; i < contact_count_; ++i) {
+    if (!contact_changed_[i] && now - contact_sent_ns_[i] < kContactRefreshNs) {
+      continue;
+    }
+    contact_changed_[i] = false;
+    contact_sent_ns_[i] = now;
+    hcp_frame f = protocol::make_frame(HCP_CONTROL_CONTACT, token_, next_control_sequence(), now);
+    hcp_control_contact& c = f.body.hcp_body_u.contact;
+    c.slots = protocol::pack_contact_slots(i, contact_count_);
+    c.answer_echo = answer_echo(now);
+    c.contact = contacts_[i];
+    return checked_control(f);
+  }
+  return std::nullopt;
 }
 
 // --- reliable frames -----------------------------------------------------------------------
@@ -442,12 +491,13 @@ void ClientSession::on_param_applied(const hcp_param& param) noexcept {
     case HCP_P_WATCHDOG:
       watchdog_ms_ = v.watchdog_ms;
       break;
+    case HCP_P_TIME_STEP:
+      time_step_ = v.time_step;
+      break;
     case HCP_P_FORCE_FACTOR:
-      passivity_.set_force_factor(v.force_factor);
       force_factor_ = v.force_factor;
       break;
     case HCP_P_SPEED_FACTOR:
-      passivity_.set_speed_factor(v.speed_factor);
       speed_factor_ = v.speed_factor;
       break;
     case HCP_P_OBJECT:
@@ -481,6 +531,9 @@ LinkStatistics ClientSession::statistics() const noexcept {
   st.channel_energy_out = passivity_.energy_out();
   st.controller_energy_in = r.energy_in;
   st.passivity_active_steps = passivity_.active_steps();
+  st.contacts_in_force = local_.contacts;
+  st.contacts_rejected = local_.contacts_rejected;
+  st.max_contact_stiffness = local_.max_contact_stiffness;
   return st;
 }
 

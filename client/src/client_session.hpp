@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 
 #include "channel_passivity.hpp"
@@ -81,6 +82,11 @@ class ClientSession {
   std::optional<hcp_frame> object_frame(const Pose7& pose, const Vector6& twist,
                                         std::int64_t now) noexcept;
   std::optional<hcp_frame> wrench_frame(const Vector6& wrench, std::int64_t now) noexcept;
+  /// The object's contacts from now on (protocol 1.3), checked as the controller checks them.
+  ContactResult set_contacts(std::span<const Contact> contacts) noexcept;
+  /// The next CONTROL_CONTACT to send at `now` after an object state, if one is due (a changed
+  /// slot, a slot not sent for 5 ms, or the clearing of every slot); call until none is.
+  std::optional<hcp_frame> contact_frame_due(std::int64_t now) noexcept;
   /// One control frame left the socket (statistics).
   void on_control_sent() noexcept { ++control_sent_; }
 
@@ -154,6 +160,8 @@ class ClientSession {
   ChannelPassivity passivity_;
   hcp_coupling_report report_{};  ///< the controller's, from the newest ANSWER_TIMED
   std::int64_t last_object_send_ns_ = 0;
+  std::uint64_t last_send_cycle_ = 0;  ///< the newest answer's cycle at the last object send
+  double time_step_ = 0.0;             ///< the application's declared step (s)
 
   // Protocol 1.3: the object's side of the coupling, closed here (local_coupling.hpp).
   hcp_local_coupling local_{};  ///< from the newest ANSWER_COUPLED
@@ -163,13 +171,16 @@ class ClientSession {
   Pose7 object_pose_{0, 0, 0, 0, 0, 0, 1};  ///< the object's newest state, as sent
   Vector6 object_twist_{};
   bool have_object_ = false;
-  Vector6 object_wrench_{};  ///< the wrench the object got last (its spring's, on the image)
-  double cut_pending_ = 0.0;  ///< J to cut from the next object wrench (the PC's remainder)
-  double cut_dt_ = 0.0;
   Vector6 held_wrench_{};     ///< IMPEDANCE: the wrench sent last
   std::int64_t last_wrench_send_ns_ = 0;
   double speed_factor_ = 1.0;
   double force_factor_ = 1.0;
+  // Protocol 1.3: the object's contacts and when each slot went out.
+  std::array<hcp_contact, kMaxContacts> contacts_{};
+  std::uint32_t contact_count_ = 0;
+  std::array<bool, kMaxContacts> contact_changed_{};
+  std::array<std::int64_t, kMaxContacts> contact_sent_ns_{};
+  bool contacts_clear_due_ = false;
 };
 
 }  // namespace hapticctrl::client

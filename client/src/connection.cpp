@@ -39,7 +39,24 @@ bool Connection::send_object_state(const Pose7& pose, const Vector6& twist) noex
     const std::lock_guard lock(impl_->session_mutex);
     frame = impl_->session.object_frame(pose, twist, monotonic_ns());
   }
-  return impl_->send_control(frame);
+  const bool sent = impl_->send_control(frame);
+  // The contacts of the same step go right after it (the bridge dates them with this state).
+  for (std::size_t i = 0; sent && i <= kMaxContacts; ++i) {
+    std::optional<hcp_frame> contact;
+    {
+      const std::lock_guard lock(impl_->session_mutex);
+      contact = impl_->session.contact_frame_due(monotonic_ns());
+    }
+    if (!contact || !impl_->send_control(contact)) {
+      break;
+    }
+  }
+  return sent;
+}
+
+ContactResult Connection::set_contacts(std::span<const Contact> contacts) noexcept {
+  const std::lock_guard lock(impl_->session_mutex);
+  return impl_->session.set_contacts(contacts);
 }
 
 bool Connection::send_wrench(const Vector6& wrench) noexcept {

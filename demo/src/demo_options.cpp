@@ -10,7 +10,9 @@ namespace {
 
 constexpr const char* kProgram = "hapticctrl-demo";
 constexpr const char* kDescription =
-    "The seeds' test client: a mobile sphere coupled to the arm (VIRTMECH) next to a fixed one. "
+    "The seeds' test client: a mobile sphere coupled to the arm (VIRTMECH) next to a fixed one, "
+    "whose contact it reports to the controller; or (--command impedance) the handle as the "
+    "sphere, pushed by the fixed one's contact force (IMPEDANCE). "
     "Keys (with a terminal): x y z / X Y Z push the sphere along +/-, u v w / U V W twist it, 0 "
     "releases, q quits. Script lines: 't push fx fy fz', 't twist tx ty tz', 't release', 't "
     "quit'. The scene goes out on LCM (hapticctrl.<instance>.scene, default 30 Hz, local-only "
@@ -61,6 +63,19 @@ void declare(program::Options& o, DemoOptions& d) {
       "exit when the session ends instead of reconnecting");
   o.flag(
       "--no-lcm", [&d] { d.publish_scene = false; }, "publish no scene on LCM");
+  o.custom(
+      "--command", "virtmech|impedance",
+      [&d](const std::string& v) {
+        if (v != "virtmech" && v != "impedance") {
+          throw std::invalid_argument("--command must be virtmech or impedance");
+        }
+        d.impedance = v == "impedance";
+      },
+      "virtmech (default): the sphere is coupled to the handle; impedance: the handle is the "
+      "sphere and the fixed sphere's contact force is sent as a wrench");
+  o.flag(
+      "--no-contacts", [&d] { d.report_contacts = false; },
+      "do not report the spheres' contact to the controller (protocol 1.3)");
 }
 
 }  // namespace

@@ -56,7 +56,9 @@ void print_summary_json(FILE* out, const client::StateSnapshot& s, const SphereS
       "\"penetration\":%.9g,\"coupling_wrench\":[%.9g,%.9g,%.9g,%.9g,%.9g,%.9g],"
       "\"handle_position\":[%.9g,%.9g,%.9g],\"fixed_center\":[%.9g,%.9g,%.9g],"
       "\"answers_received\":%llu,\"answers_lost\":%llu,\"answers_late\":%llu,"
-      "\"frames_invalid\":%llu,\"control_sent\":%llu,\"rtt_mean_us\":%.1f}\n",
+      "\"frames_invalid\":%llu,\"control_sent\":%llu,\"rtt_mean_us\":%.1f,"
+      "\"contacts_in_force\":%u,\"contacts_rejected\":%u,\"channel_energy_in\":%.6f,"
+      "\"channel_energy_out\":%.6f,\"controller_energy_in\":%.6f}\n",
       static_cast<unsigned long long>(steps), static_cast<unsigned long long>(reconnects), ended,
       s.powered() ? "true" : "false", p.x(), p.y(), p.z(), v.x(), v.y(), v.z(), contact.x(),
       contact.y(), contact.z(), scene.penetration(), s.coupling_wrench[0], s.coupling_wrench[1],
@@ -67,7 +69,9 @@ void print_summary_json(FILE* out, const client::StateSnapshot& s, const SphereS
       static_cast<unsigned long long>(st.answers_lost),
       static_cast<unsigned long long>(st.answers_late),
       static_cast<unsigned long long>(st.frames_invalid),
-      static_cast<unsigned long long>(st.control_sent), st.rtt_mean_us);
+      static_cast<unsigned long long>(st.control_sent), st.rtt_mean_us, st.contacts_in_force,
+      st.contacts_rejected, st.channel_energy_in, st.channel_energy_out,
+      st.controller_energy_in);
 }
 
 }  // namespace hapticctrl::demo

@@ -16,6 +16,7 @@
 #include <exception>
 #include <fstream>
 #include <optional>
+#include <span>
 #include <string>
 #include <thread>
 #include <vector>
@@ -95,9 +96,13 @@ void initialise(client::Connection& c, const demo::DemoOptions& o, double time_s
   c.set_force_factor(1.0);
   c.set_speed_factor(1.0);
   c.set_time_step(time_step);
-  c.set_command_type(client::CommandType::kVirtmech);
-  const double inertia = o.scene.inertia();
-  c.attach_object(o.scene.mass, {inertia, inertia, inertia});
+  if (o.impedance) {
+    c.set_command_type(client::CommandType::kImpedance);
+  } else {
+    c.set_command_type(client::CommandType::kVirtmech);
+    const double inertia = o.scene.inertia();
+    c.attach_object(o.scene.mass, {inertia, inertia, inertia});
+  }
   if (o.power_on) {
     c.set_power(true);
   }
@@ -115,6 +120,10 @@ demo::SphereScene scene_at(const client::StateSnapshot& s, const demo::DemoOptio
                                              (config.fixed_radius + config.mobile_radius + o.gap);
   return {config, start};
 }
+
+/// The spheres' contact is reported from this gap on (protocol 1.3): the controller stiffens the
+/// coupling along it only once they touch, and knows of it before.
+constexpr double kContactNear = 0.005;  // m
 
 /// At most this many steps are integrated for one answer (a longer gap pauses the world).
 constexpr std::uint64_t kMaxCatchUpSteps = 20;
@@ -296,10 +305,15 @@ class DemoRun {
     const std::uint64_t cycles =
         std::clamp<std::uint64_t>(s_.cycle - last_cycle, 1, kMaxCatchUpSteps);
     last_cycle = s_.cycle;
-    for (std::uint64_t k = 0; k < cycles; ++k) {
-      scene_->step(s_.coupling_wrench, applied_.wrench, dt);
+    if (o_.impedance) {
+      render_contact();
+    } else {
+      for (std::uint64_t k = 0; k < cycles; ++k) {
+        scene_->step(s_.coupling_wrench, applied_.wrench, dt);
+      }
+      report_contact();
+      (void)c_->send_object_state(scene_->pose(), scene_->twist());
     }
-    (void)c_->send_object_state(scene_->pose(), scene_->twist());
     ++steps_;
     if (const std::int64_t now_us = monotonic_us(); scene_out_ && scene_out_->due(now_us * 1000)) {
       (void)scene_out_->publish(
@@ -312,6 +326,37 @@ class DemoRun {
       next_status_ += std::chrono::milliseconds(o_.status_ms);
       demo::print_status(stderr, t, s_, *scene_, keyboard_ ? "\r" : "\n");
     }
+  }
+
+  /// VIRTMECH: the spheres' contact (or none) goes out with the object state.
+  void report_contact() {
+    if (!o_.report_contacts) {
+      return;
+    }
+    const std::optional<client::Contact> contact =
+        scene_->contact_report(kContactNear, c_->statistics().max_contact_stiffness);
+    const std::span<const client::Contact> contacts =
+        contact ? std::span<const client::Contact>(&*contact, 1)
+                : std::span<const client::Contact>();
+    if (const client::ContactResult r = c_->set_contacts(contacts);
+        r != client::ContactResult::kAccepted && r != client::ContactResult::kUnsupported &&
+        !contact_refusal_said_) {
+      contact_refusal_said_ = true;
+      std::fprintf(stderr, "hapticctrl-demo: the controller refuses the contact (%d)\n",
+                   static_cast<int>(r));
+    }
+  }
+
+  /// IMPEDANCE: the handle is the sphere; the fixed one's contact force (and the operator's
+  /// push from the keyboard or script) is the wrench to render.
+  void render_contact() {
+    scene_->follow(s_.handle_pose, s_.handle_twist);
+    const Eigen::Vector3d f = scene_->contact_force();
+    client::Vector6 wrench = applied_.wrench;
+    for (int i = 0; i < 3; ++i) {
+      wrench[static_cast<std::size_t>(i)] += f(i);
+    }
+    (void)c_->send_wrench(wrench);
   }
 
   int finish() {
@@ -346,6 +391,7 @@ class DemoRun {
   std::uint64_t reconnects_ = 0;
   const char* ended_ = "duration";
   bool quit_ = false;
+  bool contact_refusal_said_ = false;
   std::optional<client::Connection> c_;
   client::StateSnapshot s_;
   std::optional<demo::SphereScene> scene_;

@@ -2,6 +2,7 @@
 // one mobile (mass, isotropic inertia) coupled to the arm.
 #include "hapticctrl/demo/sphere_scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -165,6 +166,32 @@ void SphereScene::step(const client::Vector6& coupling, const client::Vector6& a
         (Eigen::Quaterniond(Eigen::AngleAxisd(angle, rotation / angle)) * state_.orientation)
             .normalized();
   }
+}
+
+std::optional<client::Contact> SphereScene::contact_report(double near,
+                                                           double max_stiffness) const noexcept {
+  const Contact c = contact();
+  if (c.depth < -near) {
+    return std::nullopt;
+  }
+  const Eigen::Vector3d point = state_.position - config_.mobile_radius * c.normal;
+  client::Contact out;
+  out.point = {point.x(), point.y(), point.z()};
+  out.normal = {c.normal.x(), c.normal.y(), c.normal.z()};
+  out.distance = -c.depth;
+  out.stiffness = max_stiffness > 0.0 ? std::min(config_.contact_stiffness, max_stiffness)
+                                      : config_.contact_stiffness;
+  out.damping = config_.contact_damping;
+  out.friction_static = config_.friction;
+  out.friction_dynamic = config_.friction;
+  return out;
+}
+
+void SphereScene::follow(const client::Pose7& pose, const client::Vector6& twist) noexcept {
+  state_.position = {pose[0], pose[1], pose[2]};
+  state_.orientation = Eigen::Quaterniond(pose[6], pose[3], pose[4], pose[5]).normalized();
+  state_.velocity = {twist[0], twist[1], twist[2]};
+  state_.angular_velocity = {twist[3], twist[4], twist[5]};
 }
 
 client::Pose7 SphereScene::pose() const noexcept {

@@ -110,7 +110,14 @@ std::string status_json(const ControllerStatus& s) {
         << ",\"link_jitter_ms\":" << static_cast<double>(s.vp.link_jitter_ns) / 1e6
         << ",\"link_loss\":" << static_cast<double>(s.vp.link_loss_ppm) / 1e6
         << ",\"channel_energy_in\":" << s.vp.channel_energy_in
-        << ",\"channel_energy_out\":" << s.vp.channel_energy_out << ",";
+        << ",\"channel_energy_out\":" << s.vp.channel_energy_out
+        << ",\"client_energy_in\":" << s.vpr.client_energy_in
+        << ",\"contacts\":" << s.vp.contacts << ",\"contacts_rejected\":" << s.vp.contacts_rejected
+        << ",";
+    json_array(out, "contact_normal", s.vp.contact_normal);
+    out << ",";
+    json_array(out, "normal_gains", s.vp.normal_gains);
+    out << ",";
     json_array(out, "gains", s.vp.gains);
   }
   std::uint64_t dropped = 0;

@@ -61,8 +61,9 @@ ServoLaw::Stiffening ServoLaw::contact_stiffening(const ServoInputs& in, const C
                             contact.object_pose[2]) -
                    frame.origin) /
         frame.speed_factor;
-    const double gap =
-        contact.distance / frame.speed_factor - (image.position - at_report).dot(normal);
+    // (The channel PC's drift is no motion of the object.)
+    const Vector3d object_now = image.position - memory_.drift.head<3>();
+    const double gap = contact.distance / frame.speed_factor - (object_now - at_report).dot(normal);
     const double touching = std::clamp((kTouchBand - gap) / kTouchBand, 0.0, 1.0);
     // The surface's stiffness in the coupling's units (the client's force per base metre).
     const double surface = contact.stiffness * frame.speed_factor;

@@ -23,22 +23,50 @@ Vector6d client_units(const ClientFrame& frame) noexcept {
 }
 
 /// Removes from `force` the share that delivers power along `flow`, as much as dissipates
-/// `energy` in one period (at most all of it): power = (force . weight) . flow. Returns the
-/// energy it dissipated.
+/// `energy` in one period (power = (force . weight) . flow): the force, then the torque, each at
+/// most down to none along its own motion (never turned against it). Returns the energy taken.
 double cut_output(Vector6d& force, const Vector6d& weight, const Vector6d& flow, double energy,
                   double dt) noexcept {
-  const double power = force.cwiseProduct(weight).dot(flow);
-  const Vector6d along = flow.cwiseProduct(weight);
-  const double along_sq = along.squaredNorm();
-  if (!(power > 0.0) || !(energy > 0.0) || along_sq < 1e-18) {
-    return 0.0;
+  double left = energy / dt;
+  for (int from = 0; from < 6 && left > 0.0; from += 3) {
+    const Vector3d f = force.segment<3>(from) * weight(from);
+    const Vector3d v = flow.segment<3>(from);
+    const double power = f.dot(v);
+    if (power > 0.0 && v.squaredNorm() > 1e-18) {
+      const double taken = std::min(power, left);
+      force.segment<3>(from) -= v * (taken / (v.squaredNorm() * weight(from)));
+      left -= taken;
+    }
   }
-  const double taken = std::min(power, energy / dt);
-  force -= along * (taken / along_sq);
-  return taken * dt;
+  return std::max(0.0, energy - left * dt);
 }
 
 }  // namespace
+
+void EnergyHistory::record(TimeNs now, double energy) noexcept {
+  const std::int64_t slot = now / kSlot;
+  if (newest >= 0 && slot < newest) {
+    return;  // a clock that went back: keep what was kept
+  }
+  // Slots skipped since the last record keep the last known value.
+  const double last = newest >= 0 ? out[static_cast<std::size_t>(newest) % kSlots] : 0.0;
+  for (std::int64_t s = std::max(newest + 1, slot - static_cast<std::int64_t>(kSlots) + 1);
+       s < slot; ++s) {
+    out[static_cast<std::size_t>(s) % kSlots] = last;
+  }
+  out[static_cast<std::size_t>(slot) % kSlots] = energy;
+  newest = slot;
+}
+
+double EnergyHistory::at(TimeNs now, TimeNs ago) const noexcept {
+  if (newest < 0) {
+    return 0.0;
+  }
+  const std::int64_t oldest = std::max<std::int64_t>(0, newest - static_cast<std::int64_t>(kSlots) + 1);
+  const std::int64_t slot = std::clamp<std::int64_t>((now - std::max<TimeNs>(0, ago)) / kSlot,
+                                                     oldest, newest);
+  return out[static_cast<std::size_t>(slot) % kSlots];
+}
 
 bool ServoLaw::two_port_impedance(const ServoInputs& in) noexcept {
   return in.client_valid && in.client.command == ClientCommand::kImpedance &&
@@ -127,9 +155,16 @@ Vector6d ServoLaw::guard_impedance(const ServoInputs& in, const ClientFrame& fra
   // damped at this end.
   RenderMemory& m = memory_;
   const Vector6d weight = client_units(frame);
-  // The channel gives the handle power handle_force . twist: that is its output here.
-  const double excess = book_channel_power(-handle_force.cwiseProduct(weight).dot(twist),
-                                           in.client.energy_in, dt);
+  // The channel gives the handle power handle_force . twist: that is its output here. The
+  // client's report covers the handle's motion up to a loop ago (it saw it in an answer, then
+  // its frame came back): the output of a loop ago is what it must cover. Compared with the
+  // output of now, a commanded force lost the work of the last loop (1 N on an unheld handle:
+  // a share of about loop / time since the push, J1).
+  book_channel_power(-handle_force.cwiseProduct(weight).dot(twist), in.client.energy_in, dt);
+  m.out_history.record(in.now, m.channel_out + m.channel_dissipated);  // before any PC
+  const TimeNs loop = m.loop_delay > 0 ? m.loop_delay : config_.assumed_loop_delay;
+  const double excess =
+      m.out_history.at(in.now, loop) - m.channel_dissipated - in.client.energy_in;
   Vector6d force = handle_force;
   if (excess > 0.0 && twist.squaredNorm() > 1e-12) {
     ++counters_.channel_pc_active;
@@ -147,6 +182,7 @@ Vector6d ServoLaw::guard_impedance(const ServoInputs& in, const ClientFrame& fra
       ++counters_.channel_force_cut;
     }
     m.channel_out -= damped + cut;
+    m.channel_dissipated += damped + cut;
   }
   return force;
 }

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -89,6 +90,11 @@ class Connection {
   bool send_object_state(const Pose7& pose, const Vector6& twist) noexcept;
   /// IMPEDANCE: the wrench to render at the handle (client frame). False if not sent.
   bool send_wrench(const Vector6& wrench) noexcept;
+  /// VIRTMECH: the contacts the object is in or near now (at most kMaxContacts; empty: none).
+  /// They go out with the next object states (each changed contact at once, every one at least
+  /// every 5 ms) and stay in force until replaced; the controller stiffens the coupling along
+  /// them (docs/control.md). Nothing is changed unless kAccepted.
+  ContactResult set_contacts(std::span<const Contact> contacts) noexcept;
   /// The latest controller cycle received.
   [[nodiscard]] StateSnapshot snapshot() const noexcept;
   /// Blocks until an answer for a cycle after `after_cycle` arrives, or `timeout`.

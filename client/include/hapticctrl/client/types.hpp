@@ -99,6 +99,36 @@ struct LinkStatistics {
   double channel_energy_out = 0.0;
   double controller_energy_in = 0.0;
   std::uint64_t passivity_active_steps = 0;
+  /// Contacts (protocol 1.3): the controller's contacts in force, the contact frames it refused
+  /// this session, and the stiffest contact it accepts (N/m in the application's units; 0: the
+  /// controller takes no contacts).
+  std::uint32_t contacts_in_force = 0;
+  std::uint32_t contacts_rejected = 0;
+  double max_contact_stiffness = 0.0;
+};
+
+/// The most contacts an object may report at once (protocol 1.3).
+inline constexpr std::size_t kMaxContacts = 8;
+
+/// A contact the virtual object is in or near (protocol 1.3): a plane, the surface it touches,
+/// through `point - distance * normal` and perpendicular to `normal`; client environment frame.
+struct Contact {
+  std::array<double, 3> point{};   ///< on the object, where it touches or is nearest [m]
+  std::array<double, 3> normal{};  ///< unit: the direction in which the surface pushes the object
+  double distance = 0.0;           ///< signed gap along normal [m]: < 0 penetrating
+  double stiffness = 0.0;  ///< of the surface [N/m], at most the controller's limit (statistics)
+  double damping = 0.0;    ///< [N.s/m]
+  double friction_static = 0.0;   ///< Coulomb coefficient
+  double friction_dynamic = 0.0;  ///< at most the static one
+};
+
+/// What set_contacts() did.
+enum class ContactResult : std::uint8_t {
+  kAccepted,     ///< sent with the next object states
+  kTooMany,      ///< more than kMaxContacts (nothing changed)
+  kInvalid,      ///< a value out of range: non-finite, a normal that is not a unit vector, ...
+  kTooStiff,     ///< stiffer than the controller renders (LinkStatistics::max_contact_stiffness)
+  kUnsupported,  ///< the controller speaks no protocol 1.3 (contacts are not sent)
 };
 
 /// Why a setup or blocking call failed.

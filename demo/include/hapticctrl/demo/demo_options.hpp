@@ -26,6 +26,11 @@ struct DemoOptions {
   /// A lost session (link down past the watchdog) or a controller that failed safe: connect
   /// again (to the next controller) instead of exiting. --no-reconnect: exit as before.
   bool reconnect = true;
+  /// VIRTMECH (default): the mobile sphere is coupled to the handle. IMPEDANCE: the handle is
+  /// the mobile sphere, and the demo sends the fixed sphere's contact force as the wrench.
+  bool impedance = false;
+  /// VIRTMECH: report the spheres' contact to the controller (protocol 1.3; --no-contacts: off).
+  bool report_contacts = true;
   SceneConfig scene;  ///< mass, radii, contact, gravity (fixed centre set at start)
   bool help = false;
 

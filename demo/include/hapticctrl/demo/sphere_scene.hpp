@@ -13,6 +13,7 @@
 /// test.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <optional>
 
 #include "hapticctrl/client/types.hpp"
 
@@ -66,6 +67,15 @@ class SphereScene {
   [[nodiscard]] client::Vector6 twist() const noexcept;
   /// Kinetic energy (J), for tests and the log.
   [[nodiscard]] double kinetic_energy() const noexcept;
+  /// The contact with the fixed sphere as the controller takes it (protocol 1.3), while the
+  /// spheres touch or are within `near` metres: the fixed sphere's surface as a plane at the
+  /// mobile sphere's nearest point, with the configured stiffness (at most `max_stiffness`),
+  /// damping and friction. Nothing when farther apart.
+  [[nodiscard]] std::optional<client::Contact> contact_report(double near,
+                                                              double max_stiffness) const noexcept;
+  /// IMPEDANCE: the mobile sphere is the handle (no dynamics of its own): it takes the handle's
+  /// pose and twist; contact_force() is then the wrench to render.
+  void follow(const client::Pose7& pose, const client::Vector6& twist) noexcept;
   /// Normal contact stiffness and damping in force at the last step (N/m, N.s/m).
   [[nodiscard]] double contact_stiffness() const noexcept { return gains_.normal_k; }
   [[nodiscard]] double contact_damping() const noexcept { return gains_.normal_b; }

@@ -139,6 +139,21 @@ struct LawConfig {
   double default_time_step = 1e-3;   ///< s, when the client declares none
 };
 
+/// The core's energy out of the channel as it was, in 2 ms slots over the last 512 ms: an
+/// IMPEDANCE client reports the energy of its wrench on the handle's motion a whole loop after
+/// that motion, so the core compares its output of a loop ago with the report (ServoLaw::
+/// guard_impedance; docs/control.md).
+struct EnergyHistory {
+  static constexpr std::size_t kSlots = 256;
+  static constexpr TimeNs kSlot = 2 * kNsPerMs;
+  std::array<double, kSlots> out{};
+  std::int64_t newest = -1;  ///< the newest slot written (now / kSlot); -1: none
+  /// Notes `energy` as the output at `now`. Safe in the cycle.
+  void record(TimeNs now, double energy) noexcept;
+  /// The output as it was `ago` before `now` (the oldest kept if longer ago, 0 if none).
+  [[nodiscard]] double at(TimeNs now, TimeNs ago) const noexcept;
+};
+
 /// What the law carries from one cycle to the next about the wrench it rendered. The main and
 /// the degraded SERVO each run a law of their own; the task that commits a cycle hands this on
 /// to both (ServoShared), so that the rate limit and the passivity observer continue from what
@@ -159,6 +174,8 @@ struct RenderMemory {
   double channel_in = 0.0;            ///< J the coupling put into the channel
   double channel_out = 0.0;           ///< J the channel gave the coupling
   Vector6d drift = Vector6d::Zero();  ///< the channel PC's shift of the object image
+  EnergyHistory out_history;          ///< channel_out before the PC, as it was (IMPEDANCE)
+  double channel_dissipated = 0.0;    ///< J the IMPEDANCE PC took out (channel_out is net)
   /// Re-anchoring: while `anchored`, the handle's spring renders the true stretch less `stretch`
   /// (linear, rotation vector: what it was at the re-engagement), which shrinks at a bounded
   /// speed and never exceeds the true stretch along its own direction.
@@ -219,6 +236,7 @@ class ServoLaw {
   /// Where the client's object is now, as the coupling sees it (base frame).
   struct ObjectImage {
     Vector3d position = Vector3d::Zero();
+    Vector3d ahead = Vector3d::Zero();  ///< the extrapolation over the sample's age (in position)
     Matrix3d rotation = Matrix3d::Identity();
     Vector6d twist = Vector6d::Zero();
   };

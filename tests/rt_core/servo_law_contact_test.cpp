@@ -1,0 +1,154 @@
+// Tests of servo_law_contact.cpp: the coupling stiffened along a contact the client reports, and
+// the spring re-anchored after a full disengagement (J1).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "hapticctrl/rt_core/servo_law.hpp"
+#include "support/law_inputs.hpp"
+
+namespace hapticctrl::rt_core {
+namespace {
+
+using test::chain_at;
+using test::coupled_to_object_ahead;
+using test::default_dynamics;
+using test::kReady;
+
+/// A surface at the object that pushes it along -x (the object rests against it from -x).
+ClientContact wall_at(const std::array<double, 7>& object_pose, double stiffness,
+                      TimeNs received) {
+  ClientContact c;
+  c.point = {object_pose[0], object_pose[1], object_pose[2]};
+  c.normal = {-1.0, 0.0, 0.0};
+  c.distance = 0.0;
+  c.stiffness = stiffness;
+  c.object_pose = object_pose;
+  c.received_ns = received;
+  return c;
+}
+
+/// Runs `cycles` cycles of 1 ms from `in`, with the clock advancing, and returns the last output.
+ServoOutputs run(ServoLaw& law, ServoInputs& in, int cycles) {
+  ServoOutputs out;
+  for (int k = 0; k < cycles; ++k) {
+    in.now += in.dt;
+    law.compute(in, false, out);
+  }
+  return out;
+}
+
+/// Coupled to an object `dx` ahead of the handle along x, with the loop of a 20 ms link (the
+/// derived stiffness is then about 70 N/m), a fresh sample every cycle.
+ServoInputs slow_link_coupling(double dx) {
+  ServoInputs in = coupled_to_object_ahead(dx);
+  in.client.local_coupling = true;
+  in.client.energy_in = 1e3;  // the two-port has budget: this test is about the stiffness
+  in.loop_delay = 40 * kNsPerMs;
+  in.new_sample = true;
+  return in;
+}
+
+TEST(ServoLawContact, AContactStiffensTheCouplingAlongItsNormalUpToHalfItsStiffness) {
+  ServoLaw law(default_dynamics());
+  ServoInputs in = slow_link_coupling(-0.01);  // the handle 1 cm past the object, into the wall
+  ServoOutputs free = run(law, in, 300);
+  const double k_free = free.gains.k_linear;
+  ASSERT_LT(k_free, 200.0) << "a 40 ms loop derives a soft spring";
+  EXPECT_NEAR(free.handle_wrench(0), -k_free * 0.01, 0.02 * k_free * 0.01);
+
+  in.client.contact_count = 1;
+  in.client.contacts[0] = wall_at(in.client.object_pose, 1600.0, in.now);
+  ServoOutputs out;
+  for (int k = 0; k < 300; ++k) {
+    in.client.contacts[0].received_ns = in.now;  // refreshed every cycle
+    out = run(law, in, 1);
+  }
+  EXPECT_EQ(out.contacts, 1U);
+  EXPECT_NEAR(out.contact_normal.x(), -1.0, 1e-9);
+  EXPECT_NEAR(out.normal_stiffness, 800.0 - k_free, 1e-6) << "half of 1600 N/m in all";
+  EXPECT_NEAR(out.handle_wrench(0), -800.0 * 0.01, 0.02 * 8.0)
+      << "the handle pressing 1 cm into the wall is pushed out with 800 N/m";
+}
+
+TEST(ServoLawContact, TheStiffeningIsUnilateralAndAbsentBeforeTouching) {
+  ServoLaw law(default_dynamics());
+  ServoInputs in = slow_link_coupling(0.01);  // the handle pulls the object off the wall
+  in.client.contact_count = 1;
+  in.client.contacts[0] = wall_at(in.client.object_pose, 1600.0, 0);
+  ServoOutputs out;
+  for (int k = 0; k < 300; ++k) {
+    in.client.contacts[0].received_ns = in.now;
+    out = run(law, in, 1);
+  }
+  EXPECT_NEAR(out.handle_wrench(0), out.gains.k_linear * 0.01, 0.02 * out.gains.k_linear * 0.01)
+      << "pulling away: the free spring alone";
+
+  ServoLaw near_law(default_dynamics());
+  ServoInputs near = slow_link_coupling(-0.01);
+  near.client.contact_count = 1;
+  near.client.contacts[0] = wall_at(near.client.object_pose, 1600.0, 0);
+  near.client.contacts[0].distance = 0.003;  // 3 mm short of the wall
+  for (int k = 0; k < 300; ++k) {
+    near.client.contacts[0].received_ns = near.now;
+    out = run(near_law, near, 1);
+  }
+  EXPECT_EQ(out.normal_stiffness, 0.0) << "not touching yet";
+}
+
+TEST(ServoLawContact, AContactThatStopsComingFadesOutWithinFortyFiveMs) {
+  ServoLaw law(default_dynamics());
+  ServoInputs in = slow_link_coupling(-0.01);
+  in.client.contact_count = 1;
+  in.client.contacts[0] = wall_at(in.client.object_pose, 1600.0, 0);
+  ServoOutputs out;
+  for (int k = 0; k < 300; ++k) {
+    in.client.contacts[0].received_ns = in.now;
+    out = run(law, in, 1);
+  }
+  ASSERT_GT(out.normal_stiffness, 0.0);
+  out = run(law, in, 35);
+  EXPECT_GT(out.normal_stiffness, 0.0) << "fresh for 30 ms, then fading";
+  EXPECT_LT(out.normal_stiffness, 0.9 * (800.0 - out.gains.k_linear));
+  out = run(law, in, 11);
+  EXPECT_EQ(out.normal_stiffness, 0.0);
+  EXPECT_EQ(out.contacts, 0U);
+}
+
+TEST(ServoLawContact, AfterAFullDisengagementTheSpringRestartsWhereTheHandleIs) {
+  // The object 30 cm away (a hand that went through a faded wall during a blackout): the
+  // coupling comes back without a snap, and regains the stretch at 5 cm/s at most.
+  ServoLaw law(default_dynamics());
+  ServoInputs in = coupled_to_object_ahead(0.3);
+  in.new_sample = true;
+  ServoOutputs out = run(law, in, 1);
+  EXPECT_NEAR(out.handle_wrench.head<3>().norm(), 0.0, 1e-9) << "relaxed at the handle";
+  double last = 0.0;
+  double largest_step = 0.0;
+  for (int k = 0; k < 200; ++k) {
+    out = run(law, in, 1);
+    largest_step = std::max(largest_step, std::abs(out.handle_wrench(0) - last));
+    last = out.handle_wrench(0);
+  }
+  EXPECT_LE(largest_step, 1.0) << "N per 1 ms cycle";
+  const double k = out.gains.k_linear;
+  EXPECT_NEAR(out.handle_wrench(0), std::min(35.0, k * 0.05 * 0.2), 0.05 * 35.0)
+      << "0.2 s at 5 cm/s: 1 cm of the stretch back";
+  EXPECT_NEAR(out.coupling_wrench(0), -35.0, 1e-6)
+      << "the object keeps its whole spring (saturated) to the handle";
+}
+
+TEST(ServoLawContact, TheHiddenStretchShrinksWithTheTrueOneAndNeverPullsBack) {
+  ServoLaw law(default_dynamics());
+  ServoInputs in = coupled_to_object_ahead(0.1);
+  run(law, in, 100);  // engaged; 10 cm hidden, 5 mm of it back
+  // The object arrives at the handle (a free object its own spring pulled along).
+  const ChainState s = chain_at(kReady);
+  in.client.object_pose[0] = s.handle_position.x() + 0.001;
+  const ServoOutputs out = run(law, in, 10);  // the rate limit lets the force fall 2 N per ms
+  EXPECT_GE(out.handle_wrench(0), 0.0) << "never pulls the handle away from the object";
+  EXPECT_LE(out.handle_wrench(0), out.gains.k_linear * 0.001 + 1e-9);
+}
+
+}  // namespace
+}  // namespace hapticctrl::rt_core

@@ -1,6 +1,7 @@
 // Implements demo_options.hpp: command line of hapticctrl-demo.
 #include "hapticctrl/demo/demo_options.hpp"
 
+#include <map>
 #include <stdexcept>
 
 #include "hapticctrl/program/options.hpp"
@@ -73,6 +74,30 @@ void declare(program::Options& o, DemoOptions& d) {
       },
       "virtmech (default): the sphere is coupled to the handle; impedance: the handle is the "
       "sphere and the fixed sphere's contact force is sent as a wrench");
+  o.custom(
+      "--obstacle", "sphere|wall",
+      [&d](const std::string& v) {
+        if (v != "sphere" && v != "wall") {
+          throw std::invalid_argument("--obstacle must be sphere or wall");
+        }
+        d.scene.obstacle = v == "wall" ? Obstacle::kWall : Obstacle::kSphere;
+      },
+      "what the mobile sphere meets --gap away (along --toward): the fixed sphere (default) or a "
+      "wall (a plane facing the sphere)");
+  o.custom(
+      "--toward", "x|-x|y|-y|z|-z",
+      [&d](const std::string& v) {
+        static const std::map<std::string, Eigen::Vector3d> axes{
+            {"x", Eigen::Vector3d::UnitX()},  {"-x", -Eigen::Vector3d::UnitX()},
+            {"y", Eigen::Vector3d::UnitY()},  {"-y", -Eigen::Vector3d::UnitY()},
+            {"z", Eigen::Vector3d::UnitZ()},  {"-z", -Eigen::Vector3d::UnitZ()}};
+        const auto found = axes.find(v);
+        if (found == axes.end()) {
+          throw std::invalid_argument("--toward must be one of x -x y -y z -z");
+        }
+        d.scene.toward = found->second;
+      },
+      "the direction from the sphere's start to the obstacle (default x)");
   o.flag(
       "--no-contacts", [&d] { d.report_contacts = false; },
       "do not report the spheres' contact to the controller (protocol 1.3)");

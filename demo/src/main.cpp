@@ -116,8 +116,10 @@ demo::SphereScene scene_at(const client::StateSnapshot& s, const demo::DemoOptio
   start.orientation =
       Eigen::Quaterniond(s.handle_pose[6], s.handle_pose[3], s.handle_pose[4], s.handle_pose[5])
           .normalized();
-  config.fixed_center = start.position + Eigen::Vector3d::UnitX() *
-                                             (config.fixed_radius + config.mobile_radius + o.gap);
+  const double reach = config.obstacle == demo::Obstacle::kWall
+                           ? config.mobile_radius + o.gap
+                           : config.fixed_radius + config.mobile_radius + o.gap;
+  config.fixed_center = start.position + config.toward * reach;
   return {config, start};
 }
 
@@ -247,10 +249,11 @@ class DemoRun {
     const double dt = static_cast<double>(c_->controller_period_ns()) / 1e9;
     if (reconnects_ == 0) {
       std::fprintf(stderr,
-                   "hapticctrl-demo: ready: VIRTMECH, %.3f kg sphere, time step %.3f ms, %s; "
-                   "fixed sphere at (%.4f %.4f %.4f)\n",
-                   o_.scene.mass, dt * 1e3,
+                   "hapticctrl-demo: ready: %s, %.3f kg sphere, time step %.3f ms, %s; "
+                   "fixed %s at (%.4f %.4f %.4f)\n",
+                   o_.impedance ? "IMPEDANCE" : "VIRTMECH", o_.scene.mass, dt * 1e3,
                    o_.power_on ? "power on requested" : "power left to the HMI",
+                   o_.scene.obstacle == demo::Obstacle::kWall ? "wall" : "sphere",
                    scene_->config().fixed_center.x(), scene_->config().fixed_center.y(),
                    scene_->config().fixed_center.z());
     } else {

@@ -38,7 +38,8 @@ void SceneConfig::validate() const {
       !std::isfinite(rolling_resistance)) {
     throw std::invalid_argument("friction and rolling resistance must be finite and >= 0");
   }
-  if (!fixed_center.allFinite() || !gravity_vector.allFinite()) {
+  if (!fixed_center.allFinite() || !gravity_vector.allFinite() ||
+      std::abs(toward.norm() - 1.0) > 1e-9) {
     throw std::invalid_argument("the fixed sphere's centre and gravity must be finite");
   }
 }
@@ -74,13 +75,18 @@ double SphereScene::penetration() const noexcept {
 
 SphereScene::Contact SphereScene::contact() const noexcept {
   Contact c;
-  const Eigen::Vector3d offset = state_.position - config_.fixed_center;
-  const double distance = offset.norm();
-  if (distance <= 0.0) {
-    return c;  // concentric: no direction to push along; treated as apart
+  if (config_.obstacle == Obstacle::kWall) {
+    c.normal = -config_.toward;  // the wall faces the side the sphere starts on
+    c.depth = config_.mobile_radius - (config_.fixed_center - state_.position).dot(config_.toward);
+  } else {
+    const Eigen::Vector3d offset = state_.position - config_.fixed_center;
+    const double distance = offset.norm();
+    if (distance <= 0.0) {
+      return c;  // concentric: no direction to push along; treated as apart
+    }
+    c.normal = offset / distance;
+    c.depth = config_.fixed_radius + config_.mobile_radius - distance;
   }
-  c.normal = offset / distance;
-  c.depth = config_.fixed_radius + config_.mobile_radius - distance;
   const Eigen::Vector3d lever = -config_.mobile_radius * c.normal;  // centre -> contact point
   const Eigen::Vector3d velocity = state_.velocity + state_.angular_velocity.cross(lever);
   c.slip_velocity = velocity - velocity.dot(c.normal) * c.normal;

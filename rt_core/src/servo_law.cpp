@@ -163,8 +163,7 @@ void ServoLaw::follow_session(const ServoInputs& in) noexcept {
     m.engage = 0.0;      // a new session (or none) starts from zero ...
     m.channel_in = 0.0;  // ... and so does its channel's energy account
     m.channel_out = 0.0;
-    m.channel_dissipated = 0.0;
-    m.out_history = EnergyHistory{};
+    m.travel = TravelHistory{};
     m.drift.setZero();
     m.gains = CouplingGains{};  // its gains start at their design
   }

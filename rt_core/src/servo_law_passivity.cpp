@@ -13,6 +13,9 @@ using law_math::object_twist_in_base;
 
 namespace {
 
+/// An excess below this is rounding, not energy the channel made (J).
+constexpr double kNegligible = 1e-9;
+
 /// Converts base-frame forces and twists into the client's units (force / force factor, speed *
 /// speed factor), as it counts its energy.
 Vector6d client_units(const ClientFrame& frame) noexcept {
@@ -43,29 +46,39 @@ double cut_output(Vector6d& force, const Vector6d& weight, const Vector6d& flow,
 
 }  // namespace
 
-void EnergyHistory::record(TimeNs now, double energy) noexcept {
+void TravelHistory::advance(TimeNs now, const Vector6d& twist, double dt) noexcept {
+  now_travel += twist * dt;
   const std::int64_t slot = now / kSlot;
   if (newest >= 0 && slot < newest) {
     return;  // a clock that went back: keep what was kept
   }
-  // Slots skipped since the last record keep the last known value.
-  const double last = newest >= 0 ? out[static_cast<std::size_t>(newest) % kSlots] : 0.0;
+  if (first < 0) {
+    first = slot;
+  }
+  // Slots skipped since the last note keep the last known travel.
+  const Vector6d last = newest >= 0 ? travel[static_cast<std::size_t>(newest) % kSlots] : now_travel;
   for (std::int64_t s = std::max(newest + 1, slot - static_cast<std::int64_t>(kSlots) + 1);
        s < slot; ++s) {
-    out[static_cast<std::size_t>(s) % kSlots] = last;
+    travel[static_cast<std::size_t>(s) % kSlots] = last;
   }
-  out[static_cast<std::size_t>(slot) % kSlots] = energy;
+  travel[static_cast<std::size_t>(slot) % kSlots] = now_travel;
   newest = slot;
 }
 
-double EnergyHistory::at(TimeNs now, TimeNs ago) const noexcept {
+Vector6d TravelHistory::since(TimeNs now, TimeNs ago) const noexcept {
   if (newest < 0) {
-    return 0.0;
+    return Vector6d::Zero();
   }
-  const std::int64_t oldest = std::max<std::int64_t>(0, newest - static_cast<std::int64_t>(kSlots) + 1);
-  const std::int64_t slot = std::clamp<std::int64_t>((now - std::max<TimeNs>(0, ago)) / kSlot,
-                                                     oldest, newest);
-  return out[static_cast<std::size_t>(slot) % kSlots];
+  const std::int64_t oldest = std::max(first, newest - static_cast<std::int64_t>(kSlots) + 1);
+  // A slot holds the travel at its end: the travel since the end of the slot before the one
+  // `ago` falls in covers `ago` at least (up to one slot more).
+  const TimeNs at = now - std::max<TimeNs>(0, ago);
+  const std::int64_t wanted = (at >= 0 ? at / kSlot : (at - kSlot + 1) / kSlot) - 1;
+  if (wanted < first) {
+    return now_travel;  // all of it: the session's first slot is younger than that
+  }
+  const std::int64_t slot = std::clamp<std::int64_t>(wanted, oldest, newest);
+  return now_travel - travel[static_cast<std::size_t>(slot) % kSlots];
 }
 
 bool ServoLaw::two_port_impedance(const ServoInputs& in) noexcept {
@@ -106,7 +119,7 @@ Vector6d ServoLaw::guard_channel(const ServoInputs& in, const ClientFrame& frame
   const double force_sq = on_image.cwiseProduct(weight).dot(on_image);
   Vector6d rate = Vector6d::Zero();
   Vector6d force = handle_force;
-  if (excess > 0.0) {
+  if (excess > kNegligible) {
     ++counters_.channel_pc_active;
     if (force_sq > 1e-12) {
       rate = on_image * (excess / (dt * force_sq));
@@ -157,16 +170,18 @@ Vector6d ServoLaw::guard_impedance(const ServoInputs& in, const ClientFrame& fra
   const Vector6d weight = client_units(frame);
   // The channel gives the handle power handle_force . twist: that is its output here. The
   // client's report covers the handle's motion up to a loop ago (it saw it in an answer, then
-  // its frame came back): the output of a loop ago is what it must cover. Compared with the
-  // output of now, a commanded force lost the work of the last loop (1 N on an unheld handle:
-  // a share of about loop / time since the push, J1).
-  book_channel_power(-handle_force.cwiseProduct(weight).dot(twist), in.client.energy_in, dt);
-  m.out_history.record(in.now, m.channel_out + m.channel_dissipated);  // before any PC
+  // its frame came back); for the last loop the budget adds what the client will bill for it at
+  // its current wrench. Compared with the report alone, a commanded force lost the work of the
+  // last loop (1 N on an unheld handle: a share of about loop / time since the push); compared
+  // with the output of a loop ago, a wall's bounce got a loop of energy through at every
+  // bounce (a 2000 N/m wall at 10 ms one way: a limit cycle with 35 N peaks, J1 2026-12-03).
+  m.travel.advance(in.now, twist, dt);
   const TimeNs loop = m.loop_delay > 0 ? m.loop_delay : config_.assumed_loop_delay;
-  const double excess =
-      m.out_history.at(in.now, loop) - m.channel_dissipated - in.client.energy_in;
+  const double credit = handle_force.cwiseProduct(weight).dot(m.travel.since(in.now, loop));
+  const double excess = book_channel_power(-handle_force.cwiseProduct(weight).dot(twist),
+                                           in.client.energy_in + std::max(0.0, credit), dt);
   Vector6d force = handle_force;
-  if (excess > 0.0 && twist.squaredNorm() > 1e-12) {
+  if (excess > kNegligible && twist.squaredNorm() > 1e-12) {
     ++counters_.channel_pc_active;
     const ArmLimits& lim = dynamics_->model().limits;
     const double lin_sq = twist.head<3>().squaredNorm() * weight(0);
@@ -182,7 +197,6 @@ Vector6d ServoLaw::guard_impedance(const ServoInputs& in, const ClientFrame& fra
       ++counters_.channel_force_cut;
     }
     m.channel_out -= damped + cut;
-    m.channel_dissipated += damped + cut;
   }
   return force;
 }

@@ -13,6 +13,7 @@
 
 #include "hapticctrl/protocol/codec.hpp"
 #include "hapticctrl/protocol/timing.hpp"
+#include "hapticctrl/protocol/values.hpp"
 #include "support/reference_parameters.hpp"
 #include "support/session_client.hpp"
 
@@ -103,7 +104,7 @@ TEST_F(SessionTest, AnotherMajorVersionIsRefusedWithBothVersions) {
   EXPECT_EQ(client.reply.body.hcp_body_u.refuse.code, HCP_REFUSE_VERSION);
   EXPECT_EQ(client.reply.body.hcp_body_u.refuse.peer_version, protocol::make_version(2, 1));
   EXPECT_EQ(std::string(protocol::text_of(client.reply.body.hcp_body_u.refuse.reason)),
-            "protocol version mismatch: client 2.1 (oldest 2.1), controller 1.2");
+            "protocol version mismatch: client 2.1 (oldest 2.1), controller 1.3");
   EXPECT_EQ(session.counters().refused_version.load(), 1U);
 }
 
@@ -241,7 +242,9 @@ hcp_frame timed_object(Client& client, std::uint64_t answer_cycle, std::int64_t 
 }
 
 TEST_F(SessionTest, TimedObjectsAreDatedFromTheEchoedAnswerAndCarryTheClientsEnergy) {
-  client.hello();  // every feature, timing included
+  // A 1.1 client's features (timing, no local coupling): answers come as ANSWER_TIMED.
+  client.hello(protocol::kVersion,
+               HCP_FEATURE_JOINT_STATE | HCP_FEATURE_LINK_STATS | HCP_FEATURE_TIMING);
   FrameBuffer out{};
   Endpoint to;
   shm::VpPayload vp;
@@ -267,6 +270,90 @@ TEST_F(SessionTest, TimedObjectsAreDatedFromTheEchoedAnswerAndCarryTheClientsEne
   EXPECT_NEAR(controller.vpr_now().client_energy_in, 512e-6, 1e-12);
   client.feed(client.bytes(timed_object(client, 500, 1 * kMs, 0x80000000U)));  // +2147 J: no
   EXPECT_NEAR(controller.vpr_now().client_energy_in, 512e-6, 1e-12) << "not physical: ignored";
+}
+
+TEST_F(SessionTest, ALocalCouplingSessionGetsAnswersCoupledAndSendsTimedWrenchesAndContacts) {
+  client.hello();  // every feature: local coupling (1.3)
+  EXPECT_NE(controller.vpr_now().flags & shm::vpr_flags::kLocalCoupling, 0U);
+  FrameBuffer out{};
+  Endpoint to;
+  shm::VpPayload vp;
+  vp.cycle = 700;
+  vp.contact_normal = {-1.0, 0.0, 0.0};
+  vp.normal_gains = {900.0, 10.0};
+  vp.limits = {35.0, 3.0};
+  vp.max_contact_stiffness = 2000.0;
+  vp.contacts = 1;
+  const std::size_t n = session.answer(vp, client.now, out, to);
+  hcp_frame a;
+  ASSERT_EQ(protocol::decode({out.data(), n}, a), protocol::DecodeStatus::kOk);
+  ASSERT_EQ(a.body.type, HCP_ANSWER_COUPLED);
+  const hcp_local_coupling& l = a.body.hcp_body_u.answer_coupled.local;
+  EXPECT_EQ(l.contact_normal[0], -1.0);
+  EXPECT_EQ(l.normal_gains[0], 900.0);
+  EXPECT_EQ(l.limits[1], 3.0);
+  EXPECT_EQ(l.max_contact_stiffness, 2000.0);
+  EXPECT_EQ(l.contacts, 1U);
+
+  // An IMPEDANCE wrench with its echo and energy: a new sample, dated like an object state.
+  client.now += 4 * kMs;
+  hcp_frame w = protocol::make_frame(HCP_CONTROL_WRENCH_TIMED, client.token, ++client.control_seq,
+                                     client.now);
+  w.body.hcp_body_u.wrench_timed.wrench[0] = -8.0F;
+  w.body.hcp_body_u.wrench_timed.answer_echo = protocol::pack_answer_echo(700, 1 * kMs, true);
+  w.body.hcp_body_u.wrench_timed.energy_in = 1000U;
+  client.feed(client.bytes(w));
+  const shm::VprPayload after_wrench = controller.vpr_now();
+  EXPECT_EQ(after_wrench.impedance_wrench[0], -8.0);
+  EXPECT_EQ(after_wrench.echo_cycle, 700U);
+  EXPECT_EQ(after_wrench.sample_time_ns, client.now - 3 * kMs / 2);
+
+  // A contact: its slot and the count, the object's pose with it; the sample stays the same.
+  hcp_frame c = protocol::make_frame(HCP_CONTROL_CONTACT, client.token, ++client.control_seq,
+                                     client.now);
+  c.body.hcp_body_u.contact.slots = protocol::pack_contact_slots(1, 2);
+  hcp_contact& k = c.body.hcp_body_u.contact.contact;
+  k.point[0] = 0.6F;
+  k.normal[0] = -1.0F;
+  k.distance = -0.001F;
+  k.stiffness = 1500.0F;
+  k.friction[0] = 0.3F;
+  k.friction[1] = 0.2F;
+  client.feed(client.bytes(c));
+  const shm::VprPayload after_contact = controller.vpr_now();
+  EXPECT_EQ(after_contact.client_sequence, after_wrench.client_sequence)
+      << "a contact is no new sample";
+  EXPECT_EQ(after_contact.contact_count, 2U);
+  EXPECT_EQ(after_contact.contact_frames, after_wrench.contact_frames + 1);
+  EXPECT_EQ(after_contact.contacts[1].stiffness, 1500.0);
+  EXPECT_NEAR(after_contact.contacts[1].distance, -0.001, 1e-9);
+  EXPECT_EQ(after_contact.contacts[1].received_time_ns, client.now);
+  EXPECT_EQ(after_contact.contacts[0].stiffness, 0.0) << "slot 0 not sent yet";
+  // Count 0 clears every slot.
+  hcp_frame clear = protocol::make_frame(HCP_CONTROL_CONTACT, client.token, ++client.control_seq,
+                                         client.now);
+  clear.body.hcp_body_u.contact.slots = protocol::pack_contact_slots(0, 0);
+  client.feed(client.bytes(clear));
+  EXPECT_EQ(controller.vpr_now().contact_count, 0U);
+  EXPECT_EQ(controller.vpr_now().contacts[1].stiffness, 0.0);
+}
+
+TEST_F(SessionTest, TimedWrenchesAndContactsFromASessionWithoutLocalCouplingAreDropped) {
+  client.hello(protocol::kVersion, HCP_FEATURE_TIMING);
+  hcp_frame w = protocol::make_frame(HCP_CONTROL_WRENCH_TIMED, client.token, ++client.control_seq,
+                                     client.now);
+  client.feed(client.bytes(w));
+  hcp_frame c = protocol::make_frame(HCP_CONTROL_CONTACT, client.token, ++client.control_seq,
+                                     client.now);
+  client.feed(client.bytes(c));
+  EXPECT_EQ(session.counters().dropped_for(LinkDrop::kToken), 2U);
+  EXPECT_EQ(controller.vpr_now().flags & shm::vpr_flags::kLocalCoupling, 0U);
+}
+
+TEST_F(SessionTest, LocalCouplingWithoutTimingIsNotGranted) {
+  client.hello(protocol::kVersion, HCP_FEATURE_LOCAL_COUPLING);
+  ASSERT_EQ(client.reply.body.type, HCP_WELCOME);
+  EXPECT_EQ(client.reply.body.hcp_body_u.welcome.features, 0U);
 }
 
 TEST_F(SessionTest, TimedObjectsFromASessionWithoutTimingAreDropped) {

@@ -2,12 +2,14 @@
 // every frame type, the 90-byte control limit, and every rejection path.
 #include "hapticctrl/protocol/codec.hpp"
 #include "hapticctrl/protocol/timing.hpp"
+#include "hapticctrl/protocol/values.hpp"
 
 #include <gtest/gtest.h>
 #include <zlib.h>
 
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <map>
 #include <random>
@@ -46,7 +48,7 @@ hcp_frame object_frame() {
 
 TEST(Codec, KeepaliveGoldenBytes) {
   const auto bytes = encoded(make_frame(HCP_KEEPALIVE, kToken, 42, 1'000'000'000));
-  EXPECT_EQ(hex(bytes), "484354500001000201020304050607080000002a000000003b9aca0000000006b10241e7");
+  EXPECT_EQ(hex(bytes), "484354500001000301020304050607080000002a000000003b9aca00000000061489d1e9");
 }
 
 TEST(Codec, ControlObjectGoldenBytesAndSize) {
@@ -54,9 +56,9 @@ TEST(Codec, ControlObjectGoldenBytesAndSize) {
   EXPECT_EQ(bytes.size(), 88U);
   EXPECT_LE(bytes.size(), kControlMaxBytes);
   EXPECT_EQ(hex(bytes),
-            "484354500001000201020304050607080000002b0000000077359400000000043dcccccd3e4ccccd3e"
+            "484354500001000301020304050607080000002b0000000077359400000000043dcccccd3e4ccccd3e"
             "99999a0000000000000000000000003f8000003f000000000000000000000000000000000000003e80"
-            "0000a4d742ac");
+            "000065381db6");
 }
 
 TEST(Codec, ControlWrenchGoldenBytes) {
@@ -66,8 +68,8 @@ TEST(Codec, ControlWrenchGoldenBytes) {
   const auto bytes = encoded(f);
   EXPECT_EQ(bytes.size(), 60U);
   EXPECT_EQ(hex(bytes),
-            "484354500001000201020304050607080000002c0000000000000003000000053f800000c00000004040"
-            "000000000000000000003f00000067b2a760");
+            "484354500001000301020304050607080000002c0000000000000003000000053f800000c00000004040"
+            "000000000000000000003f000000e8ea8873");
 }
 
 TEST(Codec, ParamGoldenBytes) {
@@ -75,8 +77,8 @@ TEST(Codec, ParamGoldenBytes) {
   f.body.hcp_body_u.param.id = HCP_P_TIME_STEP;
   f.body.hcp_body_u.param.hcp_param_u.time_step = 0.001;
   EXPECT_EQ(hex(encoded(f)),
-            "4843545000010002010203040506070800000007000000000000000400000008000000013f50624dd2f1a9"
-            "fc04ed56dd");
+            "4843545000010003010203040506070800000007000000000000000400000008000000013f50624dd2f1a9"
+            "fc841d41c2");
 }
 
 TEST(Codec, EveryParameterA12ClientSendsFitsInNinetyBytes) {
@@ -158,6 +160,33 @@ std::vector<hcp_frame> one_of_each() {
   c.link_loss = 0.1;
   c.gains[0] = 868.0;
   frames.push_back(answer_timed);
+  hcp_frame coupled = make_frame(HCP_ANSWER_COUPLED, kToken, 8, 15);
+  coupled.body.hcp_body_u.answer_coupled.answer = a;
+  coupled.body.hcp_body_u.answer_coupled.coupling = c;
+  hcp_local_coupling& l = coupled.body.hcp_body_u.answer_coupled.local;
+  l.contact_normal[0] = -1.0;
+  l.normal_gains[0] = 930.0;
+  l.limits[0] = 35.0;
+  l.limits[1] = 3.0;
+  l.max_contact_stiffness = 2000.0;
+  l.contacts = 1;
+  frames.push_back(coupled);
+  hcp_frame wrench_timed = make_frame(HCP_CONTROL_WRENCH_TIMED, kToken, 9, 15);
+  wrench_timed.body.hcp_body_u.wrench_timed.wrench[0] = -8.0F;
+  wrench_timed.body.hcp_body_u.wrench_timed.answer_echo = pack_answer_echo(1234, 300'000, true);
+  wrench_timed.body.hcp_body_u.wrench_timed.energy_in = 77U;
+  frames.push_back(wrench_timed);
+  hcp_frame contact = make_frame(HCP_CONTROL_CONTACT, kToken, 10, 15);
+  contact.body.hcp_body_u.contact.slots = pack_contact_slots(1, 2);
+  hcp_contact& k = contact.body.hcp_body_u.contact.contact;
+  k.point[0] = 0.6F;
+  k.normal[0] = -1.0F;
+  k.distance = -0.001F;
+  k.stiffness = 2000.0F;
+  k.damping = 5.0F;
+  k.friction[0] = 0.5F;
+  k.friction[1] = 0.4F;
+  frames.push_back(contact);
   for (int id = HCP_P_TIME_STEP; id <= HCP_P_EMERGENCY_RESET; ++id) {
     hcp_frame p = make_frame(HCP_PARAM, kToken, static_cast<std::uint32_t>(10 + id), 16);
     hcp_param& q = p.body.hcp_body_u.param;
@@ -209,6 +238,11 @@ TEST(Codec, FrameSizesAreAsDocumented) {  // docs/protocol.md, "Frames"
   EXPECT_EQ(largest[HCP_CONTROL_OBJECT_TIMED], 88U);
   EXPECT_LE(largest[HCP_CONTROL_OBJECT_TIMED], kControlMaxBytes);
   EXPECT_EQ(largest[HCP_ANSWER_TIMED], 404U);
+  EXPECT_EQ(largest[HCP_ANSWER_COUPLED], 476U);
+  EXPECT_LE(largest[HCP_ANSWER_COUPLED], kMaxFrameBytes);
+  EXPECT_EQ(largest[HCP_CONTROL_WRENCH_TIMED], 68U);
+  EXPECT_EQ(largest[HCP_CONTROL_CONTACT], 88U);
+  EXPECT_LE(largest[HCP_CONTROL_CONTACT], kControlMaxBytes);
   EXPECT_EQ(largest[HCP_CONTROL_WRENCH], 60U);
   EXPECT_EQ(largest[HCP_KEEPALIVE], 36U);
   EXPECT_EQ(largest[HCP_ANSWER], 324U);
@@ -318,6 +352,47 @@ TEST(Codec, RejectsNonFiniteAndOutOfRangeValues) {
   hcp_frame not_unit = object_frame();
   not_unit.body.hcp_body_u.object.pose[6] = 0.5F;
   EXPECT_EQ(decode(with_valid_crc(not_unit), out), DecodeStatus::kOutOfRange);
+}
+
+TEST(Codec, RejectsContactsThatNoSurfaceMakes) {
+  hcp_frame out;
+  const auto contact = [](const std::function<void(hcp_control_contact&)>& edit) {
+    hcp_frame f = make_frame(HCP_CONTROL_CONTACT, kToken, 1, 1);
+    hcp_control_contact& c = f.body.hcp_body_u.contact;
+    c.slots = pack_contact_slots(0, 1);
+    c.contact.normal[2] = 1.0F;
+    c.contact.stiffness = 1000.0F;
+    c.contact.friction[0] = 0.5F;
+    c.contact.friction[1] = 0.5F;
+    edit(c);
+    return f;
+  };
+  EXPECT_EQ(decode(with_valid_crc(contact([](hcp_control_contact&) {})), out), DecodeStatus::kOk);
+  const std::vector<std::pair<const char*, std::function<void(hcp_control_contact&)>>> bad{
+      {"normal not unit", [](hcp_control_contact& c) { c.contact.normal[2] = 0.5F; }},
+      {"normal NaN",
+       [](hcp_control_contact& c) { c.contact.normal[0] = std::numeric_limits<float>::quiet_NaN(); }},
+      {"point far", [](hcp_control_contact& c) { c.contact.point[1] = 1e3F; }},
+      {"gap beyond 1 m", [](hcp_control_contact& c) { c.contact.distance = 2.0F; }},
+      {"no stiffness", [](hcp_control_contact& c) { c.contact.stiffness = 0.0F; }},
+      {"stiffness inf",
+       [](hcp_control_contact& c) { c.contact.stiffness = std::numeric_limits<float>::infinity(); }},
+      {"negative damping", [](hcp_control_contact& c) { c.contact.damping = -1.0F; }},
+      {"dynamic over static", [](hcp_control_contact& c) { c.contact.friction[1] = 0.6F; }},
+      {"slot at the count", [](hcp_control_contact& c) { c.slots = pack_contact_slots(1, 1); }},
+      {"nine slots", [](hcp_control_contact& c) { c.slots = pack_contact_slots(0, 9); }},
+      {"reserved bits", [](hcp_control_contact& c) { c.slots |= 1U << 20U; }},
+  };
+  for (const auto& [why, edit] : bad) {
+    EXPECT_EQ(decode(with_valid_crc(contact(edit)), out), DecodeStatus::kOutOfRange) << why;
+  }
+  // A count of 0 clears every slot: its contact is not looked at.
+  EXPECT_EQ(decode(with_valid_crc(contact([](hcp_control_contact& c) {
+                     c.slots = pack_contact_slots(0, 0);
+                     c.contact.stiffness = 0.0F;
+                   })),
+                   out),
+            DecodeStatus::kOk);
 }
 
 TEST(Codec, RandomMutationsNeverCrashAndNeverPassWithAWrongCrc) {

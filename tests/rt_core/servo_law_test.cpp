@@ -47,9 +47,9 @@ TEST(ServoLaw, ImpedanceWrenchReachesTheJointsThroughTheJacobianAfterTheRamp) {
   in.client_valid = true;
   ServoOutputs out;
   law.compute(in, false, out);
-  EXPECT_NEAR(out.handle_wrench.head<3>().norm(), 10.0 / 150.0, 1e-9)
-      << "a new session engages through the 150 ms ramp";
-  for (int k = 0; k < 160; ++k) {
+  EXPECT_NEAR(out.handle_wrench.head<3>().norm(), 10.0 / 50.0, 1e-9)
+      << "a new session engages through the 50 ms ramp";
+  for (int k = 0; k < 60; ++k) {
     law.compute(in, false, out);
   }
   const ChainState s = chain_at(kReady);
@@ -131,7 +131,7 @@ TEST(ServoLaw, ASilentLinkFadesTheForceOutWithin50msAtMost1NPerMs) {
   ServoLaw law(default_dynamics());
   ServoInputs in = coupled_to_object_ahead(0.0175);  // 35 N: the device's peak
   ServoOutputs out;
-  for (int k = 0; k < 200; ++k) {
+  for (int k = 0; k < 800; ++k) {  // the spring restarts relaxed and regains 1.75 cm at 5 cm/s
     law.compute(in, false, out);
   }
   ASSERT_NEAR(out.handle_wrench(0), 35.0, 1e-6);
@@ -153,17 +153,20 @@ TEST(ServoLaw, ASilentLinkFadesTheForceOutWithin50msAtMost1NPerMs) {
     }
   }
   EXPECT_LE(max_step, 1.0 + 1e-9) << "never a step beyond 1 N per ms while fading";
-  // Fresh samples again: back through the engagement ramp, never in one step.
+  // Fresh samples again: the spring restarts relaxed where the handle is and regains its
+  // stretch at 5 cm/s (2000 N/m: 0.1 N per ms), never in one step.
   in.client_silence = 0;
+  in.client_age = 0;
   previous = 0.0;
   max_step = 0.0;
-  for (int k = 0; k < 200; ++k) {
+  for (int k = 0; k < 800; ++k) {
     law.compute(in, false, out);
     max_step = std::max(max_step, std::abs(out.handle_wrench(0) - previous));
     previous = out.handle_wrench(0);
   }
   EXPECT_NEAR(out.handle_wrench(0), 35.0, 1e-6);
-  EXPECT_LE(max_step, 35.0 / 150.0 + 1e-9) << "the 150 ms ramp";
+  // k x 5 cm/s = 0.1 N/ms, doubled at most while the 50 ms engagement ramp multiplies it.
+  EXPECT_LE(max_step, 2.0 * 2000.0 * 0.05 * 1e-3 + 1e-9) << "the stretch comes back at 5 cm/s";
 }
 
 TEST(ServoLaw, ASilentLinkFadesASmallForceAsLateAsTheSlopeAllowsAndAnyForceWithin45ms) {
@@ -174,7 +177,7 @@ TEST(ServoLaw, ASilentLinkFadesASmallForceAsLateAsTheSlopeAllowsAndAnyForceWithi
     ServoLaw law(default_dynamics());
     ServoInputs in = coupled_to_object_ahead(stretch);
     ServoOutputs out;
-    for (int k = 0; k < 200; ++k) {
+    for (int k = 0; k < 800; ++k) {  // restarted relaxed: the stretch comes back at 5 cm/s
       law.compute(in, false, out);
     }
     const double held = out.handle_wrench(0);
@@ -229,7 +232,7 @@ TEST(ServoLaw, SaturationKeepsTheCouplingsDamping) {
   in.client.object_mass = 3.0;
   in.client.object_twist = {-0.5, 0, 0, 0, 0, 0};  // closing in at 0.5 m/s
   ServoOutputs out;
-  for (int k = 0; k < 200; ++k) {
+  for (int k = 0; k < 800; ++k) {  // restarted relaxed: 4 cm of stretch back, 80 N asked
     law.compute(in, false, out);
   }
   ASSERT_NEAR(out.handle_wrench.head<3>().norm(), 35.0, 1e-6);
@@ -247,15 +250,24 @@ TEST(ServoLaw, SaturationKeepsTheCouplingsDamping) {
   EXPECT_GT(spring_share, 35.0) << "the spring gave way to the damper, not the other way";
 }
 
-TEST(ServoLaw, DegradedModeHasNoCoupling) {
-  ServoLaw law(default_dynamics());
-  ServoInputs in = powered_at(kReady);
-  in.client = virtmech_client({0.7, 0, 0.2, 0, 0, 0, 1});
-  in.client_valid = true;
-  ServoOutputs out;
-  law.compute(in, true, out);
-  EXPECT_FALSE(out.coupled);
-  EXPECT_TRUE(out.handle_wrench.isZero());
+TEST(ServoLaw, ADegradedCycleKeepsRenderingTheCoupling) {
+  // A missed cycle renders the coupling from the last sample (rendering nothing dipped a
+  // carried weight by about 1 N at every VM stall, J1): the degraded law's output is the main
+  // law's.
+  ServoLaw main_law(default_dynamics());
+  ServoLaw degraded_law(default_dynamics());
+  ServoInputs in = coupled_to_object_ahead(0.002);
+  ServoOutputs main_out;
+  ServoOutputs degraded_out;
+  for (int k = 0; k < 300; ++k) {
+    main_law.compute(in, false, main_out);
+    degraded_law.continue_from(main_law.memory());
+  }
+  degraded_law.compute(in, true, degraded_out);
+  main_law.compute(in, false, main_out);
+  EXPECT_TRUE(degraded_out.coupled);
+  EXPECT_NEAR(degraded_out.handle_wrench(0), 4.0, 1e-6) << "2000 N/m x 2 mm";
+  EXPECT_LT((degraded_out.commands.torque - main_out.commands.torque).norm(), 1e-12);
 }
 
 TEST(ServoLaw, ExcessiveHandleSpeedBrakesInsteadOfRendering) {

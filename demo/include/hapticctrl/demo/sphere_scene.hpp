@@ -1,7 +1,7 @@
 #pragma once
 /// @file sphere_scene.hpp
 /// The demo client's physics engine: two half-rigid spheres, one fixed, one mobile (mass,
-/// isotropic inertia) coupled to the arm. Contact is a penalty force: stiffness and damping
+/// isotropic inertia) coupled to the arm; or the mobile sphere and a wall (a plane). Contact is a penalty force: stiffness and damping
 /// along the line of centres (never pulling), and Coulomb friction modelled as a tangential
 /// spring-damper anchored where the spheres touched, which slips beyond mu times the normal
 /// force; and rolling resistance of the flattened contact patch, an angular spring-damper that
@@ -13,13 +13,21 @@
 /// test.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <cstdint>
 #include <optional>
 
 #include "hapticctrl/client/types.hpp"
 
 namespace hapticctrl::demo {
 
+/// What the mobile sphere meets: the fixed sphere, or a wall (a plane through fixed_center,
+/// facing -toward: the mobile sphere starts on that side of it).
+enum class Obstacle : std::uint8_t { kSphere, kWall };
+
 struct SceneConfig {
+  Obstacle obstacle = Obstacle::kSphere;
+  /// Where the obstacle is from the mobile sphere's start (unit, client frame).
+  Eigen::Vector3d toward = Eigen::Vector3d::UnitX();
   Eigen::Vector3d fixed_center = Eigen::Vector3d::Zero();  ///< client frame [m]
   double fixed_radius = 0.03;                              ///< m
   double mobile_radius = 0.03;                             ///< m

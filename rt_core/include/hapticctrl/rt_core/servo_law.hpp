@@ -139,19 +139,21 @@ struct LawConfig {
   double default_time_step = 1e-3;   ///< s, when the client declares none
 };
 
-/// The core's energy out of the channel as it was, in 2 ms slots over the last 512 ms: an
-/// IMPEDANCE client reports the energy of its wrench on the handle's motion a whole loop after
-/// that motion, so the core compares its output of a loop ago with the report (ServoLaw::
-/// guard_impedance; docs/control.md).
-struct EnergyHistory {
-  static constexpr std::size_t kSlots = 256;
-  static constexpr TimeNs kSlot = 2 * kNsPerMs;
-  std::array<double, kSlots> out{};
+/// The handle's travel (the time integral of its twist, base frame) in 4 ms slots over the last
+/// 512 ms: an IMPEDANCE client bills the work of its wrench on the handle's motion a whole loop
+/// after that motion, so the core credits what it will bill for the last loop at its current
+/// wrench (ServoLaw::guard_impedance; docs/control.md).
+struct TravelHistory {
+  static constexpr std::size_t kSlots = 128;
+  static constexpr TimeNs kSlot = 4 * kNsPerMs;
+  std::array<Vector6d, kSlots> travel{};
+  Vector6d now_travel = Vector6d::Zero();
   std::int64_t newest = -1;  ///< the newest slot written (now / kSlot); -1: none
-  /// Notes `energy` as the output at `now`. Safe in the cycle.
-  void record(TimeNs now, double energy) noexcept;
-  /// The output as it was `ago` before `now` (the oldest kept if longer ago, 0 if none).
-  [[nodiscard]] double at(TimeNs now, TimeNs ago) const noexcept;
+  std::int64_t first = -1;   ///< the first slot written
+  /// Adds `twist` * `dt` to the travel and notes it at `now`. Safe in the cycle.
+  void advance(TimeNs now, const Vector6d& twist, double dt) noexcept;
+  /// The travel since `ago` before `now` (since the first note if that is older).
+  [[nodiscard]] Vector6d since(TimeNs now, TimeNs ago) const noexcept;
 };
 
 /// What the law carries from one cycle to the next about the wrench it rendered. The main and
@@ -174,8 +176,7 @@ struct RenderMemory {
   double channel_in = 0.0;            ///< J the coupling put into the channel
   double channel_out = 0.0;           ///< J the channel gave the coupling
   Vector6d drift = Vector6d::Zero();  ///< the channel PC's shift of the object image
-  EnergyHistory out_history;          ///< channel_out before the PC, as it was (IMPEDANCE)
-  double channel_dissipated = 0.0;    ///< J the IMPEDANCE PC took out (channel_out is net)
+  TravelHistory travel;               ///< the handle's recent travel (IMPEDANCE)
   /// Re-anchoring: while `anchored`, the handle's spring renders the true stretch less `stretch`
   /// (linear, rotation vector: what it was at the re-engagement), which shrinks at a bounded
   /// speed and never exceeds the true stretch along its own direction.

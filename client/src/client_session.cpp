@@ -215,6 +215,7 @@ bool ClientSession::on_answer(const hcp_frame& frame, std::int64_t now) noexcept
   if (coupled) {
     local_ = u.answer_coupled.local;
     terms_ = terms_of(report_, local_);
+    controller_wrench_ = s.coupling_wrench;
     channel_pose_ = s.handle_pose;  // the channel's flow at this end: the handle image
     channel_twist_ = s.handle_twist;
     latest_ = s;
@@ -230,19 +231,21 @@ bool ClientSession::on_answer(const hcp_frame& frame, std::int64_t now) noexcept
 }
 
 void ClientSession::close_locally() noexcept {
-  // Protocol 1.3: the object's wrench from its own newest state and the handle as the answer
-  // gives it; an IMPEDANCE application sees the handle image as the passivity controller lets it
-  // give way.
+  // Protocol 1.3: along a contact in force, the object's wrench from its own newest state and
+  // the handle as the answer gives it (local_coupling.hpp); in every other direction the
+  // controller's. An IMPEDANCE application sees the handle image as the passivity controller
+  // lets it give way.
   StateSnapshot& s = latest_;
   if (s.command_type == CommandType::kImpedance) {
     s.handle_pose = drifted(channel_pose_, passivity_.drift());
     s.handle_twist = sum(channel_twist_, passivity_.drift_rate());
     return;
   }
-  Vector6 w{};
+  Vector6 w = controller_wrench_;
   if (s.coupled() && have_object_) {
-    w = object_wrench(terms_, channel_pose_, channel_twist_, object_pose_, object_twist_,
-                      speed_factor_, force_factor_);
+    const Vector6 local = object_wrench(terms_, channel_pose_, channel_twist_, object_pose_,
+                                        object_twist_, speed_factor_, force_factor_);
+    w = along_contact(terms_, controller_wrench_, local);
   }
   s.coupling_wrench = passivity_.render(w);
 }

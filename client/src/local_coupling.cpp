@@ -57,9 +57,10 @@ Vector6 object_wrench(const CouplingTerms& t, const Pose7& handle_pose,
   Eigen::Vector3d force = (t.gains[0] * stretch + t.gains[1] * relative) / sf;
   Eigen::Vector3d torque = t.gains[2] * turn.axis() * turn.angle() +
                            t.gains[3] * (part(handle_twist, 3) - part(object_twist, 3));
-  const Eigen::Vector3d n(t.contact_normal[0], t.contact_normal[1], t.contact_normal[2]);
-  if (n.squaredNorm() > 0.5) {
+  const Eigen::Vector3d normal(t.contact_normal[0], t.contact_normal[1], t.contact_normal[2]);
+  if (normal.squaredNorm() > 1e-12) {
     // The handle presses the object into the contact when the stretch points into the surface.
+    const Eigen::Vector3d n = normal.normalized();
     const double depth = -stretch.dot(n) / sf;
     const double engaged = std::clamp(depth / kDamperBand, 0.0, 1.0);
     force -= t.normal_gains[0] * std::max(0.0, depth) * n;
@@ -68,6 +69,19 @@ Vector6 object_wrench(const CouplingTerms& t, const Pose7& handle_pose,
   force = clamped(force, t.limits[0] / ff);
   torque = clamped(torque, t.limits[1] / ff);
   return {force.x(), force.y(), force.z(), torque.x(), torque.y(), torque.z()};
+}
+
+Vector6 along_contact(const CouplingTerms& t, const Vector6& controller,
+                      const Vector6& local) noexcept {
+  // The normal's length is the share of the contact in force (fresh, touching): the local
+  // wrench comes in in that share, so touching and leaving are no steps.
+  const Eigen::Vector3d n(t.contact_normal[0], t.contact_normal[1], t.contact_normal[2]);
+  const double share = std::min(1.0, n.norm());
+  Vector6 w = controller;
+  for (std::size_t i = 0; i < 6; ++i) {
+    w[i] += share * (local[i] - controller[i]);
+  }
+  return w;
 }
 
 }  // namespace hapticctrl::client

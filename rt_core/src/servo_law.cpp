@@ -121,11 +121,10 @@ ServoLaw::Coupling ServoLaw::client_wrench(const ServoInputs& in, const ClientFr
   // device allows there (unilateral: only while it pushes the object into the surface), and the
   // object is not extrapolated along it: held, its velocity there is the jitter of its contact
   // (+-3 cm/s on a 5000 N/m wall), which 100 ms of extrapolation turned into 3 N of chatter.
-  const Stiffening stiff = contact_stiffening(in, frame, image, g);
+  const Stiffening stiff =
+      contact_stiffening(in, frame, image.position - image.ahead - memory_.drift.head<3>(), g);
   out.contacts = stiff.fresh;
-  if (stiff.stiffness > 0.0) {
-    image.position -= image.ahead.dot(stiff.normal) * stiff.normal;
-  }
+  image.position -= stiff.share * image.ahead.dot(stiff.normal) * stiff.normal;
   Vector6d stretch;
   stretch << image.position - chain.handle_position,
       rotation_vector(image.rotation * chain.handle_rotation.transpose());
@@ -135,7 +134,7 @@ ServoLaw::Coupling ServoLaw::client_wrench(const ServoInputs& in, const ClientFr
   coupling.spring << g.k_linear * used.head<3>(), g.k_angular * used.tail<3>();
   coupling.object_spring << g.k_linear * stretch.head<3>(), g.k_angular * stretch.tail<3>();
   coupling.damper << g.b_linear * relative.head<3>(), g.b_angular * relative.tail<3>();
-  if (stiff.stiffness > 0.0 || stiff.damping > 0.0) {
+  if (stiff.share > 0.0) {
     const Vector3d& n = stiff.normal;
     const double depth = used.head<3>().dot(n);  // > 0: the handle presses into the surface
     const double object_depth = stretch.head<3>().dot(n);
@@ -144,7 +143,7 @@ ServoLaw::Coupling ServoLaw::client_wrench(const ServoInputs& in, const ClientFr
     coupling.spring.head<3>() += stiff.stiffness * std::max(0.0, depth) * n;
     coupling.object_spring.head<3>() += stiff.stiffness * std::max(0.0, object_depth) * n;
     coupling.damper.head<3>() += engaged * stiff.damping * relative.head<3>().dot(n) * n;
-    out.contact_normal = n;
+    out.contact_normal = n * stiff.share;
     out.normal_stiffness = stiff.stiffness;
     out.normal_damping = stiff.damping;
   }

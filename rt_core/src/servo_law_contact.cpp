@@ -30,7 +30,7 @@ double contact_weight(TimeNs silence, const LawConfig& config) noexcept {
 }  // namespace
 
 ServoLaw::Stiffening ServoLaw::contact_stiffening(const ServoInputs& in, const ClientFrame& frame,
-                                                  const ObjectImage& image,
+                                                  const Vector3d& reported,
                                                   const CouplingGains& g) const noexcept {
   // Held by a surface of stiffness K, the object moves little whatever the coupling does, so the
   // loop through it (the object's surface, the spring, the delay, the handle) keeps a gain below
@@ -55,15 +55,16 @@ ServoLaw::Stiffening ServoLaw::contact_stiffening(const ServoInputs& in, const C
     ++best.fresh;
     const Vector3d normal =
         (to_base * Vector3d(contact.normal[0], contact.normal[1], contact.normal[2])).normalized();
-    // The gap now: as reported, less how far the object moved towards the surface since.
+    // The gap now: as reported, less how far the object's reported position moved towards the
+    // surface since (neither the extrapolation over the sample's age nor the channel PC's drift
+    // is a motion of the object: with them the contact flickered in and out of its band).
     const Vector3d at_report =
         to_base * (Vector3d(contact.object_pose[0], contact.object_pose[1],
                             contact.object_pose[2]) -
                    frame.origin) /
         frame.speed_factor;
-    // (The channel PC's drift is no motion of the object.)
-    const Vector3d object_now = image.position - memory_.drift.head<3>();
-    const double gap = contact.distance / frame.speed_factor - (object_now - at_report).dot(normal);
+    const double gap =
+        contact.distance / frame.speed_factor - (reported - at_report).dot(normal);
     const double touching = std::clamp((kTouchBand - gap) / kTouchBand, 0.0, 1.0);
     // The surface's stiffness in the coupling's units (the client's force per base metre).
     const double surface = contact.stiffness * frame.speed_factor;
@@ -71,8 +72,10 @@ ServoLaw::Stiffening ServoLaw::contact_stiffening(const ServoInputs& in, const C
         weight * touching *
         std::max(0.0, std::min(lim.max_stiffness_linear, config_.contact_share * surface) -
                           g.k_linear);
-    if (stiffness > best.stiffness) {
+    if (weight * touching > best.share ||
+        (weight * touching == best.share && stiffness > best.stiffness)) {
       best.normal = normal;
+      best.share = weight * touching;
       best.stiffness = stiffness;
       best.damping = weight * touching * std::max(0.0, lim.max_damping_linear - g.b_linear);
     }

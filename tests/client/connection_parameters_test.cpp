@@ -37,7 +37,7 @@ TEST(ConnectionParameters, EveryParameterReachesTheController) {
   c.set_watchdog(300ms);
   test::expect_reference_parameters(stack.vpr());
   c.detach_object();
-  EXPECT_EQ(stack.vpr().flags, 0U);
+  EXPECT_EQ(stack.vpr().flags & shm::vpr_flags::kObjectAttached, 0U);
   EXPECT_EQ(c.watchdog_ms(), 300U);
 
   try {

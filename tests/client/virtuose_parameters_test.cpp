@@ -83,7 +83,7 @@ TEST(VirtuoseParameters, ParametersStateAndModes) {
   EXPECT_EQ(virtAddForce(vc, force), -1);
   EXPECT_EQ(virtGetErrorCode(vc), VIRT_E_WRONG_MODE);
   EXPECT_EQ(virtAttachVO(vc, 0.5F, inertia), 0);
-  EXPECT_EQ(stack.vpr().flags, 1U);
+  EXPECT_EQ(stack.vpr().flags & shm::vpr_flags::kObjectAttached, 1U);
   EXPECT_EQ(virtDetachVO(vc), 0);
 
   EXPECT_EQ(virtSetPowerOn(vc, 1), 0);
@@ -152,7 +152,7 @@ TEST(VirtuoseParameters, AQuasiStaticObjectAsksItsGainsAndTheGettersGiveTheOnesI
   EXPECT_DOUBLE_EQ(asked.gain_override[1], 10.0);
   EXPECT_DOUBLE_EQ(asked.gain_override[2], 10.0);
   EXPECT_NEAR(asked.gain_override[3], 0.1, 1e-7);
-  EXPECT_EQ(asked.flags, 1U) << "attached";
+  EXPECT_EQ(asked.flags & shm::vpr_flags::kObjectAttached, 1U) << "attached";
   EXPECT_EQ(asked.object_mass, 0.0) << "quasi-static";
   float gains[6] = {-1, -1, -1, -1, -1, -1};  // NOLINT(*-avoid-c-arrays)
   ASSERT_EQ(virtGetSimulationStiffness(vc.get(), gains), 0);
@@ -173,7 +173,7 @@ TEST(VirtuoseParameters, AQuasiStaticObjectAsksItsGainsAndTheGettersGiveTheOnesI
   EXPECT_GT(damping[3], 0.0F);
   EXPECT_EQ(virtGetSimulationStiffness(vc.get(), nullptr), -1);
   EXPECT_EQ(virtDetachVOAvatar(vc.get()), 0);
-  EXPECT_EQ(stack.vpr().flags, 0U);
+  EXPECT_EQ(stack.vpr().flags & shm::vpr_flags::kObjectAttached, 0U);
   float inertia[3] = {0.001F, 0.001F, 0.001F};  // NOLINT(*-avoid-c-arrays)
   EXPECT_EQ(virtAttachVOAvatar(vc.get(), 0.3F, inertia), 0);
   EXPECT_DOUBLE_EQ(stack.vpr().object_mass, 0.3F);

@@ -66,6 +66,7 @@ TEST(SharedMemoryAbuse,
   const arm_model::ArmLimits limits = arm_limits();
   double strongest = 0.0;
   for (int i = 0; i < 50; ++i) {
+    ++sample.client_sequence;  // a new sample each time (the same one again is a silent link)
     vpr.publish(sample, shm::monotonic_now_ns());
     const shm::PositionPayload p = stack.position();
     strongest = std::max(

@@ -72,9 +72,10 @@ struct ServoOutputs {
   std::uint32_t joint_bounds = 0;
   CouplingGains gains;    ///< gains in force this cycle (zero when not coupled)
   TimeNs loop_delay = 0;  ///< loop delay the gains are designed for
-  /// The coupling is stiffer along `contact_normal` (base frame, unit; zero: no contact in
-  /// force) by `normal_stiffness` / `normal_damping` while it pushes the object into the contact
-  /// (protocol 1.3: a client that closes its object's side mirrors it).
+  /// The coupling is stiffer along `contact_normal` (base frame; its length is the share of the
+  /// contact in force, 0..1: fresh and touching; zero: none) by `normal_stiffness` /
+  /// `normal_damping` while it pushes the object into the contact (protocol 1.3: a client closes
+  /// its object's side along it, in that share).
   Vector3d contact_normal = Vector3d::Zero();
   double normal_stiffness = 0.0;
   double normal_damping = 0.0;
@@ -244,6 +245,7 @@ class ServoLaw {
   /// The stiffening along the dominant contact (base frame).
   struct Stiffening {
     Vector3d normal = Vector3d::Zero();
+    double share = 0.0;  ///< how much of the contact is in force (fresh, touching): 0..1
     double stiffness = 0.0;
     double damping = 0.0;
     std::uint32_t fresh = 0;
@@ -251,8 +253,9 @@ class ServoLaw {
   Coupling client_wrench(const ServoInputs& in, const ClientFrame& frame, const ChainState& chain,
                          const Vector6d& twist, ServoOutputs& out) noexcept;
   ObjectImage object_image(const ServoInputs& in, const ClientFrame& frame) const noexcept;
+  /// `reported`: the object's position as the client reported it (base frame, not extrapolated).
   [[nodiscard]] Stiffening contact_stiffening(const ServoInputs& in, const ClientFrame& frame,
-                                              const ObjectImage& image,
+                                              const Vector3d& reported,
                                               const CouplingGains& g) const noexcept;
   Vector6d stretch_in_use(const Vector6d& stretch, double dt) noexcept;
   void track_loop_delay(const ServoInputs& in) noexcept;

@@ -341,7 +341,11 @@ void ServoLaw::compute(const ServoInputs& in, bool /*degraded*/, ServoOutputs& o
   if (out.coupled || (in.client.command == ClientCommand::kImpedance && !two_port_impedance(in))) {
     target = guard_passivity(target, twist, dt);
   }
-  const bool fresh = out.fade >= 1.0 && !out.braking && out.coupled;
+  // The full rate only on fresh data with the coupling wholly engaged: while it comes back (the
+  // ramp, the re-anchored stretch) the release rate, 1 N per ms (2 N steps after a blackout,
+  // J1 2026-12-03).
+  const bool fresh =
+      out.fade >= 1.0 && !out.braking && out.coupled && engage >= 1.0 && !memory_.anchored;
   Vector6d wrench = rate_limit(
       target, fresh ? lim.force_rate : std::min(lim.force_rate, config_.release_rate), dt);
   wrench.head<3>() = clamp_norm(wrench.head<3>(), lim.force_peak);

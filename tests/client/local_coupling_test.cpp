@@ -62,5 +62,19 @@ TEST(LocalCoupling, ARotationStretchGivesATorqueAboutItsAxis) {
   EXPECT_NEAR(w[5], 0.2, 1e-9) << "2 N.m/rad x 0.1 rad";
 }
 
+TEST(LocalCoupling, TheLocalWrenchReplacesTheControllersInTheShareOfTheContactInForce) {
+  CouplingTerms t;
+  const Vector6 controller{4, 1, 0, 0.1, 0, 0};
+  const Vector6 local{2, 0, 0, 0, 0, 0};
+  EXPECT_EQ(along_contact(t, controller, local), controller) << "no contact: the controller's";
+  t.contact_normal = {-1.0, 0.0, 0.0};
+  EXPECT_EQ(along_contact(t, controller, local), local) << "a contact in force: the local one";
+  t.contact_normal = {-0.25, 0.0, 0.0};  // a quarter in force (fading, or just touching)
+  const Vector6 w = along_contact(t, controller, local);
+  EXPECT_NEAR(w[0], 4.0 - 0.25 * 2.0, 1e-12);
+  EXPECT_NEAR(w[1], 1.0 - 0.25 * 1.0, 1e-12);
+  EXPECT_NEAR(w[3], 0.1 - 0.25 * 0.1, 1e-12);
+}
+
 }  // namespace
 }  // namespace hapticctrl::client

@@ -227,15 +227,34 @@ TEST_P(ContactBlackout, TheHandleIsNeverSnappedBackAndTheForceReturnsWithin300ms
       ++full;
     }
     const double travelled = r[index_of(r, cut)].position[0] - r[fresh].position[0];
+    // The handle's speed out of the wall (+x) over 20 ms windows: a snap-back.
+    double snap = 0.0;
+    const std::uint64_t window = 20 * static_cast<std::uint64_t>(kCyclesPerSecond) / 1000;
+    for (std::size_t i = fresh, j = fresh; i < judged_to; ++i) {
+      while (r[i].cycle - r[j].cycle > window) {
+        ++j;
+      }
+      if (r[i].cycle - r[j].cycle >= window / 2) {
+        snap = std::max(snap, (r[i].position[0] - r[j].position[0]) /
+                                  (static_cast<double>(r[i].cycle - r[j].cycle) /
+                                   static_cast<double>(kCyclesPerSecond)));
+      }
+    }
+    const double at_return = r[fresh].speed;
     const double peak_speed = max_speed(r, fresh, judged_to);
     const double step = largest_force_step(r, index_of(r, cut), judged_to);
     std::printf(
-        "contact blackout %d ms: the handle went %.1f mm through the faded wall; after the return"
-        " peak %.3f m/s, largest step %.2f N per cycle, the push felt again after %.0f ms\n",
-        blackout_ms, travelled * 1e3, peak_speed, step,
+        "contact blackout %d ms: the handle went %.1f mm through the faded wall and moved at "
+        "%.3f m/s when the link returned; after it peak %.3f m/s, out of the wall at most %.3f "
+        "m/s, largest step %.2f N per cycle, the push felt again after %.0f ms\n",
+        blackout_ms, travelled * 1e3, at_return, peak_speed, snap, step,
         static_cast<double>(r[std::min(full, r.size() - 1)].cycle - r[fresh].cycle) * 1e3 /
             static_cast<double>(kCyclesPerSecond));
-    EXPECT_LE(peak_speed, 0.1) << around_fastest(r, fresh, judged_to);
+    // The viscous hold (20 N.s/m, the device's stable damping) lets a 5 N push through the faded
+    // wall at up to 0.25 m/s during the blackout; the return must not snap the handle back nor
+    // speed it up: the spring restarts where the handle is.
+    EXPECT_LE(snap, 0.1) << "no snap-back: " << around_fastest(r, fresh, judged_to);
+    EXPECT_LE(peak_speed, std::max(0.1, at_return) + 0.01) << "the return speeds nothing up";
     EXPECT_LE(step, kReleaseStep + 1e-6) << "no step over 1 N/ms in any cycle";
     EXPECT_LT(full, judged_to) << "the push is felt again";
     if (full < judged_to) {

@@ -113,6 +113,7 @@ struct LawConfig {
   /// stretch at these speeds at most (re-anchoring, J1): the handle is never snapped back.
   double restretch_speed = 0.05;          ///< m/s
   double restretch_angular_speed = 0.5;   ///< rad/s
+
   TimeNs extrapolate_max = 50 * kNsPerMs;  ///< extrapolation horizon (sample age)
   /// Without a new sample the coupling force is zero by fade_after + fade_duration (45 ms; H1:
   /// 50 ms) and fades no faster than the device's peaks over fade_duration (1 N/ms), and over

@@ -22,23 +22,44 @@ using law_math::to_vector;
 /// off it (a squared norm of 1e-12): far above the rounding of an unclipped sum.
 constexpr double kClipped = 1e-12;
 
-/// spring * s + damper with the largest s in [0, 1] whose norm stays within `limit`; the damper
-/// alone is clamped to `limit` first. The damper keeps its whole share of a saturated force.
-Vector3d saturate_keeping_damper(const Vector3d& spring, const Vector3d& damper,
-                                 double limit) noexcept {
+/// The largest share s in [0, 1] of `spring` that keeps |spring * s + damper| within `limit`,
+/// with the damper clamped to `limit` first (its own share, returned in `damper_share`). The
+/// damper keeps its whole share of a saturated force.
+double spring_share_within(const Vector3d& spring, const Vector3d& damper, double limit,
+                           double& damper_share) noexcept {
   const double d_norm = damper.norm();
   if (d_norm >= limit) {
-    return d_norm > 0.0 ? Vector3d(damper * (limit / d_norm)) : Vector3d::Zero();
+    damper_share = d_norm > 0.0 ? limit / d_norm : 0.0;
+    return 0.0;
   }
+  damper_share = 1.0;
   if ((spring + damper).norm() <= limit) {
-    return spring + damper;
+    return 1.0;
   }
   // |s a + d| = limit: a.a s^2 + 2 a.d s + d.d - limit^2 = 0, the positive root (d inside).
   const double aa = spring.squaredNorm();
   const double ad = spring.dot(damper);
   const double disc = ad * ad - aa * (damper.squaredNorm() - limit * limit);
-  const double s = std::clamp((-ad + std::sqrt(std::max(0.0, disc))) / aa, 0.0, 1.0);
-  return spring * s + damper;
+  return std::clamp((-ad + std::sqrt(std::max(0.0, disc))) / aa, 0.0, 1.0);
+}
+
+/// Spring and damper of a coupling, each scaled as the saturation leaves them.
+struct SaturatedParts {
+  Vector6d spring = Vector6d::Zero();
+  Vector6d damper = Vector6d::Zero();
+};
+
+SaturatedParts saturate_parts(const Vector6d& spring, const Vector6d& damper, double force_limit,
+                              double torque_limit) noexcept {
+  SaturatedParts p;
+  double d = 1.0;
+  double s = spring_share_within(spring.head<3>(), damper.head<3>(), force_limit, d);
+  p.spring.head<3>() = spring.head<3>() * s;
+  p.damper.head<3>() = damper.head<3>() * d;
+  s = spring_share_within(spring.tail<3>(), damper.tail<3>(), torque_limit, d);
+  p.spring.tail<3>() = spring.tail<3>() * s;
+  p.damper.tail<3>() = damper.tail<3>() * d;
+  return p;
 }
 
 }  // namespace
@@ -225,10 +246,8 @@ Vector6d ServoLaw::saturate(const Vector6d& spring, const Vector6d& damper,
                             const ServoOutputs& out) const noexcept {
   // The damper keeps its share: saturating the sum cut the damping of a heavy object that
   // pulled the spring to the limit (a 3 kg object kept a +-1 m swing, H1).
-  Vector6d w;
-  w << saturate_keeping_damper(spring.head<3>(), damper.head<3>(), out.force_limit),
-      saturate_keeping_damper(spring.tail<3>(), damper.tail<3>(), out.torque_limit);
-  return w;
+  const SaturatedParts p = saturate_parts(spring, damper, out.force_limit, out.torque_limit);
+  return p.spring + p.damper;
 }
 
 Vector6d ServoLaw::rate_limit(const Vector6d& target, double rate, double dt) noexcept {
@@ -301,7 +320,9 @@ void ServoLaw::compute(const ServoInputs& in, bool /*degraded*/, ServoOutputs& o
   // sample, extrapolated and faded as it ages: rendering nothing dipped a carried weight by
   // about 1 N at every VM stall (J1 review of f3c5aec).
   const Coupling coupling = client_wrench(in, frame, chain_, twist, out);
-  const Vector6d saturated = saturate(coupling.spring, coupling.damper, out);
+  const SaturatedParts parts =
+      saturate_parts(coupling.spring, coupling.damper, out.force_limit, out.torque_limit);
+  const Vector6d saturated = parts.spring + parts.damper;
   out.saturated = (saturated - (coupling.spring + coupling.damper)).squaredNorm() > kClipped;
   if (out.fade > 0.0) {  // 0: no session, or its link lost
     out.fade = fade_of(in.client_silence, saturated);
@@ -310,7 +331,19 @@ void ServoLaw::compute(const ServoInputs& in, bool /*degraded*/, ServoOutputs& o
   // once. Multiplying a faded force by it made the fade quadratic, twice as steep at its start
   // as the slope it was designed for.
   const double engage = update_engagement(in, twist, out.fade, out);
-  Vector6d target = saturated * engage;
+  // The damper comes back (and the viscous hold lets go) over hold_release, the spring over the
+  // whole ramp: the damping on the handle stays whole while the coupling returns (the hold let
+  // go over the whole ramp before 2026-12-03; released within 50 ms with the spring, the handle
+  // that came back onto a wall after a 2 s blackout shook at up to 25 N).
+  const double damper_share = std::min(1.0, engage * static_cast<double>(config_.engage_duration) /
+                                                static_cast<double>(config_.hold_release));
+  Vector6d target = parts.spring * engage + parts.damper * damper_share;
+  // The object's side of the coupling: the spring on its true stretch (not re-anchored, not
+  // faded: like a brake, the fade protects the hand, and the object keeps its spring to the
+  // handle). The channel's passivity controller watches the coupling the handle gets (observed
+  // on the object's side, its drift of the image moved an image 30 cm from a re-anchored handle
+  // and snapped it back at 0.9 m/s after a 2 s blackout, J1 2026-12-03).
+  const Vector6d object = saturate(coupling.object_spring, coupling.damper, out);
   if (out.coupled) {
     target = guard_channel(in, frame, target, coupling.stretch, dt);
   } else if (two_port_impedance(in)) {
@@ -330,7 +363,7 @@ void ServoLaw::compute(const ServoInputs& in, bool /*degraded*/, ServoOutputs& o
     // in a viscous field instead of letting it drift: released from the wall that carried a
     // weighted object, the handle coasted 3-5 cm during a 300 ms blackout and fell back at
     // 0.44 m/s when the coupling returned (H1).
-    const double hold = 1.0 - engage;
+    const double hold = 1.0 - damper_share;
     target.head<3>() -= hold * lim.max_damping_linear * twist.head<3>();
     target.tail<3>() -= hold * lim.max_damping_angular * twist.tail<3>();
   }
@@ -352,15 +385,13 @@ void ServoLaw::compute(const ServoInputs& in, bool /*degraded*/, ServoOutputs& o
   wrench.tail<3>() = clamp_norm(wrench.tail<3>(), lim.torque_peak);
   memory_.port_wrench = wrench;
   if (out.coupled) {
-    // The object feels the opposite of the coupling on its true stretch (not re-anchored), in
-    // the client's frame, unscaled: neither the brake nor the passivity guard's damping (they
-    // brake the handle; mirrored onto the object they would push it along with the handle's
-    // motion), nor the fade: like a brake, it protects the hand, and the object keeps its spring
-    // to the handle. Faded, the weighted sphere lost its support for the catch-up steps the demo
-    // took after a 60 ms stall of its process, fell, and bounced back at 0.16 m/s when the
-    // coupling returned (bench/gravity_rest.sh, 2026-12-02). A protocol 1.3 client computes this
-    // side itself, on its own object state (docs/control.md).
-    const Vector6d object = saturate(coupling.object_spring, coupling.damper, out);
+    // The object feels the opposite of its side of the coupling, in the client's frame,
+    // unscaled: neither the brake nor the passivity guard's damping (they brake the handle;
+    // mirrored onto the object they would push it along with the handle's motion), nor the fade
+    // (faded, the weighted sphere lost its support for the catch-up steps the demo took after a
+    // 60 ms stall of its process, fell, and bounced back at 0.16 m/s when the coupling
+    // returned, bench/gravity_rest.sh, 2026-12-02). A protocol 1.3 client closes this side
+    // itself while a contact is in force (docs/control.md).
     out.coupling_wrench << -(frame.rotation * object.head<3>()) / frame.force_factor,
         -(frame.rotation * object.tail<3>()) / frame.force_factor;
   }

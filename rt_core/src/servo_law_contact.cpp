@@ -92,7 +92,7 @@ Vector6d ServoLaw::stretch_in_use(const Vector6d& stretch, double dt) noexcept {
   // restretch_speed at most, while every new motion of the handle or the object stretches the
   // spring at once. The hidden part never exceeds the true stretch along its own direction: when
   // the object comes to the handle or the hand goes back, it shrinks with it (the spring never
-  // pulls the other way).
+  // pulls the other way), and it grows back (up to its decaying envelope) if they part again.
   RenderMemory& m = memory_;
   if (m.engage <= 0.0) {
     if (!m.anchored) {
@@ -105,20 +105,27 @@ Vector6d ServoLaw::stretch_in_use(const Vector6d& stretch, double dt) noexcept {
   if (!m.anchored) {
     return stretch;
   }
-  const auto release = [&stretch, dt](Vector6d& hidden, int from, double speed) {
+  // The hidden envelope decays at the restretch speed; what is hidden now is the true stretch
+  // along the envelope's direction, at most the envelope (and never the other way). The
+  // envelope itself does not shrink with the true stretch: an object bouncing on its wall
+  // (pressed by its whole spring after a blackout) ratcheted it down at each bounce, and the
+  // rebounds then stretched the handle's spring: 0.22 m/s out of the wall (J1, 2026-12-03).
+  Vector6d used = stretch;
+  const auto release = [&stretch, &used, dt](Vector6d& hidden, int from, double speed) {
     Vector3d h = hidden.segment<3>(from);
     h -= clamp_norm(h, speed * dt);
+    hidden.segment<3>(from) = h;
     const double length = h.norm();
     if (length > 0.0) {
-      const double along = stretch.segment<3>(from).dot(h / length);
-      h *= std::clamp(along, 0.0, length) / length;
+      const Vector3d unit = h / length;
+      used.segment<3>(from) -=
+          unit * std::clamp(stretch.segment<3>(from).dot(unit), 0.0, length);
     }
-    hidden.segment<3>(from) = h;
   };
   release(m.stretch, 0, config_.restretch_speed);
   release(m.stretch, 3, config_.restretch_angular_speed);
   m.anchored = m.stretch.squaredNorm() > 0.0;
-  return stretch - m.stretch;
+  return used;
 }
 
 }  // namespace hapticctrl::rt_core

@@ -93,12 +93,12 @@ double ServoLaw::book_channel_power(double power, double budget, double dt) noex
 }
 
 Vector6d ServoLaw::guard_channel(const ServoInputs& in, const ClientFrame& frame,
-                                 const Vector6d& handle_force, const Vector6d& stretch,
+                                 const Vector6d& coupling, const Vector6d& stretch,
                                  double dt) noexcept {
   // Two-port time-domain passivity (Ryu, Artigas, Preusche): the channel between the coupling
   // and the client's object must not give either end more energy than the other end put in.
-  // Here the core's end: the handle's spring pushes the object image with -handle_force while
-  // the image moves with the client's twist; the energy that came out of the channel may not
+  // Here the core's end: the coupling (the force it puts on the handle; the object image gets
+  // its opposite) pushes the image while it moves with the client's twist; the energy that came out of the channel may not
   // exceed what the client reports having put in (ClientSample::energy_in, which arrives a link
   // delay late). When it would, a series passivity controller lets the image give way along the
   // force (it drifts towards the handle) and dissipates the whole excess: as far as relaxing
@@ -109,16 +109,16 @@ Vector6d ServoLaw::guard_channel(const ServoInputs& in, const ClientFrame& frame
   // allows. Energies in the client's units, as the client counts them.
   RenderMemory& m = memory_;
   if (!(in.client.energy_in >= 0.0)) {
-    return handle_force;  // a 1.0 client reports no energy: the one-port guard at the handle
+    return coupling;  // a 1.0 client reports no energy: the one-port guard at the handle
   }
   const Vector6d flow = object_twist_in_base(in.client, frame);
   const Vector6d weight = client_units(frame);
-  const Vector6d on_image = -handle_force;  // what the handle's spring does to the image
+  const Vector6d on_image = -coupling;  // what the coupling does to the image
   const double excess =
       book_channel_power(on_image.cwiseProduct(weight).dot(flow), in.client.energy_in, dt);
   const double force_sq = on_image.cwiseProduct(weight).dot(on_image);
   Vector6d rate = Vector6d::Zero();
-  Vector6d force = handle_force;
+  Vector6d force = coupling;
   if (excess > kNegligible) {
     ++counters_.channel_pc_active;
     if (force_sq > 1e-12) {

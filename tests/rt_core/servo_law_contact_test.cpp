@@ -117,7 +117,7 @@ TEST(ServoLawContact, AContactThatStopsComingFadesOutWithinFortyFiveMs) {
 
 TEST(ServoLawContact, AfterAFullDisengagementTheSpringRestartsWhereTheHandleIs) {
   // The object 30 cm away (a hand that went through a faded wall during a blackout): the
-  // coupling comes back without a snap, and regains the stretch at 5 cm/s at most.
+  // coupling comes back without a snap, and regains the stretch at 8 cm/s at most.
   ServoLaw law(default_dynamics());
   ServoInputs in = coupled_to_object_ahead(0.3);
   in.new_sample = true;
@@ -132,8 +132,8 @@ TEST(ServoLawContact, AfterAFullDisengagementTheSpringRestartsWhereTheHandleIs) 
   }
   EXPECT_LE(largest_step, 1.0) << "N per 1 ms cycle";
   const double k = out.gains.k_linear;
-  EXPECT_NEAR(out.handle_wrench(0), std::min(35.0, k * 0.05 * 0.2), 0.05 * 35.0)
-      << "0.2 s at 5 cm/s: 1 cm of the stretch back";
+  EXPECT_NEAR(out.handle_wrench(0), std::min(35.0, k * 0.08 * 0.2), 0.05 * 35.0)
+      << "0.2 s at 8 cm/s: 1.6 cm of the stretch back";
   EXPECT_NEAR(out.coupling_wrench(0), -35.0, 1e-6)
       << "the object keeps its whole spring (saturated) to the handle";
 }
@@ -145,7 +145,7 @@ TEST(ServoLawContact, TheHiddenStretchShrinksWithTheTrueOneAndNeverPullsBack) {
   // The object arrives at the handle (a free object its own spring pulled along).
   const ChainState s = chain_at(kReady);
   in.client.object_pose[0] = s.handle_position.x() + 0.001;
-  const ServoOutputs out = run(law, in, 10);  // the rate limit lets the force fall 2 N per ms
+  const ServoOutputs out = run(law, in, 40);  // re-engaging, the force falls at 1 N per ms
   EXPECT_GE(out.handle_wrench(0), 0.0) << "never pulls the handle away from the object";
   EXPECT_LE(out.handle_wrench(0), out.gains.k_linear * 0.001 + 1e-9);
 }

@@ -138,7 +138,7 @@ TEST(ServoLawImpedance, AWallThatThePushingHandAbsorbsIsRenderedWhole) {
   ServoInputs in = impedance_moving({0.01, 0, 0}, {-8, 0, 0, 0, 0, 0}, 0.0);
   const ServoOutputs out = run_impedance(law, in, 300);
   EXPECT_NEAR(out.handle_wrench(0), -8.0, 1e-6);
-  EXPECT_GT(out.channel_energy_in, 0.02);
+  EXPECT_GT(out.channel_energy_in, 0.015) << "8 N x 10 mm/s for 0.3 s, less the ramp";
   EXPECT_EQ(law.counters().channel_pc_active, 0U);
 }
 

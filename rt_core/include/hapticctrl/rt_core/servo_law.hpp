@@ -111,7 +111,7 @@ struct LawConfig {
   double contact_share = 0.5;
   /// After a full disengagement the spring restarts relaxed where the handle is and regains its
   /// stretch at these speeds at most (re-anchoring, J1): the handle is never snapped back.
-  double restretch_speed = 0.05;          ///< m/s
+  double restretch_speed = 0.08;          ///< m/s
   double restretch_angular_speed = 0.5;   ///< rad/s
 
   TimeNs extrapolate_max = 50 * kNsPerMs;  ///< extrapolation horizon (sample age)
@@ -124,11 +124,14 @@ struct LawConfig {
   TimeNs shortest_fade = 15 * kNsPerMs;
   double release_rate = 1000.0;  ///< N/s: force change limit while fading, braking or released
   /// Every re-engagement (fresh data after a fade, the end of a brake, a new session, power-on)
-  /// gives the handle its coupling back through a ramp this long; the viscous hold releases with
-  /// it. The spring restarts relaxed (re-anchoring), so the ramp only smooths the damper's
-  /// return: 150 ms until 2026-12-03 (before re-anchoring, a handle that drifted during a
-  /// 300 ms blackout fell back at 0.16 m/s with 50 ms).
+  /// gives the handle its coupling back through a ramp this long. The spring restarts relaxed
+  /// (re-anchoring), so the ramp only smooths the damper's return: 150 ms until 2026-12-03
+  /// (before re-anchoring, a handle that drifted during a 300 ms blackout fell back at 0.16 m/s
+  /// with 50 ms).
   TimeNs engage_duration = 50 * kNsPerMs;
+  /// The viscous hold of a disengaged coupling lets go over this, and the coupling's damper
+  /// comes back with it (J1: within 50 ms, without a step).
+  TimeNs hold_release = 50 * kNsPerMs;
   TimeNs overspeed_fault_after = 250 * kNsPerMs;  ///< braking this long: kVelocityLimit
   double brake_release_ratio = 0.8;  ///< the brake lets go below this share of max_speed
   /// Loop delay assumed for a client that does not echo answers (protocol 1.0).
@@ -179,9 +182,9 @@ struct RenderMemory {
   double channel_out = 0.0;           ///< J the channel gave the coupling
   Vector6d drift = Vector6d::Zero();  ///< the channel PC's shift of the object image
   TravelHistory travel;               ///< the handle's recent travel (IMPEDANCE)
-  /// Re-anchoring: while `anchored`, the handle's spring renders the true stretch less `stretch`
-  /// (linear, rotation vector: what it was at the re-engagement), which shrinks at a bounded
-  /// speed and never exceeds the true stretch along its own direction.
+  /// Re-anchoring: while `anchored`, the handle's spring renders the true stretch less what is
+  /// hidden of it: along `stretch` (linear, rotation vector: what it was at the re-engagement,
+  /// shrinking at a bounded speed), the true stretch's share, at most |stretch|.
   bool anchored = false;
   Vector6d stretch = Vector6d::Zero();
   static constexpr std::size_t kLoopSamples = 15;
@@ -264,7 +267,7 @@ class ServoLaw {
   [[nodiscard]] double fade_of(TimeNs silence, const Vector6d& wrench) const noexcept;
   void follow_session(const ServoInputs& in) noexcept;
   Vector6d guard_channel(const ServoInputs& in, const ClientFrame& frame,
-                         const Vector6d& handle_force, const Vector6d& stretch,
+                         const Vector6d& coupling, const Vector6d& stretch,
                          double dt) noexcept;
   Vector6d guard_impedance(const ServoInputs& in, const ClientFrame& frame,
                            const Vector6d& handle_force, const Vector6d& twist,

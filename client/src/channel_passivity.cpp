@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 namespace hapticctrl::client {
 namespace {
@@ -31,19 +30,6 @@ void ChannelPassivity::on_controller_energy(double joules) noexcept {
   if (std::isfinite(joules) && joules >= controller_in_) {
     controller_in_ = joules;  // cumulative: it never goes down within a session
   }
-}
-
-void ChannelPassivity::on_coupling_damping(double linear, double angular, double force_factor,
-                                           double speed_factor) noexcept {
-  // The coupling's damping in the application's units: force / force factor per speed x speed
-  // factor (0 or less: no report, the integration's bound alone).
-  const double ff = std::isfinite(force_factor) && force_factor > 0.0 ? force_factor : 1.0;
-  const double sf = std::isfinite(speed_factor) && speed_factor > 0.0 ? speed_factor : 1.0;
-  const auto bound = [](double b, double scale) {
-    return std::isfinite(b) && b > 0.0 ? b / scale : std::numeric_limits<double>::infinity();
-  };
-  bound_linear_ = bound(linear, ff * sf);
-  bound_angular_ = bound(angular, ff);
 }
 
 void ChannelPassivity::set_contact_share(double share) noexcept {
@@ -77,12 +63,12 @@ double ChannelPassivity::book_output(double power, double dt) noexcept {
 Vector6 ChannelPassivity::render(const Vector6& wrench) noexcept {
   raw_ = wrench;
   Vector6 out = wrench;
-  // The damper removes at most the share of the wrench that does work on the object's motion:
-  // it stops the channel's output without ever pushing against the motion itself. A full damper
-  // held over the application's catch-up steps (the demo integrates several cycles with one
-  // wrench after a lost answer) drove the weighted sphere to 77 m/s at 20 ms with 10 % loss (H1);
-  // unbounded by that share (J1, 2026-12-03), it shook the resting weighted sphere's support
-  // between 1.4 and 7.4 N and the handle carried 6.4 N for its 4.9 N.
+  // Free, the damper removes at most the share of the wrench that does work on the object's
+  // motion: it stops the channel's output without ever pushing against the motion itself (a
+  // full damper held over the application's catch-up steps drove the weighted sphere to 77 m/s
+  // at 20 ms with 10 % loss, H1; unbounded by that share, it shook the resting weighted sphere's
+  // support between 1.4 and 7.4 N and the handle carried 6.4 N for its 4.9 N, J1 2026-12-03).
+  // Held by a contact, it is whole, and the cut takes the rest.
   double cut = cut_power_;
   for (std::size_t from = 0; from < 6; from += 3) {
     const double v_sq = dot3(twist_, twist_, from);
@@ -144,18 +130,13 @@ void ChannelPassivity::on_step(const Vector6& twist, double dt, double held,
   const double ang_sq = dot3(twist, twist, 3);
   if (excess > 0.0 && lin_sq + ang_sq > 1e-15) {
     // The damper for the next step: enough to dissipate the excess at this motion, within what
-    // the object's integration bears and the coupling's own damping (the gains of the answers,
-    // in the application's units): taking the whole working share at once removed the 5.9 N
-    // that held the weighted sphere whenever it rose by a few mm/s, and the PC itself kept the
-    // force chattering between 0 and 6 N (20 ms, +-2 ms, 10 %, H1).
+    // the object's integration bears. (H1 also bounded it by the coupling's own damping; with
+    // the spring re-anchored after a blackout, that let the weighted sphere's handle fall back at
+    // 0.23-0.36 m/s, J1 2026-12-03.)
     const double alpha = excess / ((lin_sq + ang_sq) * dt);
-    const bool held_by_contact = contact_share_ > 0.0;
-    const double inf = std::numeric_limits<double>::infinity();
-    alpha_linear_ =
-        std::min({alpha, kDamperShare * mass_ / held, held_by_contact ? inf : bound_linear_});
-    alpha_angular_ =
-        std::min({alpha, kDamperShare * inertia_ / held, held_by_contact ? inf : bound_angular_});
-    if (held_by_contact) {
+    alpha_linear_ = std::min(alpha, kDamperShare * mass_ / held);
+    alpha_angular_ = std::min(alpha, kDamperShare * inertia_ / held);
+    if (contact_share_ > 0.0) {
       const double damping = (alpha_linear_ * lin_sq + alpha_angular_ * ang_sq) * dt;
       cut_power_ = std::max(0.0, excess - damping) / dt;
     }

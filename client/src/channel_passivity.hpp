@@ -7,13 +7,12 @@
 /// its motion: the energy the wrench gives the object may not exceed what the controller reports
 /// having put in (compared a loop late: the report covers the object's motion up to then). When
 /// it would, a passivity controller adds a damper on the object's motion within what the
-/// application's integration bears. Free, the damper also stays within the coupling's own
-/// damping and the wrench's share along the motion (it never pushes against the motion itself:
-/// unbounded, it shook a resting weighted object's support between 1.4 and 7.4 N, J1
-/// 2026-12-03). Held by a contact (protocol 1.3), it takes the whole excess the integration
-/// bears and cuts the rest from the wrench along the motion: bounded there, the balance broke
-/// (4.0-8.6 J out for the core's 2.3-3.1 J in at 10-20 ms, J1 review; 3.8 mJ over at 100 ms with
-/// the object's side closed locally, 2026-12-03).
+/// application's integration bears. Free, the damper takes at most the wrench's share along the
+/// motion (it never pushes against the motion itself: beyond it, it shook a resting weighted
+/// object's support between 1.4 and 7.4 N, J1 2026-12-03). Held by a contact (protocol 1.3), it
+/// takes the whole excess the integration bears and cuts the rest from the wrench along the
+/// motion: bounded there, the balance broke (4.0-8.6 J out for the core's 2.3-3.1 J in at 10-20
+/// ms, J1 review; 3.8 mJ over at 100 ms with the object's side closed locally, 2026-12-03).
 ///
 /// IMPEDANCE (protocol 1.3): the channel hands the application the handle's motion (the answers'
 /// handle twist) and takes its wrench: the energy the handle's motion gives the application's
@@ -25,7 +24,6 @@
 /// thread-safe (the connection serialises it).
 #include <array>
 #include <cstdint>
-#include <limits>
 
 #include "hapticctrl/client/types.hpp"
 
@@ -37,10 +35,6 @@ class ChannelPassivity {
   void set_object(double mass, double inertia) noexcept;
   /// The controller's energy into the channel so far (J), from an answer.
   void on_controller_energy(double joules) noexcept;
-  /// The coupling's own damping as the controller reports it (base frame: N·s/m, N·m·s/rad) and
-  /// the factors that turn it into the application's units: the damper never exceeds it.
-  void on_coupling_damping(double linear, double angular, double force_factor,
-                           double speed_factor) noexcept;
   /// How much of a contact is in force (0..1, protocol 1.3): held by a surface, the object takes
   /// the whole damper the excess asks (within its integration) and a cut of the rest; free, the
   /// damper stays within the coupling's damping and the wrench's share along the motion.
@@ -101,8 +95,6 @@ class ChannelPassivity {
   double alpha_angular_ = 0.0;
   double contact_share_ = 0.0;
   double cut_power_ = 0.0;  ///< W the next render() cuts along the motion (in contact)
-  double bound_linear_ = std::numeric_limits<double>::infinity();  ///< the coupling's damping
-  double bound_angular_ = std::numeric_limits<double>::infinity();
   Vector6 drift_{};
   Vector6 drift_rate_{};
   std::uint64_t active_steps_ = 0;

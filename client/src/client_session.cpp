@@ -188,8 +188,8 @@ bool ClientSession::on_answer(const hcp_frame& frame, std::int64_t now) noexcept
   const auto& u = frame.body.hcp_body_u;
   const bool coupled = frame.body.type == HCP_ANSWER_COUPLED;
   const bool timed = coupled || frame.body.type == HCP_ANSWER_TIMED;
-  const hcp_answer& a = coupled ? u.answer_coupled.answer
-                                : (timed ? u.answer_timed.answer : u.answer);
+  const hcp_answer& a =
+      coupled ? u.answer_coupled.answer : (timed ? u.answer_timed.answer : u.answer);
   if (!monitor_.on_answer(frame.header.sequence, now, a.echo_sequence, a.echo_time_ns,
                           a.control_received)) {
     return false;  // a duplicate or an answer older than the newest
@@ -210,16 +210,14 @@ bool ClientSession::on_answer(const hcp_frame& frame, std::int64_t now) noexcept
   if (timed) {
     report_ = coupled ? u.answer_coupled.coupling : u.answer_timed.coupling;
     passivity_.on_controller_energy(report_.energy_in);
-    passivity_.on_coupling_damping(report_.gains[1], report_.gains[3], force_factor_,
-                                   speed_factor_);
     passivity_.set_loop(report_.loop_delay_s);
   }
   if (coupled) {
     local_ = u.answer_coupled.local;
     terms_ = terms_of(report_, local_);
     controller_wrench_ = s.coupling_wrench;
-    passivity_.set_contact_share(std::hypot(local_.contact_normal[0], local_.contact_normal[1],
-                                            local_.contact_normal[2]));
+    passivity_.set_contact_share(
+        std::hypot(local_.contact_normal[0], local_.contact_normal[1], local_.contact_normal[2]));
     channel_pose_ = s.handle_pose;  // the channel's flow at this end: the handle image
     channel_twist_ = s.handle_twist;
     latest_ = s;

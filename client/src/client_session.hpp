@@ -15,10 +15,10 @@
 #include <string>
 
 #include "channel_passivity.hpp"
-#include "local_coupling.hpp"
 #include "hapticctrl/client/connection.hpp"
 #include "hapticctrl/protocol/codec.hpp"
 #include "link_monitor.hpp"
+#include "local_coupling.hpp"
 
 namespace hapticctrl::client {
 
@@ -166,13 +166,13 @@ class ClientSession {
   // Protocol 1.3: the object's side of the coupling, closed here (local_coupling.hpp).
   hcp_local_coupling local_{};  ///< from the newest ANSWER_COUPLED
   CouplingTerms terms_;
-  Vector6 controller_wrench_{};  ///< the object's wrench as the newest answer gave it
+  Vector6 controller_wrench_{};              ///< the object's wrench as the newest answer gave it
   Pose7 channel_pose_{0, 0, 0, 0, 0, 0, 1};  ///< the handle as the newest answer gave it
   Vector6 channel_twist_{};
   Pose7 object_pose_{0, 0, 0, 0, 0, 0, 1};  ///< the object's newest state, as sent
   Vector6 object_twist_{};
   bool have_object_ = false;
-  Vector6 held_wrench_{};     ///< IMPEDANCE: the wrench sent last
+  Vector6 held_wrench_{};  ///< IMPEDANCE: the wrench sent last
   std::int64_t last_wrench_send_ns_ = 0;
   double speed_factor_ = 1.0;
   double force_factor_ = 1.0;

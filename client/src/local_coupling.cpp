@@ -43,9 +43,8 @@ CouplingTerms terms_of(const hcp_coupling_report& report,
   return t;
 }
 
-Vector6 object_wrench(const CouplingTerms& t, const Pose7& handle_pose,
-                      const Vector6& handle_twist, const Pose7& object_pose,
-                      const Vector6& object_twist, double speed_factor,
+Vector6 object_wrench(const CouplingTerms& t, const Pose7& handle_pose, const Vector6& handle_twist,
+                      const Pose7& object_pose, const Vector6& object_twist, double speed_factor,
                       double force_factor) noexcept {
   // The controller's gains act on its base-frame metres (client metres / speed factor) and the
   // object gets the coupling without the force factor (docs/control.md).

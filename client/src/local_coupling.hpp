@@ -18,7 +18,7 @@ namespace hapticctrl::client {
 
 /// What an ANSWER_COUPLED says about the coupling, in the application's frame and units.
 struct CouplingTerms {
-  std::array<double, 4> gains{};          ///< k_lin, b_lin, k_ang, b_ang (controller units)
+  std::array<double, 4> gains{};           ///< k_lin, b_lin, k_ang, b_ang (controller units)
   std::array<double, 3> contact_normal{};  ///< client frame; zero: no contact stiffening
   std::array<double, 2> normal_gains{};    ///< stiffness, damping added along it
   std::array<double, 2> limits{};          ///< force, torque limits (controller units)

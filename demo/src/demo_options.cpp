@@ -88,9 +88,9 @@ void declare(program::Options& o, DemoOptions& d) {
       "--toward", "x|-x|y|-y|z|-z",
       [&d](const std::string& v) {
         static const std::map<std::string, Eigen::Vector3d> axes{
-            {"x", Eigen::Vector3d::UnitX()},  {"-x", -Eigen::Vector3d::UnitX()},
-            {"y", Eigen::Vector3d::UnitY()},  {"-y", -Eigen::Vector3d::UnitY()},
-            {"z", Eigen::Vector3d::UnitZ()},  {"-z", -Eigen::Vector3d::UnitZ()}};
+            {"x", Eigen::Vector3d::UnitX()}, {"-x", -Eigen::Vector3d::UnitX()},
+            {"y", Eigen::Vector3d::UnitY()}, {"-y", -Eigen::Vector3d::UnitY()},
+            {"z", Eigen::Vector3d::UnitZ()}, {"-z", -Eigen::Vector3d::UnitZ()}};
         const auto found = axes.find(v);
         if (found == axes.end()) {
           throw std::invalid_argument("--toward must be one of x -x y -y z -z");

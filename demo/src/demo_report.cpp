@@ -70,8 +70,7 @@ void print_summary_json(FILE* out, const client::StateSnapshot& s, const SphereS
       static_cast<unsigned long long>(st.answers_late),
       static_cast<unsigned long long>(st.frames_invalid),
       static_cast<unsigned long long>(st.control_sent), st.rtt_mean_us, st.contacts_in_force,
-      st.contacts_rejected, st.channel_energy_in, st.channel_energy_out,
-      st.controller_energy_in);
+      st.contacts_rejected, st.channel_energy_in, st.channel_energy_out, st.controller_energy_in);
 }
 
 }  // namespace hapticctrl::demo

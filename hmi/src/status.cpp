@@ -111,9 +111,8 @@ std::string status_json(const ControllerStatus& s) {
         << ",\"link_loss\":" << static_cast<double>(s.vp.link_loss_ppm) / 1e6
         << ",\"channel_energy_in\":" << s.vp.channel_energy_in
         << ",\"channel_energy_out\":" << s.vp.channel_energy_out
-        << ",\"client_energy_in\":" << s.vpr.client_energy_in
-        << ",\"contacts\":" << s.vp.contacts << ",\"contacts_rejected\":" << s.vp.contacts_rejected
-        << ",";
+        << ",\"client_energy_in\":" << s.vpr.client_energy_in << ",\"contacts\":" << s.vp.contacts
+        << ",\"contacts_rejected\":" << s.vp.contacts_rejected << ",";
     json_array(out, "contact_normal", s.vp.contact_normal);
     out << ",";
     json_array(out, "normal_gains", s.vp.normal_gains);

@@ -103,8 +103,8 @@ Problem check_contact(const hcp_control_contact& frame) noexcept {
     return std::nullopt;  // clears every slot: the contact is not looked at
   }
   const hcp_contact& c = frame.contact;
-  if (!all_within(c.point, kMaxPosition) || !within(c.distance, -kMaxContactDistance,
-                                                     kMaxContactDistance)) {
+  if (!all_within(c.point, kMaxPosition) ||
+      !within(c.distance, -kMaxContactDistance, kMaxContactDistance)) {
     return "contact: point within 100 m, distance within 1 m";
   }
   double norm_sq = 0.0;
@@ -114,8 +114,7 @@ Problem check_contact(const hcp_control_contact& frame) noexcept {
   if (!(std::abs(norm_sq - 1.0) <= kMaxQuaternionError)) {
     return "contact: the normal must be a unit vector";
   }
-  if (!within(c.stiffness, kMinContactStiffness, kMaxGain) ||
-      !within(c.damping, 0.0, kMaxGain)) {
+  if (!within(c.stiffness, kMinContactStiffness, kMaxGain) || !within(c.damping, 0.0, kMaxGain)) {
     return "contact: stiffness 1 to 1e6 N/m, damping 0 to 1e6 N.s/m";
   }
   if (!within(c.friction[0], 0.0, kMaxFriction) || !within(c.friction[1], 0.0, c.friction[0])) {
@@ -215,8 +214,7 @@ Problem check_local_coupling(const hcp_local_coupling& l) noexcept {
                   within(l.normal_gains[0], 0.0, kMaxGain) &&
                   within(l.normal_gains[1], 0.0, kMaxGain) && within(l.limits[0], 0.0, kMaxGain) &&
                   within(l.limits[1], 0.0, kMaxGain) &&
-                  within(l.max_contact_stiffness, 0.0, kMaxGain) &&
-                  l.contacts <= HCP_MAX_CONTACTS;
+                  within(l.max_contact_stiffness, 0.0, kMaxGain) && l.contacts <= HCP_MAX_CONTACTS;
   return ok ? Problem{} : Problem{"answer: local coupling non-finite or out of range"};
 }
 

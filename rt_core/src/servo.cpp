@@ -34,9 +34,9 @@ bool contact_valid(const shm::ContactSlot& c, double max_stiffness) noexcept {
   }
   return all_finite(c.point) && all_finite(c.normal) && all_finite(c.friction) &&
          all_finite(c.object_pose) && unit_quaternion(c.object_pose) &&
-         std::abs(norm_sq - 1.0) <= 0.02 && std::isfinite(c.distance) &&
-         std::isfinite(c.damping) && c.damping >= 0.0 && c.stiffness > 0.0 &&
-         c.stiffness <= max_stiffness && c.friction[0] >= 0.0 && c.friction[1] >= 0.0;
+         std::abs(norm_sq - 1.0) <= 0.02 && std::isfinite(c.distance) && std::isfinite(c.damping) &&
+         c.damping >= 0.0 && c.stiffness > 0.0 && c.stiffness <= max_stiffness &&
+         c.friction[0] >= 0.0 && c.friction[1] >= 0.0;
 }
 
 /// A client sample is usable only if every number in it is finite and in a sane range.

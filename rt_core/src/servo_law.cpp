@@ -88,7 +88,8 @@ ServoLaw::ObjectImage ServoLaw::object_image(const ServoInputs& in,
   ObjectImage image;
   const Vector3d object_p_env(c.object_pose[0], c.object_pose[1], c.object_pose[2]);
   image.position = base_r.transpose() * (object_p_env - frame.origin) / frame.speed_factor;
-  image.rotation = base_r.transpose() * to_quaternion(c.object_pose).normalized().toRotationMatrix();
+  image.rotation =
+      base_r.transpose() * to_quaternion(c.object_pose).normalized().toRotationMatrix();
   image.twist = object_twist_in_base(c, frame);
   // Best estimate of where the object is now: extrapolate over the sample's true age (bounded).
   const double horizon =

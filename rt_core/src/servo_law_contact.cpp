@@ -59,19 +59,18 @@ ServoLaw::Stiffening ServoLaw::contact_stiffening(const ServoInputs& in, const C
     // surface since (neither the extrapolation over the sample's age nor the channel PC's drift
     // is a motion of the object: with them the contact flickered in and out of its band).
     const Vector3d at_report =
-        to_base * (Vector3d(contact.object_pose[0], contact.object_pose[1],
-                            contact.object_pose[2]) -
-                   frame.origin) /
+        to_base *
+        (Vector3d(contact.object_pose[0], contact.object_pose[1], contact.object_pose[2]) -
+         frame.origin) /
         frame.speed_factor;
-    const double gap =
-        contact.distance / frame.speed_factor - (reported - at_report).dot(normal);
+    const double gap = contact.distance / frame.speed_factor - (reported - at_report).dot(normal);
     const double touching = std::clamp((kTouchBand - gap) / kTouchBand, 0.0, 1.0);
     // The surface's stiffness in the coupling's units (the client's force per base metre).
     const double surface = contact.stiffness * frame.speed_factor;
     const double stiffness =
         weight * touching *
-        std::max(0.0, std::min(lim.max_stiffness_linear, config_.contact_share * surface) -
-                          g.k_linear);
+        std::max(0.0,
+                 std::min(lim.max_stiffness_linear, config_.contact_share * surface) - g.k_linear);
     if (weight * touching > best.share ||
         (weight * touching == best.share && stiffness > best.stiffness)) {
       best.normal = normal;
@@ -92,7 +91,9 @@ Vector6d ServoLaw::stretch_in_use(const Vector6d& stretch, double dt) noexcept {
   // restretch_speed at most, while every new motion of the handle or the object stretches the
   // spring at once. The hidden part never exceeds the true stretch along its own direction: when
   // the object comes to the handle or the hand goes back, it shrinks with it (the spring never
-  // pulls the other way), and it grows back (up to its decaying envelope) if they part again.
+  // pulls the other way). (Letting it grow back up to a decaying envelope when they part again
+  // hid the object's motion along it entirely: the weighted sphere's handle fell back at up to
+  // 0.48 m/s after a blackout, 2026-12-03.)
   RenderMemory& m = memory_;
   if (m.engage <= 0.0) {
     if (!m.anchored) {
@@ -105,27 +106,20 @@ Vector6d ServoLaw::stretch_in_use(const Vector6d& stretch, double dt) noexcept {
   if (!m.anchored) {
     return stretch;
   }
-  // The hidden envelope decays at the restretch speed; what is hidden now is the true stretch
-  // along the envelope's direction, at most the envelope (and never the other way). The
-  // envelope itself does not shrink with the true stretch: an object bouncing on its wall
-  // (pressed by its whole spring after a blackout) ratcheted it down at each bounce, and the
-  // rebounds then stretched the handle's spring: 0.22 m/s out of the wall (J1, 2026-12-03).
-  Vector6d used = stretch;
-  const auto release = [&stretch, &used, dt](Vector6d& hidden, int from, double speed) {
+  const auto release = [&stretch, dt](Vector6d& hidden, int from, double speed) {
     Vector3d h = hidden.segment<3>(from);
     h -= clamp_norm(h, speed * dt);
-    hidden.segment<3>(from) = h;
     const double length = h.norm();
     if (length > 0.0) {
-      const Vector3d unit = h / length;
-      used.segment<3>(from) -=
-          unit * std::clamp(stretch.segment<3>(from).dot(unit), 0.0, length);
+      const double along = stretch.segment<3>(from).dot(h / length);
+      h *= std::clamp(along, 0.0, length) / length;
     }
+    hidden.segment<3>(from) = h;
   };
   release(m.stretch, 0, config_.restretch_speed);
   release(m.stretch, 3, config_.restretch_angular_speed);
   m.anchored = m.stretch.squaredNorm() > 0.0;
-  return used;
+  return stretch - m.stretch;
 }
 
 }  // namespace hapticctrl::rt_core

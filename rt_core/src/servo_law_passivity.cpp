@@ -56,7 +56,8 @@ void TravelHistory::advance(TimeNs now, const Vector6d& twist, double dt) noexce
     first = slot;
   }
   // Slots skipped since the last note keep the last known travel.
-  const Vector6d last = newest >= 0 ? travel[static_cast<std::size_t>(newest) % kSlots] : now_travel;
+  const Vector6d last =
+      newest >= 0 ? travel[static_cast<std::size_t>(newest) % kSlots] : now_travel;
   for (std::int64_t s = std::max(newest + 1, slot - static_cast<std::int64_t>(kSlots) + 1);
        s < slot; ++s) {
     travel[static_cast<std::size_t>(s) % kSlots] = last;
@@ -98,13 +99,13 @@ Vector6d ServoLaw::guard_channel(const ServoInputs& in, const ClientFrame& frame
   // Two-port time-domain passivity (Ryu, Artigas, Preusche): the channel between the coupling
   // and the client's object must not give either end more energy than the other end put in.
   // Here the core's end: the coupling (the force it puts on the handle; the object image gets
-  // its opposite) pushes the image while it moves with the client's twist; the energy that came out of the channel may not
-  // exceed what the client reports having put in (ClientSample::energy_in, which arrives a link
-  // delay late). When it would, a series passivity controller lets the image give way along the
-  // force (it drifts towards the handle) and dissipates the whole excess: as far as relaxing
-  // the spring in one period, and what that cannot take (the damper's share) is cut from the
-  // force along the image's motion. Nothing bounds it but that: bounded (0.5 m/s, 5 cm until
-  // 2026-12-03), it let the balance break in contact (the core's end gave 7.1-25.8 J for the
+  // its opposite) pushes the image while it moves with the client's twist; the energy that came out
+  // of the channel may not exceed what the client reports having put in (ClientSample::energy_in,
+  // which arrives a link delay late). When it would, a series passivity controller lets the image
+  // give way along the force (it drifts towards the handle) and dissipates the whole excess: as far
+  // as relaxing the spring in one period, and what that cannot take (the damper's share) is cut
+  // from the force along the image's motion. Nothing bounds it but that: bounded (0.5 m/s, 5 cm
+  // until 2026-12-03), it let the balance break in contact (the core's end gave 7.1-25.8 J for the
   // client's 3.9-7.6 J at 10-20 ms, J1 review). The drift is given back slowly while the budget
   // allows. Energies in the client's units, as the client counts them.
   RenderMemory& m = memory_;

@@ -309,8 +309,8 @@ TEST_F(SessionTest, ALocalCouplingSessionGetsAnswersCoupledAndSendsTimedWrenches
   EXPECT_EQ(after_wrench.sample_time_ns, client.now - 3 * kMs / 2);
 
   // A contact: its slot and the count, the object's pose with it; the sample stays the same.
-  hcp_frame c = protocol::make_frame(HCP_CONTROL_CONTACT, client.token, ++client.control_seq,
-                                     client.now);
+  hcp_frame c =
+      protocol::make_frame(HCP_CONTROL_CONTACT, client.token, ++client.control_seq, client.now);
   c.body.hcp_body_u.contact.slots = protocol::pack_contact_slots(1, 2);
   hcp_contact& k = c.body.hcp_body_u.contact.contact;
   k.point[0] = 0.6F;
@@ -330,8 +330,8 @@ TEST_F(SessionTest, ALocalCouplingSessionGetsAnswersCoupledAndSendsTimedWrenches
   EXPECT_EQ(after_contact.contacts[1].received_time_ns, client.now);
   EXPECT_EQ(after_contact.contacts[0].stiffness, 0.0) << "slot 0 not sent yet";
   // Count 0 clears every slot.
-  hcp_frame clear = protocol::make_frame(HCP_CONTROL_CONTACT, client.token, ++client.control_seq,
-                                         client.now);
+  hcp_frame clear =
+      protocol::make_frame(HCP_CONTROL_CONTACT, client.token, ++client.control_seq, client.now);
   clear.body.hcp_body_u.contact.slots = protocol::pack_contact_slots(0, 0);
   client.feed(client.bytes(clear));
   EXPECT_EQ(controller.vpr_now().contact_count, 0U);
@@ -343,8 +343,8 @@ TEST_F(SessionTest, TimedWrenchesAndContactsFromASessionWithoutLocalCouplingAreD
   hcp_frame w = protocol::make_frame(HCP_CONTROL_WRENCH_TIMED, client.token, ++client.control_seq,
                                      client.now);
   client.feed(client.bytes(w));
-  hcp_frame c = protocol::make_frame(HCP_CONTROL_CONTACT, client.token, ++client.control_seq,
-                                     client.now);
+  hcp_frame c =
+      protocol::make_frame(HCP_CONTROL_CONTACT, client.token, ++client.control_seq, client.now);
   client.feed(client.bytes(c));
   EXPECT_EQ(session.counters().dropped_for(LinkDrop::kToken), 2U);
   EXPECT_EQ(controller.vpr_now().flags & shm::vpr_flags::kLocalCoupling, 0U);

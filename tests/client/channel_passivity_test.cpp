@@ -24,7 +24,8 @@ TEST(ChannelPassivity, ForwardsTheWrenchWhileTheControllersEnergyCoversTheOutput
   for (int k = 0; k < 100; ++k) {
     const Vector6 w = pc.render({1.0, 0, 0, 0, 0, 0});
     EXPECT_EQ(w[0], 1.0);
-    pc.on_step({0.1, 0, 0, 0, 0, 0}, kDt, kDt, next_ns());  // 0.1 W out of the channel into the object
+    pc.on_step({0.1, 0, 0, 0, 0, 0}, kDt, kDt,
+               next_ns());  // 0.1 W out of the channel into the object
   }
   EXPECT_NEAR(pc.energy_out(), 0.01, 1e-12);
   EXPECT_EQ(pc.active_steps(), 0U);
@@ -66,24 +67,18 @@ TEST(ChannelPassivity, TheDamperStaysWithinWhatTheObjectsIntegrationBears) {
       << "alpha <= m / (2 x the time the wrench is held)";
 }
 
-TEST(ChannelPassivity, TheDamperIsAtMostTheCouplingsOwnDampingInTheApplicationsUnits) {
-  // A weight held by the coupling (6 N up) while the object rises at 10 mm/s with the channel
-  // over budget: the damper adds at most the coupling's damping (8 N.s/m, 0.08 N), never the
-  // whole working share (6 N, the chatter it made at 20 ms, H1).
+TEST(ChannelPassivity, HeldByAContactTheDamperIsWholeAndTheRestIsCut) {
+  // In contact (protocol 1.3) the damper may push against the motion (within the integration),
+  // and what it cannot take is cut from the wrench along the motion.
   ChannelPassivity pc;
-  pc.set_object(0.5, 1e-4);
-  pc.on_coupling_damping(8.0, 0.05, 1.0, 1.0);
-  (void)pc.render({0, 0, 6.0, 0, 0, 0});
-  pc.on_step({0, 0, 0.01, 0, 0, 0}, kDt, kDt, next_ns());  // 60 uJ out, nothing reported in
-  EXPECT_NEAR(pc.render({0, 0, 6.0, 0, 0, 0})[2], 6.0 - 8.0 * 0.01, 1e-12);
-  // Force factor 2 and speed factor 4: the same damping is 8 / (2 * 4) = 1 N.s/m there.
-  pc.on_coupling_damping(8.0, 0.05, 2.0, 4.0);
-  pc.on_step({0, 0, 0.01, 0, 0, 0}, kDt, kDt, next_ns());
-  EXPECT_NEAR(pc.render({0, 0, 6.0, 0, 0, 0})[2], 6.0 - 1.0 * 0.01, 1e-12);
-  pc.on_coupling_damping(0.0, 0.0, 1.0, 1.0);  // no report of it: the integration's bound alone
-  pc.on_step({0, 0, 0.01, 0, 0, 0}, kDt, kDt, next_ns());
-  EXPECT_NEAR(pc.render({0, 0, 6.0, 0, 0, 0})[2], 6.0 - 0.5 * 0.5 / kDt * 0.01, 1e-12)
-      << "m / (2 dt) = 250 N.s/m";
+  pc.set_object(0.2, 1e-5);
+  pc.set_contact_share(1.0);
+  (void)pc.render({500.0, 0, 0, 0, 0, 0});
+  pc.on_step({1.0, 0, 0, 0, 0, 0}, kDt, kDt, next_ns());  // 0.5 J out: alpha 500 wanted
+  EXPECT_NEAR(pc.render({500.0, 0, 0, 0, 0, 0})[0], 0.0, 1e-9)
+      << "alpha <= m / (2 dt) = 100 N.s/m, and the remaining 400 N along the motion cut";
+  EXPECT_NEAR(pc.render({-500.0, 0, 0, 0, 0, 0})[0], -500.0 - 100.0, 1e-9)
+      << "against the motion: the damper only, nothing left to cut";
 }
 
 TEST(ChannelPassivity, TheObjectsOutputIsComparedALoopLate) {

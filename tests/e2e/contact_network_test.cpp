@@ -35,9 +35,18 @@ int run_hmi(const Scenario& s, std::vector<std::string> args, std::chrono::secon
 /// The demo with its sphere on a wall `toward` of the handle, stiff and barely damped.
 std::vector<std::string> wall_demo(double stiffness, const std::string& toward,
                                    const std::string& command = "virtmech") {
-  return {"--obstacle",           "wall", "--toward", toward, "--gap", "0",
-          "--contact-stiffness",  std::to_string(stiffness),
-          "--contact-damping",    "2",    "--command", command};
+  return {"--obstacle",
+          "wall",
+          "--toward",
+          toward,
+          "--gap",
+          "0",
+          "--contact-stiffness",
+          std::to_string(stiffness),
+          "--contact-damping",
+          "2",
+          "--command",
+          command};
 }
 
 /// Mean rendered force along `axis` and the windowed speed over records [from, to).
@@ -69,9 +78,8 @@ void expect_balanced_channel(Scenario& s, const char* name) {
   const std::string summary = s.demo->out();
   const double client_out = json_number(summary, "channel_energy_out");
   const double client_in = json_number(summary, "channel_energy_in");
-  std::printf(
-      "%s: channel, core end %.4f J in, %.4f J out; client end %.4f J in, %.4f J out\n", name,
-      vp.channel_energy_in, vp.channel_energy_out, client_in, client_out);
+  std::printf("%s: channel, core end %.4f J in, %.4f J out; client end %.4f J in, %.4f J out\n",
+              name, vp.channel_energy_in, vp.channel_energy_out, client_in, client_out);
   EXPECT_LE(vp.channel_energy_out, vpr.client_energy_in + 1e-3)
       << "the core's end gives no more than the client put in";
   ASSERT_FALSE(std::isnan(client_out)) << "no summary from the demo: " << summary;
@@ -134,13 +142,11 @@ TEST_P(StiffWall, PushedAt10NTheHandleRestsAndFeelsThePush) {
 
 INSTANTIATE_TEST_SUITE_P(
     J1, StiffWall,
-    ::testing::Values(WallCase{"k5000_delay1ms_loss10", 5000, {"--delay-ms", "1", "--loss", "0.1"}},
-                      WallCase{"k5000_delay10ms_loss10", 5000,
-                               {"--delay-ms", "10", "--loss", "0.1"}},
-                      WallCase{"k3000_delay20ms_jitter2", 3000,
-                               {"--delay-ms", "20", "--jitter-ms", "2"}},
-                      WallCase{"k3000_delay100ms_loss10", 3000,
-                               {"--delay-ms", "100", "--loss", "0.1"}}),
+    ::testing::Values(
+        WallCase{"k5000_delay1ms_loss10", 5000, {"--delay-ms", "1", "--loss", "0.1"}},
+        WallCase{"k5000_delay10ms_loss10", 5000, {"--delay-ms", "10", "--loss", "0.1"}},
+        WallCase{"k3000_delay20ms_jitter2", 3000, {"--delay-ms", "20", "--jitter-ms", "2"}},
+        WallCase{"k3000_delay100ms_loss10", 3000, {"--delay-ms", "100", "--loss", "0.1"}}),
     [](const auto& p) { return std::string(p.param.name); });
 
 TEST(ContactHand, AHandWanderingIntoAndAlongTheWallGetsNoEnergyAndTheChannelBalances) {
@@ -176,8 +182,7 @@ TEST(ContactHand, AHandWanderingIntoAndAlongTheWallGetsNoEnergyAndTheChannelBala
       }
       largest = std::max(largest, r[i].force);
     }
-    std::printf("hand on the wall: the port put out %.3f mJ; peak %.2f N\n", energy * 1e3,
-                largest);
+    std::printf("hand on the wall: the port put out %.3f mJ; peak %.2f N\n", energy * 1e3, largest);
     EXPECT_LE(energy, 1e-3) << "the port to the hand gave at most 1 mJ";
     EXPECT_LT(largest, 34.0) << "never at the saturation";
     expect_balanced_channel(s, "hand on the wall");

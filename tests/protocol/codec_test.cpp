@@ -371,12 +371,16 @@ TEST(Codec, RejectsContactsThatNoSurfaceMakes) {
   const std::vector<std::pair<const char*, std::function<void(hcp_control_contact&)>>> bad{
       {"normal not unit", [](hcp_control_contact& c) { c.contact.normal[2] = 0.5F; }},
       {"normal NaN",
-       [](hcp_control_contact& c) { c.contact.normal[0] = std::numeric_limits<float>::quiet_NaN(); }},
+       [](hcp_control_contact& c) {
+         c.contact.normal[0] = std::numeric_limits<float>::quiet_NaN();
+       }},
       {"point far", [](hcp_control_contact& c) { c.contact.point[1] = 1e3F; }},
       {"gap beyond 1 m", [](hcp_control_contact& c) { c.contact.distance = 2.0F; }},
       {"no stiffness", [](hcp_control_contact& c) { c.contact.stiffness = 0.0F; }},
       {"stiffness inf",
-       [](hcp_control_contact& c) { c.contact.stiffness = std::numeric_limits<float>::infinity(); }},
+       [](hcp_control_contact& c) {
+         c.contact.stiffness = std::numeric_limits<float>::infinity();
+       }},
       {"negative damping", [](hcp_control_contact& c) { c.contact.damping = -1.0F; }},
       {"dynamic over static", [](hcp_control_contact& c) { c.contact.friction[1] = 0.6F; }},
       {"slot at the count", [](hcp_control_contact& c) { c.slots = pack_contact_slots(1, 1); }},

@@ -16,8 +16,7 @@ using test::default_dynamics;
 using test::kReady;
 
 /// A surface at the object that pushes it along -x (the object rests against it from -x).
-ClientContact wall_at(const std::array<double, 7>& object_pose, double stiffness,
-                      TimeNs received) {
+ClientContact wall_at(const std::array<double, 7>& object_pose, double stiffness, TimeNs received) {
   ClientContact c;
   c.point = {object_pose[0], object_pose[1], object_pose[2]};
   c.normal = {-1.0, 0.0, 0.0};

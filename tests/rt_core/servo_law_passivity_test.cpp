@@ -101,7 +101,6 @@ TEST(ServoLaw, TheObjectFeelsTheCouplingButNotThePassivityGuardsDamping) {
       << "the handle got damping that the object did not";
 }
 
-
 /// Powered at the ready pose with the handle moving at `v` (base frame, linear) and an
 /// IMPEDANCE client (protocol 1.3) commanding `wrench` and reporting `energy_in`.
 ServoInputs impedance_moving(const Vector3d& v, const std::array<double, 6>& wrench,

@@ -34,8 +34,7 @@ std::size_t Session::answer(const shm::VpPayload& vp, TimeNs now, std::span<std:
   const hcp_frame_type type = coupled ? HCP_ANSWER_COUPLED : timed ? HCP_ANSWER_TIMED : HCP_ANSWER;
   hcp_frame f = protocol::make_frame(type, view.token, ++answer_sequence_, now);
   auto& u = f.body.hcp_body_u;
-  hcp_answer& a = coupled ? u.answer_coupled.answer
-                          : (timed ? u.answer_timed.answer : u.answer);
+  hcp_answer& a = coupled ? u.answer_coupled.answer : (timed ? u.answer_timed.answer : u.answer);
   if (timed) {
     fill_report(vp, coupled ? u.answer_coupled.coupling : u.answer_timed.coupling);
   }

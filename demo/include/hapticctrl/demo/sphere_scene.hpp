@@ -1,13 +1,13 @@
 #pragma once
 /// @file sphere_scene.hpp
 /// The demo client's physics engine: two half-rigid spheres, one fixed, one mobile (mass,
-/// isotropic inertia) coupled to the arm; or the mobile sphere and a wall (a plane). Contact is a penalty force: stiffness and damping
-/// along the line of centres (never pulling), and Coulomb friction modelled as a tangential
-/// spring-damper anchored where the spheres touched, which slips beyond mu times the normal
-/// force; and rolling resistance of the flattened contact patch, an angular spring-damper that
-/// gives way beyond rolling_resistance * normal force * radius. Without them a sphere pushed
-/// onto a sphere by a force with no lateral stiffness (the operator's hand on a
-/// gravity-compensated arm) slides or rolls off sideways: that equilibrium is unstable. Gravity
+/// isotropic inertia) coupled to the arm; or the mobile sphere and a wall (a plane). Contact is a
+/// penalty force: stiffness and damping along the line of centres (never pulling), and Coulomb
+/// friction modelled as a tangential spring-damper anchored where the spheres touched, which slips
+/// beyond mu times the normal force; and rolling resistance of the flattened contact patch, an
+/// angular spring-damper that gives way beyond rolling_resistance * normal force * radius. Without
+/// them a sphere pushed onto a sphere by a force with no lateral stiffness (the operator's hand on
+/// a gravity-compensated arm) slides or rolls off sideways: that equilibrium is unstable. Gravity
 /// is optional; integration is semi-implicit Euler at the client's time step. Allocation-free; the
 /// integrator reads no clock (it takes dt), so a scenario of any length is a fast deterministic
 /// test.

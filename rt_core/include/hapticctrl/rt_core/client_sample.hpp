@@ -22,12 +22,12 @@ inline constexpr std::size_t kMaxClientContacts = 8;
 /// A contact of the client's object: a plane through point - distance * normal, perpendicular to
 /// normal, that the object touches (distance <= 0) or is near (client's environment frame).
 struct ClientContact {
-  std::array<double, 3> point{};   ///< on the object [m]
-  std::array<double, 3> normal{};  ///< unit: the direction in which the surface pushes the object
-  double distance = 0.0;           ///< signed gap along normal [m]
-  double stiffness = 0.0;          ///< [N/m]; 0: no contact in this slot
-  double damping = 0.0;            ///< [N·s/m]
-  std::array<double, 2> friction{};                        ///< static, dynamic
+  std::array<double, 3> point{};     ///< on the object [m]
+  std::array<double, 3> normal{};    ///< unit: the direction in which the surface pushes the object
+  double distance = 0.0;             ///< signed gap along normal [m]
+  double stiffness = 0.0;            ///< [N/m]; 0: no contact in this slot
+  double damping = 0.0;              ///< [N·s/m]
+  std::array<double, 2> friction{};  ///< static, dynamic
   std::array<double, 7> object_pose{0, 0, 0, 0, 0, 0, 1};  ///< the object when it came
   std::int64_t received_ns = 0;  ///< when it arrived (our clock): it fades 30 ms after
 };

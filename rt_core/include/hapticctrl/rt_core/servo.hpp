@@ -137,7 +137,7 @@ struct GateOwnedState {
   bool client_valid = false;
   std::uint64_t last_client_sequence = 0;
   TimeNs last_client_arrival = 0;
-  TimeNs last_client_time = 0;  ///< when the client computed it, our clock (see VprPayload)
+  TimeNs last_client_time = 0;          ///< when the client computed it, our clock (see VprPayload)
   std::uint32_t contacts_rejected = 0;  ///< contact frames with a contact refused, this session
 
   /// The committed cycle's render memory; each task's law continues from it.

@@ -101,7 +101,7 @@ struct ClientFrame {
 ClientFrame client_frame_of(const ClientSample& client) noexcept;
 
 struct LawConfig {
-  TimeNs stale_after = 5 * kNsPerMs;       ///< no new sample for this long: flagged stale
+  TimeNs stale_after = 5 * kNsPerMs;  ///< no new sample for this long: flagged stale
   /// A contact not refreshed for this long fades out over the next contact_fade (as the link).
   TimeNs contact_fresh = 30 * kNsPerMs;
   TimeNs contact_fade = 15 * kNsPerMs;
@@ -111,8 +111,8 @@ struct LawConfig {
   double contact_share = 0.5;
   /// After a full disengagement the spring restarts relaxed where the handle is and regains its
   /// stretch at these speeds at most (re-anchoring, J1): the handle is never snapped back.
-  double restretch_speed = 0.08;          ///< m/s
-  double restretch_angular_speed = 0.5;   ///< rad/s
+  double restretch_speed = 0.08;         ///< m/s
+  double restretch_angular_speed = 0.5;  ///< rad/s
 
   TimeNs extrapolate_max = 50 * kNsPerMs;  ///< extrapolation horizon (sample age)
   /// Without a new sample the coupling force is zero by fade_after + fade_duration (45 ms; H1:
@@ -182,9 +182,9 @@ struct RenderMemory {
   double channel_out = 0.0;           ///< J the channel gave the coupling
   Vector6d drift = Vector6d::Zero();  ///< the channel PC's shift of the object image
   TravelHistory travel;               ///< the handle's recent travel (IMPEDANCE)
-  /// Re-anchoring: while `anchored`, the handle's spring renders the true stretch less what is
-  /// hidden of it: along `stretch` (linear, rotation vector: what it was at the re-engagement,
-  /// shrinking at a bounded speed), the true stretch's share, at most |stretch|.
+  /// Re-anchoring: while `anchored`, the handle's spring renders the true stretch less `stretch`
+  /// (linear, rotation vector: what it was at the re-engagement), which shrinks at a bounded
+  /// speed and never exceeds the true stretch along its own direction.
   bool anchored = false;
   Vector6d stretch = Vector6d::Zero();
   static constexpr std::size_t kLoopSamples = 15;
@@ -266,12 +266,10 @@ class ServoLaw {
   CouplingGains slew_gains(const CouplingGains& target, TimeNs dt) noexcept;
   [[nodiscard]] double fade_of(TimeNs silence, const Vector6d& wrench) const noexcept;
   void follow_session(const ServoInputs& in) noexcept;
-  Vector6d guard_channel(const ServoInputs& in, const ClientFrame& frame,
-                         const Vector6d& coupling, const Vector6d& stretch,
-                         double dt) noexcept;
+  Vector6d guard_channel(const ServoInputs& in, const ClientFrame& frame, const Vector6d& coupling,
+                         const Vector6d& stretch, double dt) noexcept;
   Vector6d guard_impedance(const ServoInputs& in, const ClientFrame& frame,
-                           const Vector6d& handle_force, const Vector6d& twist,
-                           double dt) noexcept;
+                           const Vector6d& handle_force, const Vector6d& twist, double dt) noexcept;
   /// Books one period's channel power at the core's end (>= 0: in) and returns the excess of
   /// the energy out over `budget`, the client's reported energy in.
   double book_channel_power(double power, double budget, double dt) noexcept;

@@ -78,11 +78,11 @@ inline constexpr std::size_t kMaxContacts = 8;
 /// plane through point - distance * normal, perpendicular to normal, that the object touches or
 /// is near. Client environment frame. stiffness 0: the slot is empty.
 struct ContactSlot {
-  std::array<double, 3> point{};   ///< on the object [m]
-  std::array<double, 3> normal{};  ///< unit: the direction in which the surface pushes the object
-  double distance = 0.0;           ///< signed gap along normal [m]: < 0 penetrating
-  double stiffness = 0.0;          ///< [N/m]; 0: empty slot
-  double damping = 0.0;            ///< [N.s/m]
+  std::array<double, 3> point{};     ///< on the object [m]
+  std::array<double, 3> normal{};    ///< unit: the direction in which the surface pushes the object
+  double distance = 0.0;             ///< signed gap along normal [m]: < 0 penetrating
+  double stiffness = 0.0;            ///< [N/m]; 0: empty slot
+  double damping = 0.0;              ///< [N.s/m]
   std::array<double, 2> friction{};  ///< static, dynamic Coulomb coefficients
   /// The object's pose when the contact came (the newest object state of the session).
   Pose7 object_pose{0, 0, 0, 0, 0, 0, 1};
@@ -168,7 +168,7 @@ struct VpPayload {
   std::array<double, 3> contact_normal{};
   std::array<double, 2> normal_gains{};
   std::array<double, 2> limits{};
-  double max_contact_stiffness = 0.0;  ///< N/m, the stiffest contact the core accepts
+  double max_contact_stiffness = 0.0;   ///< N/m, the stiffest contact the core accepts
   std::uint32_t contacts = 0;           ///< contact slots in force (fresh)
   std::uint32_t contacts_rejected = 0;  ///< contacts refused this session (stiffer than the limit)
 };

@@ -154,23 +154,19 @@ ServoLaw::Coupling ServoLaw::client_wrench(const ServoInputs& in, const ClientFr
   coupling.stretch = used;
   Vector6d relative = image.twist - twist;
   coupling.spring << g.k_linear * used.head<3>(), g.k_angular * used.tail<3>();
-  coupling.object_spring << g.k_linear * stretch.head<3>(), g.k_angular * stretch.tail<3>();
   coupling.damper << g.b_linear * relative.head<3>(), g.b_angular * relative.tail<3>();
   if (stiff.share > 0.0) {
     const Vector3d& n = stiff.normal;
     const double depth = used.head<3>().dot(n);  // > 0: the handle presses into the surface
-    const double object_depth = stretch.head<3>().dot(n);
     // The damper comes in over the first 0.5 mm, so that touching is not a step.
     const double engaged = std::clamp(depth / 5e-4, 0.0, 1.0);
     coupling.spring.head<3>() += stiff.stiffness * std::max(0.0, depth) * n;
-    coupling.object_spring.head<3>() += stiff.stiffness * std::max(0.0, object_depth) * n;
     coupling.damper.head<3>() += engaged * stiff.damping * relative.head<3>().dot(n) * n;
     out.contact_normal = n * stiff.share;
     out.normal_stiffness = stiff.stiffness;
     out.normal_damping = stiff.damping;
   }
   coupling.spring *= scale;
-  coupling.object_spring *= scale;
   coupling.damper *= scale;
   out.coupled = true;
   return coupling;
@@ -339,12 +335,12 @@ void ServoLaw::compute(const ServoInputs& in, bool /*degraded*/, ServoOutputs& o
   const double damper_share = std::min(1.0, engage * static_cast<double>(config_.engage_duration) /
                                                 static_cast<double>(config_.hold_release));
   Vector6d target = parts.spring * engage + parts.damper * damper_share;
-  // The object's side of the coupling: the spring on its true stretch (not re-anchored, not
-  // faded: like a brake, the fade protects the hand, and the object keeps its spring to the
-  // handle). The channel's passivity controller watches the coupling the handle gets (observed
-  // on the object's side, its drift of the image moved an image 30 cm from a re-anchored handle
-  // and snapped it back at 0.9 m/s after a 2 s blackout, J1 2026-12-03).
-  const Vector6d object = saturate(coupling.object_spring, coupling.damper, out);
+  // The object's side of the coupling: the same spring (re-anchored alike: on the true stretch,
+  // the object got the spring the handle's motion through a 300 ms blackout had stored, 33 N at
+  // once, an energy the channel made; the weighted sphere flew past the handle and pulled it up,
+  // then fell back at 0.22 m/s, J1 2026-12-03), not faded (like a brake, the fade protects the
+  // hand, and the object keeps its spring to the handle).
+  const Vector6d object = saturate(coupling.spring, coupling.damper, out);
   if (out.coupled) {
     target = guard_channel(in, frame, target, coupling.stretch, dt);
   } else if (two_port_impedance(in)) {

@@ -116,7 +116,7 @@ TEST(ServoLawContact, AContactThatStopsComingFadesOutWithinFortyFiveMs) {
 
 TEST(ServoLawContact, AfterAFullDisengagementTheSpringRestartsWhereTheHandleIs) {
   // The object 30 cm away (a hand that went through a faded wall during a blackout): the
-  // coupling comes back without a snap, and regains the stretch at 8 cm/s at most.
+  // coupling comes back without a snap at either end, and regains the stretch at 8 cm/s at most.
   ServoLaw law(default_dynamics());
   ServoInputs in = coupled_to_object_ahead(0.3);
   in.new_sample = true;
@@ -133,8 +133,9 @@ TEST(ServoLawContact, AfterAFullDisengagementTheSpringRestartsWhereTheHandleIs) 
   const double k = out.gains.k_linear;
   EXPECT_NEAR(out.handle_wrench(0), std::min(35.0, k * 0.08 * 0.2), 0.05 * 35.0)
       << "0.2 s at 8 cm/s: 1.6 cm of the stretch back";
-  EXPECT_NEAR(out.coupling_wrench(0), -35.0, 1e-6)
-      << "the object keeps its whole spring (saturated) to the handle";
+  EXPECT_NEAR(out.coupling_wrench(0), -out.handle_wrench(0), 0.05 * out.handle_wrench(0))
+      << "the object feels the same re-anchored spring (the whole stretch would be 35 N at once, "
+         "energy the channel made)";
 }
 
 TEST(ServoLawContact, TheHiddenStretchShrinksWithTheTrueOneAndNeverPullsBack) {

@@ -231,12 +231,10 @@ class ServoLaw {
 
  private:
   /// The coupling's spring and damper parts (base frame), before limits: on the handle, and
-  /// the object's (the true stretch, without re-anchoring: what a protocol 1.1 client's object
-  /// receives, opposite).
+  /// opposite on the object.
   struct Coupling {
     Vector6d spring = Vector6d::Zero();
     Vector6d damper = Vector6d::Zero();
-    Vector6d object_spring = Vector6d::Zero();
     Vector6d stretch = Vector6d::Zero();  ///< the stretch the handle's spring renders
   };
   /// Where the client's object is now, as the coupling sees it (base frame).

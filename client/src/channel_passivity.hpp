@@ -10,9 +10,9 @@
 /// application's integration bears. Free, the damper takes at most the wrench's share along the
 /// motion (it never pushes against the motion itself: beyond it, it shook a resting weighted
 /// object's support between 1.4 and 7.4 N, J1 2026-12-03). Held by a contact (protocol 1.3), it
-/// takes the whole excess the integration bears and cuts the rest from the wrench along the
-/// motion: bounded there, the balance broke (4.0-8.6 J out for the core's 2.3-3.1 J in at 10-20
-/// ms, J1 review; 3.8 mJ over at 100 ms with the object's side closed locally, 2026-12-03).
+/// takes the whole excess the integration bears, even against the motion: bounded there, the
+/// balance broke (4.0-8.6 J out for the core's 2.3-3.1 J in at 10-20 ms, J1 review). What it
+/// cannot take stays owed and is damped on the following steps.
 ///
 /// IMPEDANCE (protocol 1.3): the channel hands the application the handle's motion (the answers'
 /// handle twist) and takes its wrench: the energy the handle's motion gives the application's
@@ -36,15 +36,15 @@ class ChannelPassivity {
   /// The controller's energy into the channel so far (J), from an answer.
   void on_controller_energy(double joules) noexcept;
   /// How much of a contact is in force (0..1, protocol 1.3): held by a surface, the object takes
-  /// the whole damper the excess asks (within its integration) and a cut of the rest; free, the
-  /// damper stays within the coupling's damping and the wrench's share along the motion.
+  /// the whole damper the excess asks (within its integration); free, the damper stays within
+  /// the wrench's share along the motion.
   void set_contact_share(double share) noexcept;
   /// The coupling loop (s): the controller's report covers the object's motion up to this long
   /// ago, so the object's output of a loop ago is what it must cover (0: now).
   void set_loop(double seconds) noexcept;
 
   // --- VIRTMECH: the object's port --------------------------------------------------------------
-  /// The wrench the application gets for the channel's `wrench`: with the PC's damper and cut.
+  /// The wrench the application gets for the channel's `wrench`: with the PC's damper.
   [[nodiscard]] Vector6 render(const Vector6& wrench) noexcept;
   /// Accounts the step the application just integrated at `now_ns`: the object moved with
   /// `twist` for `dt` seconds under the wrench render() gave it last. Sets the damper for the
@@ -94,7 +94,6 @@ class ChannelPassivity {
   double alpha_linear_ = 0.0;
   double alpha_angular_ = 0.0;
   double contact_share_ = 0.0;
-  double cut_power_ = 0.0;  ///< W the next render() cuts along the motion (in contact)
   Vector6 drift_{};
   Vector6 drift_rate_{};
   std::uint64_t active_steps_ = 0;

@@ -68,22 +68,44 @@ Judged judge(const std::vector<CycleRecord>& r, std::size_t from, std::size_t to
   return j;
 }
 
+/// Waits (at most 3 s) until the handle has been still for 200 ms (< 1 mm/s, 50 ms windows).
+void wait_until_still(Scenario& s) {
+  const std::uint64_t span = 200 * static_cast<std::uint64_t>(kCyclesPerSecond) / 1000;
+  for (int polls = 0; polls < 30; ++polls) {
+    std::this_thread::sleep_for(100ms);
+    const auto r = s.recorder->records();
+    if (!r.empty() && r.back().cycle > span &&
+        windowed_speed(r, index_of(r, r.back().cycle - span), r.size()) < 0.001) {
+      return;
+    }
+  }
+}
+
 /// The demo's summary (it prints it when it ends) and the core's end of the channel: each end's
-/// energy out against the other end's in, printed and checked (J1: within 1 mJ).
+/// energy out against the other end's in, printed and checked (J1: within 1 mJ). Each end
+/// compares its output with the other's report of a loop ago (docs/control.md), so the totals
+/// agree once nothing moves: the handle is let come to rest first, and the core's total in is
+/// the largest it reached while the demo ended (it restarts at zero with the session). (CI on
+/// 734e716: judged while a released hand still moved, the client's out was 2.3 mJ above.)
 void expect_balanced_channel(Scenario& s, const char* name) {
+  wait_until_still(s);
   const shm::VpPayload vp = s.stack.vp();
   const shm::VprPayload vpr = s.stack.vpr();
   s.demo->signal(SIGTERM);
-  s.demo->wait(10s);
+  double core_in = vp.channel_energy_in;
+  for (int polls = 0; polls < 10000 && s.demo->wait(1ms) == -1; ++polls) {
+    core_in = std::max(core_in, s.stack.vp().channel_energy_in);
+  }
+  core_in = std::max(core_in, s.stack.vp().channel_energy_in);
   const std::string summary = s.demo->out();
   const double client_out = json_number(summary, "channel_energy_out");
   const double client_in = json_number(summary, "channel_energy_in");
   std::printf("%s: channel, core end %.4f J in, %.4f J out; client end %.4f J in, %.4f J out\n",
-              name, vp.channel_energy_in, vp.channel_energy_out, client_in, client_out);
+              name, core_in, vp.channel_energy_out, client_in, client_out);
   EXPECT_LE(vp.channel_energy_out, vpr.client_energy_in + 1e-3)
       << "the core's end gives no more than the client put in";
   ASSERT_FALSE(std::isnan(client_out)) << "no summary from the demo: " << summary;
-  EXPECT_LE(client_out, vp.channel_energy_in + 1e-3)
+  EXPECT_LE(client_out, core_in + 1e-3)
       << "the client's end gives no more than the core put in";
 }
 
@@ -248,6 +270,9 @@ TEST_P(ContactBlackout, TheHandleIsNeverSnappedBackAndTheForceReturnsWithin300ms
     const double at_return = r[fresh].speed;
     const double peak_speed = max_speed(r, fresh, judged_to);
     const double step = largest_force_step(r, index_of(r, cut), judged_to);
+    if (s.long_cycle_explains(step)) {
+      return false;
+    }
     std::printf(
         "contact blackout %d ms: the handle went %.1f mm through the faded wall and moved at "
         "%.3f m/s when the link returned; after it peak %.3f m/s, out of the wall at most %.3f "
@@ -258,9 +283,10 @@ TEST_P(ContactBlackout, TheHandleIsNeverSnappedBackAndTheForceReturnsWithin300ms
     // The viscous hold (20 N.s/m, the device's stable damping) lets a 5 N push through the faded
     // wall at up to 0.25 m/s during the blackout; the return must not snap the handle back nor
     // speed it up: the spring restarts where the handle is.
-    // J1 asks 0.1 m/s out of the wall; measured 0.13-0.14 m/s (2026-12-03, docs/control.md, Not
-    // yet: J1 is open there). This bound keeps what was won: f3c5aec snapped the handle back at
-    // 0.25, 0.59 and 1.12 m/s after 0.1, 0.3 and 2 s.
+    // J1 asks 0.1 m/s; the handle still moving in at the hold's 0.16-0.21 m/s when the link
+    // returns rebounds off the returning wall at 0.18-0.19 m/s after 0.1 and 0.3 s, 0.09 m/s after
+    // 2 s (2026-12-03, docs/control.md, Not yet: J1 is open there). This bound keeps what was
+    // won: f3c5aec snapped the handle back at 0.25, 0.59 and 1.12 m/s after 0.1, 0.3 and 2 s.
     EXPECT_LE(snap, 0.2) << "no snap-back: " << around_fastest(r, fresh, judged_to);
     EXPECT_LE(step, kReleaseStep + 1e-6) << "no step over 1 N/ms in any cycle";
     EXPECT_LT(full, judged_to) << "the push is felt again";
@@ -317,6 +343,9 @@ TEST_P(ImpedanceCommand, IsRenderedWithin2PercentOnAnUnheldHandle) {
       ++end;
     }
     if (end <= start + static_cast<std::size_t>(kCyclesPerSecond / 10)) {
+      if (s.stack.telemetry().would_fail_safe > 0) {
+        return false;  // a stall the core rode through threw the handle: the machine's
+      }
       ADD_FAILURE() << "no judged window of 100 ms";
       return true;
     }

@@ -13,7 +13,10 @@
 #  5. the coupling over an impaired link (bench/coupling.sh, H1): per one-way delay and loss,
 #     the demo's sphere through hapticctrl-netem with a scripted operator (contact, a blackout
 #     while pressing, force steps, a wandering spring-damper hand), against the sampled-data
-#     stiffness bound and F / K_series (coupling.md);
+#     stiffness bound and F / K_series (coupling.md); and in contact (bench/contact.sh, J1): the
+#     demo's sphere on a stiff wall (VIRTMECH 3000 and 5000 N/m, an IMPEDANCE client's 2000
+#     N/m) pushed at 10 N, then a hand wandering into and along it, with the two-port balance
+#     (contact.md);
 #  6. the weighted sphere at rest (bench/gravity_rest.sh, H1): `hapticctrl-demo --gravity`,
 #     nobody touching, 10 minutes (gravity.md);
 #  7. the peers (H8): the seqlock regions against iceoryx, LCM and UDP, cross-process, in one
@@ -21,10 +24,10 @@
 #     stopped and a killed reader), in report.md's section 5.
 #
 # usage: scripts/bench.sh [--out DIR] [--build DIR] [--seconds N] [--long] [--smoke]
-#   default about 38 minutes (8 s per latency run, 15 s per link run, 14 coupling cases of
-#   ~90 s, 10 minutes at rest); --long: 60 s and 120 s latency and link runs; --smoke: 1 s runs,
-#   2 coupling cases with 8 s of hand motion, 20 s at rest (checks the pipeline, not the
-#   machine).
+#   default about 95 minutes (8 s per latency run, 15 s per link run, 14 coupling cases of
+#   ~90 s, 48 contact cases of ~70 s, 10 minutes at rest); --long: 60 s and 120 s latency and
+#   link runs; --smoke: 1 s runs, 2 coupling and 2 contact cases with 8 s of hand motion, 20 s
+#   at rest (checks the pipeline, not the machine).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 OUT=bench-report BUILD=build LAT_S=8 LINK_S=15 MIN_TIME=0.2 PINGS=20000 SMOKE=
@@ -168,6 +171,8 @@ done
 # 5: the coupling over an impaired link.
 echo "bench: the coupling over an impaired link (hapticctrl-netem)" >&2
 bench/coupling.sh "$OUT" "$BUILD" $SMOKE
+echo "bench: the coupling in contact (stiff walls, hapticctrl-netem)" >&2
+bench/contact.sh "$OUT" "$BUILD" $SMOKE
 
 # 6: the weighted sphere at rest.
 echo "bench: the weighted sphere at rest (hapticctrl-demo --gravity)" >&2
@@ -180,6 +185,8 @@ echo "bench: the seqlock regions against iceoryx, LCM and UDP (hapticctrl-bench-
 
 python3 bench/report.py "$OUT"
 python3 bench/coupling_report.py "$OUT" >/dev/null
+python3 bench/contact_report.py "$OUT" >/dev/null
 python3 bench/gravity_report.py "$OUT" >/dev/null
-{ echo; cat "$OUT/coupling.md"; echo; cat "$OUT/gravity.md"; } >>"$OUT/report.md"
+{ echo; cat "$OUT/coupling.md"; echo; cat "$OUT/contact.md"; echo; cat "$OUT/gravity.md"; } \
+  >>"$OUT/report.md"
 echo "bench: report in $OUT/report.md" >&2

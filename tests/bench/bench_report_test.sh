@@ -16,7 +16,8 @@ report = open(os.path.join(out, "report.md"), encoding="utf-8").read()
 for heading in ("## The seeds' requirements", "## 1. Wake-up latency", "## 2. SERVO start delay",
                 "## 3. End to end at 1 kHz", "## 4. Micro-benchmarks",
                 "## 5. Side by side with the peers",
-                "## Coupling over an impaired link (H1)", "## The weighted sphere at rest (H1)"):
+                "## Coupling over an impaired link (H1)", "## The coupling in contact (J1)",
+                "## The weighted sphere at rest (H1)"):
     assert heading in report, f"report.md lacks '{heading}'"
 assert "The DDS path (H7" in report and "against LCM" in report and "against UDP" in report
 for period in (1000, 250, 100):
@@ -58,6 +59,17 @@ for c in cases:
                 "recouple_ms", "speed_after_return"):
         assert c.get(key) is not None, (key, c)
     assert not c["contact_held"] or c["k_rendered"] > 0 and c["penetration_mm"] > 0, c
+# The coupling in contact (J1): both smoke cases judged, every figure measured, and the plot.
+walls = json.load(open(os.path.join(out, "contact.json"), encoding="utf-8"))
+assert sorted((c["mode"], c["stiffness"]) for c in walls) == [("impedance", 2000),
+                                                                ("virtmech", 3000)], walls
+for c in walls:
+    assert c["judged"], c
+    for key in ("push_speed", "felt_n", "saturated_cycles", "port_energy_j", "core_excess_j",
+                "client_excess_j", "meets_j1", "stalls_ridden"):
+        assert c.get(key) is not None, (key, c)
+with open(os.path.join(out, "contact.png"), "rb") as f:
+    assert f.read(8) == b"\x89PNG\r\n\x1a\n", "contact.png is not a PNG"
 # The peers (H8): every transport and read mode measured in the same run, none left out.
 peers = r["peers"]["cases"]
 names = sorted((c["transport"], c["mode"]) for c in peers)

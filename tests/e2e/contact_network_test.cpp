@@ -105,8 +105,7 @@ void expect_balanced_channel(Scenario& s, const char* name) {
   EXPECT_LE(vp.channel_energy_out, vpr.client_energy_in + 1e-3)
       << "the core's end gives no more than the client put in";
   ASSERT_FALSE(std::isnan(client_out)) << "no summary from the demo: " << summary;
-  EXPECT_LE(client_out, core_in + 1e-3)
-      << "the client's end gives no more than the core put in";
+  EXPECT_LE(client_out, core_in + 1e-3) << "the client's end gives no more than the core put in";
 }
 
 struct WallCase {

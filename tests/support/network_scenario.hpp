@@ -102,13 +102,13 @@ struct Scenario {
   /// length, and the core's longest period since it started was at least that long (CI
   /// 2026-12-03: 1.16 N in a run whose core rode through 78 stalls). Said when true.
   [[nodiscard]] bool long_cycle_explains(double step) const {
-    const double longest_ms =
-        static_cast<double>(stack.telemetry().measured_period.max_ns) / 1e6;
+    const double longest_ms = static_cast<double>(stack.telemetry().measured_period.max_ns) / 1e6;
     const bool explained = step > kReleaseStep && longest_ms >= step;  // 1 N per ms
     if (explained) {
-      std::printf("%s: a step of %.2f N in one cycle, with a cycle of up to %.2f ms: the "
-                  "machine's, tried again\n",
-                  stack.instance().c_str(), step, longest_ms);
+      std::printf(
+          "%s: a step of %.2f N in one cycle, with a cycle of up to %.2f ms: the "
+          "machine's, tried again\n",
+          stack.instance().c_str(), step, longest_ms);
     }
     return explained;
   }

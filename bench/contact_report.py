@@ -50,18 +50,14 @@ def push_figures(rows):
 
 
 def analyse(case_dir):
-    case = json.load(open(os.path.join(case_dir, "case.json")))
     push = cr.read_csv(os.path.join(case_dir, "push.csv"))
     hand = cr.read_csv(os.path.join(case_dir, "hand.csv"))
     status = cr.status_of(os.path.join(case_dir, "status.json"))
     client = status.get("client", {})
     summary = demo_summary(os.path.join(case_dir, "demo.json"))
-    failed = (not push or not hand or "channel_energy_in" not in client or not summary
-              or "FAIL-SAFE" in open(os.path.join(case_dir, "core.err")).read())
-    out = dict(case)
-    out["judged"] = not failed
-    out["stalls_ridden"] = status.get("cycle_health", {}).get("would_fail_safe")
-    if failed:
+    out = cr.case_record(case_dir, status, bool(
+        push and hand and "channel_energy_in" in client and summary))
+    if not out["judged"]:
         return out
     out.update(push_figures(push))
     pushed = cr.status_of(os.path.join(case_dir, "status_push.json")).get("client", {})

@@ -212,18 +212,22 @@ def status_of(path):
         return {}
 
 
+def case_record(case_dir, status, complete):
+    """The case as the script wrote it, whether it can be judged (complete, and the core never
+    failed safe) and the VM stalls the core rode through (also bench/contact_report.py)."""
+    out = json.load(open(os.path.join(case_dir, "case.json")))
+    out["judged"] = complete and "FAIL-SAFE" not in open(os.path.join(case_dir, "core.err")).read()
+    out["stalls_ridden"] = status.get("cycle_health", {}).get("would_fail_safe")
+    return out
+
+
 def analyse(case_dir):
-    case = json.load(open(os.path.join(case_dir, "case.json")))
     phases = {name: read_csv(os.path.join(case_dir, name + ".csv"))
               for name in ("contact", "steps", "hand", "blackout")}
     status = status_of(os.path.join(case_dir, "status.json"))
     client = status.get("client", {})
-    failed = (not all(phases.values())
-              or "FAIL-SAFE" in open(os.path.join(case_dir, "core.err")).read())
-    out = dict(case)
-    out["judged"] = not failed
-    out["stalls_ridden"] = status.get("cycle_health", {}).get("would_fail_safe")
-    if failed:
+    out = case_record(case_dir, status, all(phases.values()))
+    if not out["judged"]:
         return out
     gains = client.get("gains", [0, 0, 0, 0])
     loop_ms = client.get("loop_delay_ms", 0.0)

@@ -14,6 +14,11 @@ namespace {
 /// 20 ms with 10 % loss, H1; bounded by the time between two sends alone, two sends 10 us apart
 /// after a burst of answers let it reach 25 000 N.s/m on the demo's sphere, J1 2026-12-03).
 constexpr double kDamperShare = 0.5;
+/// Held by a contact, the damper may stop the object's step outright (alpha dt / m = 1: the
+/// explicit integration's motion brought to rest, never reversed). With half of it, a hand
+/// wandering on a 3000 N/m wall at 100 ms one way left the client's end 3.9 J over what the core
+/// put in in 60 s; with all of it 0.40-0.77 J (bench/contact.sh, J1 2026-12-03: still open).
+constexpr double kContactDamperShare = 1.0;
 
 double dot3(const Vector6& a, const Vector6& b, std::size_t from) noexcept {
   return a[from] * b[from] + a[from + 1] * b[from + 1] + a[from + 2] * b[from + 2];
@@ -68,11 +73,12 @@ Vector6 ChannelPassivity::render(const Vector6& wrench) noexcept {
   // full damper held over the application's catch-up steps drove the weighted sphere to 77 m/s
   // at 20 ms with 10 % loss, H1; unbounded by that share, it shook the resting weighted sphere's
   // support between 1.4 and 7.4 N and the handle carried 6.4 N for its 4.9 N, J1 2026-12-03).
-  // Held by a contact, it is whole, within the integration's bound alone. (A cut of what it
-  // could not take, from the wrench along the last step's motion, turned the object's next step
-  // by 90 degrees or more: a self-made dither of 2-20 mm/s against the wall that the cut never
-  // caught, and the client's end gave 0.7-13 mJ more than the core put in on 7 of 9 runs of the
-  // wandering hand at 10 ms one way; without it 4 of 4 balanced, J1 2026-12-03.)
+  // Held by a contact, it is whole, within the integration's bound alone (kContactDamperShare).
+  // A cut of what it could not take, from the wrench along the last step's motion, turned the
+  // object's next step by 90 degrees or more: a self-made dither of 2-20 mm/s against the wall
+  // that the cut never caught, and the client's end gave 0.7-13 mJ more than the core put in on
+  // 7 of 9 runs of the wandering hand at 10 ms one way; without it 4 of 4 balanced (J1
+  // 2026-12-03; at 50-100 ms the cut did better, 0.22-0.26 J over, for 0.15-0.77 J without).
   for (std::size_t from = 0; from < 6; from += 3) {
     const double v_sq = dot3(twist_, twist_, from);
     const double working = v_sq > 1e-15 ? std::max(0.0, dot3(wrench, twist_, from) / v_sq) : 0.0;
@@ -125,8 +131,9 @@ void ChannelPassivity::on_step(const Vector6& twist, double dt, double held,
     // the spring re-anchored after a blackout, that let the weighted sphere's handle fall back at
     // 0.23-0.36 m/s, J1 2026-12-03.)
     const double alpha = excess / ((lin_sq + ang_sq) * dt);
-    alpha_linear_ = std::min(alpha, kDamperShare * mass_ / held);
-    alpha_angular_ = std::min(alpha, kDamperShare * inertia_ / held);
+    const double share = contact_share_ > 0.0 ? kContactDamperShare : kDamperShare;
+    alpha_linear_ = std::min(alpha, share * mass_ / held);
+    alpha_angular_ = std::min(alpha, share * inertia_ / held);
     ++active_steps_;
   }
 }

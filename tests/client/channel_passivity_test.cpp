@@ -68,21 +68,21 @@ TEST(ChannelPassivity, TheDamperStaysWithinWhatTheObjectsIntegrationBears) {
 }
 
 TEST(ChannelPassivity, HeldByAContactTheDamperIsWholeWithinTheIntegrationAndTheRestIsOwed) {
-  // In contact (protocol 1.3) the damper may push against the motion, within the integration;
-  // nothing beyond it is cut (a cut turned the object's next step and dithered it against the
-  // wall), and what it could not take is damped on the next steps.
+  // In contact (protocol 1.3) the damper may push against the motion and stop the object's step
+  // outright (alpha <= m / dt), no more; nothing beyond it is cut (a cut turned the object's
+  // next step and dithered it against the wall), and what it could not take stays owed.
   ChannelPassivity pc;
   pc.set_object(0.2, 1e-5);
   pc.set_contact_share(1.0);
   (void)pc.render({500.0, 0, 0, 0, 0, 0});
   pc.on_step({1.0, 0, 0, 0, 0, 0}, kDt, kDt, next_ns());  // 0.5 J out: alpha 500 wanted
-  EXPECT_NEAR(pc.render({500.0, 0, 0, 0, 0, 0})[0], 400.0, 1e-9)
-      << "alpha <= m / (2 dt) = 100 N.s/m, and nothing more";
-  EXPECT_NEAR(pc.render({-500.0, 0, 0, 0, 0, 0})[0], -500.0 - 100.0, 1e-9)
+  EXPECT_NEAR(pc.render({500.0, 0, 0, 0, 0, 0})[0], 300.0, 1e-9)
+      << "alpha <= m / dt = 200 N.s/m, and nothing more";
+  EXPECT_NEAR(pc.render({-500.0, 0, 0, 0, 0, 0})[0], -500.0 - 200.0, 1e-9)
       << "against the motion: the same damper";
-  pc.on_step({1.0, 0, 0, 0, 0, 0}, kDt, kDt, next_ns());  // the damper took 0.1 J of 0.5
-  EXPECT_NEAR(pc.render({500.0, 0, 0, 0, 0, 0})[0], 400.0, 1e-9)
-      << "0.4 J still owed: the damper stays on the next step";
+  pc.on_step({1.0, 0, 0, 0, 0, 0}, kDt, kDt, next_ns());  // the damper took 0.2 J of 0.5
+  EXPECT_NEAR(pc.render({500.0, 0, 0, 0, 0, 0})[0], 300.0, 1e-9)
+      << "0.3 J still owed: the damper stays on the next step";
 }
 
 TEST(ChannelPassivity, TheObjectsOutputIsComparedALoopLate) {

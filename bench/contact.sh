@@ -63,22 +63,15 @@ case_run() {  # name mode stiffness delay_ms loss jitter_ms
   local name=$1 mode=$2 stiffness=$3 delay=$4 loss=$5 jitter=$6 dir=$RAW/$1
   rm -rf "$dir"
   mkdir -p "$dir"
-  local inst="benchcon$$" port relay demo
+  local inst="benchcon$$" demo
   start_core_and_bridge "$inst" "$dir"
-  port=$(port_of "$dir/udp.out")
-  "$BUILD/bench/netem/hapticctrl-netem" --to "127.0.0.1:$port" --delay-ms "$delay" \
-    --loss "$loss" --jitter-ms "$jitter" --seed 7 --json >"$dir/netem.out" 2>"$dir/netem.err" &
-  PIDS+=($!)
-  relay=$(port_of "$dir/netem.out")
-  "$BUILD/demo/hapticctrl-demo" --server "127.0.0.1:$relay" --headless --no-lcm --json \
+  start_relay "$dir" "$delay" "$loss" "$jitter"
+  "$BUILD/demo/hapticctrl-demo" --server "127.0.0.1:$RELAY_PORT" --headless --no-lcm --json \
     --no-reconnect --obstacle wall --toward x --gap 0 --contact-stiffness "$stiffness" \
     --contact-damping 2 --command "$mode" >"$dir/demo.json" 2>"$dir/demo.err" &
   demo=$!
   PIDS+=("$demo")
-  for _ in $(seq 1 200); do
-    grep -q "ready:" "$dir/demo.err" 2>/dev/null && break
-    sleep 0.05
-  done
+  wait_for_ready "$dir/demo.err"
   sleep 1  # the demo powers on and couples
   local hmi=("$BUILD/hmi/hapticctrl-hmi" --instance "$inst")
   "${hmi[@]}" play "$RAW/push.seq" --log "$dir/push.csv" >"$dir/hmi.out" 2>&1 &

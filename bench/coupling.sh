@@ -67,22 +67,14 @@ case_run() {  # name delay_ms loss jitter_ms
   local name=$1 delay=$2 loss=$3 jitter=$4 dir=$RAW/$1
   rm -rf "$dir"
   mkdir -p "$dir"
-  local inst="benchcpl$$" port relay
+  local inst="benchcpl$$"
   start_core_and_bridge "$inst" "$dir"
-  port=$(port_of "$dir/udp.out")
-  "$BUILD/bench/netem/hapticctrl-netem" --to "127.0.0.1:$port" --delay-ms "$delay" \
-    --loss "$loss" --jitter-ms "$jitter" --seed 7 --json >"$dir/netem.out" 2>"$dir/netem.err" &
-  local relay_pid=$!
-  PIDS+=($relay_pid)
-  relay=$(port_of "$dir/netem.out")
-  "$BUILD/demo/hapticctrl-demo" --server "127.0.0.1:$relay" --headless --no-lcm \
+  start_relay "$dir" "$delay" "$loss" "$jitter"
+  "$BUILD/demo/hapticctrl-demo" --server "127.0.0.1:$RELAY_PORT" --headless --no-lcm \
     --contact-stiffness 2000 --json --no-reconnect --log "$dir/demo.csv" >"$dir/demo.json" \
     2>"$dir/demo.err" &
   PIDS+=($!)
-  for _ in $(seq 1 200); do
-    grep -q "ready:" "$dir/demo.err" 2>/dev/null && break
-    sleep 0.05
-  done
+  wait_for_ready "$dir/demo.err"
   sleep 0.3  # the demo powers on and couples
   local hmi=("$BUILD/hmi/hapticctrl-hmi" --instance "$inst")
   "${hmi[@]}" play "$RAW/contact.seq" --log "$dir/contact.csv" >"$dir/hmi.out" 2>&1 || true
@@ -91,9 +83,9 @@ case_run() {  # name delay_ms loss jitter_ms
     >>"$dir/hmi.out" 2>&1 &
   local player=$!
   sleep 1.2
-  kill -USR1 "$relay_pid"  # blackout on
+  kill -USR1 "$RELAY_PID"  # blackout on
   sleep 0.3
-  kill -USR1 "$relay_pid"  # and off
+  kill -USR1 "$RELAY_PID"  # and off
   wait "$player" || true
   "${hmi[@]}" play "$RAW/steps.seq" --log "$dir/steps.csv" --hand 300,5 >>"$dir/hmi.out" 2>&1 ||
     true

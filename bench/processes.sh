@@ -1,5 +1,5 @@
 # Sourced by the benchmark scripts that start the product's processes: PIDS, stop_all (also on
-# exit), start_core_and_bridge and port_of. Expects BUILD.
+# exit), start_core_and_bridge, start_relay, wait_for_ready and port_of. Expects BUILD.
 PIDS=()
 stop_all() {  # TERM every started process and wait for it
   for pid in "${PIDS[@]}"; do kill -TERM "$pid" 2>/dev/null || true; done
@@ -31,4 +31,22 @@ start_core_and_bridge() {  # instance dir: a 1 ms core in benchmark mode and a U
   done
   "$BUILD/bridges/udp/hapticctrl-udp" --instance "$1" --port 0 >"$2/udp.out" 2>"$2/udp.err" &
   PIDS+=($!)
+}
+
+start_relay() {  # dir delay_ms loss jitter_ms: hapticctrl-netem in front of the bridge that
+  # start_core_and_bridge started in DIR; sets RELAY_PID and RELAY_PORT (the demo's server).
+  local port
+  port=$(port_of "$1/udp.out")
+  "$BUILD/bench/netem/hapticctrl-netem" --to "127.0.0.1:$port" --delay-ms "$2" --loss "$3" \
+    --jitter-ms "$4" --seed 7 --json >"$1/netem.out" 2>"$1/netem.err" &
+  RELAY_PID=$!
+  PIDS+=("$RELAY_PID")
+  RELAY_PORT=$(port_of "$1/netem.out")
+}
+
+wait_for_ready() {  # file: until a program printed "ready:" there (10 s at most)
+  for _ in $(seq 1 200); do
+    grep -q "ready:" "$1" 2>/dev/null && return 0
+    sleep 0.05
+  done
 }

@@ -99,7 +99,7 @@ void ChannelPassivity::on_step(const Vector6& twist, double dt, double held,
   }
   held = std::isfinite(held) ? std::max(held, dt) : dt;
   // The channel's power into the object, with the channel's wrench (Ryu's observer); the PC's
-  // damping is booked apart: what they took leaves the output account.
+  // damping is booked apart: what it took leaves the output account.
   double power = 0.0;
   double damped = 0.0;
   for (std::size_t i = 0; i < 6; ++i) {

@@ -103,7 +103,9 @@ struct Scenario {
   /// 2026-12-03: 1.16 N in a run whose core rode through 78 stalls). Said when true.
   [[nodiscard]] bool long_cycle_explains(double step) const {
     const double longest_ms = static_cast<double>(stack.telemetry().measured_period.max_ns) / 1e6;
-    const bool explained = step > kReleaseStep && longest_ms >= step;  // 1 N per ms
+    // Over the bound as the tests judge it (1e-6 N for rounding: an exact 1.00 N step was
+    // retried under load, 2026-12-03), and 1 N per ms of the longest cycle.
+    const bool explained = step > kReleaseStep + 1e-6 && longest_ms >= step;
     if (explained) {
       std::printf(
           "%s: a step of %.2f N in one cycle, with a cycle of up to %.2f ms: the "

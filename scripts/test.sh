@@ -25,8 +25,12 @@ configure_build_test() {  # dir, ctest label regex, ctest attempts, extra cmake 
   if [[ -r /proc/sys/vm/mmap_rnd_bits && $(cat /proc/sys/vm/mmap_rnd_bits) -gt 28 ]]; then
     runner=(setarch "$(uname -m)" -R)
   fi
-  (cd "$dir" && "${runner[@]}" ctest --output-on-failure -j "$JOBS" -L "$labels" --timeout 600 \
-    --repeat until-pass:"$attempts")
+  if ! (cd "$dir" && "${runner[@]}" ctest --output-on-failure -j "$JOBS" -L "$labels" \
+    --timeout 600 --repeat until-pass:"$attempts"); then
+    # A long log is often read from its end: say there why each failed test failed.
+    python3 "$ROOT/scripts/why_tests_failed.py" "$dir"
+    return 1
+  fi
 }
 
 echo "== build and test (RelWithDebInfo)"

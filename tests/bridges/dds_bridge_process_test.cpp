@@ -56,6 +56,18 @@ struct DdsStack {
     EXPECT_EQ(bridge.wait(5s), 0) << bridge.err();
     return bridge.out();
   }
+  /// A running core's diagnostics are OK, or WARN when the core itself reported missed
+  /// deadlines: a stall of the machine is the core's to report and the bridge's to pass on, not
+  /// a fault of the topics (J5: a 10 ms core missed 2 deadlines beside other programs).
+  void expect_running_level(const std::string& json) const {
+    const double level = json_number(json, "diagnostics_level");
+    if (level == 1.0) {
+      EXPECT_GT(controller.telemetry().misses_total, 0U)
+          << "WARN only when the core missed deadlines: " << json;
+    } else {
+      EXPECT_EQ(level, 0.0) << json;
+    }
+  }
 };
 
 TEST(DdsBridgeProcess, EveryTopicArrivesWithRos2NamesAtTheConfiguredRate) {
@@ -81,7 +93,7 @@ TEST(DdsBridgeProcess, EveryTopicArrivesWithRos2NamesAtTheConfiguredRate) {
             std::string::npos);
   EXPECT_NE(json.find("\"joint_names\":\"joint1 joint2 joint3 joint4 joint5 joint6 \""),
             std::string::npos);
-  EXPECT_EQ(json_number(json, "diagnostics_level"), 0) << json;
+  s.expect_running_level(json);
   EXPECT_NE(json.find("core_state=running"), std::string::npos) << json;
   // The arm rests unpowered: what arrived is what the core publishes now.
   const shm::PositionPayload p = s.controller.position();
@@ -161,7 +173,7 @@ TEST(DdsBridgeProcess, SurvivesACoreRestart) {
   ASSERT_TRUE(s.controller.ready()) << s.controller.diagnostics();
   const std::string after = s.listen(2.0);
   EXPECT_GT(json_number(after, "handle_pose_count"), 50) << after << s.bridge.err();
-  EXPECT_EQ(json_number(after, "diagnostics_level"), 0) << after;
+  s.expect_running_level(after);
 }
 
 }  // namespace

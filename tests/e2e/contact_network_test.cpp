@@ -312,7 +312,6 @@ TEST_P(ImpedanceCommand, IsRenderedWithin2PercentOnAnUnheldHandle) {
     { std::ofstream(script) << "0.5 push " << -push << " 0 0\n"; }
     Scenario s("j1-imp-" + std::to_string(attempt), {},
                {"--command", "impedance", "--gap", "0.3", "--script", script});
-    std::uint64_t coupled_at = 0;
     if (!s.started()) {
       ADD_FAILURE() << "the stack did not start: " << s.diagnostics();
       return true;
@@ -322,7 +321,6 @@ TEST_P(ImpedanceCommand, IsRenderedWithin2PercentOnAnUnheldHandle) {
     if (s.core_failed_safe()) {
       return false;
     }
-    (void)coupled_at;
     const auto r = s.recorder->records();
     // From 20 ms after the command arrives (the rate limit brings 6 N in 6 ms) to the
     // workspace's edge, the speed brake's threshold, or 1 s.
@@ -341,10 +339,9 @@ TEST_P(ImpedanceCommand, IsRenderedWithin2PercentOnAnUnheldHandle) {
            r[end].position[0] > 0.32 && r[end].speed < 0.9) {
       ++end;
     }
-    if (end <= start + static_cast<std::size_t>(kCyclesPerSecond / 10)) {
-      if (s.stack.telemetry().would_fail_safe > 0) {
-        return false;  // a stall the core rode through threw the handle: the machine's
-      }
+    // In cycles, not records: the recorder may miss a few under load, and the window is about
+    // 106 ms at 6 N (the brake's threshold is reached that soon).
+    if (end == start || r[end - 1].cycle - r[start].cycle < kCyclesPerSecond / 10) {
       ADD_FAILURE() << "no judged window of 100 ms";
       return true;
     }

@@ -9,6 +9,7 @@
 #include "hapticctrl/shm/payloads.hpp"
 #include "support/controller_stack.hpp"
 #include "support/json_fields.hpp"
+#include "support/machine_retries.hpp"
 #include "support/spawned_process.hpp"
 
 namespace hapticctrl::test {
@@ -101,37 +102,55 @@ TEST(DemoEndToEnd, PushingTheHandleBringsTheSphereToRestAgainstTheFixedOne) {
   if (!kCrispPhysics) {
     GTEST_SKIP() << "needs the 4 ms cycle; instrumented builds run 10 ms (see kPeriodUs)";
   }
-  ControllerStack stack("e2e-push", kPeriodUs);
-  ASSERT_TRUE(stack.ready()) << stack.diagnostics();
-  Demo demo(stack, {});
-  ASSERT_TRUE(demo.ready()) << demo.err();
-  ASSERT_TRUE(ControllerStack::eventually([&] {
-    return (stack.vp().state_word & shm::state_bits::kCoupled) != 0;
-  })) << "the demo powers on and couples";
-  const double x0 = stack.position().handle_pose[0];
-  constexpr double kPush = 5.0;
-  ASSERT_EQ(run_hmi(stack, {"force", "5", "0", "0", "0", "0", "0"}), 0);
-  std::this_thread::sleep_for(4s);  // reach, touch, settle (about 1.5 s on this machine)
-  const shm::PositionPayload p = stack.position();
-  const std::string json = demo.finish();
-  ASSERT_FALSE(json.empty()) << demo.err();
-  const auto contact = json_numbers(json, "contact_force");
-  const auto sphere = json_numbers(json, "sphere_position");
-  const auto velocity = json_numbers(json, "sphere_velocity");
-  ASSERT_EQ(contact.size(), 3U) << json;
-  EXPECT_NEAR(-contact[0], kPush, 0.05 * kPush) << "at rest the contact holds the operator's push";
-  EXPECT_LT(std::hypot(velocity[0], velocity[1], velocity[2]), 0.005) << "the sphere is at rest";
-  EXPECT_LT(std::hypot(p.handle_twist[0], p.handle_twist[1], p.handle_twist[2]), 0.005)
-      << "the handle is at rest";
-  EXPECT_GT(sphere[0] - x0, kGap) << "the sphere travelled the gap (and pressed in)";
-  EXPECT_GT(p.handle_pose[0] - x0, kGap) << "the handle came along";
-  // Handle and sphere are apart by the coupling spring's deflection under the push, no more:
-  // the handle leads (it pushes the sphere through the spring) by at most push / k.
-  const auto coupling = json_numbers(json, "coupling_wrench");
-  EXPECT_NEAR(coupling[0], kPush, 0.05 * kPush);
-  EXPECT_GT(p.handle_pose[0] - sphere[0], 0.0) << json;
-  EXPECT_LT(p.handle_pose[0] - sphere[0], kPush / kLeastCouplingStiffness) << json;
-  EXPECT_EQ(demo.status(), 0) << demo.err();
+  // A stall of 20 ms fails the 4 ms core safe (CI, 2026-12-03: it failed this test in both
+  // ctest attempts): such an attempt, or one whose check failed while its core measured a stall,
+  // is tried again (machine_retries.hpp).
+  retry_what_the_machine_disturbed("push to rest", 3, [](int attempt) {
+    ControllerStack stack("e2e-push-" + std::to_string(attempt), kPeriodUs);
+    if (!stack.ready()) {
+      ADD_FAILURE() << stack.diagnostics();
+      return true;
+    }
+    Demo demo(stack, {});
+    if (!demo.ready()) {
+      ADD_FAILURE() << demo.err();
+      return true;
+    }
+    if (!ControllerStack::eventually(
+            [&] { return (stack.vp().state_word & shm::state_bits::kCoupled) != 0; })) {
+      ADD_FAILURE() << "the demo powers on and couples";
+      return true;
+    }
+    const double x0 = stack.position().handle_pose[0];
+    constexpr double kPush = 5.0;
+    EXPECT_EQ(run_hmi(stack, {"force", "5", "0", "0", "0", "0", "0"}), 0);
+    std::this_thread::sleep_for(4s);  // reach, touch, settle (about 1.5 s on this machine)
+    const shm::PositionPayload p = stack.position();
+    const std::string json = demo.finish();
+    const auto contact = json_numbers(json, "contact_force");
+    const auto sphere = json_numbers(json, "sphere_position");
+    const auto velocity = json_numbers(json, "sphere_velocity");
+    const auto coupling = json_numbers(json, "coupling_wrench");
+    if (contact.size() != 3U || sphere.size() != 3U || velocity.size() != 3U ||
+        coupling.size() != 6U) {
+      ADD_FAILURE() << "no summary from the demo: " << json << demo.err();
+      return true;
+    }
+    EXPECT_NEAR(-contact[0], kPush, 0.05 * kPush)
+        << "at rest the contact holds the operator's push";
+    EXPECT_LT(std::hypot(velocity[0], velocity[1], velocity[2]), 0.005) << "the sphere is at rest";
+    EXPECT_LT(std::hypot(p.handle_twist[0], p.handle_twist[1], p.handle_twist[2]), 0.005)
+        << "the handle is at rest";
+    EXPECT_GT(sphere[0] - x0, kGap) << "the sphere travelled the gap (and pressed in)";
+    EXPECT_GT(p.handle_pose[0] - x0, kGap) << "the handle came along";
+    // Handle and sphere are apart by the coupling spring's deflection under the push, no more:
+    // the handle leads (it pushes the sphere through the spring) by at most push / k.
+    EXPECT_NEAR(coupling[0], kPush, 0.05 * kPush);
+    EXPECT_GT(p.handle_pose[0] - sphere[0], 0.0) << json;
+    EXPECT_LT(p.handle_pose[0] - sphere[0], kPush / kLeastCouplingStiffness) << json;
+    EXPECT_EQ(demo.status(), 0) << demo.err();
+    return true;
+  });
 }
 
 TEST(DemoEndToEnd, AForceOnTheSphereInTheClientMovesTheArmHandle) {

@@ -13,6 +13,7 @@
 
 #include "hapticctrl/shm/segment.hpp"
 #include "support/child_process.hpp"
+#include "support/machine_disturbance.hpp"
 #include "support/spawned_process.hpp"
 
 namespace hapticctrl::test {
@@ -84,8 +85,12 @@ class ControllerStack {
 
   ControllerStack(const ControllerStack&) = delete;
   ControllerStack& operator=(const ControllerStack&) = delete;
-  /// Orderly stops (SIGTERM), so that no shared-memory object is left behind.
+  /// Orderly stops (SIGTERM), so that no shared-memory object is left behind. Notes what the
+  /// machine did to the core (attempt_disturbance) first.
   ~ControllerStack() {
+    if (segment_) {
+      attempt_disturbance().add(telemetry());
+    }
     segment_.reset();
     if (bridge_) {
       bridge_->signal(SIGTERM);

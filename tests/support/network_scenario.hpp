@@ -19,6 +19,7 @@
 
 #include "support/controller_stack.hpp"
 #include "support/cycle_recorder.hpp"
+#include "support/machine_retries.hpp"
 #include "support/spawned_process.hpp"
 
 namespace hapticctrl::test {
@@ -124,22 +125,13 @@ struct Scenario {
   std::optional<CycleRecorder> recorder;
 };
 
-/// Runs `body` until it completes with a core that stayed up (VM stalls retried, and said).
+/// Runs `body` until an attempt is judged on a machine that did not spoil it
+/// (machine_retries.hpp: stalls retried, and said).
 inline void with_retries(const std::string& name, const std::function<bool(int)>& body) {
 #ifdef HAPTICCTRL_SANITIZED
   GTEST_SKIP() << "judged at a 1 ms cycle, which instrumented builds cannot hold";
 #endif
-  int stalled = 0;
-  for (int attempt = 0; attempt < kAttempts; ++attempt) {
-    if (body(attempt)) {
-      std::printf("%s: %d attempt(s) lost to VM stalls (a core that failed safe, a link held up)\n",
-                  name.c_str(), stalled);
-      ::testing::Test::RecordProperty("attempts_lost_to_vm_stalls", stalled);
-      return;
-    }
-    ++stalled;
-  }
-  GTEST_SKIP() << "VM stalls disturbed all " << kAttempts << " attempts: nothing could be judged";
+  retry_what_the_machine_disturbed(name, kAttempts, body);
 }
 
 /// Index of the first record at or after `cycle`.

@@ -1,0 +1,58 @@
+#pragma once
+/// What the machine did to the cores of a test's attempt (J5): each ControllerStack adds its
+/// core's telemetry when it ends, and retry_what_the_machine_disturbed (machine_retries.hpp)
+/// reads it to tell the machine's faults from the software's.
+#include <cstdint>
+#include <cstdio>
+#include <string>
+
+#include "hapticctrl/shm/payloads.hpp"
+
+namespace hapticctrl::test {
+
+/// What the machine did to the cores of one attempt, from their own telemetry.
+struct MachineDisturbance {
+  /// A wake-up this many periods after the previous one is a stall of the machine: as long as
+  /// the five consecutive misses on which the core fails safe (its own work takes a few percent
+  /// of a period).
+  static constexpr std::int64_t kStallPeriods = 5;
+
+  std::uint64_t stalls_ridden = 0;  ///< benchmark mode: miss rules that would have tripped
+  std::int64_t longest_period_ns = 0;
+  std::int64_t nominal_period_ns = 0;
+  bool failed_safe_on_misses = false;
+
+  /// Adds one core's telemetry (read when its stack ends).
+  void add(const shm::TelemetryPayload& t) {
+    stalls_ridden += t.would_fail_safe;
+    if (t.measured_period.max_ns > longest_period_ns) {
+      longest_period_ns = t.measured_period.max_ns;
+      nominal_period_ns = t.period_ns;
+    }
+    failed_safe_on_misses =
+        failed_safe_on_misses ||
+        t.stop_reason == static_cast<std::uint32_t>(shm::StopReason::kConsecutiveMisses) ||
+        t.stop_reason == static_cast<std::uint32_t>(shm::StopReason::kChronicMisses);
+  }
+  [[nodiscard]] bool any() const {
+    return stalls_ridden > 0 || failed_safe_on_misses ||
+           (nominal_period_ns > 0 && longest_period_ns >= kStallPeriods * nominal_period_ns);
+  }
+  [[nodiscard]] std::string text() const {
+    char line[200];
+    std::snprintf(
+        line, sizeof line, "a period of up to %.1f ms for %.1f ms, %llu stall(s) ridden through%s",
+        static_cast<double>(longest_period_ns) / 1e6, static_cast<double>(nominal_period_ns) / 1e6,
+        static_cast<unsigned long long>(stalls_ridden),
+        failed_safe_on_misses ? ", failed safe on missed deadlines" : "");
+    return line;
+  }
+};
+
+/// The disturbance noted by the stacks of the attempt running on this thread.
+inline MachineDisturbance& attempt_disturbance() {
+  thread_local MachineDisturbance disturbance;
+  return disturbance;
+}
+
+}  // namespace hapticctrl::test

@@ -57,10 +57,11 @@ grep -q "time out" "$work/err_pc" || { cat "$work/err_pc" >&2; exit 1; }
 instance="install$$"
 export HAPTICCTRL_RUNTIME_DIR="$work/run"  # where the core's socket appears once it serves
 mkdir -m 0700 "$HAPTICCTRL_RUNTIME_DIR"
-# A 10 ms cycle: the test is about the installed package, and at 1 ms a 5 ms stall of the
-# machine failed the core safe under the example (CI, 2026-12-03: after cycle 89).
+# A 2 ms cycle, the example's own time step (at 10 ms its 2 ms loop finds no fresh sample): the
+# test is about the installed package, and at 1 ms a 5 ms stall of the machine failed the core
+# safe under the example (CI, 2026-12-03: after cycle 89).
 "$build/rt_core/hapticctrl-core" --instance "$instance" --rt ignore --blackbox-dir "$work" \
-  --period-us 10000 --duration 60 >"$work/core.log" 2>&1 &
+  --period-us 2000 --duration 60 >"$work/core.log" 2>&1 &
 pids+=($!)
 for _ in $(seq 200); do
   [ -S "$HAPTICCTRL_RUNTIME_DIR/$instance.sock" ] && break

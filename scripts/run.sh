@@ -21,12 +21,18 @@
 # instead of playing the scenario. For unattended demos and soak runs, never for a person at the
 # arm who has not seen why it stopped (systemd's units do not restart a failed core either).
 #
+# Without a terminal, a controller that fails safe on a stall of this machine (its FAIL-SAFE
+# line says "on a stall of the machine") at the period the probe chose starts the run again at
+# the next longer period (1, 2, 4, 10 ms), at most twice, saying so in one line; a fail-safe the
+# software caused, or one at a period given with --period-us, ends the run as below.
+#
 # Exit status: 0 the controller stopped in order; 10 + the stop reason's code when it failed
 # safe (11: 5 consecutive deadline misses, 14: chronic misses, 15: arm fault, 17: velocity
 # limit; docs/rt_core.md), with the reason printed; 1 anything else that went wrong; 130
 # interrupted.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+ARGS=("$@")  # as given: a run started again after a stall gets them again
 SUPERVISE=0
 if [[ ${1:-} == --supervise ]]; then
   SUPERVISE=1
@@ -88,6 +94,7 @@ on_exit() {
   stop_all
   if [[ ${CORE_RC:-0} -eq 3 ]]; then
     report_fail_safe
+    again_after_stall
     local code
     code=$(sed -n 's/.*"stop_reason_code":\([0-9]*\).*/\1/p' "$RUN_DIR/core.json")
     exit $((10 + ${code:-0}))
@@ -100,6 +107,27 @@ trap 'exit 130' INT TERM
 report_fail_safe() {  # the last fail-safe of core.log, on the terminal
   echo "run: the controller FAILED SAFE: $(grep 'FAIL-SAFE' "$RUN_DIR/core.log" | tail -n 1 |
     sed 's/^hapticctrl-core: FAIL-SAFE //')" >&2
+}
+
+# J5: the probe measures 2 s, and this VM stalls for 5-60 ms now and then (docs/rt_core.md).
+# Starts the whole run again (never returns) at the next longer period when the last fail-safe
+# was a stall of the machine, the period was the probe's, there is no terminal and fewer than
+# two such starts happened; returns otherwise.
+again_after_stall() {
+  local restarts=${HAPTICCTRL_RUN_RESTARTS:-0} next
+  [[ -n ${PROBED_PERIOD:-} && $SUPERVISE -eq 0 && $restarts -lt 2 ]] || return 0
+  [[ -t 0 && -t 1 ]] && return 0  # the panel said it, and R starts a new controller
+  grep 'FAIL-SAFE' "$RUN_DIR/core.log" | tail -n 1 | grep -q 'on a stall of the machine' ||
+    return 0
+  case $PROBED_PERIOD in
+    1000) next=2000 ;;
+    2000) next=4000 ;;
+    4000) next=10000 ;;
+    *) return 0 ;;
+  esac
+  echo "run: that was a stall of this machine, not of the controller: starting again at" \
+    "$((next / 1000)) ms (again $((restarts + 1)) of 2)" >&2
+  HAPTICCTRL_RUN_RESTARTS=$((restarts + 1)) HAPTICCTRL_RUN_PERIOD_US=$next exec "$0" "${ARGS[@]}"
 }
 
 # Runs the controller (its pid in core.pid); under --supervise starts it again after each
@@ -137,9 +165,15 @@ start_core() {
 rm -f "$RUN_DIR/stopping"
 # The period: an explicit --period-us always wins; else the shortest this machine holds.
 PERIOD_ARGS=()
+PROBED_PERIOD=
 if [[ " $* " != *" --period-us "* ]]; then
-  PERIOD_ARGS=(--period-us "$(scripts/probe_period.sh "$RUN_DIR" 2>/dev/null)")
-  echo "run: $(cat "$RUN_DIR/probe.txt")"
+  if [[ -n ${HAPTICCTRL_RUN_PERIOD_US:-} ]]; then
+    PROBED_PERIOD=$HAPTICCTRL_RUN_PERIOD_US  # a start again after a stall (again_after_stall)
+  else
+    PROBED_PERIOD=$(scripts/probe_period.sh "$RUN_DIR" 2>/dev/null)
+    echo "run: $(cat "$RUN_DIR/probe.txt")"
+  fi
+  PERIOD_ARGS=(--period-us "$PROBED_PERIOD")
 fi
 PERIOD_TEXT=${PERIOD_ARGS[1]:+, period $((PERIOD_ARGS[1] / 1000)) ms}
 echo "run: starting the controller (instance $INSTANCE$PERIOD_TEXT; its log: $RUN_DIR/core.log)"

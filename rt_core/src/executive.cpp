@@ -74,10 +74,12 @@ ExecutiveResult Executive::run(const std::atomic<bool>* external_stop) noexcept 
       stall.woke = woke;
       record(stall, kRecordMiss | kRecordStall, static_cast<std::uint32_t>(skip));
       if (trips(verdict)) {
-        return stop_sequence(verdict == MonitorVerdict::kFailSafe
-                                 ? shm::StopReason::kConsecutiveMisses
-                                 : shm::StopReason::kChronicMisses,
-                             true);
+        ExecutiveResult result =
+            stop_sequence(verdict == MonitorVerdict::kFailSafe ? shm::StopReason::kConsecutiveMisses
+                                                               : shm::StopReason::kChronicMisses,
+                          true);
+        result.tripped_by_stall = late;
+        return result;
       }
       slot += skip;
       if (skip == passed) {

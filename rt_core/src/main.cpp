@@ -30,6 +30,18 @@ using namespace hapticctrl;
 using namespace hapticctrl::rt_core;
 
 std::atomic<bool> g_signal_stop{false};
+
+/// Says that a miss rule tripped on a stall of the machine, and how long: scripts/run.sh starts
+/// the demo again at a longer period on this (J5), never on a fail-safe the software caused.
+std::string stall_text(TimeNs tripped_by_stall) {
+  if (tripped_by_stall <= 0) {
+    return "";
+  }
+  char text[96];
+  std::snprintf(text, sizeof text, ", on a stall of the machine (the clock woke %.1f ms late)",
+                static_cast<double>(tripped_by_stall) / 1e6);
+  return text;
+}
 static_assert(std::atomic<bool>::is_always_lock_free, "used from a signal handler");
 
 void on_stop_signal(int /*signal*/) {
@@ -170,6 +182,7 @@ int run_core(const CoreConfig& config) {
   if (result.fail_safe) {
     std::cerr << "hapticctrl-core: FAIL-SAFE after cycle " << final_figures.cycle << ": "
               << shm::stop_reason_name(static_cast<std::uint32_t>(result.reason))
+              << stall_text(result.tripped_by_stall)
               << " (motors inhibited, supply off, client told)"
               << (black_box_path.empty() ? "" : "; black box: " + black_box_path) << "\n";
     return 3;

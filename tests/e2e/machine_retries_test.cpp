@@ -23,6 +23,12 @@ TEST(MachineDisturbance, AStallIsAWakeUpFivePeriodsLateARideThroughOrAFailSafeOn
   d.add(core_that_saw(1.0, 5.0));
   EXPECT_TRUE(d.any()) << d.text();
 
+  MachineDisturbance late;
+  shm::TelemetryPayload woke_late = core_that_saw(1.0, 1.0);
+  woke_late.wake_latency.max_ns = 16'000'000;  // a skipped slot is no measured period
+  late.add(woke_late);
+  EXPECT_TRUE(late.any()) << late.text();
+
   MachineDisturbance ridden;
   shm::TelemetryPayload t = core_that_saw(1.0, 1.0);
   t.would_fail_safe = 1;

@@ -98,6 +98,8 @@ TEST(CoreProcess, InjectedOverrunTripsFailSafeInOrderAndExitsWithTheReason) {
   const std::string err = core.err();
   EXPECT_NE(err.find("FAIL-SAFE"), std::string::npos) << err;
   EXPECT_NE(err.find("5 consecutive deadline misses"), std::string::npos) << err;
+  EXPECT_EQ(err.find("stall of the machine"), std::string::npos)
+      << "an overrun of the software is not called a stall of the machine: " << err;
   const auto bb = err.find("black box: ");
   ASSERT_NE(bb, std::string::npos) << err;
   const std::string bb_path = err.substr(bb + 11, err.find('\n', bb) - bb - 11);
@@ -143,6 +145,8 @@ TEST(CoreProcess, AFiftyMillisecondSigstopLeavesABlackBoxThatEndsWithTheStall) {
     core.signal(SIGCONT);
     ASSERT_EQ(core.wait(), 3) << core.err();
     const std::string err = core.err();
+    EXPECT_NE(err.find("on a stall of the machine (the clock woke "), std::string::npos)
+        << "said, for scripts/run.sh: " << err;
     const auto bb = err.find("black box: ");
     ASSERT_NE(bb, std::string::npos) << err;
     const std::string bb_path = err.substr(bb + 11, err.find('\n', bb) - bb - 11);

@@ -2,6 +2,7 @@
 /// What the machine did to the cores of a test's attempt (J5): each ControllerStack adds its
 /// core's telemetry when it ends, and retry_what_the_machine_disturbed (machine_retries.hpp)
 /// reads it to tell the machine's faults from the software's.
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <string>
@@ -25,9 +26,13 @@ struct MachineDisturbance {
   /// Adds one core's telemetry (read when its stack ends).
   void add(const shm::TelemetryPayload& t) {
     stalls_ridden += t.would_fail_safe;
-    if (t.measured_period.max_ns > longest_period_ns) {
-      longest_period_ns = t.measured_period.max_ns;
-      nominal_period_ns = t.period_ns;
+    // A wake-up too late for its slot skips it and is no measured period: it counts as a
+    // period of its lateness plus one.
+    const std::int64_t longest = std::max(
+        t.measured_period.max_ns, t.wake_latency.max_ns + static_cast<std::int64_t>(t.period_ns));
+    if (longest > longest_period_ns) {
+      longest_period_ns = longest;
+      nominal_period_ns = static_cast<std::int64_t>(t.period_ns);
     }
     failed_safe_on_misses =
         failed_safe_on_misses ||

@@ -69,6 +69,9 @@ struct ExecutiveResult {
   std::array<TimeNs, 4> step_times{};
   std::size_t step_count = 0;
   bool protocol_closed_in_vp = false;  ///< VP carried the final state (gate could be closed)
+  /// A miss rule tripped when the clock task woke this late (ns) after a slot: the machine
+  /// stalled the core's highest-priority thread. 0: tripped otherwise, or no fail-safe.
+  TimeNs tripped_by_stall = 0;
 };
 
 class Executive {

@@ -150,7 +150,7 @@ ServoLaw::Coupling ServoLaw::client_wrench(const ServoInputs& in, const ClientFr
   Vector6d stretch;
   stretch << image.position - chain.handle_position,
       rotation_vector(image.rotation * chain.handle_rotation.transpose());
-  const Vector6d used = stretch_in_use(stretch, static_cast<double>(in.dt) * 1e-9);
+  const Vector6d used = stretch_in_use(stretch, twist, static_cast<double>(in.dt) * 1e-9);
   coupling.stretch = used;
   Vector6d relative = image.twist - twist;
   coupling.spring << g.k_linear * used.head<3>(), g.k_angular * used.tail<3>();
@@ -363,6 +363,8 @@ void ServoLaw::compute(const ServoInputs& in, bool /*degraded*/, ServoOutputs& o
     const double hold = 1.0 - damper_share;
     target.head<3>() -= hold * lim.max_damping_linear * twist.head<3>();
     target.tail<3>() -= hold * lim.max_damping_angular * twist.tail<3>();
+    // As the hold lets go, the returning stretch keeps the whole damping along it.
+    target += damper_share * restretch_damping(twist);
   }
   // The one-port guard at the handle for what the two-port does not cover (a VIRTMECH object's
   // port to the hand, an IMPEDANCE client that reports no energy). Its damping goes through the

@@ -82,7 +82,8 @@ ServoLaw::Stiffening ServoLaw::contact_stiffening(const ServoInputs& in, const C
   return best;
 }
 
-Vector6d ServoLaw::stretch_in_use(const Vector6d& stretch, double dt) noexcept {
+Vector6d ServoLaw::stretch_in_use(const Vector6d& stretch, const Vector6d& twist,
+                                  double dt) noexcept {
   // After a full disengagement (the link lost, a brake, a new session, power-on) the handle may
   // be far from where the coupling would hold it: a hand that pushed 5 N into a 3000 N/m wall
   // through a 2 s blackout went 30 cm through it, and the returning spring snapped it back at
@@ -106,9 +107,19 @@ Vector6d ServoLaw::stretch_in_use(const Vector6d& stretch, double dt) noexcept {
   if (!m.anchored) {
     return stretch;
   }
-  const auto release = [&stretch, dt](Vector6d& hidden, int from, double speed) {
+  // The hidden stretch comes back at restretch_speed less the handle's own speed toward the
+  // object along it: on a handle held still the spring regains its push at once, and it never
+  // drives a moving handle out after the object faster than it comes back. (At a fixed 8 cm/s
+  // a hand that had pushed 5 N through a faded 3000 N/m wall for 0.1-0.3 s was carried back out
+  // at 0.11-0.12 m/s; at a fixed 5 cm/s at 0.07-0.09, but a hand resting 31 cm deep after 2 s
+  // felt its push back only after 330 ms; J1, 2026-12-03.)
+  const auto release = [&stretch, &twist, dt](Vector6d& hidden, int from, double speed) {
+    constexpr double kCreep = 0.02;
     Vector3d h = hidden.segment<3>(from);
-    h -= clamp_norm(h, speed * dt);
+    const double hidden_length = h.norm();
+    const double following =
+        hidden_length > 0.0 ? std::max(0.0, twist.segment<3>(from).dot(h / hidden_length)) : 0.0;
+    h -= clamp_norm(h, std::max(0.0, speed - std::max(0.0, following - kCreep)) * dt);
     const double length = h.norm();
     if (length > 0.0) {
       const double along = stretch.segment<3>(from).dot(h / length);
@@ -120,6 +131,34 @@ Vector6d ServoLaw::stretch_in_use(const Vector6d& stretch, double dt) noexcept {
   release(m.stretch, 3, config_.restretch_angular_speed);
   m.anchored = m.stretch.squaredNorm() > 0.0;
   return stretch - m.stretch;
+}
+
+Vector6d ServoLaw::restretch_damping(const Vector6d& twist) const noexcept {
+  // A hand that pushed 5 N into a 3000 N/m wall through a blackout plunged at the viscous hold's
+  // 0.16-0.21 m/s, met the returning wall and bounced off it at 0.13-0.16 m/s, the coupling's
+  // delay-bounded damper giving back most of what the wall took (J1 asks 0.1 m/s; 2026-12-03).
+  // While the hidden stretch comes back, the handle's motion along it is damped with the
+  // device's stable damping: on the handle's own velocity, so it is passive at any delay, and
+  // only along the returning stretch, so that the hand slides freely along the wall. It fades
+  // over the hidden stretch's last millimetre (no step when the stretch is back).
+  const RenderMemory& m = memory_;
+  Vector6d damping = Vector6d::Zero();
+  if (!m.anchored) {
+    return damping;
+  }
+  const ArmLimits& lim = dynamics_->model().limits;
+  const auto along = [&](int from, double fade, double max_damping) {
+    const Vector3d h = m.stretch.segment<3>(from);
+    const double length = h.norm();
+    if (length > 0.0) {
+      const Vector3d u = h / length;
+      const double share = std::min(1.0, length / fade);
+      damping.segment<3>(from) = -share * max_damping * twist.segment<3>(from).dot(u) * u;
+    }
+  };
+  along(0, config_.restretch_damper_fade, lim.max_damping_linear);
+  along(3, config_.restretch_damper_angular_fade, lim.max_damping_angular);
+  return damping;
 }
 
 }  // namespace hapticctrl::rt_core

@@ -281,12 +281,11 @@ TEST_P(ContactBlackout, TheHandleIsNeverSnappedBackAndTheForceReturnsWithin300ms
             static_cast<double>(kCyclesPerSecond));
     // The viscous hold (20 N.s/m, the device's stable damping) lets a 5 N push through the faded
     // wall at up to 0.25 m/s during the blackout; the return must not snap the handle back nor
-    // speed it up: the spring restarts where the handle is.
-    // J1 asks 0.1 m/s; the handle still moving in at the hold's 0.15-0.21 m/s when the link
-    // returns rebounds off the returning wall at 0.13-0.16 m/s after 0.1 and 0.3 s, 0.08-0.09 m/s
-    // after 2 s (2026-12-03, docs/control.md, Not yet: J1 is open there). This bound keeps what was
-    // won: f3c5aec snapped the handle back at 0.25, 0.59 and 1.12 m/s after 0.1, 0.3 and 2 s.
-    EXPECT_LE(snap, 0.2) << "no snap-back: " << around_fastest(r, fresh, judged_to);
+    // carry it out: J1's 0.1 m/s out of the wall. (f3c5aec snapped it back at 0.25, 0.59 and
+    // 1.12 m/s after 0.1, 0.3 and 2 s; re-anchored at a fixed 8 cm/s it bounced out at
+    // 0.13-0.16 m/s; damped along the returning stretch, which comes back at 8 cm/s less the
+    // handle's own speed: 0.04-0.09 m/s, 2026-12-03.)
+    EXPECT_LE(snap, 0.1) << "no snap-back: " << around_fastest(r, fresh, judged_to);
     EXPECT_LE(step, kReleaseStep + 1e-6) << "no step over 1 N/ms in any cycle";
     EXPECT_LT(full, judged_to) << "the push is felt again";
     if (full < judged_to) {

@@ -150,5 +150,41 @@ TEST(ServoLawContact, TheHiddenStretchShrinksWithTheTrueOneAndNeverPullsBack) {
   EXPECT_LE(out.handle_wrench(0), out.gains.k_linear * 0.001 + 1e-9);
 }
 
+TEST(ServoLawContact, WhileTheStretchReturnsTheHandlesMotionAlongItIsDampedAndFreeAcrossIt) {
+  // A handle that plunged through a faded wall meets the returning stretch moving: its motion
+  // along the stretch is damped with the device's stable damping (it bounced off at 0.13-0.16
+  // m/s, J1 2026-12-03), its motion across it is not. Compared with the same law, the same
+  // motion and no hidden stretch (the object where the coupling holds it).
+  const ChainState s = chain_at(kReady);
+  const Matrix6d jacobian = default_dynamics().jacobian(s);
+  const double max_damping = default_dynamics().model().limits.max_damping_linear;
+  ASSERT_GT(max_damping, 0.0);
+  const auto wrench_moving = [&](double object_dx, const Vector3d& velocity) -> Vector6d {
+    ServoLaw law(default_dynamics());
+    ServoInputs in = coupled_to_object_ahead(object_dx);
+    in.new_sample = true;
+    run(law, in, 100);  // engaged; the hold let go; with 10 cm hidden, 8 mm of it back
+    Vector6d twist = Vector6d::Zero();
+    twist.head<3>() = velocity;
+    in.measures.velocity = jacobian.colPivHouseholderQr().solve(twist);
+    // 10 cycles at the new velocity: the rate limit (1 N/ms while the stretch returns) settles.
+    return run(law, in, 10).handle_wrench;
+  };
+  // What moving adds to the force, with the hidden stretch (the object 10 cm ahead, +x) and
+  // without it (the object at the handle): the coupling's own damper is the same in both.
+  const double v = 0.01;
+  const auto damping_added = [&](const Vector3d& velocity) -> Vector6d {
+    return (wrench_moving(0.1, velocity) - wrench_moving(0.1, Vector3d::Zero())) -
+           (wrench_moving(0.0, velocity) - wrench_moving(0.0, Vector3d::Zero()));
+  };
+  const Vector6d into = damping_added(Vector3d(-v, 0.0, 0.0));  // into the returning stretch
+  EXPECT_NEAR(into.x(), max_damping * v, 0.05 * max_damping * v)
+      << "the device's stable damping along the returning stretch";
+  EXPECT_NEAR(into.tail<5>().norm(), 0.0, 0.05 * max_damping * v);
+  const Vector6d sliding = damping_added(Vector3d(0.0, v, 0.0));  // along the wall
+  EXPECT_NEAR(sliding.norm(), 0.0, 0.05 * max_damping * v)
+      << "across the stretch nothing is added: the hand slides freely";
+}
+
 }  // namespace
 }  // namespace hapticctrl::rt_core

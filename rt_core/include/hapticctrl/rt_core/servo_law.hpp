@@ -113,6 +113,11 @@ struct LawConfig {
   /// stretch at these speeds at most (re-anchoring, J1): the handle is never snapped back.
   double restretch_speed = 0.08;         ///< m/s
   double restretch_angular_speed = 0.5;  ///< rad/s
+  /// While the hidden stretch returns, the handle's motion along it is damped with the device's
+  /// stable damping (ServoLaw::restretch_damping), fading over the hidden stretch's last
+  /// restretch_damper_fade (and restretch_damper_angular_fade).
+  double restretch_damper_fade = 1e-3;          ///< m
+  double restretch_damper_angular_fade = 0.01;  ///< rad
 
   TimeNs extrapolate_max = 50 * kNsPerMs;  ///< extrapolation horizon (sample age)
   /// Without a new sample the coupling force is zero by fade_after + fade_duration (45 ms; H1:
@@ -259,7 +264,8 @@ class ServoLaw {
   [[nodiscard]] Stiffening contact_stiffening(const ServoInputs& in, const ClientFrame& frame,
                                               const Vector3d& reported,
                                               const CouplingGains& g) const noexcept;
-  Vector6d stretch_in_use(const Vector6d& stretch, double dt) noexcept;
+  Vector6d stretch_in_use(const Vector6d& stretch, const Vector6d& twist, double dt) noexcept;
+  [[nodiscard]] Vector6d restretch_damping(const Vector6d& twist) const noexcept;
   void track_loop_delay(const ServoInputs& in) noexcept;
   CouplingGains slew_gains(const CouplingGains& target, TimeNs dt) noexcept;
   [[nodiscard]] double fade_of(TimeNs silence, const Vector6d& wrench) const noexcept;

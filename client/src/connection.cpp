@@ -40,16 +40,8 @@ bool Connection::send_object_state(const Pose7& pose, const Vector6& twist) noex
     frame = impl_->session.object_frame(pose, twist, monotonic_ns());
   }
   const bool sent = impl_->send_control(frame);
-  // The contacts of the same step go right after it (the bridge dates them with this state).
-  for (std::size_t i = 0; sent && i <= kMaxContacts; ++i) {
-    std::optional<hcp_frame> contact;
-    {
-      const std::lock_guard lock(impl_->session_mutex);
-      contact = impl_->session.contact_frame_due(monotonic_ns());
-    }
-    if (!contact || !impl_->send_control(contact)) {
-      break;
-    }
+  if (sent) {
+    impl_->send_due_contacts();  // right after it: the bridge dates them with this state
   }
   return sent;
 }
@@ -65,7 +57,11 @@ bool Connection::send_wrench(const Vector6& wrench) noexcept {
     const std::lock_guard lock(impl_->session_mutex);
     frame = impl_->session.wrench_frame(wrench, monotonic_ns());
   }
-  return impl_->send_control(frame);
+  const bool sent = impl_->send_control(frame);
+  if (sent) {
+    impl_->send_due_contacts();  // an IMPEDANCE client's surfaces (protocol 1.3)
+  }
+  return sent;
 }
 
 StateSnapshot Connection::snapshot() const noexcept {

@@ -184,6 +184,20 @@ struct Connection::Impl {
     return true;
   }
 
+  /// The contact frames due (protocol 1.3), sent after a control frame: at most one round.
+  void send_due_contacts() noexcept {
+    for (std::size_t i = 0; i <= kMaxContacts; ++i) {
+      std::optional<hcp_frame> contact;
+      {
+        const std::lock_guard lock(session_mutex);
+        contact = session.contact_frame_due(protocol::monotonic_ns());
+      }
+      if (!contact || !send_control(contact)) {
+        break;
+      }
+    }
+  }
+
   // --- reliable exchange ---------------------------------------------------------------------
   /// Sends the reliable frame `make` builds until the controller acknowledges it.
   template <typename Make>

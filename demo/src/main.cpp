@@ -126,6 +126,9 @@ demo::SphereScene scene_at(const client::StateSnapshot& s, const demo::DemoOptio
 /// The spheres' contact is reported from this gap on (protocol 1.3): the controller stiffens the
 /// coupling along it only once they touch, and knows of it before.
 constexpr double kContactNear = 0.005;  // m
+/// IMPEDANCE: how fast a hand may bring the handle to a surface (the arm's speed brake, m/s):
+/// a surface is reported from as far as the handle can come over twice the round trip.
+constexpr double kReachSpeed = 1.0;
 
 /// At most this many steps are integrated for one answer (a longer gap pauses the world).
 constexpr std::uint64_t kMaxCatchUpSteps = 20;
@@ -352,12 +355,26 @@ class DemoRun {
 
   /// IMPEDANCE: the handle is the sphere; the fixed one's contact force (and the operator's
   /// push from the keyboard or script) is the wrench to render.
+  /// The fixed sphere's or the wall's surface goes out with the wrench (protocol 1.3): the
+  /// controller renders it at its own rate in place of this push out of it.
   void render_contact() {
     scene_->follow(s_.handle_pose, s_.handle_twist);
     const Eigen::Vector3d f = scene_->contact_force();
     client::Vector6 wrench = applied_.wrench;
     for (int i = 0; i < 3; ++i) {
       wrench[static_cast<std::size_t>(i)] += f(i);
+    }
+    if (o_.report_contacts) {
+      // Known before the handle can reach it: a surface reported only from 5 mm on came and
+      // went with the handle's delayed image at 100 ms one way, and the handle went through the
+      // wall between reports (2 m/s, 2026-12-03). The controller renders it only once touched.
+      const client::LinkStatistics link = c_->statistics();
+      const double near =
+          kContactNear + kReachSpeed * 2e-6 * std::max(link.rtt_mean_us, link.loop_delay_us);
+      const std::optional<client::Contact> surface =
+          scene_->surface_for_center(near, link.max_contact_stiffness);
+      (void)c_->set_contacts(surface ? std::span<const client::Contact>(&*surface, 1)
+                                     : std::span<const client::Contact>());
     }
     (void)c_->send_wrench(wrench);
   }

@@ -193,6 +193,17 @@ std::optional<client::Contact> SphereScene::contact_report(double near,
   return out;
 }
 
+std::optional<client::Contact> SphereScene::surface_for_center(
+    double near, double max_stiffness) const noexcept {
+  std::optional<client::Contact> out = contact_report(near, max_stiffness);
+  if (out) {
+    const Contact c = contact();
+    const Eigen::Vector3d point = state_.position + c.depth * c.normal;
+    out->point = {point.x(), point.y(), point.z()};
+  }
+  return out;
+}
+
 void SphereScene::follow(const client::Pose7& pose, const client::Vector6& twist) noexcept {
   state_.position = {pose[0], pose[1], pose[2]};
   state_.orientation = Eigen::Quaterniond(pose[6], pose[3], pose[4], pose[5]).normalized();

@@ -128,6 +128,25 @@ ServoLaw::Coupling ServoLaw::client_wrench(const ServoInputs& in, const ClientFr
   if (c.command == ClientCommand::kImpedance) {
     const Vector6d env = to_vector(c.impedance_wrench);
     coupling.spring << base_r.transpose() * env.head<3>(), base_r.transpose() * env.tail<3>();
+    // Protocol 1.3: a surface the client reports is rendered here, at the servo rate, in place
+    // of the client's own push out of it and its friction (which come a loop late: a 2000 N/m
+    // wall the client rendered moved at 31-689 mm/s from 1 ms one way and gave way from 5 ms,
+    // J1 2026-12-03).
+    Surface surface = impedance_surface(in, frame, chain);
+    render_surface(surface, chain, twist, static_cast<double>(in.dt) * 1e-9);
+    if (surface.share > 0.0) {
+      // The client's push out of the surface and along it (its friction) is the surface's,
+      // rendered here; a push into it stays the client's.
+      const Vector3d& n = surface.normal;
+      const double client_into = std::min(0.0, coupling.spring.head<3>().dot(n));
+      coupling.spring.head<3>() =
+          (1.0 - surface.share) * coupling.spring.head<3>() + surface.share * client_into * n;
+      coupling.local.head<3>() = (surface.force * n + surface.friction) * scale;
+      out.contact_normal = n * surface.share;
+      out.normal_stiffness = surface.stiffness;
+      out.normal_damping = surface.damping;
+    }
+    out.contacts = surface.fresh;
     coupling.spring *= scale;
     return coupling;
   }
@@ -346,6 +365,12 @@ void ServoLaw::compute(const ServoInputs& in, bool /*degraded*/, ServoOutputs& o
   } else if (two_port_impedance(in)) {
     target = guard_impedance(in, frame, target, twist, dt);
   }
+  // A surface rendered here is passive by itself (a static plane, damped): it stays out of the
+  // two-port, whose guard would take back the energy it stores and returns; and out of the
+  // link's fade: it fades with its own reports (contact_fresh + contact_fade). Faded with the
+  // link, the wall let a 10 N push through at 0.5 m/s whenever 10 % loss at 100 ms one way
+  // left 10 ms without a wrench (2026-12-03).
+  target += coupling.local;
   out.channel_energy_in = memory_.channel_in;
   out.channel_energy_out = memory_.channel_out;
   const ArmLimits& lim = dynamics_->model().limits;

@@ -57,11 +57,12 @@ grep -q "time out" "$work/err_pc" || { cat "$work/err_pc" >&2; exit 1; }
 instance="install$$"
 export HAPTICCTRL_RUNTIME_DIR="$work/run"  # where the core's socket appears once it serves
 mkdir -m 0700 "$HAPTICCTRL_RUNTIME_DIR"
-# A 2 ms cycle, the example's own time step (at 10 ms its 2 ms loop finds no fresh sample): the
-# test is about the installed package, and at 1 ms a 5 ms stall of the machine failed the core
-# safe under the example (CI, 2026-12-03: after cycle 89).
+# A 2 ms cycle, the example's own time step (at 10 ms its 2 ms loop finds no fresh sample), in
+# benchmark mode (the simulated arm rides through a stall of the machine): the test is about
+# the installed package, and a stall failed the core safe under the example at 1 ms (CI,
+# 2026-12-03: after cycle 89) and at 2 ms beside a compile (1 run in 3, the same day).
 "$build/rt_core/hapticctrl-core" --instance "$instance" --rt ignore --blackbox-dir "$work" \
-  --period-us 2000 --duration 60 >"$work/core.log" 2>&1 &
+  --period-us 2000 --benchmark-mode --duration 60 >"$work/core.log" 2>&1 &
 pids+=($!)
 for _ in $(seq 200); do
   [ -S "$HAPTICCTRL_RUNTIME_DIR/$instance.sock" ] && break

@@ -14,6 +14,7 @@ using test::chain_at;
 using test::coupled_to_object_ahead;
 using test::default_dynamics;
 using test::kReady;
+using test::powered_at;
 
 /// A surface at the object that pushes it along -x (the object rests against it from -x).
 ClientContact wall_at(const std::array<double, 7>& object_pose, double stiffness, TimeNs received) {
@@ -184,6 +185,78 @@ TEST(ServoLawContact, WhileTheStretchReturnsTheHandlesMotionAlongItIsDampedAndFr
   const Vector6d sliding = damping_added(Vector3d(0.0, v, 0.0));  // along the wall
   EXPECT_NEAR(sliding.norm(), 0.0, 0.05 * max_damping * v)
       << "across the stretch nothing is added: the hand slides freely";
+}
+
+/// An IMPEDANCE client (protocol 1.3) that reports a 2000 N/m surface (mu_s 0.5, mu_d 0.4)
+/// whose normal is -x, with the handle's point `depth` inside it, and pushes `client_push`
+/// along x itself.
+ServoInputs impedance_on_surface(double depth, double client_push) {
+  ServoInputs in = powered_at(kReady);
+  const ChainState s = chain_at(kReady);
+  in.client.session_id = 1;
+  in.client.command = ClientCommand::kImpedance;
+  in.client.time_step = 1e-3;
+  in.client.impedance_wrench = {client_push, 0, 0, 0, 0, 0};
+  in.client_valid = true;
+  in.new_sample = true;
+  in.client.contact_count = 1;
+  ClientContact& c = in.client.contacts[0];
+  c.point = {s.handle_position.x() - depth, s.handle_position.y(), s.handle_position.z()};
+  c.normal = {-1.0, 0.0, 0.0};
+  c.stiffness = 2000.0;
+  c.friction = {0.5, 0.4};
+  return in;
+}
+
+/// Runs `cycles` cycles with the surface refreshed every cycle (as a client sending it does).
+ServoOutputs run_on_surface(ServoLaw& law, ServoInputs& in, int cycles) {
+  ServoOutputs out;
+  for (int k = 0; k < cycles; ++k) {
+    in.client.contacts[0].received_ns = in.now + in.dt;
+    out = run(law, in, 1);
+  }
+  return out;
+}
+
+TEST(ServoLawSurface, AnImpedanceSurfaceIsRenderedHereInPlaceOfTheClientsPushOutOfIt) {
+  // The client's own push out of the surface (-7 N, a loop late) gives way to the surface
+  // rendered at the servo rate: 2000 N/m x 5 mm; a surface found with the handle already
+  // inside comes back at 8 cm/s, never as a kick (35 N at once, 100 ms one way, 2026-12-03).
+  ServoLaw law(default_dynamics());
+  ServoInputs in = impedance_on_surface(0.005, -7.0);
+  ServoOutputs out = run_on_surface(law, in, 1);
+  EXPECT_LT(std::abs(out.handle_wrench.x()), 1.0) << "no step when it appears";
+  double last = out.handle_wrench.x();
+  double largest_step = 0.0;
+  for (int k = 0; k < 200; ++k) {
+    out = run_on_surface(law, in, 1);
+    largest_step = std::max(largest_step, std::abs(out.handle_wrench.x() - last));
+    last = out.handle_wrench.x();
+  }
+  EXPECT_LE(largest_step, 1.0 + 1e-9) << "N per 1 ms cycle";
+  EXPECT_NEAR(out.handle_wrench.x(), -2000.0 * 0.005, 0.05) << "the surface, not the client's too";
+  EXPECT_EQ(out.contacts, 1U);
+  EXPECT_NEAR(out.normal_stiffness, 2000.0, 1e-9);
+
+  ServoLaw pressing_law(default_dynamics());
+  ServoInputs pressing = impedance_on_surface(0.005, 3.0);  // the client pushes into it
+  out = run_on_surface(pressing_law, pressing, 200);
+  EXPECT_NEAR(out.handle_wrench.x(), -10.0 + 3.0, 0.05) << "a push into the surface stays";
+}
+
+TEST(ServoLawSurface, FrictionHoldsTheHandleWithinTheConeAndSlidesBeyondIt) {
+  ServoLaw law(default_dynamics());
+  ServoInputs in = impedance_on_surface(0.005, 0.0);
+  run_on_surface(law, in, 200);  // 10 N into the surface
+  // Turning the first joint moves the handle's point along y, on the surface.
+  const double reach = chain_at(kReady).handle_position.head<2>().norm();
+  in.measures.position[0] += 0.0005 / reach;  // 0.5 mm
+  ServoOutputs out = run_on_surface(law, in, 20);
+  EXPECT_NEAR(out.handle_wrench.y(), -2000.0 * 0.0005, 0.1) << "sticking: 1 N back";
+  in.measures.position[0] += 0.01 / reach;  // 1 cm more: past mu_s x 10 N = 5 N
+  out = run_on_surface(law, in, 20);
+  EXPECT_NEAR(out.handle_wrench.y(), -0.4 * 10.0, 0.2) << "sliding: mu_d x the normal force";
+  EXPECT_NEAR(out.handle_wrench.x(), -10.0, 0.2);
 }
 
 }  // namespace

@@ -335,7 +335,10 @@ void Session::take_contact(const hcp_control_contact& c, TimeNs now) noexcept {
   to.stiffness = static_cast<double>(from.stiffness);
   to.damping = static_cast<double>(from.damping);
   protocol::from_wire(from.friction, to.friction);
-  to.object_pose = vpr_.object_pose;
+  // An IMPEDANCE client has no object (its surfaces are for the handle's point): the identity.
+  to.object_pose = vpr_.command_type == static_cast<std::uint32_t>(shm::CommandType::kImpedance)
+                       ? shm::Pose7{0, 0, 0, 0, 0, 0, 1}
+                       : vpr_.object_pose;
   to.received_time_ns = now;
   const SampleTiming timing =
       LinkEstimator::time_sample(protocol::unpack_answer_echo(c.answer_echo), answer_log_, now);

@@ -81,6 +81,10 @@ class SphereScene {
   /// damping and friction. Nothing when farther apart.
   [[nodiscard]] std::optional<client::Contact> contact_report(double near,
                                                               double max_stiffness) const noexcept;
+  /// IMPEDANCE (protocol 1.3): the same surface as a plane for the mobile sphere's centre (the
+  /// handle's point): `point` is where the centre touches it, the sphere's radius taken in.
+  [[nodiscard]] std::optional<client::Contact> surface_for_center(
+      double near, double max_stiffness) const noexcept;
   /// IMPEDANCE: the mobile sphere is the handle (no dynamics of its own): it takes the handle's
   /// pose and twist; contact_force() is then the wrench to render.
   void follow(const client::Pose7& pose, const client::Vector6& twist) noexcept;

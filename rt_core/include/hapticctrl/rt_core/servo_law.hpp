@@ -192,6 +192,11 @@ struct RenderMemory {
   /// speed and never exceeds the true stretch along its own direction.
   bool anchored = false;
   Vector6d stretch = Vector6d::Zero();
+  /// An IMPEDANCE client's surface: where the handle sticks to it (the friction proxy, base
+  /// frame), while `on_surface`.
+  bool on_surface = false;
+  double surface_hidden = 0.0;  ///< the depth it had when it appeared, coming back (m)
+  Vector3d friction_anchor = Vector3d::Zero();
   static constexpr std::size_t kLoopSamples = 15;
   std::array<TimeNs, kLoopSamples> loop_samples{};  ///< the newest measured loops (median)
   std::uint64_t loop_next = 0;
@@ -241,6 +246,23 @@ class ServoLaw {
     Vector6d spring = Vector6d::Zero();
     Vector6d damper = Vector6d::Zero();
     Vector6d stretch = Vector6d::Zero();  ///< the stretch the handle's spring renders
+    /// Rendered here and outside the two-port: an IMPEDANCE client's reported surface.
+    Vector6d local = Vector6d::Zero();
+  };
+  /// An IMPEDANCE client's surface as rendered at the servo rate (base frame, client force
+  /// units: the force factor is applied with the client's wrench).
+  struct Surface {
+    Vector3d normal = Vector3d::Zero();    ///< out of the surface
+    double share = 0.0;                    ///< fresh and touching: 0..1
+    double weight = 0.0;                   ///< fresh: 0..1 (contact_fresh, contact_fade)
+    double depth = 0.0;                    ///< of the handle's point, > 0 inside
+    double force = 0.0;                    ///< along the normal, >= 0 (render_surface)
+    Vector3d friction = Vector3d::Zero();  ///< in the surface's plane (render_surface)
+    double friction_static = 0.0;
+    double friction_dynamic = 0.0;
+    double stiffness = 0.0;  ///< N/m, base metres
+    double damping = 0.0;    ///< N.s/m
+    std::uint32_t fresh = 0;
   };
   /// Where the client's object is now, as the coupling sees it (base frame).
   struct ObjectImage {
@@ -264,6 +286,10 @@ class ServoLaw {
   [[nodiscard]] Stiffening contact_stiffening(const ServoInputs& in, const ClientFrame& frame,
                                               const Vector3d& reported,
                                               const CouplingGains& g) const noexcept;
+  [[nodiscard]] Surface impedance_surface(const ServoInputs& in, const ClientFrame& frame,
+                                          const ChainState& chain) const noexcept;
+  void render_surface(Surface& surface, const ChainState& chain, const Vector6d& twist,
+                      double dt) noexcept;
   Vector6d stretch_in_use(const Vector6d& stretch, const Vector6d& twist, double dt) noexcept;
   [[nodiscard]] Vector6d restretch_damping(const Vector6d& twist) const noexcept;
   void track_loop_delay(const ServoInputs& in) noexcept;

@@ -74,12 +74,10 @@ ExecutiveResult Executive::run(const std::atomic<bool>* external_stop) noexcept 
       stall.woke = woke;
       record(stall, kRecordMiss | kRecordStall, static_cast<std::uint32_t>(skip));
       if (trips(verdict)) {
-        ExecutiveResult result =
-            stop_sequence(verdict == MonitorVerdict::kFailSafe ? shm::StopReason::kConsecutiveMisses
-                                                               : shm::StopReason::kChronicMisses,
-                          true);
-        result.tripped_by_stall = late;
-        return result;
+        return stop_sequence(verdict == MonitorVerdict::kFailSafe
+                                 ? shm::StopReason::kConsecutiveMisses
+                                 : shm::StopReason::kChronicMisses,
+                             true);
       }
       slot += skip;
       if (skip == passed) {
@@ -189,6 +187,14 @@ void Executive::record(const CycleTimes& times, std::uint32_t flags,
     }
   }
   black_box_->record(r);
+  // The misses that trip a fail-safe are the machine's when a stall began their run: after a
+  // stall the SERVO often misses a cycle or two more before it gets its CPU back (run.sh saw
+  // a 3.3 ms stall, then two missed cycles, trip; 2026-12-03).
+  if ((flags & kRecordStall) != 0) {
+    stall_in_misses_ = std::max(stall_in_misses_, times.woke - times.scheduled);
+  } else if (r.consecutive_misses == 0) {
+    stall_in_misses_ = 0;
+  }
 }
 
 bool Executive::trips(MonitorVerdict verdict) noexcept {
@@ -281,6 +287,9 @@ ExecutiveResult Executive::stop_sequence(shm::StopReason reason, bool fail_safe)
   ExecutiveResult result;
   result.reason = reason;
   result.fail_safe = fail_safe;
+  if (reason == shm::StopReason::kConsecutiveMisses || reason == shm::StopReason::kChronicMisses) {
+    result.tripped_by_stall = stall_in_misses_;
+  }
   stop_reason_ = reason;
   core_state_ = fail_safe ? shm::CoreState::kFailSafe : shm::CoreState::kStopping;
   auto step = [&](StopStep s) {

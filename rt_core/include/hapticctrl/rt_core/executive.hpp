@@ -69,8 +69,9 @@ struct ExecutiveResult {
   std::array<TimeNs, 4> step_times{};
   std::size_t step_count = 0;
   bool protocol_closed_in_vp = false;  ///< VP carried the final state (gate could be closed)
-  /// A miss rule tripped when the clock task woke this late (ns) after a slot: the machine
-  /// stalled the core's highest-priority thread. 0: tripped otherwise, or no fail-safe.
+  /// A miss rule tripped in a run of misses that a stall began: the clock task, the core's
+  /// highest-priority thread, woke this late (ns) after a slot. 0: no stall in that run, or no
+  /// fail-safe on misses.
   TimeNs tripped_by_stall = 0;
 };
 
@@ -125,6 +126,7 @@ class Executive {
   LatencyHistogram measured_period_;
   std::uint64_t cycle_ = 0;
   std::uint64_t skipped_slots_ = 0;
+  TimeNs stall_in_misses_ = 0;  ///< the latest stall in the current run of misses (its lateness)
   std::uint64_t would_fail_safe_ = 0;  ///< benchmark mode: miss-rule trips ridden through
   std::uint64_t first_would_fail_safe_cycle_ = 0;
   TimeNs last_woke_ = -1;

@@ -52,6 +52,9 @@ for step in "run: checking the Debian packages" "run: building the controller" \
 done
 chosen=$(sed -n 's/.*the controller runs at \([0-9]*\) ms.*/\1/p' "$OUT/log" | head -n 1)
 [[ -n $chosen ]] || fail "the probe did not say which period it chose"
+# After a fail-safe on a stall, run.sh starts again at a longer period (J5): the last one counts.
+again=$(sed -n 's/.*starting again at \([0-9]*\) ms.*/\1/p' "$OUT/log" | tail -n 1)
+chosen=${again:-$chosen}
 grep -q "period $chosen ms" "$OUT/log" || fail "the controller was not started at $chosen ms"
 grep -q "\"period_ns\":$((chosen * 1000000))" "$RUN_DIR/core.json" ||
   fail "the controller did not run at $chosen ms: $(cat "$RUN_DIR/core.json")"

@@ -42,6 +42,14 @@ TEST(MachineDisturbance, AStallIsAWakeUpFivePeriodsLateARideThroughOrAFailSafeOn
   EXPECT_TRUE(failed.any());
   EXPECT_NE(failed.text().find("failed safe"), std::string::npos);
 
+  MachineDisturbance starved;
+  shm::TelemetryPayload stale = core_that_saw(4.0, 4.0);
+  stale.vpr_stale = 5;  // 20 ms at 4 ms
+  starved.add(stale);
+  EXPECT_TRUE(starved.any()) << "a starved client on a link nobody impairs";
+  starved.link_impaired = true;
+  EXPECT_FALSE(starved.any()) << "through hapticctrl-netem, stale samples are the test's";
+
   MachineDisturbance velocity;
   t.stop_reason = static_cast<std::uint32_t>(shm::StopReason::kVelocityLimit);
   velocity.add(t);

@@ -50,9 +50,8 @@ inline void retry_what_the_machine_disturbed(const std::string& name, int attemp
               << r.message();
         }
       }
-      std::printf(
-          "%s: %d attempt(s) lost to the machine (%s)\n", name.c_str(), lost,
-          disturbance.any() ? "this one disturbed too, and it passed" : "this one undisturbed");
+      std::printf("%s: %d attempt(s) lost to the machine (this one %s: %s)\n", name.c_str(), lost,
+                  disturbance.any() ? "disturbed" : "undisturbed", disturbance.text().c_str());
       ::testing::Test::RecordProperty("attempts_lost_to_the_machine", lost);
       return;
     }

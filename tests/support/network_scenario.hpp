@@ -70,6 +70,7 @@ struct Scenario {
   explicit Scenario(const std::string& tag, const std::vector<std::string>& impairment,
                     const std::vector<std::string>& demo_extra = {"--gravity"})
       : stack(tag, kPeriodUs, {}, {"--benchmark-mode"}), relay(stack.port(), impairment) {
+    attempt_disturbance().link_impaired = !impairment.empty();
     if (stack.ready() && relay.port() != 0) {
       std::vector<std::string> args{"--server", "127.0.0.1:" + std::to_string(relay.port()),
                                     "--headless", "--no-lcm", "--json"};

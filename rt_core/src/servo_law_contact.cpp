@@ -21,6 +21,12 @@ constexpr double kTouchBand = 1e-3;  // m
 /// faster motion away along a hidden stretch or depth is the handle being carried (m/s).
 constexpr double kCreepSpeed = 0.02;
 
+/// How fast a hidden stretch or depth comes back: `speed` less the handle's own speed away
+/// along it (`leaving`, m/s) beyond the creep, never below zero.
+double return_speed(double speed, double leaving) noexcept {
+  return std::max(0.0, speed - std::max(0.0, leaving - kCreepSpeed));
+}
+
 /// Share of the contact a slot still has after `silence` without a refresh: 1 while fresh,
 /// falling linearly to 0 over the fade (a contact that stops coming fades as the link does).
 double contact_weight(TimeNs silence, const LawConfig& config) noexcept {
@@ -122,7 +128,7 @@ Vector6d ServoLaw::stretch_in_use(const Vector6d& stretch, const Vector6d& twist
     const double hidden_length = h.norm();
     const double following =
         hidden_length > 0.0 ? std::max(0.0, twist.segment<3>(from).dot(h / hidden_length)) : 0.0;
-    h -= clamp_norm(h, std::max(0.0, speed - std::max(0.0, following - kCreepSpeed)) * dt);
+    h -= clamp_norm(h, return_speed(speed, following) * dt);
     const double length = h.norm();
     if (length > 0.0) {
       const double along = stretch.segment<3>(from).dot(h / length);
@@ -230,8 +236,7 @@ void ServoLaw::render_surface(Surface& surface, const ChainState& chain, const V
     m.surface_hidden = depth;
     m.friction_anchor = chain.handle_position;
   }
-  const double leaving = std::max(0.0, v.dot(n) - kCreepSpeed);
-  m.surface_hidden -= std::max(0.0, config_.restretch_speed - leaving) * dt;
+  m.surface_hidden -= return_speed(config_.restretch_speed, v.dot(n)) * dt;
   m.surface_hidden = std::clamp(m.surface_hidden, 0.0, depth);
   const double rendered = depth - m.surface_hidden;
   // The damper comes in over the first half millimetre, so that touching is not a step.

@@ -104,7 +104,7 @@ Problem check_contact(const hcp_control_contact& frame) noexcept {
   }
   const hcp_contact& c = frame.contact;
   if (!all_within(c.point, kMaxPosition) ||
-      !within(c.distance, -kMaxContactDistance, kMaxContactDistance)) {
+      !within(static_cast<double>(c.distance), -kMaxContactDistance, kMaxContactDistance)) {
     return "contact: point within 100 m, distance within 1 m";
   }
   double norm_sq = 0.0;
@@ -114,10 +114,13 @@ Problem check_contact(const hcp_control_contact& frame) noexcept {
   if (!(std::abs(norm_sq - 1.0) <= kMaxQuaternionError)) {
     return "contact: the normal must be a unit vector";
   }
-  if (!within(c.stiffness, kMinContactStiffness, kMaxGain) || !within(c.damping, 0.0, kMaxGain)) {
+  if (!within(static_cast<double>(c.stiffness), kMinContactStiffness, kMaxGain) ||
+      !within(static_cast<double>(c.damping), 0.0, kMaxGain)) {
     return "contact: stiffness 1 to 1e6 N/m, damping 0 to 1e6 N.s/m";
   }
-  if (!within(c.friction[0], 0.0, kMaxFriction) || !within(c.friction[1], 0.0, c.friction[0])) {
+  const auto static_friction = static_cast<double>(c.friction[0]);
+  if (!within(static_friction, 0.0, kMaxFriction) ||
+      !within(static_cast<double>(c.friction[1]), 0.0, static_friction)) {
     return "contact: friction 0 to 10, the dynamic one at most the static one";
   }
   return std::nullopt;

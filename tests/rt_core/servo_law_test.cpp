@@ -16,7 +16,6 @@ using test::coupled_to_object_ahead;
 using test::default_dynamics;
 using test::kReady;
 using test::powered_at;
-using test::virtmech_client;
 
 TEST(ServoLaw, UnpoweredOutputsNothing) {
   ServoLaw law(default_dynamics());

@@ -139,7 +139,9 @@ constexpr std::chrono::seconds kRetryForever{0};
 
 /// A session, initialised the seeds' way, or nothing when `may_continue` turns false or
 /// `patience` (0: unbounded) runs out. Refusals (busy, no controller, no answer) are retried
-/// every 0.5 s and said once each; other errors throw.
+/// every 0.5 s and said once each; other errors throw. When reconnecting (patience 0) a refused
+/// setup is retried too: the controller that accepted it before is failing safe again (a stall
+/// of the machine can fail the new one while the demo sets it up).
 template <typename MayContinue>
 std::optional<client::Connection> open_session(const demo::DemoOptions& o, MayContinue may_continue,
                                                std::chrono::seconds patience) {
@@ -156,7 +158,8 @@ std::optional<client::Connection> open_session(const demo::DemoOptions& o, MayCo
     } catch (const client::ClientError& e) {
       const bool retry =
           e.code() == client::ErrorCode::kBusy || e.code() == client::ErrorCode::kNoController ||
-          e.code() == client::ErrorCode::kTimeout || e.code() == client::ErrorCode::kClosed;
+          e.code() == client::ErrorCode::kTimeout || e.code() == client::ErrorCode::kClosed ||
+          (patience.count() == 0 && e.code() == client::ErrorCode::kRejected);
       const bool patient = patience.count() == 0 || Clock::now() < give_up;
       if (!retry || !patient) {
         throw;
@@ -223,13 +226,17 @@ class DemoRun {
         break;
       }
       c_ = std::move(next);
-      if (!c_->wait_for_answer(0, std::chrono::seconds(2), s_)) {
+      bool orderly_stop = false;
+      if (c_->wait_for_answer(0, std::chrono::seconds(2), s_)) {
+        scene_.emplace(scene_at(s_, o_));  // a new session starts with the sphere at the handle
+        announce();
+        run_session();
+        orderly_stop = !s_.fail_safe() && s_.core_state > kCoreFailSafe;
+      } else if (o_.reconnect) {
+        ended_ = "no answer from the controller within 2 s";  // failing safe again, or stalled
+      } else {
         throw std::runtime_error("no answer from the controller within 2 s");
       }
-      scene_.emplace(scene_at(s_, o_));  // a new session starts with the sphere at the handle
-      announce();
-      run_session();
-      const bool orderly_stop = !s_.fail_safe() && s_.core_state > kCoreFailSafe;
       if (quit_ || orderly_stop || !o_.reconnect || !time_left()) {
         break;
       }

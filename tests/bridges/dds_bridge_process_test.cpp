@@ -12,6 +12,7 @@
 #include "support/controller_stack.hpp"
 #include "support/dds_loopback.hpp"
 #include "support/json_fields.hpp"
+#include "support/machine_retries.hpp"
 
 namespace hapticctrl {
 namespace {
@@ -20,6 +21,7 @@ using namespace std::chrono_literals;
 using test::ControllerStack;
 using test::json_number;
 using test::json_numbers;
+using test::retry_what_the_machine_disturbed;
 using test::SpawnedProcess;
 
 struct DdsStack {
@@ -70,15 +72,14 @@ struct DdsStack {
   }
 };
 
-TEST(DdsBridgeProcess, EveryTopicArrivesWithRos2NamesAtTheConfiguredRate) {
-  DdsStack s("ddsrates", {"--rate-hz", "50", "--diagnostics-rate-hz", "5"});
-  ASSERT_TRUE(s.controller.ready()) << s.controller.diagnostics();
-  const std::string json = s.listen(3.0);
+/// Every topic at its configured rate (50 Hz, diagnostics 5 Hz), with ROS 2 names, types and
+/// the values the core publishes now.
+void expect_topics_at_the_configured_rate(DdsStack& s, const std::string& json) {
   // 50 Hz on a 100 Hz controller (10 ms cycles): every other cycle; diagnostics at 5 Hz.
   for (const char* topic : {"handle_pose", "rendered_wrench", "operator_wrench", "joint_states"}) {
     EXPECT_NEAR(json_number(json, std::string(topic) + "_rate_hz"), 50.0, 5.0) << topic << json;
     EXPECT_GT(json_number(json, std::string(topic) + "_count"), 100) << topic << json;
-    EXPECT_NE(json.find("\"" + std::string(topic) + "_frame\":\"test/ddsrates/base\""),
+    EXPECT_NE(json.find("\"" + std::string(topic) + "_frame\":\"" + s.ns.substr(1) + "/base\""),
               std::string::npos)
         << json;
   }
@@ -99,8 +100,10 @@ TEST(DdsBridgeProcess, EveryTopicArrivesWithRos2NamesAtTheConfiguredRate) {
   const shm::PositionPayload p = s.controller.position();
   const std::vector<double> pose = json_numbers(json, "pose");
   const std::vector<double> joints = json_numbers(json, "joint_position");
-  ASSERT_EQ(pose.size(), 7U) << json;
-  ASSERT_EQ(joints.size(), 6U) << json;
+  if (pose.size() != 7U || joints.size() != 6U) {
+    ADD_FAILURE() << json;
+    return;
+  }
   for (std::size_t i = 0; i < 7; ++i) {
     EXPECT_NEAR(pose[i], p.handle_pose[i], 1e-5) << i;
   }
@@ -109,6 +112,22 @@ TEST(DdsBridgeProcess, EveryTopicArrivesWithRos2NamesAtTheConfiguredRate) {
   }
   const std::string counters = s.stop_bridge();
   EXPECT_EQ(json_number(counters, "write_errors"), 0) << counters;
+}
+
+TEST(DdsBridgeProcess, EveryTopicArrivesWithRos2NamesAtTheConfiguredRate) {
+  // Rates are the machine's as much as the bridge's: CI's 10 ms core once failed safe on a stall
+  // (a wake-up 129 ms late) 0.35 s into the listening, and the topics stopped at 19 samples
+  // (2026-12-03). Such an attempt is tried again (machine_retries.hpp).
+  retry_what_the_machine_disturbed("topic rates", 3, [](int attempt) {
+    DdsStack s("ddsrates" + std::to_string(attempt),
+               {"--rate-hz", "50", "--diagnostics-rate-hz", "5"});
+    if (!s.controller.ready()) {
+      ADD_FAILURE() << s.controller.diagnostics();
+      return true;
+    }
+    expect_topics_at_the_configured_rate(s, s.listen(3.0));
+    return true;
+  });
 }
 
 TEST(DdsBridgeProcess, CommandsAndTheOperatorWrenchFlowBackThroughTheCore) {

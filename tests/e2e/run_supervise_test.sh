@@ -62,7 +62,8 @@ said "run: the controller FAILED SAFE: after cycle [0-9]*: 5 consecutive deadlin
   fail "the fail-safe's reason is not printed"
 until_true 20 status_ok || fail "the new controller does not answer"
 [[ $(cat "$RUN_DIR/core.pid") != "$first" ]] || fail "core.pid still names the stalled core"
-until_true 20 grep -q "reconnected" "$RUN_DIR/demo.log" || fail "the demo did not reconnect"
+until_true 20 grep -q "reconnected" "$RUN_DIR/demo.log" ||
+  fail "the demo did not reconnect; its log: $(tail -n 20 "$RUN_DIR/demo.log")"
 status=0
 stop_run || status=$?
 [[ $status -eq 130 ]] || fail "expected exit 130 (stopped by a signal), got $status"

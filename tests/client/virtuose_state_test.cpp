@@ -11,6 +11,7 @@
 #include "hapticctrl/shm/segment.hpp"
 #include "hapticctrl/virtuose_api.h"
 #include "support/controller_stack.hpp"
+#include "support/machine_retries.hpp"
 #include "virtuose_session.hpp"
 
 namespace hapticctrl {
@@ -18,6 +19,7 @@ namespace {
 
 using namespace std::chrono_literals;
 using test::ControllerStack;
+using test::retry_what_the_machine_disturbed;
 using test::VirtuoseSession;
 
 using Pose = std::array<float, 7>;
@@ -65,15 +67,15 @@ class VirtuoseState : public ::testing::Test {
   VirtuoseSession vc_{stack_};
 };
 
-TEST_F(VirtuoseState, AShiftHoldsTheAvatarWhileTheHandleMovesAndKeepsTheOffsetAfter) {
-  VirtContext vc = vc_.get();
+/// The shift: the avatar held while the operator moves the handle, the offset kept after.
+void expect_a_shift_holds_the_avatar(const ControllerStack& stack, VirtContext vc) {
   EXPECT_LT(distance(avatar(vc), physical(vc)), 1e-6) << "no offset before any shift";
   const Pose held = avatar(vc);
   ASSERT_EQ(virtForceShiftButton(vc, 1), 0);
   int shifted = 0;
   ASSERT_EQ(virtIsInShiftPosition(vc, &shifted), 0);
   EXPECT_EQ(shifted, 1);
-  operator_push(stack_, vc, {0, 4, 0, 0, 0, 0}, 300ms);
+  operator_push(stack, vc, {0, 4, 0, 0, 0, 0}, 300ms);
   const Pose moved = physical(vc);
   ASSERT_GT(distance(moved, held), 0.01) << "the push moved the handle";
   EXPECT_LT(distance(avatar(vc), held), 1e-4) << "the avatar kept still";
@@ -84,7 +86,7 @@ TEST_F(VirtuoseState, AShiftHoldsTheAvatarWhileTheHandleMovesAndKeepsTheOffsetAf
   ASSERT_EQ(virtIsInShiftPosition(vc, &shifted), 0);
   EXPECT_EQ(shifted, 0);
   // Released: the avatar follows the handle again, from where it was held.
-  operator_push(stack_, vc, {0, -4, 0, 0, 0, 0}, 150ms);
+  operator_push(stack, vc, {0, -4, 0, 0, 0, 0}, 150ms);
   const Pose p = physical(vc);
   const Pose a = avatar(vc);
   ASSERT_GT(distance(p, moved), 0.005);
@@ -92,6 +94,23 @@ TEST_F(VirtuoseState, AShiftHoldsTheAvatarWhileTheHandleMovesAndKeepsTheOffsetAf
     EXPECT_NEAR(a[i] - p[i], held[i] - moved[i], 1e-3) << "the offset kept, axis " << i;
   }
   EXPECT_EQ(virtIsInShiftPosition(vc, nullptr), -1);
+}
+
+TEST(VirtuoseShift, HoldsTheAvatarWhileTheHandleMovesAndKeepsTheOffsetAfter) {
+  // The handle must come to rest after each push: a core the machine failed safe meanwhile (or
+  // a stall under the push) spoils that, not the shift (once beside stress-ng, 2026-12-03).
+  retry_what_the_machine_disturbed("shift", 3, [](int attempt) {
+    ControllerStack stack("capishift" + std::to_string(attempt));
+    VirtuoseSession vc(stack);
+    if (!stack.ready() || !vc.open()) {
+      ADD_FAILURE() << stack.diagnostics() << virtGetErrorDetail(nullptr);
+      return true;
+    }
+    EXPECT_EQ(virtSetCommandType(vc.get(), COMMAND_TYPE_IMPEDANCE), 0);
+    EXPECT_EQ(virtSetPowerOn(vc.get(), 1), 0) << vc.detail();
+    expect_a_shift_holds_the_avatar(stack, vc.get());
+    return true;
+  });
 }
 
 TEST_F(VirtuoseState, AnInhibitingIndexingModeRendersNoForceWhileShifted) {

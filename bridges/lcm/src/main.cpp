@@ -87,17 +87,18 @@ void publish_loop(const shm::Segment& seg, lcm::LCM& lcm, const Channels& ch,
     // by the clock; the regions are read only for what is due.
     const bool arm_due = wake == shm::CoreWatch::Wake::kCycle && now >= next_arm;
     const bool stats_due = now >= next_stats;
+    // A region torn by a writer preempted in the middle of a write (the UDP bridge writes VPR
+    // at normal priority) is published at the next wake, never as the payload's defaults.
     shm::TelemetryPayload telemetry;
-    if (arm_due || stats_due) {
-      (void)seg.region<shm::RegionId::kTelemetry>().read(telemetry);
-    }
-    if (arm_due) {
-      next_arm = arm_every_ns == 0 ? 0 : std::max(next_arm + arm_every_ns, now - arm_every_ns);
+    const bool telemetry_ok =
+        (arm_due || stats_due) && seg.region<shm::RegionId::kTelemetry>().read(telemetry).ok();
+    if (arm_due && telemetry_ok) {
       shm::PositionPayload position;
       shm::VpPayload vp;
-      shm::VprPayload vpr;
-      if (seg.region<shm::RegionId::kPosition>().read(position).ok() && vp_cell.read(vp).ok()) {
-        (void)seg.region<shm::RegionId::kVpr>().read(vpr);
+      shm::VprPayload vpr;  // never written: no client yet, and its defaults say so
+      if (seg.region<shm::RegionId::kPosition>().read(position).ok() && vp_cell.read(vp).ok() &&
+          seg.region<shm::RegionId::kVpr>().read(vpr).status != shm::ReadStatus::kTorn) {
+        next_arm = arm_every_ns == 0 ? 0 : std::max(next_arm + arm_every_ns, now - arm_every_ns);
         auto arm = lb::to_arm_state(position, utime_of(now));
         lcm.publish(ch.arm_state, &arm);
         auto coupling = lb::to_coupling(vp, vpr, telemetry, now, utime_of(now));
@@ -105,7 +106,7 @@ void publish_loop(const shm::Segment& seg, lcm::LCM& lcm, const Channels& ch,
         counters.arm_state.fetch_add(1, std::memory_order_relaxed);
       }
     }
-    if (stats_due) {
+    if (stats_due && telemetry_ok) {
       next_stats = now + stats_every_ns;
       auto stats = lb::to_cycle_stats(telemetry, utime_of(now));
       lcm.publish(ch.cycle_stats, &stats);

@@ -28,14 +28,17 @@ attempt() {
   return "$status"
 }
 # A fail-safe on a stall of this VM longer than the probe saw is the machine's (H6 asks for 9 of
-# 10 runs without one, docs in the README); a second one in a row fails the test.
-status=0
-attempt || status=$?
-if [[ $status -ge 10 ]]; then
-  echo "first_run_test: first attempt failed safe ($status), trying again"
+# 10 runs without one, docs in the README): an attempt whose every fail-safe was a measured stall
+# of the machine is tried again, up to 3 attempts; any other failure fails the test.
+for try in 1 2 3; do
   status=0
   attempt || status=$?
-fi
+  if [[ $status -eq 0 ]] || ! only_machine_stalls "$OUT/log"; then
+    break
+  fi
+  [[ $try -eq 3 ]] && skip_when_the_machine_stalled_every_attempt 3 "$OUT/log"
+  echo "first_run_test: attempt $try failed safe ($status) on stalls of the machine, trying again"
+done
 [[ $status -eq 0 ]] || fail "run.sh exited $status"
 cat "$OUT/log"
 

@@ -9,25 +9,39 @@ set -euo pipefail
 SOURCE=$1 BUILD=$2 NAME=run_stall
 # shellcheck source=run_script_common.sh
 . "$(dirname "$0")/run_script_common.sh"
-rm -f "$BUILD/run/core.pid"
-status=0
-HAPTICCTRL_RUN_PERIOD_US=1000 "$SOURCE/scripts/run.sh" </dev/null >"$OUT/log" 2>&1 &
-run=$!
-core=
-for _ in $(seq 600); do  # the build is there: the core starts within seconds (bounded: 60 s)
-  [[ -s $BUILD/run/core.pid ]] && core=$(cat "$BUILD/run/core.pid")
-  grep -q "scripted scenario" "$OUT/log" 2>/dev/null && break
-  sleep 0.1
+# One attempt: run.sh at 1 ms, its core stopped for 60 ms once the scenario runs. Its status.
+attempt() {
+  rm -f "$BUILD/run/core.pid"
+  local status=0 run core=
+  HAPTICCTRL_RUN_PERIOD_US=1000 "$SOURCE/scripts/run.sh" </dev/null >"$OUT/log" 2>&1 &
+  run=$!
+  for _ in $(seq 600); do  # the build is there: the core starts within seconds (bounded: 60 s)
+    [[ -s $BUILD/run/core.pid ]] && core=$(cat "$BUILD/run/core.pid")
+    grep -q "scripted scenario" "$OUT/log" 2>/dev/null && break
+    sleep 0.1
+  done
+  [[ -n $core ]] || fail "no controller started"
+  # core.pid is the core's own pid (run.sh's run_core); it may have failed safe already.
+  kill -STOP "$core" 2>/dev/null && sleep 0.06 && kill -CONT "$core"
+  wait "$run" || status=$?
+  cat "$OUT/log"
+  return "$status"
+}
+# Our stop is a stall the core must be told; the machine's own stalls may fail the later starts
+# too: such an attempt (every fail-safe a measured stall) is tried again, up to 3.
+for try in 1 2 3; do
+  status=0
+  attempt || status=$?
+  grep -q "on a stall of the machine (the clock woke" "$OUT/log" ||
+    fail "the fail-safe was not told a stall of the machine (did the 60 ms stop reach the core?)"
+  grep -q "^run: that was a stall of this machine, not of the controller: starting again at 2 ms (again 1 of 2)" \
+    "$OUT/log" || fail "run.sh did not start again at 2 ms"
+  if [[ $status -eq 0 ]] || ! only_machine_stalls "$OUT/log"; then
+    break
+  fi
+  [[ $try -eq 3 ]] && skip_when_the_machine_stalled_every_attempt 3 "$OUT/log"
+  echo "run_stall_test: attempt $try: the machine stalled the later starts too ($status), trying again"
 done
-[[ -n $core ]] || fail "no controller started"
-# core.pid is the core's own pid (run.sh's run_core).
-kill -STOP "$core" && sleep 0.06 && kill -CONT "$core"
-wait "$run" || status=$?
-cat "$OUT/log"
-grep -q "on a stall of the machine (the clock woke" "$OUT/log" ||
-  fail "the fail-safe was not told a stall of the machine (did the 60 ms stop reach the core?)"
-grep -q "^run: that was a stall of this machine, not of the controller: starting again at 2 ms (again 1 of 2)" \
-  "$OUT/log" || fail "run.sh did not start again at 2 ms"
 [[ $status -eq 0 ]] || fail "expected exit 0 after starting again, got $status"
 grep -q "^outcome: contact force" "$OUT/log" || fail "the demo's outcome is missing"
 if pgrep -f -- "--instance $HAPTICCTRL_INSTANCE" >/dev/null; then

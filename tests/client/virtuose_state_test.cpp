@@ -55,13 +55,21 @@ void operator_push(const ControllerStack& stack, VirtContext vc, const shm::Vect
   })) << "the handle comes to rest";
 }
 
+/// An open session set to IMPEDANCE and powered on; false (with the failure said) otherwise.
+bool powered_in_impedance(const VirtuoseSession& vc) {
+  const bool impedance = virtSetCommandType(vc.get(), COMMAND_TYPE_IMPEDANCE) == 0;
+  EXPECT_TRUE(impedance) << vc.detail();
+  const bool powered = impedance && virtSetPowerOn(vc.get(), 1) == 0;
+  EXPECT_TRUE(powered) << vc.detail();
+  return powered;
+}
+
 class VirtuoseState : public ::testing::Test {
  protected:
   void SetUp() override {
     ASSERT_TRUE(stack_.ready()) << stack_.diagnostics();
     ASSERT_TRUE(vc_.open()) << virtGetErrorDetail(nullptr);
-    ASSERT_EQ(virtSetCommandType(vc_.get(), COMMAND_TYPE_IMPEDANCE), 0);
-    ASSERT_EQ(virtSetPowerOn(vc_.get(), 1), 0) << vc_.detail();
+    ASSERT_TRUE(powered_in_impedance(vc_));
   }
   ControllerStack stack_{"capistate"};
   VirtuoseSession vc_{stack_};
@@ -106,9 +114,9 @@ TEST(VirtuoseShift, HoldsTheAvatarWhileTheHandleMovesAndKeepsTheOffsetAfter) {
       ADD_FAILURE() << stack.diagnostics() << virtGetErrorDetail(nullptr);
       return true;
     }
-    EXPECT_EQ(virtSetCommandType(vc.get(), COMMAND_TYPE_IMPEDANCE), 0);
-    EXPECT_EQ(virtSetPowerOn(vc.get(), 1), 0) << vc.detail();
-    expect_a_shift_holds_the_avatar(stack, vc.get());
+    if (powered_in_impedance(vc)) {
+      expect_a_shift_holds_the_avatar(stack, vc.get());
+    }
     return true;
   });
 }

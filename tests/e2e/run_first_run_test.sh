@@ -33,11 +33,7 @@ attempt() {
 for try in 1 2 3; do
   status=0
   attempt || status=$?
-  if [[ $status -eq 0 ]] || ! only_machine_stalls "$OUT/log"; then
-    break
-  fi
-  [[ $try -eq 3 ]] && skip_when_the_machine_stalled_every_attempt 3 "$OUT/log"
-  echo "first_run_test: attempt $try failed safe ($status) on stalls of the machine, trying again"
+  machine_spoiled_attempt "$try" "$status" "$OUT/log" || break
 done
 [[ $status -eq 0 ]] || fail "run.sh exited $status"
 cat "$OUT/log"

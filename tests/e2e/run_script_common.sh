@@ -25,11 +25,19 @@ only_machine_stalls() {
   stalls=$(grep -c "the controller FAILED SAFE.*on a stall of the machine" "$1" || true)
   [[ $all -gt 0 && $all -eq $stalls ]]
 }
-# Ends the test as skipped (ctest: SKIP_RETURN_CODE 77) after ATTEMPTS attempts the machine
-# spoiled, saying so with the last attempt's fail-safe lines.
-skip_when_the_machine_stalled_every_attempt() {  # attempts log
-  echo "${NAME}_test: the machine stalled the controller in all $1 attempts: nothing could be" \
-    "judged; skipped. The last attempt's fail-safes:"
-  grep "the controller FAILED SAFE" "$2" || true
-  exit 77
+# After attempt TRY (of 3) ended with STATUS: true when it is to be tried again, because it
+# failed and every fail-safe in LOG was a measured stall of the machine (said, then tried again);
+# after the third such attempt the test ends as skipped (ctest: SKIP_RETURN_CODE 77), saying so
+# with that attempt's fail-safe lines. False when the attempt is to be judged.
+machine_spoiled_attempt() {  # try status log
+  if [[ $2 -eq 0 ]] || ! only_machine_stalls "$3"; then
+    return 1
+  fi
+  if [[ $1 -ge 3 ]]; then
+    echo "${NAME}_test: the machine stalled the controller in all $1 attempts: nothing could be" \
+      "judged; skipped. The last attempt's fail-safes:"
+    grep "the controller FAILED SAFE" "$3" || true
+    exit 77
+  fi
+  echo "${NAME}_test: attempt $1 failed safe ($2) on stalls of the machine, trying again"
 }

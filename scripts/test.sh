@@ -16,6 +16,9 @@ if [[ ${1:-} == --under-load ]]; then
   shift
 fi
 
+# Each stage says when it starts, so that a slow CI run shows where its time went (budget: 45 min).
+stage() { echo "== $* (at $((SECONDS / 60)) min $((SECONDS % 60)) s)"; }
+
 scripts/setup.sh
 
 if [[ $UNDER_LOAD == 1 ]]; then
@@ -36,6 +39,7 @@ configure_build_test() {  # dir, ctest label regex, ctest attempts, extra cmake 
   shift 3
   cmake -S "$ROOT" -B "$dir" -G Ninja -DHAPTICCTRL_WERROR=ON "${LINES_ONLY[@]}" "$@" >/dev/null
   cmake --build "$dir" -j "$JOBS"
+  stage "built $dir; its tests"
   local runner=()
   # Sanitizer runtimes of GCC 12 cannot map their shadow with high mmap randomisation.
   if [[ -r /proc/sys/vm/mmap_rnd_bits && $(cat /proc/sys/vm/mmap_rnd_bits) -gt 28 ]]; then
@@ -49,7 +53,7 @@ configure_build_test() {  # dir, ctest label regex, ctest attempts, extra cmake 
   fi
 }
 
-echo "== build and test (RelWithDebInfo)"
+stage "build and test (RelWithDebInfo)"
 # Two attempts: on these 2 vCPUs without a real-time kernel a whole-VM stall of 50 ms or more
 # now and then fails a timing-bound integration test of the plain build too (2026-12-02, a full
 # run: the demo's core failed safe on 5 missed 10 ms deadlines, and two H1 cases measured a 1 ms
@@ -58,19 +62,19 @@ echo "== build and test (RelWithDebInfo)"
 configure_build_test build 'unit|sim|integration|bench' 2
 
 if [[ "${CI:-}" == "true" ]]; then
-  echo "== format and lint"
+  stage "format and lint"
   scripts/lint.sh build
   # Sanitizer builds: a multi-process test whose instrumented core missed 5 deadlines in a row
   # on these 2 vCPUs (seen 2026-11-24, never in the plain build, which runs each test once) gets
   # up to 3 attempts; a functional failure still fails every attempt.
-  echo "== AddressSanitizer + UBSan"
+  stage "AddressSanitizer + UBSan"
   configure_build_test build-asan 'unit|sim|integration' 3 \
     -DHAPTICCTRL_SANITIZER=address,undefined -DHAPTICCTRL_BUILD_BENCH=OFF -DCMAKE_BUILD_TYPE=Debug \
     -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" -DCMAKE_C_FLAGS_DEBUG="-O1 -g1"  # asserts on (EIGEN_NO_MALLOC), Eigen still fast enough
-  echo "== ThreadSanitizer"
+  stage "ThreadSanitizer"
   configure_build_test build-tsan 'unit|sim|integration' 3 \
     -DHAPTICCTRL_SANITIZER=thread -DHAPTICCTRL_BUILD_BENCH=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo
-  echo "== fuzz the decoder, the arm model, the option parsers, LCM HMI input and web page input (libFuzzer)"
+  stage "fuzz the decoder, the arm model, the option parsers, LCM HMI input and web page input (libFuzzer)"
   CC=clang CXX=clang++ cmake -S "$ROOT" -B build-fuzz -G Ninja -DHAPTICCTRL_WERROR=ON \
     -DHAPTICCTRL_BUILD_FUZZ=ON -DHAPTICCTRL_BUILD_TESTS=OFF -DHAPTICCTRL_BUILD_BENCH=OFF \
     -DCMAKE_BUILD_TYPE=RelWithDebInfo "${LINES_ONLY[@]}" >/dev/null
@@ -94,4 +98,4 @@ if [[ "${CI:-}" == "true" ]]; then
     rm -rf "$log" "$corpus"
   done
 fi
-echo "== all tests passed"
+stage "all tests passed"

@@ -134,6 +134,10 @@ ServoLaw::Coupling ServoLaw::client_wrench(const ServoInputs& in, const ClientFr
     // J1 2026-12-03).
     Surface surface = impedance_surface(in, frame, chain);
     render_surface(surface, chain, twist, static_cast<double>(in.dt) * 1e-9);
+    coupling.contact_in_force = surface.weight > 0.0;
+    coupling.contact_whole = surface.weight >= 1.0;
+    coupling.contact = {surface.normal, surface.point - memory_.surface_hidden * surface.normal,
+                        0.0, surface.stiffness * scale};
     if (surface.share > 0.0) {
       // The client's push out of the surface and along it (its friction) is the surface's,
       // rendered here; a push into it stays the client's.
@@ -184,6 +188,10 @@ ServoLaw::Coupling ServoLaw::client_wrench(const ServoInputs& in, const ClientFr
     out.contact_normal = n * stiff.share;
     out.normal_stiffness = stiff.stiffness;
     out.normal_damping = stiff.damping;
+    coupling.contact_in_force = true;
+    coupling.contact_whole = stiff.weight >= 1.0;
+    coupling.contact = {n, image.position - memory_.stretch.head<3>().dot(n) * n,
+                        g.k_linear * scale, stiff.stiffness * scale};
   }
   coupling.spring *= scale;
   coupling.damper *= scale;
@@ -202,6 +210,7 @@ void ServoLaw::follow_session(const ServoInputs& in) noexcept {
     m.travel = TravelHistory{};
     m.drift.setZero();
     m.gains = CouplingGains{};  // its gains start at their design
+    m.held = RenderMemory::HeldContact{};
   }
 }
 
@@ -329,6 +338,7 @@ void ServoLaw::compute(const ServoInputs& in, bool /*degraded*/, ServoOutputs& o
     out.commands.torque.setZero();
     memory_.wrench.setZero();  // power-on starts from zero force, never with a step ...
     memory_.engage = 0.0;      // ... and re-engages the coupling through the ramp
+    memory_.held = RenderMemory::HeldContact{};  // and holds no contact from before
     return;
   }
 
@@ -347,6 +357,7 @@ void ServoLaw::compute(const ServoInputs& in, bool /*degraded*/, ServoOutputs& o
   // once. Multiplying a faded force by it made the fade quadratic, twice as steep at its start
   // as the slope it was designed for.
   const double engage = update_engagement(in, twist, out.fade, out);
+  hold_contact(in, coupling, engage);
   // The damper comes back (and the viscous hold lets go) over hold_release, the spring over the
   // whole ramp: the damping on the handle stays whole while the coupling returns (the hold let
   // go over the whole ramp before 2026-12-03; released within 50 ms with the spring, the handle
@@ -371,6 +382,7 @@ void ServoLaw::compute(const ServoInputs& in, bool /*degraded*/, ServoOutputs& o
   // link, the wall let a 10 N push through at 0.5 m/s whenever 10 % loss at 100 ms one way
   // left 10 ms without a wrench (2026-12-03).
   target += coupling.local;
+  target.head<3>() += held_contact_force(in, engage);
   out.channel_energy_in = memory_.channel_in;
   out.channel_energy_out = memory_.channel_out;
   const ArmLimits& lim = dynamics_->model().limits;

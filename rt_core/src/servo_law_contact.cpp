@@ -85,6 +85,7 @@ ServoLaw::Stiffening ServoLaw::contact_stiffening(const ServoInputs& in, const C
         (weight * touching == best.share && stiffness > best.stiffness)) {
       best.normal = normal;
       best.share = weight * touching;
+      best.weight = weight;
       best.stiffness = stiffness;
       best.damping = weight * touching * std::max(0.0, lim.max_damping_linear - g.b_linear);
     }
@@ -112,6 +113,15 @@ Vector6d ServoLaw::stretch_in_use(const Vector6d& stretch, const Vector6d& twist
     }
     m.anchored = true;  // fully disengaged: the whole stretch is hidden, the spring relaxed
     m.stretch = stretch;
+    // ... but for what a held contact renders (held_contact_force): the hand still presses on it
+    // and the spring takes it over as it re-engages (hidden, the 8 N push on a held contact
+    // fell to 3.1 N as the coupling came back, 2026-12-04).
+    const RenderMemory::HeldContact& h = m.held;
+    if (h.coupling_stiffness + h.contact_stiffness > 0.0) {
+      const double along = stretch.head<3>().dot(h.normal);
+      const double held = (h.point - chain_.handle_position).dot(h.normal);
+      m.stretch.head<3>() -= std::clamp(held, 0.0, std::max(0.0, along)) * h.normal;
+    }
     return Vector6d::Zero();
   }
   if (!m.anchored) {
@@ -205,6 +215,7 @@ ServoLaw::Surface ServoLaw::impedance_surface(const ServoInputs& in, const Clien
     const double damping = lim.max_damping_linear;
     best.normal = normal;
     best.depth = depth;
+    best.point = point;
     best.weight = weight;
     best.share = weight * std::clamp((kTouchBand + depth) / kTouchBand, 0.0, 1.0);
     best.stiffness = stiffness;
@@ -232,8 +243,14 @@ void ServoLaw::render_surface(Surface& surface, const ChainState& chain, const V
     // stretch does (stretch_in_use): the model-update hazard of model-mediated teleoperation.
     // A 2000 N/m wall whose first report found the handle 7 cm deep kicked it out at 35 N
     // (100 ms one way, 2026-12-03).
+    // What a held contact renders there is not hidden: after a blackout the hand still presses
+    // on it (hidden, the 10 N a hand pressed on a held surface fell to nothing as it came back).
+    const RenderMemory::HeldContact& h = m.held;
+    const double held = h.contact_stiffness > 0.0 && h.normal.dot(surface.normal) > 0.99
+                            ? (h.point - chain.handle_position).dot(h.normal)
+                            : 0.0;
     m.on_surface = true;
-    m.surface_hidden = depth;
+    m.surface_hidden = depth - std::clamp(held, 0.0, depth);
     m.friction_anchor = chain.handle_position;
   }
   m.surface_hidden -= return_speed(config_.restretch_speed, v.dot(n)) * dt;
@@ -266,6 +283,45 @@ void ServoLaw::render_surface(Surface& surface, const ChainState& chain, const V
   if (surface.friction.norm() > cone) {
     surface.friction *= cone / surface.friction.norm();
   }
+}
+
+void ServoLaw::hold_contact(const ServoInputs& in, const Coupling& coupling,
+                            double engage) noexcept {
+  // What the hand feels of a contact on a fresh link, wholly engaged (a VIRTMECH coupling that
+  // is not re-stretching, or an IMPEDANCE surface), is noted; once the link falls silent what
+  // was noted stays, and held_contact_force renders it as the link's coupling fades.
+  if (in.client_silence > config_.contact_fresh) {
+    return;
+  }
+  if (in.client.command != ClientCommand::kImpedance && (engage < 1.0 || memory_.anchored)) {
+    return;
+  }
+  if (!coupling.contact_in_force) {
+    memory_.held = RenderMemory::HeldContact{};
+  } else if (coupling.contact_whole) {
+    memory_.held = coupling.contact;
+  }
+}
+
+Vector3d ServoLaw::held_contact_force(const ServoInputs& in, double engage) const noexcept {
+  // A surface the client's object rests on does not go away when the link does: a hand that
+  // pushed 5 N into a 3000 N/m wall through a 2 s blackout went 30 cm through the faded wall at
+  // the viscous hold's 0.16-0.21 m/s, and was still that fast when the link returned (J1 asks
+  // 0.1 m/s; 2026-12-03). The contact as the hand last felt it is a static, unilateral plane on
+  // the handle's position now: passive at any delay (no sample is in its loop). It takes over
+  // what fades of the coupling: its own share as the link's engagement falls, the contact's as
+  // the link's silence ages it (contact_weight on the link's silence, so that a contact the
+  // client withdraws on a live link fades as it did); an IMPEDANCE surface is not engaged.
+  const RenderMemory::HeldContact& h = memory_.held;
+  const double depth = (h.point - chain_.handle_position).dot(h.normal);
+  if (depth <= 0.0) {
+    return Vector3d::Zero();
+  }
+  const double coupled = in.client.command == ClientCommand::kImpedance ? 1.0 : engage;
+  const double link = contact_weight(in.client_silence, config_);
+  const double stiffness =
+      (1.0 - engage) * h.coupling_stiffness + (1.0 - coupled * link) * h.contact_stiffness;
+  return stiffness * depth * h.normal;
 }
 
 }  // namespace hapticctrl::rt_core

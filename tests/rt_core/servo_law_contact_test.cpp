@@ -2,6 +2,7 @@
 // the spring re-anchored after a full disengagement (J1).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "hapticctrl/rt_core/servo_law.hpp"
@@ -257,6 +258,108 @@ TEST(ServoLawSurface, FrictionHoldsTheHandleWithinTheConeAndSlidesBeyondIt) {
   out = run_on_surface(law, in, 20);
   EXPECT_NEAR(out.handle_wrench.y(), -0.4 * 10.0, 0.2) << "sliding: mu_d x the normal force";
   EXPECT_NEAR(out.handle_wrench.x(), -10.0, 0.2);
+}
+
+/// The handle's force along x over cycles of 1 ms: its extremes and largest step per cycle.
+struct ForceTrace {
+  double least = 1e9;
+  double most = -1e9;
+  double largest_step = 0.0;
+  double last = 0.0;
+  void add(double f, bool first) {
+    least = std::min(least, f);
+    most = std::max(most, f);
+    if (!first) {
+      largest_step = std::max(largest_step, std::abs(f - last));
+    }
+    last = f;
+  }
+};
+
+/// Runs `cycles` cycles of 1 ms with the link silent (no new sample: its silence and the last
+/// sample's age grow) or, `fresh`, with a sample and its contacts refreshed every cycle.
+ForceTrace run_link(ServoLaw& law, ServoInputs& in, int cycles, bool fresh) {
+  ForceTrace trace;
+  ServoOutputs out;
+  for (int k = 0; k < cycles; ++k) {
+    in.now += in.dt;
+    in.new_sample = fresh;
+    in.client_silence = fresh ? 0 : in.client_silence + in.dt;
+    in.client_age = fresh ? 0 : in.client_age + in.dt;
+    if (fresh) {
+      in.client.contacts[0].received_ns = in.now;
+    }
+    law.compute(in, false, out);
+    trace.add(out.handle_wrench.x(), k == 0);
+  }
+  return trace;
+}
+
+TEST(ServoLawHeldContact, ThroughABlackoutTheHandPressesOnTheContactItFeltAndNothingSteps) {
+  // The handle presses 1 cm into a 1600 N/m contact (800 N/m in all along it, 8 N); the link
+  // falls silent for 2 s and comes back. The coupling fades and re-anchors as before, and the
+  // contact as the hand felt it takes over what fades: the hand meets the same wall all along
+  // (without it, it went 30 cm through the faded wall in 2 s, J1).
+  ServoLaw law(default_dynamics());
+  ServoInputs in = slow_link_coupling(-0.01);
+  in.client.contact_count = 1;
+  in.client.contacts[0] = wall_at(in.client.object_pose, 1600.0, in.now);
+  ForceTrace trace = run_link(law, in, 300, true);
+  ASSERT_NEAR(trace.last, -8.0, 0.2);
+  trace = run_link(law, in, 2000, false);
+  EXPECT_NEAR(trace.least, -8.0, 0.2) << "the push the hand felt, through the blackout";
+  EXPECT_NEAR(trace.most, -8.0, 0.2);
+  EXPECT_LE(trace.largest_step, 1.0 + 1e-9) << "N per 1 ms cycle";
+  EXPECT_EQ(law.memory().engage, 0.0) << "the link's coupling is wholly faded";
+  trace = run_link(law, in, 300, true);
+  EXPECT_GT(-trace.most, 0.9 * 8.0) << "no dip as the coupling re-engages";
+  EXPECT_LT(-trace.least, 1.05 * 8.0) << "no overshoot";
+  EXPECT_LE(trace.largest_step, 1.0 + 1e-9);
+  EXPECT_NEAR(trace.last, -8.0, 0.2);
+  EXPECT_EQ(law.memory().engage, 1.0);
+}
+
+TEST(ServoLawHeldContact, IsUnilateralAndForgottenWhenTheClientWithdrawsItOnALiveLink) {
+  ServoLaw law(default_dynamics());
+  ServoInputs in = slow_link_coupling(-0.01);
+  in.client.contact_count = 1;
+  in.client.contacts[0] = wall_at(in.client.object_pose, 1600.0, in.now);
+  run_link(law, in, 300, true);
+  // Silent, the hand pulls the handle 2 cm back out of the wall (-x), then pushes it back in.
+  const Vector6d pressing = in.measures.position;
+  const Matrix6d jacobian = default_dynamics().jacobian(chain_at(kReady));
+  Vector6d back = Vector6d::Zero();
+  back.x() = -0.02;
+  in.measures.position += jacobian.colPivHouseholderQr().solve(back);
+  run_link(law, in, 100, false);
+  EXPECT_EQ(run_link(law, in, 1, false).last, 0.0) << "a held contact never pulls";
+  in.measures.position = pressing;
+  EXPECT_NEAR(run_link(law, in, 20, false).last, -8.0, 0.3) << "pushed back in: it is there";
+
+  ServoLaw live(default_dynamics());
+  ServoInputs withdrawn = slow_link_coupling(-0.01);
+  withdrawn.client.contact_count = 1;
+  withdrawn.client.contacts[0] = wall_at(withdrawn.client.object_pose, 1600.0, withdrawn.now);
+  run_link(live, withdrawn, 300, true);
+  withdrawn.client.contact_count = 0;  // the object left the wall in the client's world
+  run_link(live, withdrawn, 100, true);
+  const double k_free = -run_link(live, withdrawn, 1, true).last / 0.01;
+  EXPECT_NEAR(k_free, live.memory().gains.k_linear, 1.0) << "the free coupling alone";
+  EXPECT_NEAR(run_link(live, withdrawn, 100, false).last, 0.0, 1e-9)
+      << "and nothing held when the link then falls silent";
+}
+
+TEST(ServoLawHeldContact, AnImpedanceSurfaceIsHeldThroughABlackout) {
+  ServoLaw law(default_dynamics());
+  ServoInputs in = impedance_on_surface(0.005, 0.0);
+  ForceTrace trace = run_link(law, in, 200, true);
+  ASSERT_NEAR(trace.last, -10.0, 0.05);
+  trace = run_link(law, in, 2000, false);
+  EXPECT_NEAR(trace.least, -10.0, 0.05) << "2000 N/m x 5 mm, through the blackout";
+  EXPECT_NEAR(trace.most, -10.0, 0.05);
+  trace = run_link(law, in, 300, true);
+  EXPECT_NEAR(trace.least, -10.0, 0.05) << "and when the link returns";
+  EXPECT_NEAR(trace.most, -10.0, 0.05);
 }
 
 }  // namespace

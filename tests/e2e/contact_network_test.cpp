@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <fstream>
 #include <optional>
@@ -338,6 +339,58 @@ INSTANTIATE_TEST_SUITE_P(J1, ContactBlackout,
                                            BlackoutCase{"virtmech_2000ms", 2000, "virtmech"},
                                            BlackoutCase{"impedance_2000ms", 2000, "impedance"}),
                          [](const auto& p) { return std::string(p.param.name); });
+
+TEST(ContactClientKilled, TheHeldWallStaysUntilTheSessionEndsThenLetsGoWithoutAStep) {
+  // The client dies while the hand pushes 5 N into its 3000 N/m wall: the wall the hand felt is
+  // held (a static plane, docs/control.md "Contact") until the bridge's watchdog ends the session
+  // (3 s), then let go at the release rate.
+  with_retries("client killed in contact", [](int attempt) {
+    Scenario s("j1-ckill-" + std::to_string(attempt), {"--delay-ms", "1"}, wall_demo(3000, "-x"));
+    std::uint64_t coupled_at = 0;
+    if (const auto done = couple_and_record(s, 1s, coupled_at)) {
+      return *done;
+    }
+    EXPECT_EQ(run_hmi(s, {"force", "-5", "0", "0", "0", "0", "0"}, 10s), 0);
+    std::this_thread::sleep_for(1500ms);
+    const std::uint64_t cut = s.recorder->newest_cycle();
+    s.demo->signal(SIGKILL);
+    std::this_thread::sleep_for(4500ms);  // past the bridge's 3 s watchdog
+    EXPECT_EQ(run_hmi(s, {"zero-force"}, 10s), 0);
+    if (s.core_failed_safe()) {
+      return false;
+    }
+    const auto r = s.recorder->records();
+    const std::size_t from = index_of(r, cut + kCyclesPerSecond / 10);
+    const std::size_t held_to = index_of(r, cut + 5 * kCyclesPerSecond / 2);
+    double least = 1e9;
+    for (std::size_t i = from; i < held_to; ++i) {
+      least = std::min(least, r[i].wrench[0]);
+    }
+    const double moved = r[index_of(r, cut)].position[0] - r[held_to].position[0];
+    std::size_t released = held_to;
+    while (released < r.size() && r[released].wrench[0] > 0.5) {
+      ++released;
+    }
+    const double step = largest_force_step(r, index_of(r, cut), r.size());
+    if (s.long_cycle_explains(step)) {
+      return false;
+    }
+    std::printf(
+        "client killed in contact: the wall held at least %.2f N for 2.5 s, the handle %.1f mm "
+        "deeper; let go %.0f ms after the kill; largest step %.2f N per cycle\n",
+        least, moved * 1e3,
+        static_cast<double>(r[std::min(released, r.size() - 1)].cycle - cut) * 1e3 /
+            static_cast<double>(kCyclesPerSecond),
+        step);
+    EXPECT_GT(least, 0.9 * 5.0) << "the wall the hand felt, while the session lasts";
+    EXPECT_LT(moved, 0.002);
+    EXPECT_LT(released, r.size()) << "let go when the watchdog ended the session";
+    EXPECT_LE(step, kReleaseStep + 1e-6) << "no step over 1 N/ms in any cycle";
+    EXPECT_TRUE(ControllerStack::eventually(
+        [&] { return s.stack.link_stats().watchdog_expiries == 1U; }, 3s));
+    return true;
+  });
+}
 
 class ImpedanceCommand : public ::testing::TestWithParam<double> {};
 

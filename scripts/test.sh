@@ -67,7 +67,7 @@ run_tests() {  # dir, ctest label regex, ctest attempts
 # CI's other work (the sanitizer and fuzz builds, clang-tidy) runs beside the test stages, at
 # SCHED_IDLE: the tests wait on their cycles and leave the CPU about 95 % idle (the plain
 # tests' 7.7 min, vmstat, 2026-12-04), the builds and clang-tidy are CPU-bound (clang-tidy 17
-# min on both cores). One after the other they took CI to 52-60 min against its 45; beside the
+# min on both cores). One after the other they took CI to 57-60 min against its 45; beside the
 # tests they get only the CPU the tests leave, and a test's thread that wakes preempts them.
 BACKGROUND_PID=""
 LOGS=""

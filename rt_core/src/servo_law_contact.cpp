@@ -119,7 +119,7 @@ Vector6d ServoLaw::stretch_in_use(const Vector6d& stretch, const Vector6d& twist
     const RenderMemory::HeldContact& h = m.held;
     if (h.coupling_stiffness + h.contact_stiffness > 0.0) {
       const double along = stretch.head<3>().dot(h.normal);
-      const double held = (h.point - chain_.handle_position).dot(h.normal);
+      const double held = h.depth_at(chain_.handle_position);
       m.stretch.head<3>() -= std::clamp(held, 0.0, std::max(0.0, along)) * h.normal;
     }
     return Vector6d::Zero();
@@ -247,7 +247,7 @@ void ServoLaw::render_surface(Surface& surface, const ChainState& chain, const V
     // on it (hidden, the 10 N a hand pressed on a held surface fell to nothing as it came back).
     const RenderMemory::HeldContact& h = m.held;
     const double held = h.contact_stiffness > 0.0 && h.normal.dot(surface.normal) > 0.99
-                            ? (h.point - chain.handle_position).dot(h.normal)
+                            ? h.depth_at(chain.handle_position)
                             : 0.0;
     m.on_surface = true;
     m.surface_hidden = depth - std::clamp(held, 0.0, depth);
@@ -313,7 +313,7 @@ Vector3d ServoLaw::held_contact_force(const ServoInputs& in, double engage) cons
   // the link's silence ages it (contact_weight on the link's silence, so that a contact the
   // client withdraws on a live link fades as it did); an IMPEDANCE surface is not engaged.
   const RenderMemory::HeldContact& h = memory_.held;
-  const double depth = (h.point - chain_.handle_position).dot(h.normal);
+  const double depth = h.depth_at(chain_.handle_position);
   if (depth <= 0.0) {
     return Vector3d::Zero();
   }

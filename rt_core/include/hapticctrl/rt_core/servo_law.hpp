@@ -207,6 +207,10 @@ struct RenderMemory {
     Vector3d point = Vector3d::Zero();   ///< on the plane
     double coupling_stiffness = 0.0;     ///< N/m: the coupling's own (it fades with the link)
     double contact_stiffness = 0.0;      ///< N/m: the contact's (it fades with its reports)
+    /// How deep `position` is behind the plane (> 0: pressing on it). Safe in the cycle.
+    [[nodiscard]] double depth_at(const Vector3d& position) const noexcept {
+      return (point - position).dot(normal);
+    }
   };
   HeldContact held;
   static constexpr std::size_t kLoopSamples = 15;

@@ -13,11 +13,23 @@
 namespace hapticctrl::hmi {
 namespace {
 
+/// A JSON number, or null for what JSON cannot carry: "-nan" made the whole document unreadable
+/// (2026-12-03), and writing 0 instead would hide a fault.
+struct JsonNumber {
+  double value;
+};
+std::ostream& operator<<(std::ostream& out, JsonNumber n) {
+  if (std::isfinite(n.value)) {
+    return out << n.value;
+  }
+  return out << "null";
+}
+
 template <std::size_t N>
 void json_array(std::ostringstream& out, const char* name, const std::array<double, N>& values) {
   out << "\"" << name << "\":[";
   for (std::size_t i = 0; i < N; ++i) {
-    out << (i == 0 ? "" : ",") << (std::isfinite(values[i]) ? values[i] : 0.0);
+    out << (i == 0 ? "" : ",") << JsonNumber{values[i]};
   }
   out << "]";
 }
@@ -109,10 +121,11 @@ std::string status_json(const ControllerStatus& s) {
         << ",\"link_delay_ms\":" << static_cast<double>(s.vp.link_delay_ns) / 1e6
         << ",\"link_jitter_ms\":" << static_cast<double>(s.vp.link_jitter_ns) / 1e6
         << ",\"link_loss\":" << static_cast<double>(s.vp.link_loss_ppm) / 1e6
-        << ",\"channel_energy_in\":" << s.vp.channel_energy_in
-        << ",\"channel_energy_out\":" << s.vp.channel_energy_out
-        << ",\"client_energy_in\":" << s.vpr.client_energy_in << ",\"contacts\":" << s.vp.contacts
-        << ",\"contacts_rejected\":" << s.vp.contacts_rejected << ",";
+        << ",\"channel_energy_in\":" << JsonNumber{s.vp.channel_energy_in}
+        << ",\"channel_energy_out\":" << JsonNumber{s.vp.channel_energy_out}
+        << ",\"client_energy_in\":" << JsonNumber{s.vpr.client_energy_in}
+        << ",\"contacts\":" << s.vp.contacts << ",\"contacts_rejected\":" << s.vp.contacts_rejected
+        << ",";
     json_array(out, "contact_normal", s.vp.contact_normal);
     out << ",";
     json_array(out, "normal_gains", s.vp.normal_gains);

@@ -145,9 +145,13 @@ Vector6d ServoLaw::guard_channel(const ServoInputs& in, const ClientFrame& frame
     // Give the drift back, slowly (2 cm/s, 0.2 rad/s), within the budget: it costs energy.
     rate.head<3>() = -law_math::clamp_norm(m.drift.head<3>() / dt, 0.02);
     rate.tail<3>() = -law_math::clamp_norm(m.drift.tail<3>() / dt, 0.2);
+    // Only what the budget has left: at it or above (by less than kNegligible), nothing. Scaled
+    // by -excess / cost there, the step was infinite for a force of zero on the image and
+    // reversed and amplified otherwise (NaN energies and image, 2026-12-04).
     const double cost = -on_image.cwiseProduct(weight).dot(rate) * dt;
-    if (cost > -excess) {
-      rate *= -excess / cost;
+    const double left = -excess;
+    if (cost > left) {
+      rate *= left > 0.0 ? left / cost : 0.0;
     }
   }
   m.channel_out -= on_image.cwiseProduct(weight).dot(rate) * dt;  // dissipated (> 0) or given back

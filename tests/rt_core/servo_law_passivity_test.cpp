@@ -59,6 +59,40 @@ TEST(ServoLaw, ANewSessionStartsItsChannelAccountAfresh) {
   EXPECT_LT(out.channel_energy_out, 0.01) << "one cycle's worth, not the old session's " << before;
 }
 
+TEST(ServoLaw, AChannelAtItsBudgetGivesNoDriftBackAndStaysFinite) {
+  // The channel's PC keeps what came out at the client's budget, so the account can sit above it
+  // by less than the PC's threshold (1e-9 J) while a re-engaging coupling puts no force on the
+  // image. Giving the drift back then scaled its step by -excess / cost, with a cost of zero:
+  // the drift, the image and the energies went infinite or NaN (-nan in `hapticctrl-hmi status`,
+  // null on the web page: 2 of 3 CI runs of web.page_in_browser, 2026-12-03).
+  for (const double over : {5e-10, 1e-12, 1e-15}) {
+    ServoLaw law(default_dynamics());
+    ServoInputs in = coupled_to_object_ahead(0.005);
+    in.client.object_twist = {0.2, 0, 0, 0, 0, 0};
+    in.client.energy_in = 0.001;
+    ServoOutputs out;
+    for (int k = 0; k < 300; ++k) {
+      law.compute(in, false, out);
+    }
+    ASSERT_GT(law.counters().channel_pc_active, 0U) << "the image drifted";
+    ASSERT_NEAR(out.channel_energy_out, 0.001, 1e-9) << "held at the client's budget";
+    in.client.object_twist = {};
+    in.client.energy_in = out.channel_energy_out - over;
+    in.logical.powered = false;  // off, then on: the coupling comes back from zero force
+    law.compute(in, false, out);
+    in.logical.powered = true;
+    Vector6d previous = out.handle_wrench;
+    for (int k = 0; k < 100; ++k) {
+      law.compute(in, false, out);
+      ASSERT_TRUE(out.coupling_wrench.allFinite()) << over << " J over, cycle " << k;
+      ASSERT_TRUE(std::isfinite(out.channel_energy_out)) << over << " J over, cycle " << k;
+      ASSERT_LE((out.handle_wrench - previous).head<3>().norm(), 2.0 + 1e-9)
+          << over << " J over, cycle " << k << ": N per 1 ms cycle";
+      previous = out.handle_wrench;
+    }
+  }
+}
+
 TEST(ServoLaw, ThePassivityGuardsDampingGoesThroughTheRateLimit) {
   // The guard's damping came after the rate limit until 2026-12-03: it stepped the force by up
   // to 20 N.s/m x |v| in one cycle (22 N at the 1.1 m/s of a snapped-back handle, J1 review).

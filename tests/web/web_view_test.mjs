@@ -98,20 +98,23 @@ test('power on from the page powers the arm', async () => {
 test('a force slider moves the handle', async () => {
   const before = stack.status().handle_pose;
   await page.locator('[data-testid=slider-Fy]').fill('5');
-  const moved = await until(() => {
-    const now = stack.status();
-    return now.handle_pose[1] - before[1] > 0.01 && now.operator_wrench[1] > 4 ? now : null;
-  }, { timeoutMs: 8000 });
-  assert.ok(moved, `the handle did not move along +y: ${JSON.stringify(stack.status())}`);
-  const s = await until(async () => {
-    const status = await pageStatus();
-    return status.arm && status.arm.handle_pose[1] - before[1] > 0.01 ? status : null;
-  });
-  assert.ok(s, 'the page did not show the handle moving');
-  assert.ok(s.plots.force > 10 && s.plots.latency > 3 && s.plots.rtt > 0, JSON.stringify(s.plots));
-  await page.waitForTimeout(1500); // let the plots fill for the picture
-  await shot('02-force-applied');
-  await page.click('[data-testid=release]');
+  try {
+    const moved = await until(() => {
+      const now = stack.status();
+      return now.handle_pose[1] - before[1] > 0.01 && now.operator_wrench[1] > 4 ? now : null;
+    }, { timeoutMs: 8000 });
+    assert.ok(moved, `the handle did not move along +y: ${JSON.stringify(stack.status())}`);
+    const s = await until(async () => {
+      const status = await pageStatus();
+      return status.arm && status.arm.handle_pose[1] - before[1] > 0.01 ? status : null;
+    });
+    assert.ok(s, 'the page did not show the handle moving');
+    assert.ok(s.plots.force > 10 && s.plots.latency > 3 && s.plots.rtt > 0, JSON.stringify(s.plots));
+    await page.waitForTimeout(1500); // let the plots fill for the picture
+    await shot('02-force-applied');
+  } finally {
+    await page.click('[data-testid=release]'); // a failure here must not hold 5 N into the next test
+  }
   assert.ok(await until(() => Math.abs(stack.status().operator_wrench[1]) < 0.1), 'the force was not released');
 });
 
@@ -119,17 +122,27 @@ test('a small force shows as an arrow drawn over the sphere the handle sits in',
   // 2 N draws 2 cm from the handle, inside the demo's 3 cm sphere: drawn with the depth test it
   // was hidden (H5).
   await page.locator('[data-testid=slider-Fz]').fill('2');
-  assert.ok(await until(() => Math.abs(stack.status().operator_wrench[2] - 2) < 0.1), 'the force never arrived');
-  const arrow = await until(() => page.evaluate(() => {
-    const a = window.hapticctrl.view?.arrows.operator;
-    if (!a?.visible) return null;
-    return { length: a.line.scale.y + a.cone.scale.y, overLine: !a.line.material.depthTest,
-      overCone: !a.cone.material.depthTest, order: a.renderOrder };
-  }));
-  assert.ok(arrow, 'no operator arrow for 2 N');
-  assert.ok(Math.abs(arrow.length - 0.02) < 0.002, `arrow ${arrow.length} m for 2 N`);
-  assert.ok(arrow.overLine && arrow.overCone && arrow.order > 0, JSON.stringify(arrow));
-  await page.click('[data-testid=release]');
+  try {
+    assert.ok(await until(() => Math.abs(stack.status().operator_wrench[2] - 2) < 0.1), 'the force never arrived');
+    // The page may still draw frames sent while the force rose (1.17 N seen beside stress-ng,
+    // 2026-12-04): the arrow is judged once it shows the force that arrived, or its last length.
+    const drawn = () => page.evaluate(() => {
+      const a = window.hapticctrl.view?.arrows.operator;
+      if (!a?.visible) return null;
+      return { length: a.line.scale.y + a.cone.scale.y, overLine: !a.line.material.depthTest,
+        overCone: !a.cone.material.depthTest, order: a.renderOrder };
+    });
+    let arrow = null;
+    await until(async () => {
+      arrow = (await drawn()) ?? arrow;
+      return arrow && Math.abs(arrow.length - 0.02) < 0.002;
+    });
+    assert.ok(arrow, 'no operator arrow for 2 N');
+    assert.ok(Math.abs(arrow.length - 0.02) < 0.002, `arrow ${arrow.length} m for 2 N`);
+    assert.ok(arrow.overLine && arrow.overCone && arrow.order > 0, JSON.stringify(arrow));
+  } finally {
+    await page.click('[data-testid=release]'); // a failure here must not hold 2 N into the next test
+  }
   assert.ok(await until(() => Math.abs(stack.status().operator_wrench[2]) < 0.1), 'the force was not released');
 });
 

@@ -74,6 +74,28 @@ TEST(Seqlock, SequenceLetsReaderTellFreshStaleAndLost) {
   EXPECT_EQ(cell.read(out).sequence - first, 2U);  // one sample lost in between
 }
 
+TEST(Seqlock, TheSequenceWordWrapsWithoutLosingTheCell) {
+  // 2^31 publishes bring the 32-bit word back to 0 (24.9 days at 1 kHz): forced here. A read
+  // then reported kNeverWritten until 2026-12-04 (J4).
+  SeqlockCell<Checked> cell;
+  cell.publish_quietly(Checked::make(1), 1);
+  cell.raw_sequence_word().store(0xFFFFFFFEU);  // the last even value before the wrap
+  Checked out;
+  ASSERT_TRUE(cell.read(out).ok());
+  const std::uint32_t seen = cell.sequence_word();
+  cell.publish(Checked::make(2), 2);  // 0xFFFFFFFF while it writes, then 0
+  ASSERT_EQ(cell.sequence_word(), 0U) << "the word wrapped";
+  EXPECT_EQ(cell.wait_for_publish(seen, 0ms), WaitStatus::kPublished);
+  const ReadResult r = cell.read(out);
+  ASSERT_EQ(r.status, ReadStatus::kOk);
+  EXPECT_EQ(out.counter, 2U);
+  EXPECT_TRUE(out.intact());
+  EXPECT_EQ(r.sequence, 2U) << "the publish count goes on";
+  cell.publish_quietly(Checked::make(3), 3);
+  ASSERT_TRUE(cell.read(out).ok());
+  EXPECT_EQ(out.counter, 3U);
+}
+
 TEST(Seqlock, WriteInProgressGivesTornAfterBoundedAttempts) {
   SeqlockCell<Checked> cell;
   cell.publish_quietly(Checked::make(1), 1);

@@ -17,9 +17,10 @@
 ///    as the fence-based variant, and it avoids `atomic_thread_fence`, which ThreadSanitizer does
 ///    not model.
 ///
-/// The 32-bit `seq` word is also the futex word readers block on (see wait_for_publish()).
+/// The 32-bit `seq` word is also the futex word readers block on (see wait_for_publish()); it
+/// wraps after 2^31 publishes, and nothing depends on its value but its parity and its change.
 /// The 64-bit sample sequence returned to readers is stored inside the protected area, so it
-/// never wraps in practice (2^64 publishes).
+/// never wraps in practice (2^64 publishes); it also tells a cell never written (0).
 
 #include <array>
 #include <atomic>
@@ -116,14 +117,17 @@ class alignas(64) SeqlockCell {
     std::array<std::uint64_t, kWords> scratch;  // NOLINT(cppcoreguidelines-pro-type-member-init)
     for (unsigned attempt = 0; attempt < max_attempts; ++attempt) {
       const std::uint32_t before = seq_.load(std::memory_order_acquire);
-      if (before == 0) {
-        return ReadResult{ReadStatus::kNeverWritten, 0, 0};
-      }
       if ((before & 1U) != 0) {
         cpu_relax();  // a write is in progress: give it a moment instead of burning attempts
         continue;
       }
+      // "Never written" from the publish count, which a write raises before its payload: the
+      // 32-bit word is 0 again after 2^31 publishes (24.9 days at 1 kHz, 2.5 days at 10 kHz),
+      // and a read then said kNeverWritten (J4).
       const std::uint64_t sequence = count_.load(std::memory_order_acquire);
+      if (sequence == 0) {
+        return ReadResult{ReadStatus::kNeverWritten, 0, 0};
+      }
       const std::int64_t stamp = stamp_.load(std::memory_order_acquire);
       for (std::size_t i = 0; i < kWords; ++i) {
         scratch[i] = words_[i].load(std::memory_order_acquire);

@@ -22,6 +22,7 @@
 #include "hapticctrl/rt_core/servo.hpp"
 #include "hapticctrl/rt_core/threaded_servo_tasks.hpp"
 #include "hapticctrl/shm/names.hpp"
+#include "hapticctrl/shm/rendezvous.hpp"
 #include "hapticctrl/shm/segment.hpp"
 
 namespace {
@@ -99,6 +100,10 @@ int run_core(const CoreConfig& config) {
   }
   shm::Segment segment = shm::Segment::create(
       {.instance = config.instance, .group = config.group, .period_ns = config.period});
+  // Checked now, not at the fail-safe: a directory others could plant a link in is refused at
+  // start, with the reason (J4).
+  const PrivateDirectory black_box_directory(
+      config.blackbox_dir.empty() ? shm::creator_runtime_directory() : config.blackbox_dir);
   const Vector6d ready_pose = (Vector6d() << 0, -0.6, 1.2, 0, -0.6, 0).finished();
   SimulatorOptions sim_options;
   sim_options.max_substep = static_cast<double>(config.sim_substep) * 1e-9;
@@ -158,13 +163,11 @@ int run_core(const CoreConfig& config) {
 
   std::string black_box_path;
   if (result.fail_safe) {
-    black_box_path = config.blackbox_dir + "/hapticctrl-blackbox-" + config.instance + "-" +
-                     std::to_string(getpid()) + ".csv";
     try {
-      black_box.write_csv(black_box_path);
+      black_box_path = store_black_box(black_box, black_box_directory, config.instance, getpid(),
+                                       config.blackbox_keep);
     } catch (const std::exception& e) {
-      std::cerr << "hapticctrl-core: " << e.what() << "\n";
-      black_box_path.clear();
+      std::cerr << "hapticctrl-core: could not write the black box: " << e.what() << "\n";
     }
   }
   if (histogram.is_open()) {

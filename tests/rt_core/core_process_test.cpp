@@ -10,9 +10,11 @@
 #include <sstream>
 #include <thread>
 
+#include "hapticctrl/shm/rendezvous.hpp"
 #include "hapticctrl/shm/segment.hpp"
 #include "support/child_process.hpp"
 #include "support/spawned_process.hpp"
+#include "support/temp_directory.hpp"
 
 namespace hapticctrl {
 namespace {
@@ -60,15 +62,17 @@ std::vector<std::string> core_args(const std::string& instance,
                                    std::vector<std::string> extra = {}) {
   // A 10 ms period: these tests are about behaviour, not timing, and run beside others (and
   // under sanitizers), where a 2 ms period could miss 5 deadlines in a row by load alone.
-  std::vector<std::string> args{"--instance", instance, "--period-us",    "10000",
-                                "--rt",       "ignore", "--blackbox-dir", "/tmp"};
+  std::vector<std::string> args{"--instance", instance, "--period-us", "10000", "--rt", "ignore"};
   args.insert(args.end(), extra.begin(), extra.end());
   return args;
 }
 
 TEST(CoreProcess, InjectedOverrunTripsFailSafeInOrderAndExitsWithTheReason) {
   const std::string instance = test::unique_instance("fs");
-  SpawnedProcess core(HAPTICCTRL_CORE_BINARY, core_args(instance, {"--allow-fault-injection"}));
+  const test::TempDirectory boxes("boxes");
+  SpawnedProcess core(
+      HAPTICCTRL_CORE_BINARY,
+      core_args(instance, {"--allow-fault-injection", "--blackbox-dir", boxes.path()}));
   auto seg = attach_when_ready(instance, true);
   ASSERT_TRUE(seg.has_value()) << core.err();
   seg->ctrl_writer().send(shm::CtrlCode::kPowerOn, 0, 0);
@@ -103,9 +107,12 @@ TEST(CoreProcess, InjectedOverrunTripsFailSafeInOrderAndExitsWithTheReason) {
   const auto bb = err.find("black box: ");
   ASSERT_NE(bb, std::string::npos) << err;
   const std::string bb_path = err.substr(bb + 11, err.find('\n', bb) - bb - 11);
+  EXPECT_EQ(bb_path, boxes / ("hapticctrl-blackbox-" + instance + "." + std::to_string(core.pid()) +
+                              ".csv"));
   struct stat st {};
-  EXPECT_EQ(stat(bb_path.c_str(), &st), 0) << bb_path;
-  std::remove(bb_path.c_str());
+  ASSERT_EQ(lstat(bb_path.c_str(), &st), 0) << bb_path;
+  EXPECT_TRUE(S_ISREG(st.st_mode));
+  EXPECT_EQ(st.st_mode & 07777, 0600U) << "only the controller's user reads its black box";
   seg.reset();
   EXPECT_FALSE(segment_exists(instance)) << "regions released";
 }
@@ -133,8 +140,8 @@ TEST(CoreProcess, AFiftyMillisecondSigstopLeavesABlackBoxThatEndsWithTheStall) {
   // that ended with a normal cycle. 50 ms at a 5 ms period: 10 slots.
   for (int attempt = 0; attempt < 3; ++attempt) {
     const std::string instance = test::unique_instance("sigstop");
-    SpawnedProcess core(HAPTICCTRL_CORE_BINARY, {"--instance", instance, "--period-us", "5000",
-                                                 "--rt", "ignore", "--blackbox-dir", "/tmp"});
+    SpawnedProcess core(HAPTICCTRL_CORE_BINARY,
+                        {"--instance", instance, "--period-us", "5000", "--rt", "ignore"});
     ASSERT_TRUE(attach_when_ready(instance, false).has_value()) << core.err();
     std::this_thread::sleep_for(200ms);
     if (core.wait(0ms) != -1) {
@@ -150,6 +157,8 @@ TEST(CoreProcess, AFiftyMillisecondSigstopLeavesABlackBoxThatEndsWithTheStall) {
     const auto bb = err.find("black box: ");
     ASSERT_NE(bb, std::string::npos) << err;
     const std::string bb_path = err.substr(bb + 11, err.find('\n', bb) - bb - 11);
+    EXPECT_EQ(bb_path.rfind(shm::creator_runtime_directory() + "/", 0), 0U)
+        << "by default in the instance's runtime directory, never /tmp: " << bb_path;
     const std::vector<std::string> last = last_csv_record(bb_path);
     std::remove(bb_path.c_str());
     // cycle,scheduled_ns,wake_latency_ns,servo_start_delay_ns,servo_execution_ns,miss,degraded,
@@ -161,6 +170,17 @@ TEST(CoreProcess, AFiftyMillisecondSigstopLeavesABlackBoxThatEndsWithTheStall) {
     return;
   }
   FAIL() << "the core failed safe on its own in 3 attempts";
+}
+
+TEST(CoreProcess, ABlackBoxDirectoryOthersMayWriteIsRefusedAtStart) {
+  // A root core wrote its black box into /tmp through a link planted there (J4 review): a
+  // directory that others may write is refused before the run, with the reason.
+  const std::string instance = test::unique_instance("bbdir");
+  SpawnedProcess core(HAPTICCTRL_CORE_BINARY, core_args(instance, {"--blackbox-dir", "/tmp"}));
+  EXPECT_EQ(core.wait(), 1);
+  EXPECT_NE(core.err().find("/tmp may be written by its group or by others"), std::string::npos)
+      << core.err();
+  EXPECT_FALSE(segment_exists(instance));
 }
 
 TEST(CoreProcess, StopRequestExitsZeroAndLeavesNoSegment) {

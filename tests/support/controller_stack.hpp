@@ -6,6 +6,8 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <filesystem>
+#include <iostream>
 #include <optional>
 #include <string>
 #include <thread>
@@ -53,8 +55,8 @@ class ControllerStack {
     using namespace std::chrono_literals;
     segment_.reset();
     std::vector<std::string> args{
-        "--instance", instance_,          "--period-us", std::to_string(period_us_), "--rt",
-        kRtMode,      "--sim-substep-us", kSimSubstepUs, "--blackbox-dir",           "/tmp"};
+        "--instance", instance_, "--period-us",      std::to_string(period_us_),
+        "--rt",       kRtMode,   "--sim-substep-us", kSimSubstepUs};
     args.insert(args.end(), core_extra_.begin(), core_extra_.end());
     core_.emplace(HAPTICCTRL_CORE_BINARY, args);
     for (int i = 0; i < 1000 && !segment_; ++i) {
@@ -106,6 +108,7 @@ class ControllerStack {
         shm::InstancePaths::in(shm::creator_runtime_directory(), instance_);
     unlink(paths.socket.c_str());
     unlink(paths.lock.c_str());
+    remove_black_boxes(paths.directory);
   }
 
   [[nodiscard]] bool ready() const {
@@ -180,6 +183,24 @@ class ControllerStack {
   }
 
  private:
+  /// The black boxes of the cores this stack ran (in the runtime directory) go with it, unless
+  /// the test failed: then they stay, and the log says where.
+  void remove_black_boxes(const std::string& directory) const {
+    const std::string prefix = "hapticctrl-blackbox-" + instance_ + ".";
+    std::error_code ignored;
+    for (const auto& entry : std::filesystem::directory_iterator(directory, ignored)) {
+      const std::string name = entry.path().filename().string();
+      if (name.rfind(prefix, 0) != 0) {
+        continue;
+      }
+      if (::testing::Test::HasFailure()) {
+        std::cerr << "black box kept: " << entry.path().string() << "\n";
+      } else {
+        std::filesystem::remove(entry.path(), ignored);
+      }
+    }
+  }
+
   std::string instance_;
   int period_us_ = 0;
   std::vector<std::string> bridge_extra_;

@@ -2,7 +2,9 @@
 // bridge on loopback, for one unique instance; stopped and cleaned up (processes, /dev/shm) by
 // stop(), which the tests call from after() so that a failure leaves nothing behind.
 import { spawn, execFileSync } from 'node:child_process';
-import { rmSync, existsSync } from 'node:fs';
+import { rmSync, existsSync, mkdtempSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
 import { setTimeout as sleep } from 'node:timers/promises';
 
 const env = (name) => {
@@ -65,6 +67,8 @@ class Process {
 export class Stack {
   constructor(tag) {
     this.instance = `w${process.pid}-${tag}`;
+    // The cores' black boxes go to a directory of the stack's own (0700), removed by stop().
+    this.blackBoxes = mkdtempSync(join(tmpdir(), 'hapticctrl-web-'));
     this.processes = {};
     this.finished = []; // replaced processes, for the logs
   }
@@ -96,7 +100,7 @@ export class Stack {
     // explains: instrumented, the simulator alone takes most of the period.
     const substepUs = process.env.HAPTICCTRL_SANITIZED ? '250' : '125';
     const core = this.run('core', binaries.core(), ['--instance', this.instance, '--period-us', '10000',
-      '--rt', 'warn', '--sim-substep-us', substepUs, '--blackbox-dir', '/tmp', ...extra]);
+      '--rt', 'warn', '--sim-substep-us', substepUs, '--blackbox-dir', this.blackBoxes, ...extra]);
     await core.waitFor(/running, period/);
   }
 
@@ -131,6 +135,7 @@ export class Stack {
       const path = `/dev/shm/hapticctrl.${this.instance}${suffix}`;
       if (existsSync(path)) rmSync(path);
     }
+    rmSync(this.blackBoxes, { recursive: true, force: true });
   }
 
   logs() {

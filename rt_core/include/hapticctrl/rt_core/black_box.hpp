@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "hapticctrl/rt_core/clock.hpp"
+#include "hapticctrl/rt_core/private_directory.hpp"
 
 namespace hapticctrl::rt_core {
 
@@ -48,12 +49,19 @@ class BlackBox {
   /// The i-th oldest record still held (0 = oldest).
   [[nodiscard]] const CycleRecord& at(std::size_t i) const noexcept;
 
-  /// Writes the records oldest first as CSV. Not for the cycle. Throws std::runtime_error.
-  void write_csv(const std::string& path) const;
+  /// The records oldest first as CSV text. Not for the cycle (allocates).
+  [[nodiscard]] std::string csv() const;
 
  private:
   std::vector<CycleRecord> ring_;
   std::size_t count_ = 0;
 };
+
+/// Writes `box` into `directory` as `hapticctrl-blackbox-<instance>.<pid>.csv` (a name already
+/// there, a link included, is left alone: `.2`, `.3`, ... is appended), created exclusively with
+/// mode 0600, then removes the instance's oldest black boxes there beyond `keep` (at least the
+/// new one stays). Returns the new file's path. Not for the cycle; throws std::runtime_error.
+std::string store_black_box(const BlackBox& box, const PrivateDirectory& directory,
+                            const std::string& instance, int pid, std::size_t keep);
 
 }  // namespace hapticctrl::rt_core

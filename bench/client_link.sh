@@ -33,7 +33,7 @@ trap cleanup EXIT
 
 # Core at SCHED_FIFO 80 when allowed (warns otherwise), bridge just below it.
 "$BUILD/rt_core/hapticctrl-core" --instance "$INSTANCE" --period-us "$PERIOD" --rt warn \
-  --priority 80 --blackbox-dir "$TMP" 2>"$TMP/core.err" &
+  --priority 80 --state-dir "$TMP" 2>"$TMP/core.err" &
 pids+=($!)
 "$BUILD/bridges/udp/hapticctrl-udp" --instance "$INSTANCE" --port 0 --priority 70 \
   >"$TMP/udp.out" 2>"$TMP/udp.err" &

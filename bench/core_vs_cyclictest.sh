@@ -38,7 +38,7 @@ run_pair() {  # label
   local ct=$!
   "$CORE" --instance "$inst" --duration "$SECONDS_RUN" --period-us "$PERIOD" --priority "$PRIO" \
     --cpu "$CPU" --rt ignore --benchmark-mode --json --histogram "$TMP/core.hist" \
-    --blackbox-dir "$TMP" >"$TMP/core.json" 2>"$TMP/core.err" || true
+    --state-dir "$TMP" >"$TMP/core.json" 2>"$TMP/core.err" || true
   wait "$ct" || true
   read -r c50 c99 c999 cmax < <(percentiles <"$TMP/cyclictest.hist")
   read -r h50 h99 h999 hmax < <(percentiles <"$TMP/core.hist")

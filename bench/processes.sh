@@ -23,7 +23,7 @@ start_core_and_bridge() {  # instance dir: a 1 ms core in benchmark mode and a U
   # that maps its regions at once (hapticctrl-hmi play) would otherwise find no controller
   # (bench.report.smoke's weighted sphere, 2026-12-02).
   "$BUILD/rt_core/hapticctrl-core" --instance "$1" --rt warn --priority 80 --benchmark-mode \
-    --blackbox-dir "$2" 2>"$2/core.err" &
+    --state-dir "$2" 2>"$2/core.err" &
   PIDS+=($!)
   for _ in $(seq 1 200); do
     grep -q "instance '$1' running" "$2/core.err" 2>/dev/null && break

@@ -107,7 +107,7 @@ latency_run() {  # period label
   CHILDREN+=("$ct")
   "$BUILD/rt_core/hapticctrl-core" --instance "bench$$" --duration "$LAT_S" --period-us "$period" \
     --priority "$PRIO" --cpu "$CPU" --rt warn --benchmark-mode --json \
-    --histogram "$base.core.hist" --blackbox-dir "$RAW" >"$base.core.json" 2>"$base.core.err" &
+    --histogram "$base.core.hist" --state-dir "$RAW" >"$base.core.json" 2>"$base.core.err" &
   local core=$!
   CHILDREN+=("$core")
   # Powered, so that every SERVO run does the real work: law, and the simulator's integration.
@@ -133,7 +133,7 @@ done
 link_run() {  # label
   local label=$1 inst="benchlink$$"
   "$BUILD/rt_core/hapticctrl-core" --instance "$inst" --rt warn --priority "$PRIO" \
-    --benchmark-mode --json --blackbox-dir "$RAW" >"$RAW/link-$label.core.json" \
+    --benchmark-mode --json --state-dir "$RAW" >"$RAW/link-$label.core.json" \
     2>"$RAW/link-$label.core.err" &
   local core=$!
   CHILDREN+=("$core")

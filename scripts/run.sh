@@ -178,6 +178,20 @@ fi
 PERIOD_TEXT=${PERIOD_ARGS[1]:+, period $((PERIOD_ARGS[1] / 1000)) ms}
 echo "run: starting the controller (instance $INSTANCE$PERIOD_TEXT; its log: $RUN_DIR/core.log)"
 start_core "${PERIOD_ARGS[@]}" "$@"
+# An emergency stop latched in an earlier run and never reset outlives its controller
+# (docs/rt_core.md): the arm stays off until an operator resets it, never a script.
+for _ in $(seq 40); do
+  grep -q "running, period" "$RUN_DIR/core.log" && break
+  sleep 0.05
+done
+if grep -q "the emergency stop is still latched" "$RUN_DIR/core.log"; then
+  echo "run: the emergency stop is still latched from an earlier run: the arm stays off until" \
+    "an operator resets it (r in the panel, or: ${HMI[*]} reset)" >&2
+  if ! [[ -t 0 && -t 1 ]] && [[ $SUPERVISE -eq 0 ]]; then
+    echo "run: without a terminal nobody resets it here: stopping (exit 4)" >&2
+    exit 4
+  fi
+fi
 echo "run: starting the UDP bridge, the LCM bridge, the web view and the demo client"
 "$BUILD/bridges/udp/hapticctrl-udp" --instance "$INSTANCE" --port "$PORT" >"$RUN_DIR/udp.log" 2>&1 &
 PIDS+=($!)

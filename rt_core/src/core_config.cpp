@@ -52,9 +52,10 @@ void declare(program::Options& o, CoreConfig& c) {
   o.flag("--json", c.json, "print the final statistics as JSON on stdout");
   o.text("--histogram", c.histogram_path,
          "write the wake-up latency histogram (cyclictest -h format)");
-  o.text("--blackbox-dir", c.blackbox_dir,
-         "where the black box is written on fail-safe: a directory only this user (or root) can "
-         "write (default: the instance's runtime directory)");
+  o.text("--state-dir", c.state_dir,
+         "where the core keeps what outlives it (its black boxes, the latched emergency stop): "
+         "a directory only this user (or root) can write (default: the instance's runtime "
+         "directory)");
   o.number<std::uint32_t>("--blackbox-keep", c.blackbox_keep, 1, 10000,
                           "the instance's newest black boxes kept in that directory (default 20)");
   o.flag("--allow-fault-injection", c.allow_fault_injection,

@@ -2,6 +2,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <fstream>
@@ -17,6 +18,7 @@
 #include "hapticctrl/rt_core/black_box.hpp"
 #include "hapticctrl/rt_core/core_config.hpp"
 #include "hapticctrl/rt_core/core_report.hpp"
+#include "hapticctrl/rt_core/estop_latch.hpp"
 #include "hapticctrl/rt_core/executive.hpp"
 #include "hapticctrl/rt_core/rt_preflight.hpp"
 #include "hapticctrl/rt_core/servo.hpp"
@@ -44,6 +46,41 @@ std::string stall_text(TimeNs tripped_by_stall) {
   return text;
 }
 static_assert(std::atomic<bool>::is_always_lock_free, "used from a signal handler");
+
+/// The latch keeper polls this often: a core killed this long after the stop latched may lose
+/// it (the window is documented in docs/rt_core.md).
+constexpr auto kLatchPoll = std::chrono::milliseconds(2);
+
+/// Makes the latch file agree with the emergency-stop bit of the last published VP. Returns
+/// false when the file could not be written or removed (said on stderr if `say_failure`).
+bool follow_latch(EstopLatchFile& latch, const shm::Segment& segment, bool say_failure = true) {
+  shm::VpPayload vp;
+  if (!segment.region<shm::RegionId::kVp>().read(vp).ok()) {
+    return true;  // nothing published yet
+  }
+  try {
+    latch.follow((vp.state_word & shm::state_bits::kEmergencyStop) != 0);
+    return true;
+  } catch (const std::exception& e) {
+    if (say_failure) {
+      std::cerr << "hapticctrl-core: the emergency stop's latch file: " << e.what() << "\n";
+    }
+    return false;
+  }
+}
+
+/// Keeps the latch file in step with the state the cycle publishes (VP's state word), so that a
+/// core killed after the stop latched leaves it latched for the next one. A plain thread: its
+/// file I/O never touches the cycle, which only publishes VP.
+std::jthread start_latch_keeper(EstopLatchFile& latch, const shm::Segment& segment) {
+  return std::jthread([&latch, &segment](const std::stop_token& stop) {
+    bool failing = false;  // said once per run of failures, not every 2 ms
+    while (!stop.stop_requested()) {
+      failing = !follow_latch(latch, segment, !failing);
+      std::this_thread::sleep_for(kLatchPoll);
+    }
+  });
+}
 
 void on_stop_signal(int /*signal*/) {
   g_signal_stop.store(true, std::memory_order_release);
@@ -102,8 +139,9 @@ int run_core(const CoreConfig& config) {
       {.instance = config.instance, .group = config.group, .period_ns = config.period});
   // Checked now, not at the fail-safe: a directory others could plant a link in is refused at
   // start, with the reason (J4).
-  const PrivateDirectory black_box_directory(
-      config.blackbox_dir.empty() ? shm::creator_runtime_directory() : config.blackbox_dir);
+  const PrivateDirectory state_directory(config.state_dir.empty() ? shm::creator_runtime_directory()
+                                                                  : config.state_dir);
+  EstopLatchFile estop_latch(state_directory, config.instance);
   const Vector6d ready_pose = (Vector6d() << 0, -0.6, 1.2, 0, -0.6, 0).finished();
   SimulatorOptions sim_options;
   sim_options.max_substep = static_cast<double>(config.sim_substep) * 1e-9;
@@ -113,11 +151,20 @@ int run_core(const CoreConfig& config) {
       ServoRegions{&segment.region<shm::RegionId::kVpr>(), &segment.writable<shm::RegionId::kVp>(),
                    &segment.writable<shm::RegionId::kPosition>()},
       config.allow_fault_injection, {config.inject_at_cycle, config.inject_cycles});
+  if (estop_latch.left_latched()) {
+    shared.state.logical.estop = true;  // before any task runs
+    std::cerr << "hapticctrl-core: the emergency stop is still latched ("
+              << (estop_latch.left_note().empty() ? "left by an earlier core"
+                                                  : estop_latch.left_note())
+              << "): power-on is refused until an operator resets it\n";
+  }
   ServoTask main_task(shared, ServoRole::kMain, ServoLaw(dynamics));
   ServoTask degraded_task(shared, ServoRole::kDegraded, ServoLaw(dynamics));
   BlackBox black_box(static_cast<std::size_t>(2 * kNsPerS / config.period));
   RealClock clock;
 
+  // Before the real-time placement of this thread: the keeper inherits no priority or CPU.
+  std::jthread latch_keeper = start_latch_keeper(estop_latch, segment);
   // The degraded SERVO is left free to run on any CPU, so that it can still run when the main
   // SERVO hogs the shared CPU.
   ThreadedServoTasks tasks(clock, main_task, degraded_task, shared.overrun, config.period,
@@ -160,11 +207,14 @@ int run_core(const CoreConfig& config) {
 
   const ExecutiveResult result = executive.run(&g_signal_stop);
   const shm::TelemetryPayload final_figures = executive.telemetry();
+  latch_keeper.request_stop();
+  latch_keeper.join();
+  follow_latch(estop_latch, segment);  // the state of the last cycle
 
   std::string black_box_path;
   if (result.fail_safe) {
     try {
-      black_box_path = store_black_box(black_box, black_box_directory, config.instance, getpid(),
+      black_box_path = store_black_box(black_box, state_directory, config.instance, getpid(),
                                        config.blackbox_keep);
     } catch (const std::exception& e) {
       std::cerr << "hapticctrl-core: could not write the black box: " << e.what() << "\n";

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <cstring>
 #include <stdexcept>
@@ -18,6 +19,7 @@ namespace hapticctrl::rt_core {
 namespace {
 
 constexpr mode_t kFileMode = 0600;
+constexpr std::size_t kMaxRead = std::size_t{64} * 1024;  ///< read_file() reads no more (notes, not data)
 
 [[noreturn]] void fail(const std::string& what, int error) {
   throw std::runtime_error(what + ": " + std::strerror(error));
@@ -145,6 +147,36 @@ std::vector<std::string> PrivateDirectory::files(std::string_view prefix,
     names.push_back(std::move(std::get<2>(f)));
   }
   return names;
+}
+
+bool PrivateDirectory::contains(const std::string& name) const {
+  check_plain_name(name);
+  struct stat st {};
+  if (fstatat(fd_, name.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0) {
+    return true;
+  }
+  if (errno == ENOENT) {
+    return false;
+  }
+  fail("stat " + path_ + "/" + name, errno);
+}
+
+std::string PrivateDirectory::read_file(const std::string& name) const {
+  check_plain_name(name);
+  const int fd = openat(fd_, name.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) {
+    return "";
+  }
+  std::string text;
+  struct stat st {};
+  if (fstat(fd, &st) == 0 && S_ISREG(st.st_mode)) {
+    std::array<char, 4096> chunk{};
+    for (ssize_t n = 0; (n = read(fd, chunk.data(), chunk.size())) > 0 && text.size() < kMaxRead;) {
+      text.append(chunk.data(), static_cast<std::size_t>(n));
+    }
+  }
+  close(fd);
+  return text;
 }
 
 bool PrivateDirectory::remove(const std::string& name) const {

@@ -61,7 +61,7 @@ mkdir -m 0700 "$HAPTICCTRL_RUNTIME_DIR"
 # benchmark mode (the simulated arm rides through a stall of the machine): the test is about
 # the installed package, and a stall failed the core safe under the example at 1 ms (CI,
 # 2026-12-03: after cycle 89) and at 2 ms beside a compile (1 run in 3, the same day).
-"$build/rt_core/hapticctrl-core" --instance "$instance" --rt ignore --blackbox-dir "$work" \
+"$build/rt_core/hapticctrl-core" --instance "$instance" --rt ignore --state-dir "$work" \
   --period-us 2000 --benchmark-mode --duration 60 >"$work/core.log" 2>&1 &
 pids+=($!)
 for _ in $(seq 200); do

@@ -70,9 +70,8 @@ std::vector<std::string> core_args(const std::string& instance,
 TEST(CoreProcess, InjectedOverrunTripsFailSafeInOrderAndExitsWithTheReason) {
   const std::string instance = test::unique_instance("fs");
   const test::TempDirectory boxes("boxes");
-  SpawnedProcess core(
-      HAPTICCTRL_CORE_BINARY,
-      core_args(instance, {"--allow-fault-injection", "--blackbox-dir", boxes.path()}));
+  SpawnedProcess core(HAPTICCTRL_CORE_BINARY, core_args(instance, {"--allow-fault-injection",
+                                                                   "--state-dir", boxes.path()}));
   auto seg = attach_when_ready(instance, true);
   ASSERT_TRUE(seg.has_value()) << core.err();
   seg->ctrl_writer().send(shm::CtrlCode::kPowerOn, 0, 0);
@@ -176,11 +175,72 @@ TEST(CoreProcess, ABlackBoxDirectoryOthersMayWriteIsRefusedAtStart) {
   // A root core wrote its black box into /tmp through a link planted there (J4 review): a
   // directory that others may write is refused before the run, with the reason.
   const std::string instance = test::unique_instance("bbdir");
-  SpawnedProcess core(HAPTICCTRL_CORE_BINARY, core_args(instance, {"--blackbox-dir", "/tmp"}));
+  SpawnedProcess core(HAPTICCTRL_CORE_BINARY, core_args(instance, {"--state-dir", "/tmp"}));
   EXPECT_EQ(core.wait(), 1);
   EXPECT_NE(core.err().find("/tmp may be written by its group or by others"), std::string::npos)
       << core.err();
   EXPECT_FALSE(segment_exists(instance));
+}
+
+TEST(CoreProcess, ALatchedEmergencyStopOutlivesAKilledCoreUntilAReset) {
+  // ISO 13850 / IEC 60204-1: the stop stays latched until a deliberate reset. A restarted core
+  // accepted power-on with no reset (9 of 9, J4 review of f3c5aec).
+  const std::string instance = test::unique_instance("latch");
+  const test::TempDirectory state("state");
+  const std::string latch = state / ("hapticctrl-estop." + instance);
+  const auto args = core_args(instance, {"--state-dir", state.path()});
+  {
+    SpawnedProcess core(HAPTICCTRL_CORE_BINARY, args);
+    auto seg = attach_when_ready(instance, true);
+    ASSERT_TRUE(seg.has_value()) << core.err();
+    seg->ctrl_writer().send(shm::CtrlCode::kPowerOn, 0, 0);
+    ASSERT_TRUE(wait_vp(*seg, [](const shm::VpPayload& vp) {
+      return (vp.state_word & shm::state_bits::kPowered) != 0;
+    }));
+    seg->ctrl_writer().send(shm::CtrlCode::kEmergencyStop, 0, 0);
+    ASSERT_TRUE(wait_vp(*seg, [](const shm::VpPayload& vp) {
+      return (vp.state_word & shm::state_bits::kEmergencyStop) != 0;
+    }));
+    bool kept = false;
+    for (int i = 0; i < 200 && !kept; ++i) {  // the keeper polls every 2 ms
+      kept = access(latch.c_str(), F_OK) == 0;
+      std::this_thread::sleep_for(5ms);
+    }
+    ASSERT_TRUE(kept) << "the latch never reached its file";
+    core.signal(SIGKILL);
+    EXPECT_EQ(core.wait(), 128 + SIGKILL);
+  }
+  SpawnedProcess next(HAPTICCTRL_CORE_BINARY, args);
+  auto seg = attach_when_ready(instance, true);
+  ASSERT_TRUE(seg.has_value()) << next.err();
+  ASSERT_TRUE(wait_vp(*seg, [](const shm::VpPayload& vp) {
+    return (vp.state_word & shm::state_bits::kEmergencyStop) != 0;
+  })) << "the next core starts with the stop latched";
+  EXPECT_NE(next.err().find("the emergency stop is still latched (latched at "), std::string::npos)
+      << next.err();
+  seg->ctrl_writer().send(shm::CtrlCode::kPowerOn, 0, 0);
+  EXPECT_FALSE(wait_vp(
+      *seg,
+      [](const shm::VpPayload& vp) { return (vp.state_word & shm::state_bits::kPowered) != 0; },
+      500ms))
+      << "power-on refused while latched";
+  seg->ctrl_writer().send(shm::CtrlCode::kEmergencyReset, 0, 0);
+  ASSERT_TRUE(wait_vp(*seg, [](const shm::VpPayload& vp) {
+    return (vp.state_word & shm::state_bits::kEmergencyStop) == 0;
+  }));
+  bool removed = false;
+  for (int i = 0; i < 200 && !removed; ++i) {
+    removed = access(latch.c_str(), F_OK) != 0;
+    std::this_thread::sleep_for(5ms);
+  }
+  EXPECT_TRUE(removed) << "a reset removes the latch";
+  seg->ctrl_writer().send(shm::CtrlCode::kPowerOn, 0, 0);
+  EXPECT_TRUE(wait_vp(*seg, [](const shm::VpPayload& vp) {
+    return (vp.state_word & shm::state_bits::kPowered) != 0;
+  })) << "after the reset, power-on works";
+  seg.reset();
+  next.signal(SIGTERM);
+  EXPECT_EQ(next.wait(), 0) << next.err();
 }
 
 TEST(CoreProcess, StopRequestExitsZeroAndLeavesNoSegment) {

@@ -108,6 +108,19 @@ TEST(PrivateDirectory, ListsMatchingRegularFilesOldestFirstAndRemovesThem) {
   EXPECT_FALSE(dir.remove("bb-old.csv"));
 }
 
+TEST(PrivateDirectory, ReadsOnlyRegularFilesNeverThroughALink) {
+  TempDirectory temp("private");
+  const PrivateDirectory dir(temp.path());
+  ASSERT_TRUE(dir.create_file("note", "latched\n"));
+  ASSERT_EQ(symlink((temp / "note").c_str(), (temp / "link").c_str()), 0);
+  EXPECT_EQ(dir.read_file("note"), "latched\n");
+  EXPECT_EQ(dir.read_file("link"), "") << "not through a link";
+  EXPECT_EQ(dir.read_file("absent"), "");
+  EXPECT_TRUE(dir.contains("note"));
+  EXPECT_TRUE(dir.contains("link"));
+  EXPECT_FALSE(dir.contains("absent"));
+}
+
 TEST(PrivateDirectory, AnotherUserCannotPlantALinkInIt) {
   if (geteuid() != 0) {
     GTEST_SKIP() << "needs root to act as another user (CI runs as root)";

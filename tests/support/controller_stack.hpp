@@ -108,7 +108,7 @@ class ControllerStack {
         shm::InstancePaths::in(shm::creator_runtime_directory(), instance_);
     unlink(paths.socket.c_str());
     unlink(paths.lock.c_str());
-    remove_black_boxes(paths.directory);
+    remove_core_state(paths.directory);
   }
 
   [[nodiscard]] bool ready() const {
@@ -183,11 +183,13 @@ class ControllerStack {
   }
 
  private:
-  /// The black boxes of the cores this stack ran (in the runtime directory) go with it, unless
-  /// the test failed: then they stay, and the log says where.
-  void remove_black_boxes(const std::string& directory) const {
-    const std::string prefix = "hapticctrl-blackbox-" + instance_ + ".";
+  /// What the cores this stack ran left in the runtime directory (their state directory) goes
+  /// with it: a latched emergency stop, and the black boxes unless the test failed (then they
+  /// stay, and the log says where).
+  void remove_core_state(const std::string& directory) const {
     std::error_code ignored;
+    std::filesystem::remove(directory + "/hapticctrl-estop." + instance_, ignored);
+    const std::string prefix = "hapticctrl-blackbox-" + instance_ + ".";
     for (const auto& entry : std::filesystem::directory_iterator(directory, ignored)) {
       const std::string name = entry.path().filename().string();
       if (name.rfind(prefix, 0) != 0) {

@@ -100,7 +100,7 @@ export class Stack {
     // explains: instrumented, the simulator alone takes most of the period.
     const substepUs = process.env.HAPTICCTRL_SANITIZED ? '250' : '125';
     const core = this.run('core', binaries.core(), ['--instance', this.instance, '--period-us', '10000',
-      '--rt', 'warn', '--sim-substep-us', substepUs, '--blackbox-dir', this.blackBoxes, ...extra]);
+      '--rt', 'warn', '--sim-substep-us', substepUs, '--state-dir', this.blackBoxes, ...extra]);
     await core.waitFor(/running, period/);
   }
 

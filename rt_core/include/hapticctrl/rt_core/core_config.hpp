@@ -24,9 +24,10 @@ struct CoreConfig {
   int cpu = -2;                ///< -2: auto (last CPU), -1: none, >= 0: that CPU
   bool json = false;           ///< print final statistics as JSON on stdout
   std::string histogram_path;  ///< write the wake-up histogram (cyclictest format)
-  /// Where the black box goes on fail-safe: a directory only this user (or root) can write;
-  /// empty: the instance's runtime directory (shm::creator_runtime_directory()).
-  std::string blackbox_dir;
+  /// What outlives the process (the black box on fail-safe, the latched emergency stop): a
+  /// directory only this user (or root) can write; empty: the instance's runtime directory
+  /// (shm::creator_runtime_directory()).
+  std::string state_dir;
   std::uint32_t blackbox_keep = 20;    ///< the instance's newest black boxes kept there
   bool allow_fault_injection = false;  ///< accept ctrl kInjectOverrun
   std::uint64_t inject_at_cycle = 0;   ///< --inject-overrun CYCLE:K (0: none)

@@ -40,6 +40,13 @@ class PrivateDirectory {
   [[nodiscard]] std::vector<std::string> files(std::string_view prefix,
                                                std::string_view suffix) const;
 
+  /// True when something (a file, a link, anything) is there under `name`.
+  [[nodiscard]] bool contains(const std::string& name) const;
+
+  /// The text of the regular file `name` (never through a link): empty when it is not a
+  /// regular file or cannot be read.
+  [[nodiscard]] std::string read_file(const std::string& name) const;
+
   /// Removes `name` (a link is removed, not its target). False when it was not there.
   bool remove(const std::string& name) const;
 

@@ -130,11 +130,27 @@ again_after_stall() {
   HAPTICCTRL_RUN_RESTARTS=$((restarts + 1)) HAPTICCTRL_RUN_PERIOD_US=$next exec "$0" "${ARGS[@]}"
 }
 
+# The last fail-safe's reason, without its cycle and the steps taken ("5 consecutive deadline
+# misses").
+fail_safe_reason() {
+  grep 'FAIL-SAFE' "$RUN_DIR/core.log" | tail -n 1 |
+    sed 's/.*FAIL-SAFE after cycle [0-9]*: //; s/ (motors inhibited.*//'
+}
+
 # Runs the controller (its pid in core.pid); under --supervise starts it again after each
-# fail-safe. Returns the last controller's exit status.
+# fail-safe, by these rules (J4: it restarted a core that failed safe at every start 19 times in
+# 15 s, forever): it waits 0.5 s, then twice as long after each fail-safe that followed soon
+# (up to 8 s; 0.5 s again after a controller that ran a minute); it starts at most 5 in any
+# 60 s; and it gives up when a controller fails safe within 3 s of its start for the same reason
+# as the one before (a stall of the machine says how late the clock woke, so stalls never look
+# alike): a start that fails the same way every time is a fault to fix, not to retry. Giving up
+# says why and ends the run with the fail-safe's exit code. Returns the last controller's exit
+# status.
 run_core() {
-  local starts=0 rc
+  local starts=0 rc delay=0.5 started ran reason last_reason="" stamp
+  local -a recent=()
   while true; do
+    started=$SECONDS
     "$BUILD/rt_core/hapticctrl-core" --instance "$INSTANCE" --json "$@" >"$RUN_DIR/core.json" \
       2>>"$RUN_DIR/core.log" &
     echo $! >"$RUN_DIR/core.pid"
@@ -145,8 +161,27 @@ run_core() {
       return "$rc"
     fi
     report_fail_safe
-    echo "run: supervisor: starting controller #$((starts + 1)) (powered off)" >&2
-    sleep 0.5
+    ran=$((SECONDS - started))
+    reason=$(fail_safe_reason)
+    if [[ $ran -lt 3 && $reason == "$last_reason" ]]; then
+      echo "run: supervisor: the controller failed safe at its start twice in a row ($reason):" \
+        "not starting it again" >&2
+      return "$rc"
+    fi
+    last_reason=$reason
+    local -a kept=()
+    for stamp in "${recent[@]}" "$SECONDS"; do
+      [[ $((SECONDS - stamp)) -lt 60 ]] && kept+=("$stamp")
+    done
+    recent=("${kept[@]}")
+    if [[ ${#recent[@]} -ge 5 ]]; then
+      echo "run: supervisor: ${#recent[@]} fail-safes within 60 s: not starting it again" >&2
+      return "$rc"
+    fi
+    [[ $ran -ge 60 ]] && delay=0.5
+    echo "run: supervisor: starting controller #$((starts + 1)) in $delay s (powered off)" >&2
+    sleep "$delay"
+    delay=$(awk -v d="$delay" 'BEGIN { print (d * 2 > 8 ? 8 : d * 2) }')
     [[ -e "$RUN_DIR/stopping" ]] && return "$rc"
   done
 }

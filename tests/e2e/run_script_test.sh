@@ -16,7 +16,10 @@ cat "$OUT/log"
 [[ $status -eq 11 ]] || fail "expected exit 11 (a fail-safe on consecutive misses), got $status"
 grep -q "^run: the controller FAILED SAFE: after cycle [0-9]*: 5 consecutive deadline misses" \
   "$OUT/log" || fail "the fail-safe's reason is not printed"
-[[ -z "$(ls -A "$HAPTICCTRL_RUNTIME_DIR")" ]] || fail "the instance's socket or lock was left behind"
+left=$(find "$HAPTICCTRL_RUNTIME_DIR" -mindepth 1 ! -name "hapticctrl-blackbox-$HAPTICCTRL_INSTANCE.*.csv")
+[[ -z $left ]] || fail "the instance's socket or lock was left behind: $left"
+grep -q "black box: $HAPTICCTRL_RUNTIME_DIR/hapticctrl-blackbox-$HAPTICCTRL_INSTANCE\.[0-9]*\.csv" \
+  "$OUT/log" || fail "the black box is not in the instance's runtime directory, or not said"
 if pgrep -f -- "--instance $HAPTICCTRL_INSTANCE" >/dev/null; then
   fail "processes were left running"
 fi

@@ -70,5 +70,6 @@ stop_run || status=$?
 if pgrep -f -- "--instance $HAPTICCTRL_INSTANCE" >/dev/null; then
   fail "processes were left running"
 fi
-[[ -z "$(ls -A "$HAPTICCTRL_RUNTIME_DIR")" ]] || fail "the instance's socket or lock was left behind"
+left=$(find "$HAPTICCTRL_RUNTIME_DIR" -mindepth 1 ! -name "hapticctrl-blackbox-$HAPTICCTRL_INSTANCE.*.csv")
+[[ -z $left ]] || fail "the instance's socket or lock was left behind: $left"
 echo "run_supervise_test: the supervisor restarted the controller and the demo reconnected"

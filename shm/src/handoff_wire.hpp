@@ -7,6 +7,7 @@
 #include <sys/time.h>
 #include <sys/un.h>
 
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -22,8 +23,17 @@ inline constexpr std::uint32_t kReplyMagic = 0x48435250;    // "HCRP"
 inline constexpr std::size_t kHandedFds = 2;                // the segment, the core's pidfd
 inline constexpr std::size_t kServerStack = std::size_t{64} * 1024;
 inline constexpr std::size_t kMaxPeerGroups = 256;
-inline constexpr timeval kPeerTimeout{0, 200'000};  // a silent peer cannot hold the server up
-inline constexpr timeval kAttacherTimeout{2, 0};    // a core that does not answer is reported
+/// A peer that has not sent its request within this is dropped (it holds one of the server's
+/// slots meanwhile, never the server).
+inline constexpr std::chrono::milliseconds kPeerDeadline{200};
+/// Connections the kernel queues before the server accepts them (it accepts all it can at once).
+inline constexpr int kBacklog = 256;
+inline constexpr timeval kAttacherTimeout{2, 0};  // a core that does not answer is reported
+/// A core that closed a connection within kBusyAnswer had every peer slot held: the attacher asks
+/// again after kBusyPause, kBusyAttempts times in all (about 0.5 s).
+inline constexpr std::chrono::milliseconds kBusyAnswer{50};
+inline constexpr std::chrono::milliseconds kBusyPause{50};
+inline constexpr int kBusyAttempts = 10;
 inline constexpr unsigned kSeals = F_SEAL_SHRINK | F_SEAL_GROW | F_SEAL_SEAL;
 
 enum class ReplyStatus : std::uint32_t { kServed = 0, kRefused = 1, kBadRequest = 2 };

@@ -8,8 +8,10 @@
 
 #include <array>
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 #include <string>
+#include <thread>
 #include <utility>
 
 #include "handoff_wire.hpp"
@@ -114,22 +116,40 @@ HandedSegment request_segment(std::string_view instance, bool writable) {
       continue;
     }
     const uid_t owner = trusted_directory_owner(directory);
-    const UniqueFd socket_fd = connect_to_core(paths, instance);
-    const ucred core = peer_credentials(socket_fd.get());
-    if (core.uid != owner && core.uid != 0) {
-      throw ShmError(ShmErrc::kInsecure,
-                     "the process serving " + paths.socket + " (pid " + std::to_string(core.pid) +
-                         ") runs as uid " + std::to_string(core.uid) + ", not as the owner of " +
-                         directory + " (uid " + std::to_string(owner) + "): refusing it");
-    }
-    const Request request{.writable = writable ? 1U : 0U};
-    if (send(socket_fd.get(), &request, sizeof(request), MSG_NOSIGNAL) !=
-        static_cast<ssize_t>(sizeof(request))) {
-      throw_system_error("ask the controller of instance '" + std::string(instance) + "'", errno);
-    }
     std::array<UniqueFd, kHandedFds> fds;
     std::size_t count = 0;
-    const Reply reply = receive_reply(socket_fd.get(), fds, count);
+    ucred core{};
+    Reply reply{};
+    // A core whose every peer slot is held closes a new connection at once: asked again a
+    // little later, it answers (J4). A core that stays silent for kAttacherTimeout does not.
+    for (int attempt = 1;; ++attempt) {
+      const auto asked = std::chrono::steady_clock::now();
+      const UniqueFd socket_fd = connect_to_core(paths, instance);
+      core = peer_credentials(socket_fd.get());
+      if (core.uid != owner && core.uid != 0) {
+        throw ShmError(ShmErrc::kInsecure,
+                       "the process serving " + paths.socket + " (pid " + std::to_string(core.pid) +
+                           ") runs as uid " + std::to_string(core.uid) + ", not as the owner of " +
+                           directory + " (uid " + std::to_string(owner) + "): refusing it");
+      }
+      const Request request{.writable = writable ? 1U : 0U};
+      const bool sent = send(socket_fd.get(), &request, sizeof(request), MSG_NOSIGNAL) ==
+                        static_cast<ssize_t>(sizeof(request));
+      const int send_error = errno;
+      // A core refuses an outsider right after accept, before reading: its refusal may be
+      // waiting while our request found the connection closed.
+      reply = receive_reply(socket_fd.get(), fds, count);
+      const bool closed_at_once = std::chrono::steady_clock::now() - asked < kBusyAnswer;
+      if (reply.magic != kReplyMagic && closed_at_once && attempt < kBusyAttempts) {
+        std::this_thread::sleep_for(kBusyPause);
+        continue;
+      }
+      if (!sent && reply.magic != kReplyMagic) {
+        throw_system_error("ask the controller of instance '" + std::string(instance) + "'",
+                           send_error);
+      }
+      break;
+    }
     const std::string from = "the core of instance '" + std::string(instance) + "'";
     if (reply.magic != kReplyMagic) {
       throw ShmError(ShmErrc::kSystem, from + " did not answer (" + paths.socket + ")");

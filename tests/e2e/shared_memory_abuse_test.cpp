@@ -2,6 +2,7 @@
 // (refused, or limited, and counted; the core stays up), nobody able to truncate the segment
 // under the core and its bridge, and another user unable to squat or plant an instance.
 #include <fcntl.h>
+#include <sys/socket.h>
 #include <unistd.h>
 
 #include <gtest/gtest.h>
@@ -19,6 +20,7 @@
 #include "hapticctrl/shm/segment_handoff.hpp"
 #include "support/controller_stack.hpp"
 #include "support/force_step_watch.hpp"
+#include "support/segment_fixtures.hpp"
 #include "support/spawned_process.hpp"
 
 namespace hapticctrl::test {
@@ -209,6 +211,44 @@ TEST(SharedMemoryAbuse, AnotherUserCanNeitherSquatNorPlantAnInstance) {
   })) << core.err();
   core.signal(SIGTERM);
   EXPECT_EQ(core.wait(5s), 0) << core.err();
+}
+
+TEST(SharedMemoryAbuse, SilentAndGarbagePeersOfTheHandOffDoNotStopAnAttach) {
+  // J4 review of f3c5aec: 16 silent connections to the hand-off socket (a server that served one
+  // at a time, 200 ms each) made `hapticctrl-hmi status` fail 2 times of 3. Here 64 silent
+  // peers and a garbage sender are held while the HMI asks three times and a UDP bridge starts.
+  ControllerStack stack("handoff-flood", kPeriodUs);
+  ASSERT_TRUE(stack.ready()) << stack.diagnostics();
+  std::vector<int> held;
+  for (int i = 0; i < 64; ++i) {
+    const int fd = connect_silently(stack.instance());
+    ASSERT_GE(fd, 0) << "connection " << i;
+    held.push_back(fd);
+  }
+  const int garbage = connect_silently(stack.instance());
+  ASSERT_GE(garbage, 0);
+  const std::vector<unsigned char> junk(4096, 0xA5);
+  (void)send(garbage, junk.data(), junk.size(), MSG_NOSIGNAL);
+  for (int i = 0; i < 3; ++i) {
+    SpawnedProcess hmi(HAPTICCTRL_HMI_BINARY, {"--instance", stack.instance(), "status"});
+    EXPECT_EQ(hmi.wait(5s), 0) << "status " << i << ": " << hmi.err();
+  }
+  stack.bridge().signal(SIGTERM);
+  ASSERT_EQ(stack.bridge().wait(5s), 0) << stack.diagnostics();
+  stack.start_bridge();
+  EXPECT_TRUE(ControllerStack::eventually([&] {
+    return stack.bridge().out().find("listening on 127.0.0.1:") != std::string::npos;
+  })) << "the bridge attached and serves: "
+      << stack.bridge().err();
+  EXPECT_TRUE(ControllerStack::eventually([&] {
+    return stack.vp().core_state == static_cast<std::uint32_t>(shm::CoreState::kRunning);
+  })) << "the core runs (its first cycles may come after the attaches)";
+  const shm::TelemetryPayload t = stack.telemetry();
+  std::printf("the core meanwhile: %llu misses\n", static_cast<unsigned long long>(t.misses_total));
+  for (const int fd : held) {
+    close(fd);
+  }
+  close(garbage);
 }
 
 }  // namespace

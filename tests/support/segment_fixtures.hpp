@@ -1,15 +1,18 @@
 #pragma once
 // Helpers of the segment tests (tests/shm/segment*_test.cpp, instance_lock_test.cpp): where an
 // instance's names are, the expected errors, a forged header, a runtime directory of the test's
-// own, and playing another user.
+// own, playing another user, and a silent peer of the hand-off socket.
 #include <grp.h>
 #include <sys/mman.h>
+#include <sys/socket.h>
 #include <sys/stat.h>
+#include <sys/un.h>
 #include <unistd.h>
 
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <string>
 
@@ -27,6 +30,24 @@ using shm::ShmError;
 
 inline InstancePaths paths_of(const std::string& instance) {
   return InstancePaths::in(shm::creator_runtime_directory(), instance);
+}
+
+/// A connection to the instance's socket with nothing sent: what a silent or stuck peer holds.
+/// -1 if it could not connect.
+inline int connect_silently(const std::string& instance) {
+  const std::string path = paths_of(instance).socket;
+  const int fd = socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  sockaddr_un address{};
+  address.sun_family = AF_UNIX;
+  std::memcpy(address.sun_path, path.c_str(), path.size() + 1);
+  // NOLINTNEXTLINE(cppcoreguidelines-pro-type-reinterpret-cast): the sockets API
+  if (fd < 0 || connect(fd, reinterpret_cast<const sockaddr*>(&address), sizeof(address)) != 0) {
+    if (fd >= 0) {
+      close(fd);
+    }
+    return -1;
+  }
+  return fd;
 }
 
 inline bool exists(const std::string& path) {

@@ -96,7 +96,7 @@ class Segment {
   /// or died; a new core of the instance has a new segment). Not for the cycle.
   [[nodiscard]] bool still_current() const;
   /// Creator: requests for the segment refused so far (a peer outside the core's user, root and
-  /// group, or a malformed request). Any thread.
+  /// group, a malformed request, or silent for 200 ms). Any thread.
   [[nodiscard]] std::uint64_t refused_attaches() const noexcept;
   /// Identity of the live writer of a region, if any (diagnostics).
   [[nodiscard]] std::optional<ProcessIdentity> writer_of(RegionId id) const;

@@ -53,9 +53,11 @@ struct HandedSegment {
   uid_t core_uid = 0;
 };
 
-/// Serves one instance's segment: listens on `paths.socket` and answers each request on a
-/// thread of its own (signals blocked, 64 KiB stack, never the cycle's CPU time: it sleeps in
-/// poll until someone connects).
+/// Serves one instance's segment: listens on `paths.socket` and answers requests on a thread of
+/// its own (signals blocked, 64 KiB stack, never the cycle's CPU time: it sleeps in poll until
+/// someone connects). Up to 256 peers at once, none able to hold up another: a peer's
+/// credentials are checked right after accept, before anything is read (outsiders get their
+/// refusal at once); an allowed peer has 200 ms to send its request, read without blocking.
 class SegmentServer {
  public:
   /// Binds `paths.socket` (mode 0660, group `group` unless -1; a stale socket is replaced: the
@@ -67,7 +69,7 @@ class SegmentServer {
   ~SegmentServer();
 
   /// Requests answered with the segment, and refused (a peer that is not the core's user, root
-  /// or in its group; or a malformed request). Any thread.
+  /// or in its group; a malformed request; silent for 200 ms). Any thread.
   [[nodiscard]] std::uint64_t served() const noexcept;
   [[nodiscard]] std::uint64_t refused() const noexcept;
 

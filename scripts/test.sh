@@ -90,7 +90,7 @@ build_tsan() {
     -DCMAKE_BUILD_TYPE=RelWithDebInfo
 }
 
-FUZZERS=(decoder arm-model config lcm-hmi web)  # the decoder first (fuzz_one's share)
+FUZZERS=(decoder arm-model config lcm-hmi web dds-input)  # the decoder first (fuzz_one's share)
 build_fuzz() {
   CC=clang CXX=clang++ cmake -S "$ROOT" -B build-fuzz -G Ninja -DHAPTICCTRL_WERROR=ON \
     -DHAPTICCTRL_BUILD_FUZZ=ON -DHAPTICCTRL_BUILD_TESTS=OFF -DHAPTICCTRL_BUILD_BENCH=OFF \

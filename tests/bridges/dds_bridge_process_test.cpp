@@ -4,10 +4,19 @@
 // in a domain of this test process's own (support/dds_loopback.hpp).
 #include <gtest/gtest.h>
 
+#include <array>
 #include <chrono>
+#include <cmath>
 #include <csignal>
+#include <cstdio>
+#include <limits>
 #include <string>
+#include <thread>
 #include <vector>
+
+#include "hapticctrl/ros2types/names.hpp"
+#include "hapticctrl/ros2types/participant.hpp"
+#include "hapticctrl/ros2types/qos.hpp"
 
 #include "support/controller_stack.hpp"
 #include "support/dds_loopback.hpp"
@@ -193,6 +202,83 @@ TEST(DdsBridgeProcess, SurvivesACoreRestart) {
   const std::string after = s.listen(2.0);
   EXPECT_GT(json_number(after, "handle_pose_count"), 50) << after << s.bridge.err();
   s.expect_running_level(after);
+}
+
+/// Waits (bounded) until `writer` has matched the bridge's reader.
+bool matched(dds_entity_t writer) {
+  for (int i = 0; i < 300; ++i) {
+    dds_publication_matched_status_t status{};
+    if (dds_get_publication_matched_status(writer, &status) == 0 && status.current_count > 0) {
+      return true;
+    }
+    std::this_thread::sleep_for(10ms);
+  }
+  return false;
+}
+
+TEST(DdsBridgeProcess, HostileInputIsRefusedAndCountedAndTheEmergencyStopStillActs) {
+  // J4: the DDS input attacked as the LCM input is, straight from a participant of the test's
+  // own (the friendly listen tool refuses such values): NaN, +-inf and 1e308 in the operator
+  // wrench, a 1 MiB command, and a flood of 5000 commands and 5000 wrenches as fast as DDS
+  // takes them. The bridge refuses and counts, the force region never carries a bad value, the
+  // core runs on, and an emergency stop sent last still acts.
+  DdsStack s("ddshostile", {"--allow-remote-commands"});
+  ASSERT_TRUE(s.controller.ready()) << s.controller.diagnostics();
+  namespace r2 = hapticctrl::ros2types;
+  r2::Participant p(s.domain);
+  const r2::Qos qos = r2::command_qos();
+  const dds_entity_t command_w =
+      p.writer(std_msgs_msg_dds__String__desc, r2::dds_topic(s.ns, r2::topic::kCommand), qos.get());
+  const dds_entity_t wrench_w =
+      p.writer(geometry_msgs_msg_dds__WrenchStamped__desc,
+               r2::dds_topic(s.ns, r2::topic::kOperatorWrenchCommand), qos.get());
+  ASSERT_TRUE(matched(command_w) && matched(wrench_w)) << s.bridge.err();
+  const auto send_wrench = [&](std::array<double, 6> v) {
+    geometry_msgs_msg_dds__WrenchStamped_ m{};
+    m.wrench.force = {v[0], v[1], v[2]};
+    m.wrench.torque = {v[3], v[4], v[5]};
+    return dds_write(wrench_w, &m) == 0;
+  };
+  const auto send_command = [&](std::string text) {
+    std_msgs_msg_dds__String_ m{text.data()};
+    return dds_write(command_w, &m) == 0;
+  };
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  for (const auto& bad : std::vector<std::array<double, 6>>{{nan, 0, 0, 0, 0, 0},
+                                                            {0, inf, 0, 0, 0, 0},
+                                                            {0, 0, -inf, 0, 0, 0},
+                                                            {1e308, 0, 0, 0, 0, 0},
+                                                            {0, 0, 0, 0, 0, 1e308},
+                                                            {0, 0, 0, nan, inf, -1e308}}) {
+    EXPECT_TRUE(send_wrench(bad));
+    std::this_thread::sleep_for(20ms);  // each its own take
+  }
+  EXPECT_TRUE(send_command(std::string(std::size_t{1} << 20, 'A')));
+  for (int i = 0; i < 5000; ++i) {
+    (void)send_command(i % 2 == 0 ? "reboot" : "power_on\nstop");
+    (void)send_wrench({i % 3 == 0 ? nan : 1e300, 0, 0, 0, 0, 0});
+  }
+  for (int i = 0; i < 50; ++i) {  // the flood is over: does the bridge still listen?
+    const shm::PositionPayload now = s.controller.position();
+    for (const double w : now.operator_wrench) {
+      ASSERT_TRUE(std::isfinite(w) && std::abs(w) < 1e-9) << "a refused wrench reached the arm";
+    }
+    std::this_thread::sleep_for(10ms);
+  }
+  EXPECT_TRUE(send_command("emergency_stop"));
+  EXPECT_TRUE(ControllerStack::eventually([&] {
+    return (s.controller.position().state_word & shm::state_bits::kEmergencyStop) != 0;
+  })) << "the emergency stop still acts after the flood: "
+      << s.bridge.err();
+  EXPECT_EQ(s.controller.vp().core_state, static_cast<std::uint32_t>(shm::CoreState::kRunning));
+  EXPECT_EQ(s.bridge.wait(0ms), -1) << "the bridge runs on: " << s.bridge.err();
+  const std::string counters = s.stop_bridge();
+  std::printf("after the hostile input: %s\n", counters.c_str());
+  EXPECT_GE(json_number(counters, "forces_invalid"), 6) << counters;
+  EXPECT_GE(json_number(counters, "commands_invalid"), 2) << counters;
+  EXPECT_EQ(json_number(counters, "forces_accepted"), 0) << counters;
+  EXPECT_EQ(json_number(counters, "commands_applied"), 1) << "the emergency stop alone";
 }
 
 }  // namespace

@@ -84,7 +84,17 @@ const char* ending_of(const client::StateSnapshot& s) {
   if (s.fail_safe()) {
     return "controller failed safe";
   }
+  if (s.controller_lost()) {
+    return "controller lost (killed or crashed)";
+  }
   return s.core_state > kCoreFailSafe ? "controller stopped" : "session closed";
+}
+
+/// The controller left in order (an operator's stop): the demo ends too. A fail-safe or a lost
+/// controller process is not that: a new controller may follow, and the demo waits for it (J4:
+/// it exited 0 after a SIGKILL of the core, "controller stopped").
+bool stopped_in_order(const client::StateSnapshot& s) {
+  return !s.fail_safe() && !s.controller_lost() && s.core_state > kCoreFailSafe;
 }
 
 /// The seeds' initialisation: references and frames, units and factors, time step, command
@@ -231,7 +241,7 @@ class DemoRun {
         scene_.emplace(scene_at(s_, o_));  // a new session starts with the sphere at the handle
         announce();
         run_session();
-        orderly_stop = !s_.fail_safe() && s_.core_state > kCoreFailSafe;
+        orderly_stop = stopped_in_order(s_);
       } else if (o_.reconnect) {
         ended_ = "no answer from the controller within 2 s";  // failing safe again, or stalled
       } else {

@@ -228,5 +228,41 @@ TEST(DemoEndToEnd, StopFromTheHmiShutsTheControllerDownInTheFailSafeOrder) {
   EXPECT_NE(stack.core().err().find("stop requested"), std::string::npos);
 }
 
+TEST(DemoEndToEnd, TheDemoRecouplesAfterTenCoreKillsInARow) {
+  // J4 review of f3c5aec: after a SIGKILL of the core the demo exited 0 ("controller stopped")
+  // while every other process re-attached. A lost controller is not an orderly stop: the demo
+  // waits for the next core and couples again through the ramp, kill after kill.
+  ControllerStack stack("e2e-kills", kPeriodUs);
+  ASSERT_TRUE(stack.ready()) << stack.diagnostics();
+  Demo demo(stack, {});
+  ASSERT_TRUE(demo.ready()) << demo.err();
+  const auto coupled = [&] {
+    const std::uint32_t w = stack.vp().state_word;
+    return (w & shm::state_bits::kCoupled) != 0 && (w & shm::state_bits::kPowered) != 0;
+  };
+  ASSERT_TRUE(ControllerStack::eventually(coupled, 5s)) << demo.err();
+  for (int kill = 1; kill <= 10; ++kill) {
+    stack.core().signal(SIGKILL);
+    ASSERT_GE(stack.core().wait(5s), 0);
+    stack.start_core();
+    ASSERT_TRUE(stack.ready()) << "kill " << kill << ": " << stack.diagnostics();
+    const std::string said = "reconnected (" + std::to_string(kill) + ")";
+    ASSERT_TRUE(ControllerStack::eventually(
+        [&] { return demo.err().find(said) != std::string::npos; }, 15s))
+        << "kill " << kill << ": " << demo.err();
+    ASSERT_TRUE(ControllerStack::eventually(coupled, 10s))
+        << "kill " << kill << ": not coupled again; " << demo.err();
+  }
+  EXPECT_EQ(demo.process().wait(0ms), -1) << "the demo runs on: " << demo.err();
+  std::size_t lost = 0;
+  const std::string err = demo.err();
+  for (auto at = err.find("controller lost (killed or crashed)"); at != std::string::npos;
+       at = err.find("controller lost (killed or crashed)", at + 1)) {
+    ++lost;
+  }
+  EXPECT_EQ(lost, 10U) << "each loss said as such: " << err;
+  demo.finish();
+}
+
 }  // namespace
 }  // namespace hapticctrl::test

@@ -106,7 +106,8 @@ void send_answer(UdpSocket& socket, Session& session, const shm::VpPayload& samp
 /// core gets a last ANSWER saying so (state stopped, its reason or "core lost"), then sets
 /// `core_lost`.
 void answer_cycles(const shm::Segment& segment, UdpSocket& socket, Session& session,
-                   const std::atomic<bool>& answering, std::atomic<bool>& core_lost) {
+                   const std::atomic<bool>& answering, std::atomic<bool>& core_lost,
+                   std::atomic<std::uint32_t>& end_reason) {
   const auto& vp = segment.region<shm::RegionId::kVp>();
   shm::CoreWatch watch(segment);
   shm::VpPayload last;
@@ -123,6 +124,7 @@ void answer_cycles(const shm::Segment& segment, UdpSocket& socket, Session& sess
                    segment.instance().c_str(), static_cast<unsigned long long>(watch.last_cycle()),
                    shm::stop_reason_name(watch.stop_reason()),
                    static_cast<double>(watch.heartbeat_age_at_loss_ns()) * 1e-6);
+      end_reason.store(watch.stop_reason());
       core_lost.store(true);
       return;
     }
@@ -142,7 +144,9 @@ void run_attached(shm::Segment& segment, UdpSocket& socket, Session& session, st
 
   std::atomic<bool> answering{true};
   std::atomic<bool> core_lost{false};
-  std::thread answers([&] { answer_cycles(segment, socket, session, answering, core_lost); });
+  std::atomic<std::uint32_t> end_reason{0};
+  std::thread answers(
+      [&] { answer_cycles(segment, socket, session, answering, core_lost, end_reason); });
 
   std::int64_t next_stats = 0;
   serve(socket, session, end_ns, [&](std::int64_t now) {
@@ -157,9 +161,11 @@ void run_attached(shm::Segment& segment, UdpSocket& socket, Session& session, st
   // Tell the client why its session ends (the core then ramps the coupling out).
   FrameBuffer notice{};
   Endpoint to;
-  const std::size_t n = session.close(
-      monotonic_ns(), g_stop.load() ? "the bridge is shutting down" : "the controller stopped",
-      notice, to);
+  const bool lost = end_reason.load() == static_cast<std::uint32_t>(shm::StopReason::kCoreLost);
+  const char* why = g_stop.load() ? "the bridge is shutting down"
+                    : lost        ? "the controller was lost (killed or crashed)"
+                                  : "the controller stopped";
+  const std::size_t n = session.close(monotonic_ns(), why, notice, to);
   if (n != 0) {
     socket.send_to({notice.data(), n}, to);
   }

@@ -42,6 +42,13 @@ inline constexpr std::uint32_t kSaturated = 1U << 7;
 inline constexpr unsigned kJointBoundsShift = 8;
 }  // namespace state_bits
 
+/// StateSnapshot::stop_reason values a client acts on (the rest name a fault for the log).
+namespace stop_reasons {
+/// Never recorded by the controller: the bridge's verdict that the controller process is gone
+/// (killed or crashed), not an orderly stop. A new controller may follow: connect again.
+inline constexpr std::uint32_t kControllerLost = 8;
+}  // namespace stop_reasons
+
 /// One controller cycle as the client received it: taken atomically, timestamped.
 struct StateSnapshot {
   bool valid = false;            ///< false until the first answer arrived
@@ -66,6 +73,11 @@ struct StateSnapshot {
   }
   /// The controller rendered the coupling to the virtual object this cycle.
   [[nodiscard]] bool coupled() const noexcept { return (state_word & state_bits::kCoupled) != 0; }
+  /// The controller process is gone (killed or crashed): not an orderly stop, and not a
+  /// fail-safe it went through; the next controller of the instance serves a new session.
+  [[nodiscard]] bool controller_lost() const noexcept {
+    return stop_reason == stop_reasons::kControllerLost;
+  }
 };
 
 /// Network statistics of the session, as seen by this client.

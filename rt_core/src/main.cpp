@@ -160,7 +160,8 @@ int run_core(const CoreConfig& config) {
   }
   ServoTask main_task(shared, ServoRole::kMain, ServoLaw(dynamics));
   ServoTask degraded_task(shared, ServoRole::kDegraded, ServoLaw(dynamics));
-  BlackBox black_box(static_cast<std::size_t>(2 * kNsPerS / config.period));
+  BlackBox black_box(static_cast<std::size_t>(2 * kNsPerS / config.period),
+                     &segment.writable<shm::RegionId::kBlackBox>());
   RealClock clock;
 
   // Before the real-time placement of this thread: the keeper inherits no priority or CPU.

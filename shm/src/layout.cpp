@@ -23,6 +23,8 @@ std::string_view region_name(RegionId id) noexcept {
       return "link_stats";
     case RegionId::kEvents:
       return "events";
+    case RegionId::kBlackBox:
+      return "blackbox";
     case RegionId::kCount:
       break;
   }

@@ -94,6 +94,7 @@ Segment Segment::create(const CreateOptions& options) {
     new (base + region_offset(RegionId::kTelemetry)) RegionType<RegionId::kTelemetry>();
     new (base + region_offset(RegionId::kLinkStats)) RegionType<RegionId::kLinkStats>();
     new (base + region_offset(RegionId::kEvents)) RegionType<RegionId::kEvents>();
+    new (base + region_offset(RegionId::kBlackBox)) RegionType<RegionId::kBlackBox>();
     const ProcessIdentity me = ProcessIdentity::self();
     header->abi_version = kAbiVersion;
     header->header_size = sizeof(SegmentHeader);
@@ -116,8 +117,9 @@ Segment Segment::create(const CreateOptions& options) {
   seg.claims_part_ =
       Part{map_part(seg.fd_, kClaimsOffset, kFirstRegionOffset - kClaimsOffset, true, "claims"),
            kFirstRegionOffset - kClaimsOffset, true};
-  const std::vector<RegionId> core_writes{RegionId::kVp, RegionId::kPosition, RegionId::kCtrlAck,
-                                          RegionId::kTelemetry, RegionId::kEvents};
+  const std::vector<RegionId> core_writes{RegionId::kVp,      RegionId::kPosition,
+                                          RegionId::kCtrlAck, RegionId::kTelemetry,
+                                          RegionId::kEvents,  RegionId::kBlackBox};
   seg.my_claim_ = pack_identity(ProcessIdentity::self());
   seg.claim_regions(core_writes);
   seg.map_regions(core_writes);

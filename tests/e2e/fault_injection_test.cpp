@@ -16,6 +16,7 @@
 #include <fstream>
 #include <optional>
 #include <random>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -24,6 +25,7 @@
 #include "hapticctrl/shm/force_slew.hpp"
 #include "hapticctrl/shm/monotonic_clock.hpp"
 #include "hapticctrl/shm/payloads.hpp"
+#include "hapticctrl/shm/rendezvous.hpp"
 #include "hapticctrl/shm/segment_handoff.hpp"
 #include "support/controller_stack.hpp"
 #include "support/force_step_watch.hpp"
@@ -301,6 +303,42 @@ TEST(FaultInjection, AKilledCoreIsToldToClientAndLcmWithinMillisecondsAndTheNext
   EXPECT_LE(median(client_ms), kNoticeMs);
   EXPECT_LE(median(udp_heartbeat_ms), kNoticeMs + kPeriodUs * 1e-3);
   EXPECT_LE(median(lcm_heartbeat_ms), kNoticeMs + kPeriodUs * 1e-3);
+}
+
+TEST(FaultInjection, AKilledCoresLastCyclesAreWrittenOutByTheBridge) {
+  // J4: only a fail-safe wrote a black box; a core killed or crashed left none. Its last cycles
+  // are kept in the segment's blackbox region as well, and the UDP bridge, which maps it, writes
+  // them out when it finds the core lost.
+  ControllerStack stack("bblost", kPeriodUs);
+  ASSERT_TRUE(stack.ready()) << stack.diagnostics();
+  ASSERT_TRUE(ControllerStack::eventually([&] { return stack.vp().cycle > 50; }));
+  const int core_pid = stack.core().pid();
+  const std::uint64_t seen = stack.vp().cycle;
+  stack.core().signal(SIGKILL);
+  ASSERT_GE(stack.core().wait(5s), 0);
+  const std::string path = shm::creator_runtime_directory() + "/hapticctrl-blackbox-" +
+                           stack.instance() + "." + std::to_string(core_pid) + ".lost.csv";
+  ASSERT_TRUE(ControllerStack::eventually([&] { return std::filesystem::exists(path); }, 5s))
+      << stack.bridge().err();
+  EXPECT_TRUE(ControllerStack::eventually([&] {
+    return stack.bridge().err().find("the lost controller's last ") != std::string::npos;
+  })) << stack.bridge().err();
+  EXPECT_EQ(std::filesystem::status(path).permissions(),
+            std::filesystem::perms::owner_read | std::filesystem::perms::owner_write);
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line.rfind("cycle,scheduled_ns,wake_latency_ns", 0), 0U) << line;
+  std::size_t records = 0;
+  std::uint64_t last_cycle = 0;
+  while (std::getline(in, line)) {
+    ++records;
+    last_cycle = std::stoull(line.substr(0, line.find(',')));
+  }
+  // A cycle's record is made at its deadline check, after its VP went out: the last cycle seen
+  // may have died before its check.
+  EXPECT_GE(records + 1, seen) << "every cycle from the start (fewer than the ring holds)";
+  EXPECT_GE(last_cycle + 1, seen) << "it ends with the core's last cycles, not before";
 }
 
 TEST(FaultInjection, AFrozenBridgeIsStaleInputTheCouplingFadesAndResumesOnContinue) {

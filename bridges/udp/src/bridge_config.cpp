@@ -39,6 +39,9 @@ void declare(program::Options& o, BridgeConfig& c) {
                           "least --watchdog-ms)");
   o.number("--priority", c.priority, 1, 98,
            "SCHED_FIFO priority for both threads (below the core's)");
+  o.text("--state-dir", c.state_dir,
+         "where the last cycles of a lost controller (killed, crashed) are written: the core's "
+         "--state-dir (default: the instance's runtime directory)");
   o.number("--duration", c.duration_s, 0.0, 1e6,
            "exit after S seconds (default: run until SIGINT/SIGTERM)");
   o.flag("--json", c.json, "print the final counters as one JSON line");

@@ -21,9 +21,11 @@
 #include <vector>
 
 #include "hapticctrl/program/main_skeleton.hpp"
+#include "hapticctrl/program/private_directory.hpp"
 #include "hapticctrl/protocol/monotonic_clock.hpp"
 #include "hapticctrl/shm/core_watch.hpp"
 #include "hapticctrl/shm/names.hpp"
+#include "hapticctrl/shm/rendezvous.hpp"
 #include "hapticctrl/shm/segment.hpp"
 #include "hapticctrl/udp_bridge/bridge_config.hpp"
 #include "hapticctrl/udp_bridge/session.hpp"
@@ -134,8 +136,34 @@ void answer_cycles(const shm::Segment& segment, UdpSocket& socket, Session& sess
   }
 }
 
-/// Serves one controller until it goes away (or the bridge stops).
-void run_attached(shm::Segment& segment, UdpSocket& socket, Session& session, std::int64_t end_ns) {
+/// Black boxes of one instance kept in the state directory, the core's and a lost core's alike
+/// (the core's --blackbox-keep default).
+constexpr std::size_t kBlackBoxesKept = 20;
+
+/// A core that was lost (killed, crashed) wrote no black box: its last cycles are still in the
+/// segment's blackbox region, which this bridge maps, and it writes them out (J4).
+void keep_lost_black_box(const shm::Segment& segment, const std::string& state_dir) {
+  try {
+    const hapticctrl::program::PrivateDirectory directory(
+        state_dir.empty() ? shm::creator_runtime_directory() : state_dir);
+    const std::vector<shm::CycleRecord> records =
+        shm::read_cycle_records(segment.region<shm::RegionId::kBlackBox>());
+    const std::string path =
+        directory.add_to_series("hapticctrl-blackbox-" + segment.instance() + ".",
+                                std::to_string(segment.header().creator_pid) + ".lost", ".csv",
+                                shm::cycle_records_csv(records), kBlackBoxesKept);
+    std::fprintf(stderr, "hapticctrl-udp: the lost controller's last %zu cycles: black box %s\n",
+                 records.size(), path.c_str());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "hapticctrl-udp: could not keep the lost controller's black box: %s\n",
+                 e.what());
+  }
+}
+
+/// Serves one controller until it goes away (or the bridge stops). Returns the reason it went
+/// (shm::StopReason; 0 while it runs on).
+std::uint32_t run_attached(shm::Segment& segment, UdpSocket& socket, Session& session,
+                           std::int64_t end_ns) {
   hapticctrl::udp_bridge::ControllerPorts ports{&segment.writable<shm::RegionId::kVpr>(),
                                                 &segment.ctrl_writer(), segment.header().period_ns,
                                                 &segment.header().heartbeat_cycle};
@@ -179,6 +207,7 @@ void run_attached(shm::Segment& segment, UdpSocket& socket, Session& session, st
     std::fprintf(stderr, "hapticctrl-udp: waiting for controller '%s'\n",
                  segment.instance().c_str());
   }
+  return end_reason.load();
 }
 
 void print_json(const Session& session) {
@@ -245,7 +274,10 @@ int run(const BridgeConfig& config) {
         shm::AttachOptions{{shm::RegionId::kVpr, shm::RegionId::kLinkStats}, /*ctrl_writer=*/true});
     if (segment) {
       said_waiting = false;
-      run_attached(*segment, socket, session, end_ns);
+      if (run_attached(*segment, socket, session, end_ns) ==
+          static_cast<std::uint32_t>(shm::StopReason::kCoreLost)) {
+        keep_lost_black_box(*segment, config.state_dir);
+      }
       continue;
     }
     if (!said_waiting) {

@@ -8,38 +8,27 @@
 #include <string>
 #include <vector>
 
+#include "hapticctrl/program/private_directory.hpp"
 #include "hapticctrl/rt_core/clock.hpp"
-#include "hapticctrl/rt_core/private_directory.hpp"
+#include "hapticctrl/shm/black_box_ring.hpp"
 
 namespace hapticctrl::rt_core {
 
-/// One cycle as the CLOCK saw it (and the state the servo committed).
-struct CycleRecord {
-  std::uint64_t cycle = 0;
-  TimeNs scheduled = 0;
-  TimeNs wake_latency = 0;
-  TimeNs servo_start_delay = -1;  ///< -1: the main SERVO did not start
-  TimeNs servo_execution = -1;    ///< -1: no main commit by the check
-  std::uint32_t flags = 0;        ///< kRecord* bits
-  std::uint32_t state_word = 0;
-  std::uint32_t consecutive_misses = 0;
-  std::uint32_t skipped = 0;  ///< a stall record (kRecordStall): the slots it skipped; else 0
-  std::array<double, 6> joint_position{};
-  std::array<double, 6> joint_torque{};
-};
+using program::PrivateDirectory;
 
-inline constexpr std::uint32_t kRecordMiss = 1U << 0;
-inline constexpr std::uint32_t kRecordDegraded = 1U << 1;
-/// A late wake-up of the CLOCK that skipped slots (a stall): no SERVO ran; `skipped` slots were
-/// counted as misses, `wake_latency` is how late it woke, `cycle` the last cycle that ran.
-inline constexpr std::uint32_t kRecordStall = 1U << 2;
+using shm::CycleRecord;  // the record, the region and the CSV format are the segment's contract
+using shm::kRecordDegraded;
+using shm::kRecordMiss;
+using shm::kRecordStall;
 
 class BlackBox {
  public:
-  /// Allocates room for `capacity` records (setup; the ring never allocates afterwards).
-  explicit BlackBox(std::size_t capacity);
+  /// Allocates room for `capacity` records (setup; the ring never allocates afterwards). Each
+  /// record also goes into `mirror` (the segment's blackbox region) unless it is null, so that
+  /// a killed core leaves its last cycles to whoever maps the segment.
+  explicit BlackBox(std::size_t capacity, shm::BlackBoxRing* mirror = nullptr);
 
-  /// Real-time contract: safe in the cycle (copies into the preallocated ring).
+  /// Real-time contract: safe in the cycle (copies into the preallocated rings; no syscall).
   void record(const CycleRecord& r) noexcept;
 
   [[nodiscard]] std::size_t size() const noexcept {
@@ -55,6 +44,7 @@ class BlackBox {
  private:
   std::vector<CycleRecord> ring_;
   std::size_t count_ = 0;
+  shm::BlackBoxRing* mirror_ = nullptr;
 };
 
 /// Writes `box` into `directory` as `hapticctrl-blackbox-<instance>.<pid>.csv` (a name already

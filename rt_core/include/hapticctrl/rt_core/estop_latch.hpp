@@ -11,9 +11,11 @@
 
 #include <string>
 
-#include "hapticctrl/rt_core/private_directory.hpp"
+#include "hapticctrl/program/private_directory.hpp"
 
 namespace hapticctrl::rt_core {
+
+using program::PrivateDirectory;
 
 class EstopLatchFile {
  public:

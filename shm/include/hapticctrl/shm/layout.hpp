@@ -16,6 +16,9 @@
 ///     ctrl          written by up to kCtrlSlots writers (per-writer rings, see ctrl.hpp)
 ///     ctrl_ack      written by the core                (ring progress)
 ///     telemetry     written by the core                (seqlock)
+///     link_stats    written by the UDP bridge          (seqlock)
+///     events        written by the core                (ring, events.hpp)
+///     blackbox      written by the core                (ring, black_box_ring.hpp)
 ///
 /// The core's exclusive flock on `<runtime dir>/<instance>.lock` (rendezvous.hpp) makes it the
 /// instance's only core; attached processes tell a live core from a dead one by its pidfd.
@@ -26,6 +29,7 @@
 #include <cstdint>
 #include <string_view>
 
+#include "hapticctrl/shm/black_box_ring.hpp"
 #include "hapticctrl/shm/ctrl.hpp"
 #include "hapticctrl/shm/events.hpp"
 #include "hapticctrl/shm/payloads.hpp"
@@ -39,8 +43,8 @@ namespace hapticctrl::shm {
 // channel energy; VP the coupling loop figures, gains and channel energies (H1); 6: force
 // carries a spring-damper hand (H1's operator model); telemetry would-be fail-safes (benchmark
 // mode); 7: VPr the object's contacts, VP the coupling's contact stiffening and limits (J1,
-// protocol 1.3)
-inline constexpr std::uint32_t kAbiVersion = 7;
+// protocol 1.3); 8: the blackbox region (J4)
+inline constexpr std::uint32_t kAbiVersion = 8;
 /// "HAPTICC1" as a little-endian word; stored last when the segment is ready, cleared at exit.
 inline constexpr std::uint64_t kSegmentMagic = 0x3143434954504148ULL;
 inline constexpr std::size_t kPageSize = 4096;
@@ -56,6 +60,7 @@ enum class RegionId : std::uint32_t {
   kTelemetry,
   kLinkStats,
   kEvents,
+  kBlackBox,
   kCount,
 };
 inline constexpr std::size_t kRegionCount = static_cast<std::size_t>(RegionId::kCount);
@@ -102,6 +107,10 @@ template <>
 struct RegionTraits<RegionId::kEvents> {
   using Type = EventRing;
 };
+template <>
+struct RegionTraits<RegionId::kBlackBox> {
+  using Type = BlackBoxRing;
+};
 template <RegionId Id>
 using RegionType = typename RegionTraits<Id>::Type;
 
@@ -146,7 +155,7 @@ inline constexpr std::array<std::size_t, kRegionCount> kRegionSizes{
     sizeof(RegionType<RegionId::kForce>),     sizeof(RegionType<RegionId::kPosition>),
     sizeof(RegionType<RegionId::kCtrl>),      sizeof(RegionType<RegionId::kCtrlAck>),
     sizeof(RegionType<RegionId::kTelemetry>), sizeof(RegionType<RegionId::kLinkStats>),
-    sizeof(RegionType<RegionId::kEvents>)};
+    sizeof(RegionType<RegionId::kEvents>),    sizeof(RegionType<RegionId::kBlackBox>)};
 
 inline constexpr std::size_t kClaimsOffset = round_to_pages(sizeof(SegmentHeader));
 inline constexpr std::size_t kFirstRegionOffset =

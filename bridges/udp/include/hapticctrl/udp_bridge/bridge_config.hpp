@@ -23,6 +23,9 @@ struct BridgeConfig {
   int priority = 0;         ///< SCHED_FIFO priority of both threads; 0: SCHED_OTHER
   double duration_s = 0.0;  ///< 0: until SIGINT/SIGTERM
   bool json = false;        ///< final counters as one JSON line on stdout
+  /// Where the black box of a lost core goes (a directory only this user or root can write, as
+  /// the core's --state-dir); empty: the instance's runtime directory.
+  std::string state_dir;
   bool help = false;
 
   static BridgeConfig parse(const std::vector<std::string>& args);

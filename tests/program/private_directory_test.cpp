@@ -1,6 +1,6 @@
 // Tests of private_directory.hpp: a directory only the controller's user can write, and files
 // created in it exclusively, never through a link, mode 0600.
-#include "hapticctrl/rt_core/private_directory.hpp"
+#include "hapticctrl/program/private_directory.hpp"
 
 #include <fcntl.h>
 #include <gtest/gtest.h>
@@ -15,7 +15,7 @@
 
 #include "support/temp_directory.hpp"
 
-namespace hapticctrl::rt_core {
+namespace hapticctrl::program {
 namespace {
 
 using test::TempDirectory;
@@ -145,4 +145,4 @@ TEST(PrivateDirectory, AnotherUserCannotPlantALinkInIt) {
 }
 
 }  // namespace
-}  // namespace hapticctrl::rt_core
+}  // namespace hapticctrl::program

@@ -1,6 +1,7 @@
 #pragma once
 /// @file private_directory.hpp
-/// The directory the core writes its files into (black boxes): opened once at setup and checked
+/// A directory a (possibly privileged) process writes its files into (the core's black boxes
+/// and emergency-stop latch, the black box of a lost core): opened once at setup and checked
 /// to be one that only the controller's user (or root) can write; files are created in it
 /// exclusively, never through a link, readable by their owner only. Written with a plain
 /// std::ofstream to a predictable name in /tmp, a black box of a root core followed a symlink a
@@ -13,7 +14,7 @@
 #include <string_view>
 #include <vector>
 
-namespace hapticctrl::rt_core {
+namespace hapticctrl::program {
 
 class PrivateDirectory {
  public:
@@ -47,6 +48,14 @@ class PrivateDirectory {
   /// regular file or cannot be read.
   [[nodiscard]] std::string read_file(const std::string& name) const;
 
+  /// Adds `text` to a kept series of files: creates `<prefix><stem><suffix>` as create_file()
+  /// does (a name already there, a link included, is left alone and `.2`, `.3`, ... goes before
+  /// the suffix instead), then removes the series' oldest files (`<prefix>*<suffix>`) beyond
+  /// `keep`; the new one always stays. Returns the new file's path. Throws std::runtime_error.
+  std::string add_to_series(const std::string& prefix, const std::string& stem,
+                            const std::string& suffix, std::string_view text,
+                            std::size_t keep) const;
+
   /// Removes `name` (a link is removed, not its target). False when it was not there.
   bool remove(const std::string& name) const;
 
@@ -55,4 +64,4 @@ class PrivateDirectory {
   int fd_ = -1;
 };
 
-}  // namespace hapticctrl::rt_core
+}  // namespace hapticctrl::program

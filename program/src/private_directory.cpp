@@ -1,6 +1,6 @@
 // Implements private_directory.hpp: a directory only the controller's user can write, and files
 // created in it exclusively, never through a link, mode 0600.
-#include "hapticctrl/rt_core/private_directory.hpp"
+#include "hapticctrl/program/private_directory.hpp"
 
 #include <dirent.h>
 #include <fcntl.h>
@@ -15,11 +15,14 @@
 #include <tuple>
 #include <utility>
 
-namespace hapticctrl::rt_core {
+namespace hapticctrl::program {
 namespace {
 
 constexpr mode_t kFileMode = 0600;
-constexpr std::size_t kMaxRead = std::size_t{64} * 1024;  ///< read_file() reads no more (notes, not data)
+constexpr std::size_t kMaxRead =
+    std::size_t{64} * 1024;  ///< read_file() reads no more (notes, not data)
+/// Names tried for one file of a series: its own, then .2 ... (a pid the directory saw before).
+constexpr int kNameAttempts = 100;
 
 [[noreturn]] void fail(const std::string& what, int error) {
   throw std::runtime_error(what + ": " + std::strerror(error));
@@ -179,6 +182,34 @@ std::string PrivateDirectory::read_file(const std::string& name) const {
   return text;
 }
 
+std::string PrivateDirectory::add_to_series(const std::string& prefix, const std::string& stem,
+                                            const std::string& suffix, std::string_view text,
+                                            std::size_t keep) const {
+  std::string written;
+  for (int n = 1; n <= kNameAttempts && written.empty(); ++n) {
+    std::string name = prefix;
+    name += stem;
+    if (n > 1) {
+      name += "." + std::to_string(n);
+    }
+    name += suffix;
+    if (create_file(name, text)) {
+      written = name;
+    }
+  }
+  if (written.empty()) {
+    throw std::runtime_error("no free name in " + path_ + " for " + prefix + stem + suffix +
+                             " after " + std::to_string(kNameAttempts) + " tries");
+  }
+  std::vector<std::string> kept = files(prefix, suffix);
+  std::erase(kept, written);  // the new one stays whatever its time stamp
+  const std::size_t others = keep > 0 ? keep - 1 : 0;
+  for (std::size_t i = 0; i + others < kept.size(); ++i) {
+    remove(kept[i]);
+  }
+  return path_ + "/" + written;
+}
+
 bool PrivateDirectory::remove(const std::string& name) const {
   check_plain_name(name);
   if (unlinkat(fd_, name.c_str(), 0) == 0) {
@@ -190,4 +221,4 @@ bool PrivateDirectory::remove(const std::string& name) const {
   fail("cannot remove " + path_ + "/" + name, errno);
 }
 
-}  // namespace hapticctrl::rt_core
+}  // namespace hapticctrl::program

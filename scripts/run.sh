@@ -26,21 +26,44 @@
 # the next longer period (1, 2, 4, 10 ms), at most twice, saying so in one line; a fail-safe the
 # software caused, or one at a period given with --period-us, ends the run as below.
 #
+# One run.sh per build directory: a second one refuses at once, naming the first.
+#
 # Exit status: 0 the controller stopped in order; 10 + the stop reason's code when it failed
 # safe (11: 5 consecutive deadline misses, 14: chronic misses, 15: arm fault, 17: velocity
-# limit; docs/rt_core.md), with the reason printed; 1 anything else that went wrong; 130
+# limit; docs/rt_core.md), with the reason printed; 4 the emergency stop is still latched from
+# an earlier run and there is no terminal to reset it from; 1 anything else that went wrong (a
+# part that did not start, with its own words; no outcome; another run.sh on this build); 130
 # interrupted.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+if [[ " $* " == *" --help "* || " $* " == *" -h "* ]]; then  # before any build or probe (J8)
+  sed -n '2,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//'
+  echo "Environment: HAPTICCTRL_INSTANCE (demo), HAPTICCTRL_PORT (5125), HAPTICCTRL_WEB_PORT" \
+    "(8080), HAPTICCTRL_BUILD_DIR (build), HAPTICCTRL_RUNTIME_DIR; the core's options:" \
+    "build/rt_core/hapticctrl-core --help"
+  exit 0
+fi
 ARGS=("$@")  # as given: a run started again after a stall gets them again
 SUPERVISE=0
 if [[ ${1:-} == --supervise ]]; then
   SUPERVISE=1
   shift
 fi
+BUILD=${HAPTICCTRL_BUILD_DIR:-build}
+# One run.sh per build directory (its logs and its run/ are the build's): a second one refuses
+# at once, naming the first, and touches none of its files (J8: it truncated the first run's
+# logs, then exited 1 on "region force ... already written").
+mkdir -p "$BUILD"
+exec {RUN_LOCK}>>"$BUILD/run.lock"
+if ! flock -n "$RUN_LOCK"; then
+  echo "run: another scripts/run.sh is running on $BUILD/ (pid $(cat "$BUILD/run.pid" 2>/dev/null ||
+    echo '?')): stop it first (q or Ctrl-C there), or give this one its own" \
+    "HAPTICCTRL_BUILD_DIR, HAPTICCTRL_INSTANCE, HAPTICCTRL_PORT and HAPTICCTRL_WEB_PORT" >&2
+  exit 1
+fi
+echo $$ >"$BUILD/run.pid"
 echo "run: checking the Debian packages it needs (scripts/setup.sh installs what is missing)"
 scripts/setup.sh
-BUILD=${HAPTICCTRL_BUILD_DIR:-build}
 if [[ ! -f $BUILD/build.ninja ]]; then
   echo "run: configuring $BUILD/"
   cmake -S . -B "$BUILD" -G Ninja >/dev/null
@@ -127,6 +150,7 @@ again_after_stall() {
   esac
   echo "run: that was a stall of this machine, not of the controller: starting again at" \
     "$((next / 1000)) ms (again $((restarts + 1)) of 2)" >&2
+  exec {RUN_LOCK}>&-  # the run lock: the run started again takes it anew
   HAPTICCTRL_RUN_RESTARTS=$((restarts + 1)) HAPTICCTRL_RUN_PERIOD_US=$next exec "$0" "${ARGS[@]}"
 }
 
@@ -186,12 +210,19 @@ run_core() {
   done
 }
 
+# A process that did not start: its own words, not only that it failed (J8).
+did_not_start() {  # name log
+  echo "run: $1 did not start; it said:" >&2
+  tail -n 5 "$2" | sed 's/^/  /' >&2
+  exit 1
+}
+
 start_core() {
   run_core "$@" &
   CORE_PID=$!
   for _ in $(seq 100); do
     "${HMI[@]}" status >/dev/null 2>&1 && return 0
-    kill -0 "$CORE_PID" 2>/dev/null || { echo "run: hapticctrl-core did not start" >&2; exit 1; }
+    kill -0 "$CORE_PID" 2>/dev/null || did_not_start hapticctrl-core "$RUN_DIR/core.log"
     sleep 0.05
   done
 }
@@ -252,6 +283,14 @@ for _ in $(seq 100); do
 done
 
 sleep 0.3
+# A bridge that could not start (its port taken, say) ends the run with its reason: without it
+# the scenario ran unconnected and exited 0 (J8).
+for part in "udp:${PIDS[0]}" "lcm:${PIDS[1]}"; do
+  kill -0 "${part#*:}" 2>/dev/null || did_not_start "hapticctrl-${part%%:*}" "$RUN_DIR/${part%%:*}.log"
+done
+if ! grep -q "ready:" "$RUN_DIR/demo.log"; then
+  kill -0 "$DEMO_PID" 2>/dev/null || did_not_start hapticctrl-demo "$RUN_DIR/demo.log"
+fi
 if grep -q "listening on" "$RUN_DIR/web.log"; then
   echo "run: operator view on http://127.0.0.1:$WEB_PORT/ (from another machine: ssh -L $WEB_PORT:127.0.0.1:$WEB_PORT)"
 else
@@ -295,13 +334,15 @@ sleep 3
 kill -TERM "$DEMO_PID" && wait "$DEMO_PID" || true
 "${HMI[@]}" zero-force >/dev/null
 tail -n 2 "$RUN_DIR/demo.log"
-awk -v operator=5 'match($0, /"contact_force":\[[^]]*\]/) {
+OUTCOME=$(awk -v operator=5 'match($0, /"contact_force":\[[^]]*\]/) {
     split(substr($0, RSTART + 17, RLENGTH - 18), f, ",")
     printf "outcome: contact force %.3f N for an operator force of %.1f N (%.1f %%)\n",
            -f[1], operator, 100 * -f[1] / operator
-  }' "$RUN_DIR/demo.json"
+  }' "$RUN_DIR/demo.json")
+echo "${OUTCOME:-run: no outcome: the demo printed no contact force (its log: $RUN_DIR/demo.log)}"
 "${HMI[@]}" stop
 reap_core
 cat "$RUN_DIR/core.log"
 echo "core figures: $(cat "$RUN_DIR/core.json")"
 echo "logs in $RUN_DIR/ (demo.csv: the scene per step)"
+[[ -n $OUTCOME ]] || exit 1

@@ -15,7 +15,9 @@ void throw_system_error(const std::string& what, int error) {
     throw ShmError(ShmErrc::kPermissionDenied,
                    what +
                        ": permission denied (run as the controller's user or a member of its "
-                       "group, see docs/security.md)");
+                       "group, see docs/security.md; a controller of your own: set "
+                       "HAPTICCTRL_RUNTIME_DIR to a directory of yours, e.g. "
+                       "$XDG_RUNTIME_DIR/hapticctrl)");
   }
   throw ShmError(ShmErrc::kSystem, what + ": " + std::strerror(error));
 }

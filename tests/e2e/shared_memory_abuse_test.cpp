@@ -183,6 +183,18 @@ TEST(SharedMemoryAbuse, AnotherUserCanNeitherSquatNorPlantAnInstance) {
   EXPECT_NE(squatter.wait(5s), 0) << "nobody may create files in " << paths.directory;
   ASSERT_NE(access(paths.lock.c_str(), F_OK), 0);
 
+  // A user's own core where the runtime directory is root's: refused, and told what to do (J8:
+  // the message did not mention HAPTICCTRL_RUNTIME_DIR).
+  std::vector<std::string> own = drop;
+  own.insert(own.end(), {HAPTICCTRL_CORE_BINARY, "--instance", instance, "--period-us", "10000",
+                         "--rt", "ignore", "--duration", "1"});
+  SpawnedProcess user_core(as_nobody, own);
+  EXPECT_NE(user_core.wait(10s), 0);
+  EXPECT_NE(user_core.err().find("permission denied"), std::string::npos) << user_core.err();
+  EXPECT_NE(user_core.err().find("set HAPTICCTRL_RUNTIME_DIR to a directory of yours"),
+            std::string::npos)
+      << user_core.err();
+
   // A "core" of nobody's, in a directory of nobody's: root's HMI refuses it.
   const std::string planted_dir = "/tmp/hapticctrl-planted-" + std::to_string(getpid());
   setenv("HAPTICCTRL_RUNTIME_DIR", planted_dir.c_str(), 1);

@@ -20,6 +20,11 @@ done
 LOG=${ARGS[0]}
 OUT=${ARGS[1]:-${LOG%.*}-csv}
 command -v gnuplot >/dev/null || { echo "gnuplot missing (scripts/setup.sh installs gnuplot-nox)" >&2; exit 1; }
+# scripts/run.sh builds only what it runs: build the converter when it is not there (J8).
+if [[ ! -x $BUILD/bridges/lcm/hapticctrl-log2csv ]]; then
+  echo "plot_log: building hapticctrl-log2csv"
+  cmake --build "$BUILD" --target hapticctrl-log2csv >/dev/null
+fi
 "$BUILD/bridges/lcm/hapticctrl-log2csv" "$LOG" "$OUT"
 
 # Column number of a header name in a CSV file.

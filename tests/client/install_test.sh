@@ -69,6 +69,10 @@ for _ in $(seq 200); do
   sleep 0.05
 done
 [ -S "$HAPTICCTRL_RUNTIME_DIR/$instance.sock" ] || { cat "$work/core.log" >&2; exit 1; }
+# The log exists before the bridge starts: the shell opens it in the background job, and a busy
+# machine let the sed below run first ("can't read udp.log"; set -e then ended the test, 3 of 20
+# beside an idle-priority build, 2026-12-04).
+: >"$work/udp.log"
 "$build/bridges/udp/hapticctrl-udp" --instance "$instance" --port 0 >"$work/udp.log" 2>&1 &
 pids+=($!)
 port=""

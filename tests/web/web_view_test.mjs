@@ -163,6 +163,9 @@ test('a silent controller and a lost web bridge are shown, and both recover', as
   await stack.stopProcess('lcm', 'SIGKILL');
   assert.ok(await until(async () => /No telemetry from the controller/.test(await alarmText())),
     `no alarm for a silent controller: '${await alarmText()}'`);
+  // The last state of a silent controller is not shown as its state now (J8).
+  assert.equal(await page.locator('[data-testid=power]').innerText(), 'power: unknown');
+  assert.equal(await page.locator('[data-testid=coupling]').innerText(), 'client: unknown');
   await page.click('[data-testid=power-on]'); // forwarded, but nobody applies it
   assert.ok(await until(async () => /sent, but the arm did not power on/.test(await page.locator('[data-testid=reply]').innerText())),
     'the page did not say that power-on had no effect');

@@ -182,15 +182,24 @@ function showState(frame) {
   if (stats) {
     $('rt').textContent = `${(stats.period_ns / 1e6).toFixed(3)} ms cycle · ${stats.rt_mode} · ${stats.misses_total} misses`;
   }
+  // A lost or silent controller's last state is not its state now: the badges say so instead of
+  // a green "powered" / "client: coupled" from before (J8).
+  const live = !(status.coreLost || frame.controller_silent);
+  if (arm && !live) {
+    setBadge($('power'), 'power: unknown', 'bad');
+    setBadge($('coupling'), 'client: unknown', '');
+  }
   if (arm) {
     const w = arm.state_word;
-    setBadge($('power'), w & POWERED ? 'powered' : 'unpowered', w & POWERED ? 'good' : '');
+    if (live) {
+      setBadge($('power'), w & POWERED ? 'powered' : 'unpowered', w & POWERED ? 'good' : '');
+      const client = coupling && coupling.session_id !== 0;
+      setBadge($('coupling'),
+        !client ? 'client: none' : w & CLIENT_STALE ? 'client: stale' : w & COUPLED ? 'client: coupled' : 'client: connected',
+        !client ? '' : w & CLIENT_STALE ? 'warn' : 'good');
+    }
     $('estop').classList.toggle('latched', !!(w & ESTOP));
     $('estop').textContent = w & ESTOP ? 'E-STOP LATCHED' : 'EMERGENCY STOP';
-    const client = coupling && coupling.session_id !== 0;
-    setBadge($('coupling'),
-      !client ? 'client: none' : w & CLIENT_STALE ? 'client: stale' : w & COUPLED ? 'client: coupled' : 'client: connected',
-      !client ? '' : w & CLIENT_STALE ? 'warn' : 'good');
     $('handle-position').textContent = vec3(arm.handle_pose, 4, ' m');
     $('operator-force').textContent = vec3(arm.operator_wrench, 2, ' N');
     $('rendered-force').textContent = vec3(arm.coupling_wrench, 2, ' N');

@@ -231,16 +231,12 @@ TEST(SharedMemoryAbuse, SilentAndGarbagePeersOfTheHandOffDoNotStopAnAttach) {
   // peers and a garbage sender are held while the HMI asks three times and a UDP bridge starts.
   ControllerStack stack("handoff-flood", kPeriodUs);
   ASSERT_TRUE(stack.ready()) << stack.diagnostics();
-  std::vector<int> held;
-  for (int i = 0; i < 64; ++i) {
-    const int fd = connect_silently(stack.instance());
-    ASSERT_GE(fd, 0) << "connection " << i;
-    held.push_back(fd);
-  }
-  const int garbage = connect_silently(stack.instance());
-  ASSERT_GE(garbage, 0);
+  const SilentPeers held(stack.instance(), 64);
+  ASSERT_EQ(held.connected(), held.size());
+  const SilentPeers garbage(stack.instance(), 1);
+  ASSERT_EQ(garbage.connected(), 1U);
   const std::vector<unsigned char> junk(4096, 0xA5);
-  (void)send(garbage, junk.data(), junk.size(), MSG_NOSIGNAL);
+  (void)send(garbage[0], junk.data(), junk.size(), MSG_NOSIGNAL);
   for (int i = 0; i < 3; ++i) {
     SpawnedProcess hmi(HAPTICCTRL_HMI_BINARY, {"--instance", stack.instance(), "status"});
     EXPECT_EQ(hmi.wait(5s), 0) << "status " << i << ": " << hmi.err();
@@ -257,10 +253,6 @@ TEST(SharedMemoryAbuse, SilentAndGarbagePeersOfTheHandOffDoNotStopAnAttach) {
   })) << "the core runs (its first cycles may come after the attaches)";
   const shm::TelemetryPayload t = stack.telemetry();
   std::printf("the core meanwhile: %llu misses\n", static_cast<unsigned long long>(t.misses_total));
-  for (const int fd : held) {
-    close(fd);
-  }
-  close(garbage);
 }
 
 }  // namespace

@@ -27,9 +27,9 @@ namespace {
 
 using test::become_nobody;
 using test::Child;
-using test::connect_silently;
 using test::paths_of;
 using test::RuntimeDirectory;
+using test::SilentPeers;
 using test::unique_instance;
 
 TEST(SegmentHandoff, TheSegmentCannotBeResizedByAnyone) {
@@ -87,19 +87,13 @@ TEST(SegmentHandoff, SilentPeersAndAGarbageSenderDoNotHoldUpAnAttach) {
   // at once: an attach beside 64 silent peers takes what it takes alone.
   const std::string name = unique_instance("silent");
   Segment core = Segment::create({.instance = name});
-  std::vector<int> held;
-  for (int i = 0; i < 64; ++i) {
-    const int fd = connect_silently(name);
-    ASSERT_GE(fd, 0) << "connection " << i;
-    held.push_back(fd);
-  }
-  const int garbage = connect_silently(name);
-  ASSERT_GE(garbage, 0);
+  SilentPeers held(name, 64);
+  ASSERT_EQ(held.connected(), held.size());
+  SilentPeers others(name, 2);  // a garbage sender, and half a request then nothing
+  ASSERT_EQ(others.connected(), others.size());
   const std::array<unsigned char, 64> junk{0xde, 0xad, 0xbe, 0xef};
-  ASSERT_EQ(send(garbage, junk.data(), junk.size(), MSG_NOSIGNAL), 64);
-  const int partial = connect_silently(name);  // half a request, then nothing
-  ASSERT_GE(partial, 0);
-  ASSERT_EQ(send(partial, junk.data(), 6, MSG_NOSIGNAL), 6);
+  ASSERT_EQ(send(others[0], junk.data(), junk.size(), MSG_NOSIGNAL), 64);
+  ASSERT_EQ(send(others[1], junk.data(), 6, MSG_NOSIGNAL), 6);
   std::vector<double> took_ms;
   for (int i = 0; i < 5; ++i) {
     const auto start = std::chrono::steady_clock::now();
@@ -115,11 +109,8 @@ TEST(SegmentHandoff, SilentPeersAndAGarbageSenderDoNotHoldUpAnAttach) {
   EXPECT_LT(took_ms[2], 100.0) << "the silent peers held the attach up";
   std::this_thread::sleep_for(std::chrono::milliseconds(300));  // past the silent peers' 200 ms
   EXPECT_GE(core.refused_attaches(), 66U) << "the garbage, the partial and 64 silent peers";
-  for (const int fd : held) {
-    close(fd);
-  }
-  close(garbage);
-  close(partial);
+  held.close_all();
+  others.close_all();
   EXPECT_NO_THROW((void)Segment::attach(name)) << "and the server serves on";
 }
 
@@ -128,17 +119,10 @@ TEST(SegmentHandoff, WhenEverySlotIsHeldTheAttacherAsksAgainWithinItsBudget) {
   // and the attacher asks again (every 50 ms, 10 times) until a slot frees (200 ms).
   const std::string name = unique_instance("full");
   Segment core = Segment::create({.instance = name});
-  std::vector<int> held;
-  for (int i = 0; i < 256; ++i) {
-    const int fd = connect_silently(name);
-    ASSERT_GE(fd, 0) << "connection " << i;
-    held.push_back(fd);
-  }
+  const SilentPeers held(name, 256);
+  ASSERT_EQ(held.connected(), held.size());
   std::this_thread::sleep_for(std::chrono::milliseconds(20));  // all accepted
   EXPECT_NO_THROW((void)Segment::attach(name));
-  for (const int fd : held) {
-    close(fd);
-  }
 }
 
 }  // namespace

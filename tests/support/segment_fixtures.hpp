@@ -11,10 +11,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "hapticctrl/shm/segment.hpp"
 #include "hapticctrl/shm/segment_handoff.hpp"
@@ -49,6 +51,39 @@ inline int connect_silently(const std::string& instance) {
   }
   return fd;
 }
+
+/// `count` silent peers of the instance's hand-off socket (connect_silently), closed when this
+/// goes (or by close_all()), so that a failed assertion leaves no descriptor open.
+class SilentPeers {
+ public:
+  SilentPeers(const std::string& instance, int count) {
+    for (int i = 0; i < count; ++i) {
+      fds_.push_back(connect_silently(instance));
+    }
+  }
+  ~SilentPeers() { close_all(); }
+  SilentPeers(const SilentPeers&) = delete;
+  SilentPeers& operator=(const SilentPeers&) = delete;
+
+  /// How many of them connected (all of them, when the server took every connection).
+  [[nodiscard]] std::size_t connected() const {
+    return static_cast<std::size_t>(
+        std::count_if(fds_.begin(), fds_.end(), [](int fd) { return fd >= 0; }));
+  }
+  [[nodiscard]] std::size_t size() const { return fds_.size(); }
+  [[nodiscard]] int operator[](std::size_t i) const { return fds_[i]; }
+  void close_all() {
+    for (int& fd : fds_) {
+      if (fd >= 0) {
+        close(fd);
+        fd = -1;
+      }
+    }
+  }
+
+ private:
+  std::vector<int> fds_;
+};
 
 inline bool exists(const std::string& path) {
   struct stat st {};

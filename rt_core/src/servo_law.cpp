@@ -132,12 +132,7 @@ ServoLaw::Coupling ServoLaw::client_wrench(const ServoInputs& in, const ClientFr
     // of the client's own push out of it and its friction (which come a loop late: a 2000 N/m
     // wall the client rendered moved at 31-689 mm/s from 1 ms one way and gave way from 5 ms,
     // J1 2026-12-03).
-    Surface surface = impedance_surface(in, frame, chain);
-    render_surface(surface, chain, twist, static_cast<double>(in.dt) * 1e-9);
-    coupling.contact_in_force = surface.weight > 0.0;
-    coupling.contact_whole = surface.weight >= 1.0;
-    coupling.contact = {surface.normal, surface.point - memory_.surface_hidden * surface.normal,
-                        0.0, surface.stiffness * scale};
+    const Surface surface = local_surface(in, frame, chain, twist, false, coupling);
     if (surface.share > 0.0) {
       // The client's push out of the surface and along it (its friction) is the surface's,
       // rendered here; a push into it stays the client's.
@@ -188,15 +183,48 @@ ServoLaw::Coupling ServoLaw::client_wrench(const ServoInputs& in, const ClientFr
     out.contact_normal = n * stiff.share;
     out.normal_stiffness = stiff.stiffness;
     out.normal_damping = stiff.damping;
-    coupling.contact_in_force = true;
-    coupling.contact_whole = stiff.weight >= 1.0;
-    coupling.contact = {n, image.position - memory_.stretch.head<3>().dot(n) * n,
-                        g.k_linear * scale, stiff.stiffness * scale};
   }
   coupling.spring *= scale;
   coupling.damper *= scale;
+  // The object gets the coupling (stiffened along its contact: the small-gain argument above,
+  // its client closes it there itself) ...
+  coupling.object_spring = coupling.spring;
+  coupling.object_damper = coupling.damper;
+  // ... and the hand the surface the object touches, rendered here at the surface's stiffness
+  // with no delay in its loop, in place of the coupling's push out of the surface and along it;
+  // the coupling's pull into it stays. Through the coupling stiffened to half the surface's
+  // stiffness, the demo's 2000 N/m wall and fixed sphere were felt at 667 N/m at 10 and 20 ms one
+  // way; so, at 2000 N/m (J2 end-to-end test, 2026-12-04). The object's own motion along the
+  // normal (held by its surface) no longer comes back to the hand.
+  const Surface surface = local_surface(in, frame, chain, twist, true, coupling);
+  if (surface.share > 0.0) {
+    const Vector3d& n = surface.normal;
+    const double in_force = std::clamp(surface.force / (surface.stiffness * 5e-4), 0.0, 1.0);
+    const auto into_only = [&n, in_force](Vector6d& part) {
+      const Vector3d f = part.head<3>();
+      part.head<3>() = (1.0 - in_force) * f + in_force * std::min(0.0, f.dot(n)) * n;
+    };
+    into_only(coupling.spring);
+    into_only(coupling.damper);
+    coupling.local.head<3>() = (surface.force * n + surface.friction) * scale;
+  }
   out.coupled = true;
   return coupling;
+}
+
+ServoLaw::Surface ServoLaw::local_surface(const ServoInputs& in, const ClientFrame& frame,
+                                          const ChainState& chain, const Vector6d& twist,
+                                          bool on_object, Coupling& coupling) noexcept {
+  Surface surface = reported_surface(in, frame, chain, on_object);
+  render_surface(surface, chain, twist, static_cast<double>(in.dt) * 1e-9);
+  if (surface.weight > 0.0) {
+    coupling.contact_in_force = true;
+    coupling.contact_whole = surface.weight >= 1.0;
+    coupling.contact_local = true;
+    coupling.contact = {surface.normal, surface.point - memory_.surface_hidden * surface.normal,
+                        0.0, surface.stiffness * frame.force_factor};
+  }
+  return surface;
 }
 
 void ServoLaw::follow_session(const ServoInputs& in) noexcept {
@@ -265,14 +293,6 @@ void ServoLaw::set_limits(const ClientSample& client, ServoOutputs& out) const n
   out.torque_limit = client.force_limits[1] > 0.0
                          ? std::min(client.force_limits[1], lim.torque_peak)
                          : lim.torque_peak;
-}
-
-Vector6d ServoLaw::saturate(const Vector6d& spring, const Vector6d& damper,
-                            const ServoOutputs& out) const noexcept {
-  // The damper keeps its share: saturating the sum cut the damping of a heavy object that
-  // pulled the spring to the limit (a 3 kg object kept a +-1 m swing, H1).
-  const SaturatedParts p = saturate_parts(spring, damper, out.force_limit, out.torque_limit);
-  return p.spring + p.damper;
 }
 
 Vector6d ServoLaw::rate_limit(const Vector6d& target, double rate, double dt) noexcept {
@@ -365,14 +385,18 @@ void ServoLaw::compute(const ServoInputs& in, bool /*degraded*/, ServoOutputs& o
   const double damper_share = std::min(1.0, engage * static_cast<double>(config_.engage_duration) /
                                                 static_cast<double>(config_.hold_release));
   Vector6d target = parts.spring * engage + parts.damper * damper_share;
+  const SaturatedParts object_parts = saturate_parts(
+      coupling.object_spring, coupling.object_damper, out.force_limit, out.torque_limit);
   // The object's side of the coupling: the same spring (re-anchored alike: on the true stretch,
   // the object got the spring the handle's motion through a 300 ms blackout had stored, 33 N at
   // once, an energy the channel made; the weighted sphere flew past the handle and pulled it up,
   // then fell back at 0.22 m/s, J1 2026-12-03), not faded (like a brake, the fade protects the
   // hand, and the object keeps its spring to the handle).
-  const Vector6d object = saturate(coupling.spring, coupling.damper, out);
+  const Vector6d object = object_parts.spring + object_parts.damper;
   if (out.coupled) {
-    target = guard_channel(in, frame, target, coupling.stretch, dt);
+    target = guard_channel(in, frame, target,
+                           object_parts.spring * engage + object_parts.damper * damper_share,
+                           coupling.stretch, dt);
   } else if (two_port_impedance(in)) {
     target = guard_impedance(in, frame, target, twist, dt);
   }

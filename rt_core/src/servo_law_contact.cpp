@@ -3,6 +3,7 @@
 // re-anchored spring after a full disengagement (ServoLaw::stretch_in_use); docs/control.md, J1.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "hapticctrl/rt_core/servo_law.hpp"
 #include "law_math.hpp"
@@ -180,19 +181,30 @@ Vector6d ServoLaw::restretch_damping(const Vector6d& twist) const noexcept {
   return damping;
 }
 
-ServoLaw::Surface ServoLaw::impedance_surface(const ServoInputs& in, const ClientFrame& frame,
-                                              const ChainState& chain) const noexcept {
-  // An IMPEDANCE client's contact (protocol 1.3) is a plane for the handle's point: `point` is
-  // where the handle's point meets the surface (the client takes its tool's shape in), `normal`
-  // out of it. Rendered at the servo rate from the handle's position now, it is a wall with no
-  // delay inside its loop: its stiffness is bounded by the device only (K_max ~ 2(b+B)/T with
-  // the device's stable damping B; with the client's own 2 N.s/m a 2000 N/m wall shook at 2.3
-  // m/s, 2026-12-03). One surface, the deepest; unilateral (it never pulls).
+ServoLaw::Surface ServoLaw::reported_surface(const ServoInputs& in, const ClientFrame& frame,
+                                             const ChainState& chain,
+                                             bool on_object) const noexcept {
+  // A contact the client reports (protocol 1.3) is a plane for the handle's point, rendered at
+  // the servo rate from the handle's position now: a wall with no delay inside its loop, whose
+  // stiffness is bounded by the device only (K_max ~ 2(b+B)/T with the device's stable damping
+  // B; with the client's own 2 N.s/m a 2000 N/m wall shook at 2.3 m/s, 2026-12-03). This is the
+  // intermediate representation of Adachi et al. 1995 and model-mediated teleoperation (Mitra &
+  // Niemeyer 2008): through the coupling alone a delayed loop is soft (211 N/m felt at 10 ms one
+  // way, 71 N/m at 20 ms, J2). An IMPEDANCE client's `point` is where its handle's point meets
+  // the surface. A VIRTMECH client's is on its object: the surface passes through point -
+  // distance * normal, and the handle, which the coupling holds at the object, meets it where
+  // the object's centre did, `distance` beyond the object's reported position. One surface, the
+  // deepest; unilateral (it never pulls).
   const ArmLimits& lim = dynamics_->model().limits;
   const ClientSample& c = in.client;
   const Matrix3d to_base = frame.rotation.conjugate().toRotationMatrix();
+  const double period = static_cast<double>(in.dt) * 1e-9;
+  const double bound =
+      period > 0.0 ? std::min(lim.max_stiffness_linear,
+                              config_.surface_bound_share * 2.0 * lim.max_damping_linear / period)
+                   : lim.max_stiffness_linear;
   Surface best;
-  double deepest = -kTouchBand;
+  double deepest = -std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < std::min<std::size_t>(c.contact_count, c.contacts.size()); ++i) {
     const ClientContact& contact = c.contacts[i];
     const double weight = contact_weight(in.now - contact.received_ns, config_);
@@ -203,23 +215,29 @@ ServoLaw::Surface ServoLaw::impedance_surface(const ServoInputs& in, const Clien
     const Vector3d normal =
         (to_base * Vector3d(contact.normal[0], contact.normal[1], contact.normal[2])).normalized();
     const Vector3d point =
-        to_base * (Vector3d(contact.point[0], contact.point[1], contact.point[2]) - frame.origin) /
-        frame.speed_factor;
+        on_object
+            ? Vector3d(to_base *
+                           (Vector3d(contact.object_pose[0], contact.object_pose[1],
+                                     contact.object_pose[2]) -
+                            frame.origin) /
+                           frame.speed_factor -
+                       contact.distance / frame.speed_factor * normal)
+            : Vector3d(to_base *
+                       (Vector3d(contact.point[0], contact.point[1], contact.point[2]) -
+                        frame.origin) /
+                       frame.speed_factor);
     const double depth = (point - chain.handle_position).dot(normal);
     if (depth <= deepest) {
       continue;
     }
     deepest = depth;
-    const double stiffness =
-        std::min(lim.max_stiffness_linear, contact.stiffness * frame.speed_factor);
-    const double damping = lim.max_damping_linear;
     best.normal = normal;
     best.depth = depth;
     best.point = point;
     best.weight = weight;
     best.share = weight * std::clamp((kTouchBand + depth) / kTouchBand, 0.0, 1.0);
-    best.stiffness = stiffness;
-    best.damping = damping;
+    best.stiffness = std::min(bound, contact.stiffness * frame.speed_factor);
+    best.damping = lim.max_damping_linear;
     best.friction_static = contact.friction[0];
     best.friction_dynamic = std::min(contact.friction[1], contact.friction[0]);
   }
@@ -229,40 +247,65 @@ ServoLaw::Surface ServoLaw::impedance_surface(const ServoInputs& in, const Clien
 void ServoLaw::render_surface(Surface& surface, const ChainState& chain, const Vector6d& twist,
                               double dt) noexcept {
   RenderMemory& m = memory_;
-  const double depth = surface.share > 0.0 ? surface.depth : 0.0;
-  if (depth <= 0.0) {
+  const Vector3d& handle = chain.handle_position;
+  const double reported = surface.share > 0.0 ? surface.depth : 0.0;
+  if (reported <= 0.0) {
     m.on_surface = false;
     m.surface_hidden = 0.0;
+    m.surface_budget = 0.0;
     return;
   }
   const Vector3d& n = surface.normal;
   const Vector3d v = twist.head<3>();
-  if (!m.on_surface) {
-    // A surface that appears with the handle inside it (reported a loop late, or moved onto
-    // it) is rendered from where the handle is, its depth coming back as the coupling's
-    // stretch does (stretch_in_use): the model-update hazard of model-mediated teleoperation.
-    // A 2000 N/m wall whose first report found the handle 7 cm deep kicked it out at 35 N
-    // (100 ms one way, 2026-12-03).
-    // What a held contact renders there is not hidden: after a blackout the hand still presses
-    // on it (hidden, the 10 N a hand pressed on a held surface fell to nothing as it came back).
+  // Passive model updates (the hazard of model-mediated teleoperation: a plane that moves or
+  // appears under the handle steps the force and puts out energy). The plane rendered last
+  // cycle, at the handle's position now, bounds the depth rendered: a report may take the plane
+  // away from the handle at once, never bring it toward it. A surface that appears with the
+  // handle inside it (reported a loop late, or moved onto it) is rendered from where the handle
+  // is: a 2000 N/m wall whose first report found the handle 7 cm deep kicked it out at 35 N (100
+  // ms one way, 2026-12-03). What a held contact renders there is not hidden: after a blackout
+  // the hand still presses on it (hidden, the 10 N a hand pressed on a held surface fell to
+  // nothing as it came back).
+  double before = 0.0;
+  if (m.on_surface) {
+    before = (m.surface_point - handle).dot(m.surface_normal);
+  } else {
     const RenderMemory::HeldContact& h = m.held;
-    const double held = h.contact_stiffness > 0.0 && h.normal.dot(surface.normal) > 0.99
-                            ? h.depth_at(chain.handle_position)
-                            : 0.0;
+    before = h.contact_stiffness > 0.0 && h.normal.dot(n) > 0.99 ? h.depth_at(handle) : 0.0;
     m.on_surface = true;
-    m.surface_hidden = depth - std::clamp(held, 0.0, depth);
-    m.friction_anchor = chain.handle_position;
+    m.surface_budget = 0.0;
+    m.friction_anchor = handle;
   }
-  m.surface_hidden -= return_speed(config_.restretch_speed, v.dot(n)) * dt;
-  m.surface_hidden = std::clamp(m.surface_hidden, 0.0, depth);
-  const double rendered = depth - m.surface_hidden;
+  double rendered = std::clamp(before, 0.0, reported);
+  if (reported - rendered > m.surface_hidden + 1e-9) {
+    ++counters_.surface_updates_held;
+  }
+  // What is hidden comes back (at restretch_speed at most) only as far as the energy the
+  // surface dissipated pays for the spring energy it adds (TDPA's budget, Ryu & Hannaford
+  // 2002): given back on time alone, a plane that jumped 5 mm into a handle held still pushed
+  // it out with the energy of the jump (2000 N/m: 25 mJ).
+  const double hidden = reported - rendered;
+  if (hidden > 0.0) {
+    const double step = std::min(hidden, config_.restretch_speed * dt);
+    const double cost = surface.weight * surface.stiffness * (rendered + 0.5 * step);
+    const double back = cost > 0.0 ? std::min(step, m.surface_budget / cost) : step;
+    rendered += back;
+    m.surface_budget = std::max(0.0, m.surface_budget - back * cost);
+  }
+  m.surface_hidden = reported - rendered;
+  m.surface_point = handle + rendered * n;
+  m.surface_normal = n;
   // The damper comes in over the first half millimetre, so that touching is not a step.
   const double engaged = std::clamp(rendered / 5e-4, 0.0, 1.0);
-  surface.force = surface.weight * std::max(0.0, surface.stiffness * rendered -
-                                                     engaged * surface.damping * v.dot(n));
+  const double spring = surface.stiffness * rendered;
+  const double damper = engaged * surface.damping * v.dot(n);
+  surface.force = surface.weight * std::max(0.0, spring - damper);
   if (surface.force <= 0.0) {
-    m.friction_anchor = chain.handle_position;
+    m.friction_anchor = handle;
     return;
+  }
+  if (spring - damper > 0.0) {
+    m.surface_budget += surface.weight * engaged * surface.damping * v.dot(n) * v.dot(n) * dt;
   }
   // Coulomb friction as a proxy (Zilles & Salisbury 1995; Ruspini et al. 1997): the handle
   // sticks to an anchor on the surface through a tangential spring (the surface's stiffness,
@@ -271,11 +314,13 @@ void ServoLaw::render_surface(Surface& surface, const ChainState& chain, const V
   // times it. Local and passive: the client's friction, computed from a handle a loop old,
   // drove it along a 2000 N/m wall at 0.5-1.3 m/s at 100 ms one way (2026-12-03).
   const auto tangential = [&n](const Vector3d& x) -> Vector3d { return x - x.dot(n) * n; };
-  Vector3d slip = tangential(chain.handle_position - m.friction_anchor);
+  Vector3d slip = tangential(handle - m.friction_anchor);
   if (surface.stiffness * slip.norm() > surface.friction_static * surface.force) {
     const double kept = surface.friction_dynamic * surface.force / surface.stiffness;
-    m.friction_anchor += slip - slip.normalized() * kept;  // slides after the handle
-    slip = tangential(chain.handle_position - m.friction_anchor);
+    const Vector3d slide = slip - slip.normalized() * kept;
+    m.friction_anchor += slide;  // slides after the handle, dissipating mu_d F per metre
+    m.surface_budget += surface.friction_dynamic * surface.force * slide.norm();
+    slip = tangential(handle - m.friction_anchor);
   }
   surface.friction = -surface.stiffness * slip - engaged * surface.damping * tangential(v);
   // Never more than the cone allows (the damper included): friction resists, it never drives.
@@ -293,7 +338,7 @@ void ServoLaw::hold_contact(const ServoInputs& in, const Coupling& coupling,
   if (in.client_silence > config_.contact_fresh) {
     return;
   }
-  if (in.client.command != ClientCommand::kImpedance && (engage < 1.0 || memory_.anchored)) {
+  if (!coupling.contact_local && (engage < 1.0 || memory_.anchored)) {
     return;
   }
   if (!coupling.contact_in_force) {
@@ -311,13 +356,14 @@ Vector3d ServoLaw::held_contact_force(const ServoInputs& in, double engage) cons
   // the handle's position now: passive at any delay (no sample is in its loop). It takes over
   // what fades of the coupling: its own share as the link's engagement falls, the contact's as
   // the link's silence ages it (contact_weight on the link's silence, so that a contact the
-  // client withdraws on a live link fades as it did); an IMPEDANCE surface is not engaged.
+  // client withdraws on a live link fades as it did); a surface rendered here (no coupling
+  // stiffness held) is not engaged.
   const RenderMemory::HeldContact& h = memory_.held;
   const double depth = h.depth_at(chain_.handle_position);
   if (depth <= 0.0) {
     return Vector3d::Zero();
   }
-  const double coupled = in.client.command == ClientCommand::kImpedance ? 1.0 : engage;
+  const double coupled = h.coupling_stiffness > 0.0 ? engage : 1.0;
   const double link = contact_weight(in.client_silence, config_);
   const double stiffness =
       (1.0 - engage) * h.coupling_stiffness + (1.0 - coupled * link) * h.contact_stiffness;

@@ -94,8 +94,8 @@ double ServoLaw::book_channel_power(double power, double budget, double dt) noex
 }
 
 Vector6d ServoLaw::guard_channel(const ServoInputs& in, const ClientFrame& frame,
-                                 const Vector6d& coupling, const Vector6d& stretch,
-                                 double dt) noexcept {
+                                 const Vector6d& coupling, const Vector6d& to_object,
+                                 const Vector6d& stretch, double dt) noexcept {
   // Two-port time-domain passivity (Ryu, Artigas, Preusche): the channel between the coupling
   // and the client's object must not give either end more energy than the other end put in.
   // Here the core's end: the coupling (the force it puts on the handle; the object image gets
@@ -107,14 +107,17 @@ Vector6d ServoLaw::guard_channel(const ServoInputs& in, const ClientFrame& frame
   // from the force along the image's motion. Nothing bounds it but that: bounded (0.5 m/s, 5 cm
   // until 2026-12-03), it let the balance break in contact (the core's end gave 7.1-25.8 J for the
   // client's 3.9-7.6 J at 10-20 ms, J1 review). The drift is given back slowly while the budget
-  // allows. Energies in the client's units, as the client counts them.
+  // allows. Energies in the client's units, as the client counts them. The effort that crosses
+  // the channel is the coupling the object gets (`to_object`, as engaged as the handle's): where
+  // the handle renders a reported surface instead, the handle's differs along its normal, and
+  // booked on the handle's the client's end gave 2-3 mJ more than the core's end booked (J2).
   RenderMemory& m = memory_;
   if (!(in.client.energy_in >= 0.0)) {
     return coupling;  // a 1.0 client reports no energy: the one-port guard at the handle
   }
   const Vector6d flow = object_twist_in_base(in.client, frame);
   const Vector6d weight = client_units(frame);
-  const Vector6d on_image = -coupling;  // what the coupling does to the image
+  const Vector6d on_image = -to_object;  // what the coupling does to the image
   const double excess =
       book_channel_power(on_image.cwiseProduct(weight).dot(flow), in.client.energy_in, dt);
   const double force_sq = on_image.cwiseProduct(weight).dot(on_image);

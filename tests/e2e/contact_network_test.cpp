@@ -501,5 +501,107 @@ INSTANTIATE_TEST_SUITE_P(
         WallCase{"k2000_delay100ms_loss10", 2000, {"--delay-ms", "100", "--loss", "0.1"}}),
     [](const auto& p) { return std::string(p.param.name); });
 
+/// Mean handle position along `axis` over records [from, to).
+double mean_position(const std::vector<CycleRecord>& r, std::size_t from, std::size_t to,
+                     std::size_t axis) {
+  to = std::min(to, r.size());
+  double sum = 0.0;
+  for (std::size_t i = from; i < to; ++i) {
+    sum += r[i].position[axis];
+  }
+  return to > from ? sum / static_cast<double>(to - from) : std::nan("");
+}
+
+struct LocalCase {
+  const char* name;
+  std::vector<std::string> demo;  ///< the demo's scene
+  double stiffness;               ///< the object's surface, N/m
+  std::vector<std::string> impairment;
+};
+
+void PrintTo(const LocalCase& c, std::ostream* os) {  // NOLINT(readability-identifier-naming)
+  *os << c.name;
+}
+
+class LocalContact : public ::testing::TestWithParam<LocalCase> {};
+
+TEST_P(LocalContact, TheSurfaceIsFeltAtItsStiffnessAtAnyDelay) {
+  // J2: the object rests on its surface in the client's physics; the operator pushes 5 N, then
+  // 10 N, into it through the force region. The stiffness felt (5 N over the handle's travel
+  // between the two pushes) is the surface's within 10 %, and so is the penetration at 10 N (F
+  // / k from where the handle rested unpushed), whatever the delay: the surface is rendered in
+  // the servo cycle. Through the coupling alone (before J2) a 2000 N/m wall was felt at the
+  // coupling's series stiffness: 211 N/m at 10 ms one way, 71-74 N/m at 20 ms.
+  const LocalCase& c = GetParam();
+  with_retries(c.name, [&](int attempt) {
+    Scenario s(std::string("j2-local-") + std::to_string(attempt), c.impairment, c.demo);
+    std::uint64_t coupled_at = 0;
+    if (const auto done = couple_and_record(s, 1s, coupled_at)) {
+      return *done;
+    }
+    const auto hold = [&](double force) {
+      EXPECT_EQ(run_hmi(s, {"force", std::to_string(force), "0", "0", "0", "0", "0"}, 10s), 0);
+      const std::uint64_t at = s.recorder->newest_cycle();
+      std::this_thread::sleep_for(2s);
+      return at;
+    };
+    const std::uint64_t rest_at = s.recorder->newest_cycle();
+    const std::uint64_t five_at = hold(5.0);
+    const std::uint64_t ten_at = hold(10.0);
+    if (s.core_failed_safe()) {
+      return false;
+    }
+    const auto r = s.recorder->records();
+    // Each force judged over its last second (the first lets the handle settle).
+    const std::size_t rest_from = index_of(r, rest_at - kCyclesPerSecond / 2);
+    const std::size_t five_from = index_of(r, five_at + kCyclesPerSecond);
+    const std::size_t ten_from = index_of(r, ten_at + kCyclesPerSecond);
+    const std::size_t end = index_of(r, ten_at + 2 * kCyclesPerSecond);
+    if (longest_silence(r, five_from, end) >= 30 * kCyclesPerSecond / 1000) {
+      std::printf("%s: the link was held up in the judged windows: tried again\n", c.name);
+      return false;
+    }
+    const double x0 = mean_position(r, rest_from, index_of(r, rest_at), 0);
+    const double x5 = mean_position(r, five_from, index_of(r, five_at + 2 * kCyclesPerSecond), 0);
+    const double x10 = mean_position(r, ten_from, end, 0);
+    const Judged five = judge(r, five_from, index_of(r, five_at + 2 * kCyclesPerSecond), 0);
+    const Judged ten = judge(r, ten_from, end, 0);
+    const double k_felt = (ten.force - five.force) / (x10 - x5);
+    const shm::VpPayload vp = s.stack.vp();
+    std::printf(
+        "%s: %.2f / %.2f N felt for 5 / 10 N; k_felt %.0f N/m (k_felt / k_object %.3f); "
+        "penetration at 10 N %.2f mm (F / k %.2f mm); %.2f mm/s at 10 N; %d cycles saturated; "
+        "coupling k %.0f N/m, loop %.1f ms\n",
+        c.name, -five.force, -ten.force, -k_felt, -k_felt / c.stiffness, (x10 - x0) * 1e3,
+        10.0 / c.stiffness * 1e3, ten.speed * 1e3, five.saturated + ten.saturated, vp.gains[0],
+        static_cast<double>(vp.loop_delay_ns) / 1e6);
+    EXPECT_GE(-k_felt / c.stiffness, 0.9) << "J2: k_felt / k_object";
+    EXPECT_LE(-k_felt / c.stiffness, 1.1);
+    EXPECT_NEAR((x10 - x0) * c.stiffness, 10.0, 1.0) << "penetration at 10 N within 10 % of F / k";
+    EXPECT_LT(ten.speed, 0.005) << around_fastest(r, ten_from, end);
+    EXPECT_EQ(five.saturated + ten.saturated, 0);
+    EXPECT_EQ(run_hmi(s, {"zero-force"}, 10s), 0);
+    return true;
+  });
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    J2, LocalContact,
+    ::testing::Values(
+        LocalCase{"wall2000_direct", wall_demo(2000, "x"), 2000, {}},
+        LocalCase{"wall2000_delay10ms_loss10_jitter2",
+                  wall_demo(2000, "x"),
+                  2000,
+                  {"--delay-ms", "10", "--loss", "0.1", "--jitter-ms", "2"}},
+        LocalCase{"wall2000_delay100ms_loss10_jitter2",
+                  wall_demo(2000, "x"),
+                  2000,
+                  {"--delay-ms", "100", "--loss", "0.1", "--jitter-ms", "2"}},
+        LocalCase{"sphere_delay20ms_loss10_jitter2",
+                  {"--toward", "x", "--gap", "0"},
+                  2000,
+                  {"--delay-ms", "20", "--loss", "0.1", "--jitter-ms", "2"}}),
+    [](const auto& p) { return std::string(p.param.name); });
+
 }  // namespace
 }  // namespace hapticctrl::test

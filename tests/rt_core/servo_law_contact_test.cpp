@@ -39,6 +39,37 @@ ServoOutputs run(ServoLaw& law, ServoInputs& in, int cycles) {
   return out;
 }
 
+/// Runs `cycles` cycles with every contact refreshed every cycle (as a client sending them does).
+ServoOutputs run_on_contacts(ServoLaw& law, ServoInputs& in, int cycles) {
+  ServoOutputs out;
+  for (int k = 0; k < cycles; ++k) {
+    for (std::size_t i = 0; i < in.client.contact_count; ++i) {
+      in.client.contacts[i].received_ns = in.now + in.dt;
+    }
+    out = run(law, in, 1);
+  }
+  return out;
+}
+
+/// Moves the handle `dx` along x through the Jacobian, in steps of at most 0.5 mm of one cycle
+/// each with the contacts refreshed (a hand pressing at 0.5 m/s at most), and returns how far it
+/// went (forward kinematics). The measured velocity stays zero: no damping is in the figures.
+double press_along_x(ServoLaw& law, ServoInputs& in, double dx) {
+  const double start = chain_at(in.measures.position).handle_position.x();
+  const int steps = std::max(1, static_cast<int>(std::ceil(std::abs(dx) / 5e-4)));
+  for (int k = 0; k < steps; ++k) {
+    const Matrix6d jacobian = default_dynamics().jacobian(chain_at(in.measures.position));
+    Vector6d move = Vector6d::Zero();
+    move.x() = dx / steps;
+    in.measures.position += jacobian.colPivHouseholderQr().solve(move);
+    for (std::size_t i = 0; i < in.client.contact_count; ++i) {
+      in.client.contacts[i].received_ns = in.now + in.dt;
+    }
+    run(law, in, 1);
+  }
+  return chain_at(in.measures.position).handle_position.x() - start;
+}
+
 /// Coupled to an object `dx` ahead of the handle along x, with the loop of a 20 ms link (the
 /// derived stiffness is then about 70 N/m), a fresh sample every cycle.
 ServoInputs slow_link_coupling(double dx) {
@@ -50,26 +81,45 @@ ServoInputs slow_link_coupling(double dx) {
   return in;
 }
 
-TEST(ServoLawContact, AContactStiffensTheCouplingAlongItsNormalUpToHalfItsStiffness) {
+TEST(ServoLawContact, TheHandFeelsTheContactAtItsStiffnessAndTheObjectAStifferCoupling) {
+  // J2: behind a 20 ms link the coupling is soft (about 70 N/m); pressed 1 cm into a 1600 N/m
+  // wall the object touches, the hand feels the wall itself, rendered here (16 N: through the
+  // coupling stiffened to half the wall's stiffness it felt 8 N), and the object gets the
+  // coupling stiffened along the contact (800 N/m in all), which its client closes itself.
   ServoLaw law(default_dynamics());
-  ServoInputs in = slow_link_coupling(-0.01);  // the handle 1 cm past the object, into the wall
-  ServoOutputs free = run(law, in, 300);
-  const double k_free = free.gains.k_linear;
-  ASSERT_LT(k_free, 200.0) << "a 40 ms loop derives a soft spring";
-  EXPECT_NEAR(free.handle_wrench(0), -k_free * 0.01, 0.02 * k_free * 0.01);
-
+  ServoInputs in = slow_link_coupling(0.0);
   in.client.contact_count = 1;
   in.client.contacts[0] = wall_at(in.client.object_pose, 1600.0, in.now);
-  ServoOutputs out;
-  for (int k = 0; k < 300; ++k) {
-    in.client.contacts[0].received_ns = in.now;  // refreshed every cycle
-    out = run(law, in, 1);
-  }
+  ServoOutputs out = run_on_contacts(law, in, 300);
+  const double k_free = out.gains.k_linear;
+  ASSERT_LT(k_free, 200.0) << "a 40 ms loop derives a soft spring";
+  const double depth = press_along_x(law, in, 0.01);
+  out = run_on_contacts(law, in, 300);
   EXPECT_EQ(out.contacts, 1U);
   EXPECT_NEAR(out.contact_normal.x(), -1.0, 1e-9);
   EXPECT_NEAR(out.normal_stiffness, 800.0 - k_free, 1e-6) << "half of 1600 N/m in all";
-  EXPECT_NEAR(out.handle_wrench(0), -800.0 * 0.01, 0.02 * 8.0)
-      << "the handle pressing 1 cm into the wall is pushed out with 800 N/m";
+  EXPECT_NEAR(out.handle_wrench(0), -1600.0 * depth, 0.02 * 16.0)
+      << "the handle pressing 1 cm into the wall is pushed out with the wall's 1600 N/m";
+  EXPECT_NEAR(out.coupling_wrench(0), 800.0 * depth, 0.02 * 8.0)
+      << "the object is pressed into its wall by the stiffened coupling";
+}
+
+TEST(ServoLawContact, TheWallsStiffnessIsFeltWhateverTheLoopAndBoundedByTheDevice) {
+  // A 5000 N/m wall is rendered at the device's 2000 N/m, at any loop delay.
+  for (const TimeNs loop : {TimeNs{2 * kNsPerMs}, TimeNs{200 * kNsPerMs}}) {
+    ServoLaw law(default_dynamics());
+    ServoInputs in = slow_link_coupling(0.0);
+    in.loop_delay = loop;
+    in.client.contact_count = 1;
+    in.client.contacts[0] = wall_at(in.client.object_pose, 5000.0, in.now);
+    run_on_contacts(law, in, 300);
+    const double first = press_along_x(law, in, 0.0025);
+    const double f5 = run_on_contacts(law, in, 300).handle_wrench(0);
+    const double second = press_along_x(law, in, 0.0025);
+    const double f10 = run_on_contacts(law, in, 300).handle_wrench(0);
+    EXPECT_NEAR(-f5 / first, 2000.0, 20.0) << "loop " << loop;
+    EXPECT_NEAR(-(f10 - f5) / second, 2000.0, 20.0) << "loop " << loop;
+  }
 }
 
 TEST(ServoLawContact, TheStiffeningIsUnilateralAndAbsentBeforeTouching) {
@@ -188,6 +238,22 @@ TEST(ServoLawContact, WhileTheStretchReturnsTheHandlesMotionAlongItIsDampedAndFr
       << "across the stretch nothing is added: the hand slides freely";
 }
 
+/// The handle's force along x over cycles of 1 ms: its extremes and largest step per cycle.
+struct ForceTrace {
+  double least = 1e9;
+  double most = -1e9;
+  double largest_step = 0.0;
+  double last = 0.0;
+  void add(double f, bool first) {
+    least = std::min(least, f);
+    most = std::max(most, f);
+    if (!first) {
+      largest_step = std::max(largest_step, std::abs(f - last));
+    }
+    last = f;
+  }
+};
+
 /// An IMPEDANCE client (protocol 1.3) that reports a 2000 N/m surface (mu_s 0.5, mu_d 0.4)
 /// whose normal is -x, with the handle's point `depth` inside it, and pushes `client_push`
 /// along x itself.
@@ -209,72 +275,83 @@ ServoInputs impedance_on_surface(double depth, double client_push) {
   return in;
 }
 
-/// Runs `cycles` cycles with the surface refreshed every cycle (as a client sending it does).
-ServoOutputs run_on_surface(ServoLaw& law, ServoInputs& in, int cycles) {
-  ServoOutputs out;
-  for (int k = 0; k < cycles; ++k) {
-    in.client.contacts[0].received_ns = in.now + in.dt;
-    out = run(law, in, 1);
-  }
-  return out;
-}
-
 TEST(ServoLawSurface, AnImpedanceSurfaceIsRenderedHereInPlaceOfTheClientsPushOutOfIt) {
   // The client's own push out of the surface (-7 N, a loop late) gives way to the surface
-  // rendered at the servo rate: 2000 N/m x 5 mm; a surface found with the handle already
-  // inside comes back at 8 cm/s, never as a kick (35 N at once, 100 ms one way, 2026-12-03).
+  // rendered at the servo rate: 2000 N/m x 5 mm.
   ServoLaw law(default_dynamics());
-  ServoInputs in = impedance_on_surface(0.005, -7.0);
-  ServoOutputs out = run_on_surface(law, in, 1);
-  EXPECT_LT(std::abs(out.handle_wrench.x()), 1.0) << "no step when it appears";
-  double last = out.handle_wrench.x();
-  double largest_step = 0.0;
-  for (int k = 0; k < 200; ++k) {
-    out = run_on_surface(law, in, 1);
-    largest_step = std::max(largest_step, std::abs(out.handle_wrench.x() - last));
-    last = out.handle_wrench.x();
-  }
-  EXPECT_LE(largest_step, 1.0 + 1e-9) << "N per 1 ms cycle";
-  EXPECT_NEAR(out.handle_wrench.x(), -2000.0 * 0.005, 0.05) << "the surface, not the client's too";
+  ServoInputs in = impedance_on_surface(0.0, -7.0);
+  run_on_contacts(law, in, 100);
+  const double depth = press_along_x(law, in, 0.005);
+  ServoOutputs out = run_on_contacts(law, in, 200);
+  EXPECT_NEAR(out.handle_wrench.x(), -2000.0 * depth, 0.05) << "the surface, not the client's too";
   EXPECT_EQ(out.contacts, 1U);
   EXPECT_NEAR(out.normal_stiffness, 2000.0, 1e-9);
 
   ServoLaw pressing_law(default_dynamics());
-  ServoInputs pressing = impedance_on_surface(0.005, 3.0);  // the client pushes into it
-  out = run_on_surface(pressing_law, pressing, 200);
-  EXPECT_NEAR(out.handle_wrench.x(), -10.0 + 3.0, 0.05) << "a push into the surface stays";
+  ServoInputs pressing = impedance_on_surface(0.0, 3.0);  // the client pushes into it
+  run_on_contacts(pressing_law, pressing, 100);
+  const double pressed = press_along_x(pressing_law, pressing, 0.005);
+  out = run_on_contacts(pressing_law, pressing, 200);
+  EXPECT_NEAR(out.handle_wrench.x(), -2000.0 * pressed + 3.0, 0.05)
+      << "a push into the surface stays";
+}
+
+TEST(ServoLawSurface, ASurfaceFoundWithTheHandleInsideIsRenderedFromWhereTheHandleIs) {
+  // Reported a loop late (or moved onto the handle), a surface found with the handle 5 mm inside
+  // is no step and puts no energy out: a 2000 N/m wall whose first report found the handle 7 cm
+  // deep kicked it out at 35 N (100 ms one way, 2026-12-03); given back on time alone, the
+  // hidden 5 mm would have pushed a still hand out with 25 mJ it never put in (J2).
+  ServoLaw law(default_dynamics());
+  ServoInputs in = impedance_on_surface(0.005, -7.0);
+  ForceTrace trace;
+  for (int k = 0; k < 300; ++k) {
+    trace.add(run_on_contacts(law, in, 1).handle_wrench.x(), k == 0);
+  }
+  EXPECT_LT(std::abs(trace.least), 0.05) << "held still, nothing comes back";
+  EXPECT_LT(std::abs(trace.most), 0.05);
+  EXPECT_GE(law.counters().surface_updates_held, 1U);
+  const double depth = press_along_x(law, in, 0.002);
+  EXPECT_NEAR(run_on_contacts(law, in, 100).handle_wrench.x(), -2000.0 * depth, 0.05)
+      << "pressed 2 mm further, the surface from where the handle met it";
+}
+
+TEST(ServoLawSurface, APlaneThatJumpsIntoTheHandleStepsNothingAndOneThatLeavesLetsGo) {
+  // J2's model update: the client's surface comes 5 mm toward the handle pressing 10 N on it.
+  ServoLaw law(default_dynamics());
+  ServoInputs in = impedance_on_surface(0.0, 0.0);
+  run_on_contacts(law, in, 100);
+  const double depth = press_along_x(law, in, 0.005);
+  ASSERT_NEAR(run_on_contacts(law, in, 200).handle_wrench.x(), -2000.0 * depth, 0.05);
+  in.client.contacts[0].point[0] -= 0.005;  // 5 mm into the handle
+  ForceTrace trace;
+  trace.add(-2000.0 * depth, true);
+  for (int k = 0; k < 300; ++k) {
+    trace.add(run_on_contacts(law, in, 1).handle_wrench.x(), false);
+  }
+  EXPECT_LT(trace.largest_step, 1.0) << "N per 1 ms cycle";
+  EXPECT_NEAR(trace.least, -2000.0 * depth, 0.05) << "the still hand feels what it felt";
+  EXPECT_NEAR(trace.most, -2000.0 * depth, 0.05);
+  in.client.contacts[0].point[0] += 0.008;  // then 8 mm away: 2 mm of the 5 are left
+  EXPECT_NEAR(run_on_contacts(law, in, 50).handle_wrench.x(), -2000.0 * (depth - 0.003), 0.05);
 }
 
 TEST(ServoLawSurface, FrictionHoldsTheHandleWithinTheConeAndSlidesBeyondIt) {
   ServoLaw law(default_dynamics());
-  ServoInputs in = impedance_on_surface(0.005, 0.0);
-  run_on_surface(law, in, 200);  // 10 N into the surface
+  ServoInputs in = impedance_on_surface(0.0, 0.0);
+  run_on_contacts(law, in, 100);
+  const double depth = press_along_x(law, in, 0.005);
+  run_on_contacts(law, in, 200);  // 10 N into the surface
   // Turning the first joint moves the handle's point along y, on the surface.
   const double reach = chain_at(kReady).handle_position.head<2>().norm();
   in.measures.position[0] += 0.0005 / reach;  // 0.5 mm
-  ServoOutputs out = run_on_surface(law, in, 20);
+  ServoOutputs out = run_on_contacts(law, in, 20);
   EXPECT_NEAR(out.handle_wrench.y(), -2000.0 * 0.0005, 0.1) << "sticking: 1 N back";
   in.measures.position[0] += 0.01 / reach;  // 1 cm more: past mu_s x 10 N = 5 N
-  out = run_on_surface(law, in, 20);
-  EXPECT_NEAR(out.handle_wrench.y(), -0.4 * 10.0, 0.2) << "sliding: mu_d x the normal force";
-  EXPECT_NEAR(out.handle_wrench.x(), -10.0, 0.2);
+  out = run_on_contacts(law, in, 20);
+  EXPECT_NEAR(out.handle_wrench.y(), -0.4 * 2000.0 * depth, 0.2)
+      << "sliding: mu_d x the normal force";
+  EXPECT_NEAR(out.handle_wrench.x(), -2000.0 * depth, 0.2);
 }
-
-/// The handle's force along x over cycles of 1 ms: its extremes and largest step per cycle.
-struct ForceTrace {
-  double least = 1e9;
-  double most = -1e9;
-  double largest_step = 0.0;
-  double last = 0.0;
-  void add(double f, bool first) {
-    least = std::min(least, f);
-    most = std::max(most, f);
-    if (!first) {
-      largest_step = std::max(largest_step, std::abs(f - last));
-    }
-    last = f;
-  }
-};
 
 /// Runs `cycles` cycles of 1 ms with the link silent (no new sample: its silence and the last
 /// sample's age grow) or, `fresh`, with a sample and its contacts refreshed every cycle.
@@ -295,55 +372,64 @@ ForceTrace run_link(ServoLaw& law, ServoInputs& in, int cycles, bool fresh) {
   return trace;
 }
 
-TEST(ServoLawHeldContact, ThroughABlackoutTheHandPressesOnTheContactItFeltAndNothingSteps) {
-  // The handle presses 1 cm into a 1600 N/m contact (800 N/m in all along it, 8 N); the link
-  // falls silent for 2 s and comes back. The coupling fades and re-anchors as before, and the
-  // contact as the hand felt it takes over what fades: the hand meets the same wall all along
-  // (without it, it went 30 cm through the faded wall in 2 s, J1).
-  ServoLaw law(default_dynamics());
-  ServoInputs in = slow_link_coupling(-0.01);
+/// Coupled behind a 20 ms link to an object on a 1600 N/m wall (normal -x), the handle pressed
+/// into it by about 1 cm; returns the force the wall renders then.
+double pressed_on_wall(ServoLaw& law, ServoInputs& in) {
+  in = slow_link_coupling(0.0);
   in.client.contact_count = 1;
   in.client.contacts[0] = wall_at(in.client.object_pose, 1600.0, in.now);
+  run_on_contacts(law, in, 300);
+  return -1600.0 * press_along_x(law, in, 0.01);
+}
+
+TEST(ServoLawHeldContact, ThroughABlackoutTheHandPressesOnTheContactItFeltAndNothingSteps) {
+  // The handle presses 1 cm into a 1600 N/m contact (16 N); the link falls silent for 2 s and
+  // comes back. The coupling fades and re-anchors as before, and the contact as the hand felt
+  // it takes over what fades: the hand meets the same wall all along (without it, it went 30 cm
+  // through the faded wall in 2 s, J1).
+  ServoLaw law(default_dynamics());
+  ServoInputs in;
+  const double felt = pressed_on_wall(law, in);
   ForceTrace trace = run_link(law, in, 300, true);
-  ASSERT_NEAR(trace.last, -8.0, 0.2);
+  ASSERT_NEAR(trace.last, felt, 0.2);
   trace = run_link(law, in, 2000, false);
-  EXPECT_NEAR(trace.least, -8.0, 0.2) << "the push the hand felt, through the blackout";
-  EXPECT_NEAR(trace.most, -8.0, 0.2);
+  EXPECT_NEAR(trace.least, felt, 0.2) << "the push the hand felt, through the blackout";
+  EXPECT_NEAR(trace.most, felt, 0.2);
   EXPECT_LE(trace.largest_step, 1.0 + 1e-9) << "N per 1 ms cycle";
   EXPECT_EQ(law.memory().engage, 0.0) << "the link's coupling is wholly faded";
   trace = run_link(law, in, 300, true);
-  EXPECT_GT(-trace.most, 0.9 * 8.0) << "no dip as the coupling re-engages";
-  EXPECT_LT(-trace.least, 1.05 * 8.0) << "no overshoot";
+  EXPECT_GT(-trace.most, -0.9 * felt) << "no dip as the coupling re-engages";
+  EXPECT_LT(-trace.least, -1.05 * felt) << "no overshoot";
   EXPECT_LE(trace.largest_step, 1.0 + 1e-9);
-  EXPECT_NEAR(trace.last, -8.0, 0.2);
+  EXPECT_NEAR(trace.last, felt, 0.2);
   EXPECT_EQ(law.memory().engage, 1.0);
 }
 
 TEST(ServoLawHeldContact, IsUnilateralAndForgottenWhenTheClientWithdrawsItOnALiveLink) {
   ServoLaw law(default_dynamics());
-  ServoInputs in = slow_link_coupling(-0.01);
-  in.client.contact_count = 1;
-  in.client.contacts[0] = wall_at(in.client.object_pose, 1600.0, in.now);
+  ServoInputs in;
+  const double felt = pressed_on_wall(law, in);
   run_link(law, in, 300, true);
   // Silent, the hand pulls the handle 2 cm back out of the wall (-x), then pushes it back in.
   const Vector6d pressing = in.measures.position;
-  const Matrix6d jacobian = default_dynamics().jacobian(chain_at(kReady));
+  const Matrix6d jacobian = default_dynamics().jacobian(chain_at(pressing));
   Vector6d back = Vector6d::Zero();
   back.x() = -0.02;
   in.measures.position += jacobian.colPivHouseholderQr().solve(back);
   run_link(law, in, 100, false);
   EXPECT_EQ(run_link(law, in, 1, false).last, 0.0) << "a held contact never pulls";
   in.measures.position = pressing;
-  EXPECT_NEAR(run_link(law, in, 20, false).last, -8.0, 0.3) << "pushed back in: it is there";
+  EXPECT_NEAR(run_link(law, in, 20, false).last, felt, 0.3) << "pushed back in: it is there";
 
   ServoLaw live(default_dynamics());
-  ServoInputs withdrawn = slow_link_coupling(-0.01);
-  withdrawn.client.contact_count = 1;
-  withdrawn.client.contacts[0] = wall_at(withdrawn.client.object_pose, 1600.0, withdrawn.now);
+  ServoInputs withdrawn;
+  pressed_on_wall(live, withdrawn);
   run_link(live, withdrawn, 300, true);
   withdrawn.client.contact_count = 0;  // the object left the wall in the client's world
   run_link(live, withdrawn, 100, true);
-  const double k_free = -run_link(live, withdrawn, 1, true).last / 0.01;
+  const double stretch =
+      chain_at(withdrawn.measures.position).handle_position.x() - withdrawn.client.object_pose[0];
+  const double k_free = -run_link(live, withdrawn, 1, true).last / stretch;
   EXPECT_NEAR(k_free, live.memory().gains.k_linear, 1.0) << "the free coupling alone";
   EXPECT_NEAR(run_link(live, withdrawn, 100, false).last, 0.0, 1e-9)
       << "and nothing held when the link then falls silent";
@@ -351,15 +437,17 @@ TEST(ServoLawHeldContact, IsUnilateralAndForgottenWhenTheClientWithdrawsItOnALiv
 
 TEST(ServoLawHeldContact, AnImpedanceSurfaceIsHeldThroughABlackout) {
   ServoLaw law(default_dynamics());
-  ServoInputs in = impedance_on_surface(0.005, 0.0);
+  ServoInputs in = impedance_on_surface(0.0, 0.0);
+  run_on_contacts(law, in, 100);
+  const double felt = -2000.0 * press_along_x(law, in, 0.005);
   ForceTrace trace = run_link(law, in, 200, true);
-  ASSERT_NEAR(trace.last, -10.0, 0.05);
+  ASSERT_NEAR(trace.last, felt, 0.05);
   trace = run_link(law, in, 2000, false);
-  EXPECT_NEAR(trace.least, -10.0, 0.05) << "2000 N/m x 5 mm, through the blackout";
-  EXPECT_NEAR(trace.most, -10.0, 0.05);
+  EXPECT_NEAR(trace.least, felt, 0.05) << "2000 N/m x 5 mm, through the blackout";
+  EXPECT_NEAR(trace.most, felt, 0.05);
   trace = run_link(law, in, 300, true);
-  EXPECT_NEAR(trace.least, -10.0, 0.05) << "and when the link returns";
-  EXPECT_NEAR(trace.most, -10.0, 0.05);
+  EXPECT_NEAR(trace.least, felt, 0.05) << "and when the link returns";
+  EXPECT_NEAR(trace.most, felt, 0.05);
 }
 
 }  // namespace

@@ -109,6 +109,10 @@ struct LawConfig {
   /// through the object and back (its surface, the spring, the delay) keeps a gain below 1 at
   /// any delay (small gain, docs/control.md).
   double contact_share = 0.5;
+  /// A reported surface is rendered at most as stiff as the device and this share of the
+  /// sampled-data bound 2 B / T (B the device's stable damping, T the period; Colgate &
+  /// Schenkel): 2000 N/m at 1 ms and at 10 ms.
+  double surface_bound_share = 0.5;
   /// After a full disengagement the spring restarts relaxed where the handle is and regains its
   /// stretch at these speeds at most (re-anchoring, J1): the handle is never snapped back.
   double restretch_speed = 0.08;         ///< m/s
@@ -192,10 +196,17 @@ struct RenderMemory {
   /// speed and never exceeds the true stretch along its own direction.
   bool anchored = false;
   Vector6d stretch = Vector6d::Zero();
-  /// An IMPEDANCE client's surface: where the handle sticks to it (the friction proxy, base
-  /// frame), while `on_surface`.
+  /// A reported surface rendered at the servo rate (J1 for IMPEDANCE, J2 for VIRTMECH), while
+  /// `on_surface`: the plane as rendered last cycle (through `surface_point`, along
+  /// `surface_normal`, base frame), which a model update never moves toward the handle; what
+  /// the report is deeper than that plane is `surface_hidden` (m), given back only from
+  /// `surface_budget` (J), the energy the surface's damper and friction dissipated; and where
+  /// the handle sticks to it (the friction proxy).
   bool on_surface = false;
-  double surface_hidden = 0.0;  ///< the depth it had when it appeared, coming back (m)
+  double surface_hidden = 0.0;
+  Vector3d surface_point = Vector3d::Zero();
+  Vector3d surface_normal = Vector3d::Zero();
+  double surface_budget = 0.0;
   Vector3d friction_anchor = Vector3d::Zero();
   /// The contact the coupling rendered last on a fresh link, wholly engaged: rendered for the
   /// handle while the link is silent (ServoLaw::held_contact_force), as the surface the hand
@@ -228,6 +239,9 @@ struct LawCounters {
   std::uint64_t channel_pc_active = 0;  ///< cycles the two-port passivity controller acted
   std::uint64_t channel_force_cut = 0;  ///< of those, cycles it also cut the coupling's force
   std::uint64_t reanchored = 0;         ///< re-engagements that restarted the spring relaxed
+  /// Cycles in which a surface's report came toward the handle and the rendered plane stayed
+  /// (a passive model update, ServoLaw::render_surface).
+  std::uint64_t surface_updates_held = 0;
 };
 
 class ServoLaw {
@@ -257,20 +271,24 @@ class ServoLaw {
 
  private:
   /// The coupling's spring and damper parts (base frame), before limits: on the handle, and
-  /// opposite on the object.
+  /// opposite on the object (`object_spring`, `object_damper`: the same but where a surface the
+  /// client reports is rendered here in the handle's place).
   struct Coupling {
     Vector6d spring = Vector6d::Zero();
     Vector6d damper = Vector6d::Zero();
+    Vector6d object_spring = Vector6d::Zero();
+    Vector6d object_damper = Vector6d::Zero();
     Vector6d stretch = Vector6d::Zero();  ///< the stretch the handle's spring renders
-    /// Rendered here and outside the two-port: an IMPEDANCE client's reported surface.
+    /// Rendered here and outside the two-port: a surface the client reports.
     Vector6d local = Vector6d::Zero();
     /// The contact in force as the handle feels it (hold_contact); none: no contact touching.
     RenderMemory::HeldContact contact;
     bool contact_in_force = false;
     bool contact_whole = false;  ///< fresh (its weight 1): what the hand feels is all of it
+    bool contact_local = false;  ///< the contact is a surface rendered here, not the coupling
   };
-  /// An IMPEDANCE client's surface as rendered at the servo rate (base frame, client force
-  /// units: the force factor is applied with the client's wrench).
+  /// A surface the client reports, as rendered at the servo rate for the handle's point (base
+  /// frame, client force units: the force factor is applied with the client's wrench).
   struct Surface {
     Vector3d normal = Vector3d::Zero();    ///< out of the surface
     double share = 0.0;                    ///< fresh and touching: 0..1
@@ -308,10 +326,17 @@ class ServoLaw {
   [[nodiscard]] Stiffening contact_stiffening(const ServoInputs& in, const ClientFrame& frame,
                                               const Vector3d& reported,
                                               const CouplingGains& g) const noexcept;
-  [[nodiscard]] Surface impedance_surface(const ServoInputs& in, const ClientFrame& frame,
-                                          const ChainState& chain) const noexcept;
+  /// The deepest fresh surface the client reports, for the handle's point: an IMPEDANCE
+  /// client's contact is where its handle's point meets the surface; a VIRTMECH client's
+  /// (`on_object`) is on its object, which the coupling holds at the handle, so the handle's
+  /// point is the handle's position offset as the contact point was from the object.
+  [[nodiscard]] Surface reported_surface(const ServoInputs& in, const ClientFrame& frame,
+                                         const ChainState& chain, bool on_object) const noexcept;
   void render_surface(Surface& surface, const ChainState& chain, const Vector6d& twist,
                       double dt) noexcept;
+  /// The reported surface rendered for the handle, noted in `coupling` as its contact.
+  Surface local_surface(const ServoInputs& in, const ClientFrame& frame, const ChainState& chain,
+                        const Vector6d& twist, bool on_object, Coupling& coupling) noexcept;
   /// Notes the contact in force while the link is fresh and the coupling whole (or forgets it
   /// when none is), for held_contact_force.
   void hold_contact(const ServoInputs& in, const Coupling& coupling, double engage) noexcept;
@@ -325,7 +350,7 @@ class ServoLaw {
   [[nodiscard]] double fade_of(TimeNs silence, const Vector6d& wrench) const noexcept;
   void follow_session(const ServoInputs& in) noexcept;
   Vector6d guard_channel(const ServoInputs& in, const ClientFrame& frame, const Vector6d& coupling,
-                         const Vector6d& stretch, double dt) noexcept;
+                         const Vector6d& to_object, const Vector6d& stretch, double dt) noexcept;
   Vector6d guard_impedance(const ServoInputs& in, const ClientFrame& frame,
                            const Vector6d& handle_force, const Vector6d& twist, double dt) noexcept;
   /// Books one period's channel power at the core's end (>= 0: in) and returns the excess of
@@ -333,8 +358,6 @@ class ServoLaw {
   double book_channel_power(double power, double budget, double dt) noexcept;
   double update_engagement(const ServoInputs& in, const Vector6d& twist, double fade,
                            ServoOutputs& out) noexcept;
-  Vector6d saturate(const Vector6d& spring, const Vector6d& damper,
-                    const ServoOutputs& out) const noexcept;
   void set_limits(const ClientSample& client, ServoOutputs& out) const noexcept;
   Vector6d rate_limit(const Vector6d& target, double rate, double dt) noexcept;
   Vector6d guard_passivity(const Vector6d& wrench, const Vector6d& twist, double dt) noexcept;

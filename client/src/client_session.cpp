@@ -245,11 +245,32 @@ void ClientSession::close_locally() noexcept {
   }
   Vector6 w = controller_wrench_;
   if (s.coupled() && have_object_) {
-    const Vector6 local = object_wrench(terms_, channel_pose_, channel_twist_, object_pose_,
-                                        object_twist_, speed_factor_, force_factor_);
+    const Vector6 local =
+        object_wrench(terms_, channel_pose_, channel_twist_, object_pose_, object_twist_,
+                      contact_penetration(), speed_factor_, force_factor_);
     w = along_contact(terms_, controller_wrench_, local);
   }
   s.coupling_wrench = passivity_.render(w);
+}
+
+double ClientSession::contact_penetration() const noexcept {
+  // The deepest of the contacts set along the controller's contact normal (within 25 degrees).
+  const double nx = terms_.contact_normal[0];
+  const double ny = terms_.contact_normal[1];
+  const double nz = terms_.contact_normal[2];
+  const double length = std::sqrt(nx * nx + ny * ny + nz * nz);
+  double deepest = 0.0;
+  for (std::uint32_t i = 0; i < contact_count_ && length > 1e-6; ++i) {
+    const hcp_contact& c = contacts_[i];
+    const double along = (static_cast<double>(c.normal[0]) * nx +
+                          static_cast<double>(c.normal[1]) * ny +
+                          static_cast<double>(c.normal[2]) * nz) /
+                         length;
+    if (along > 0.9) {
+      deepest = std::max(deepest, -static_cast<double>(c.distance));
+    }
+  }
+  return deepest;
 }
 
 std::optional<hcp_frame> ClientSession::keepalive_due(std::int64_t now) noexcept {

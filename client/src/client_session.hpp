@@ -122,6 +122,8 @@ class ClientSession {
   bool on_answer(const hcp_frame& frame, std::int64_t now) noexcept;
   /// Protocol 1.3: the object's wrench (or an IMPEDANCE client's handle image) in latest_.
   void close_locally() noexcept;
+  /// The object's penetration into the contacts set along the controller's contact normal (m).
+  [[nodiscard]] double contact_penetration() const noexcept;
   [[nodiscard]] bool local() const noexcept {
     return (features_ & HCP_FEATURE_LOCAL_COUPLING) != 0;
   }

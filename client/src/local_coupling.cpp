@@ -44,8 +44,8 @@ CouplingTerms terms_of(const hcp_coupling_report& report,
 }
 
 Vector6 object_wrench(const CouplingTerms& t, const Pose7& handle_pose, const Vector6& handle_twist,
-                      const Pose7& object_pose, const Vector6& object_twist, double speed_factor,
-                      double force_factor) noexcept {
+                      const Pose7& object_pose, const Vector6& object_twist, double penetration,
+                      double speed_factor, double force_factor) noexcept {
   // The controller's gains act on its base-frame metres (client metres / speed factor) and the
   // object gets the coupling without the force factor (docs/control.md).
   const double sf = speed_factor > 0.0 ? speed_factor : 1.0;
@@ -58,11 +58,18 @@ Vector6 object_wrench(const CouplingTerms& t, const Pose7& handle_pose, const Ve
                            t.gains[3] * (part(handle_twist, 3) - part(object_twist, 3));
   const Eigen::Vector3d normal(t.contact_normal[0], t.contact_normal[1], t.contact_normal[2]);
   if (normal.squaredNorm() > 1e-12) {
-    // The handle presses the object into the contact when the stretch points into the surface.
+    // The handle presses the object into the contact when the stretch points into the surface;
+    // the stiffening acts on the handle's depth in the surface (the stretch plus the object's
+    // own penetration), as the controller renders the surface on the handle: the object is
+    // pressed with the force the hand feels (J2).
     const Eigen::Vector3d n = normal.normalized();
+    const double share = std::min(1.0, normal.norm());
     const double depth = -stretch.dot(n) / sf;
     const double engaged = std::clamp(depth / kDamperBand, 0.0, 1.0);
-    force -= t.normal_gains[0] * std::max(0.0, depth) * n;
+    const double pen = std::max(0.0, penetration) / sf;
+    if (depth + pen > 0.0) {  // (k + stiffening) on the handle's depth, in the contact's share
+      force -= (t.normal_gains[0] * (depth + pen) + share * t.gains[0] * pen) * n;
+    }
     force += engaged * t.normal_gains[1] * relative.dot(n) / sf * n;
   }
   force = clamped(force, t.limits[0] / ff);

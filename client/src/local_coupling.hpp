@@ -31,12 +31,14 @@ struct CouplingTerms {
 /// The wrench on the object (client frame, the application's units): the coupling's spring and
 /// damper between the object (`object_pose`, `object_twist`) and the handle image
 /// (`handle_pose`, `handle_twist`), with the contact stiffening while the spring pushes the
-/// object into the contact, clamped to the limits. `speed_factor` and `force_factor` turn the
-/// controller's units into the application's.
+/// object into the contact (on the handle's depth in the surface: the stretch plus the object's
+/// own `penetration` into it, client metres), clamped to the limits. `speed_factor` and
+/// `force_factor` turn the controller's units into the application's. Safe in a loop: no
+/// allocation.
 [[nodiscard]] Vector6 object_wrench(const CouplingTerms& terms, const Pose7& handle_pose,
                                     const Vector6& handle_twist, const Pose7& object_pose,
-                                    const Vector6& object_twist, double speed_factor,
-                                    double force_factor) noexcept;
+                                    const Vector6& object_twist, double penetration,
+                                    double speed_factor, double force_factor) noexcept;
 
 /// The object's wrench to apply: the controller's (`controller`, computed on its view of the
 /// object a loop late), but while a contact is in force the library's own (`local`, on the

@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <exception>
 #include <fstream>
+#include <limits>
 #include <optional>
 #include <span>
 #include <string>
@@ -133,11 +134,11 @@ demo::SphereScene scene_at(const client::StateSnapshot& s, const demo::DemoOptio
   return {config, start};
 }
 
-/// The spheres' contact is reported from this gap on (protocol 1.3): the controller stiffens the
-/// coupling along it only once they touch, and knows of it before.
+/// The spheres' contact is reported from this gap on (protocol 1.3), plus what the handle can
+/// cover meanwhile: the controller renders it only once touched, and knows of it before.
 constexpr double kContactNear = 0.005;  // m
-/// IMPEDANCE: how fast a hand may bring the handle to a surface (the arm's speed brake, m/s):
-/// a surface is reported from as far as the handle can come over twice the round trip.
+/// How fast a hand may bring the handle to a surface (the arm's speed brake, m/s): a surface is
+/// reported from as far as the handle can come over twice the round trip.
 constexpr double kReachSpeed = 1.0;
 
 /// At most this many steps are integrated for one answer (a longer gap pauses the world).
@@ -356,8 +357,26 @@ class DemoRun {
     if (!o_.report_contacts) {
       return;
     }
-    const std::optional<client::Contact> contact =
-        scene_->contact_report(kContactNear, c_->statistics().max_contact_stiffness);
+    // The controller renders the contact on the handle, which the coupling lets lead the
+    // object (by centimetres behind a long link, where the coupling is soft): reported only
+    // from 5 mm of the object's gap, the handle met no surface and was found inside it when the
+    // report came. So the gap that counts is the handle's too, and the reach over the round
+    // trip is added as for an IMPEDANCE surface.
+    const client::LinkStatistics link = c_->statistics();
+    const double near =
+        kContactNear + kReachSpeed * 2e-6 * std::max(link.rtt_mean_us, link.loop_delay_us);
+    std::optional<client::Contact> contact =
+        scene_->contact_report(std::numeric_limits<double>::infinity(), link.max_contact_stiffness);
+    if (contact) {
+      const client::Pose7 object = scene_->pose();
+      double lead = 0.0;  // how far the handle is ahead of the object toward the surface
+      for (std::size_t i = 0; i < 3; ++i) {
+        lead -= (s_.handle_pose[i] - object[i]) * contact->normal[i];
+      }
+      if (contact->distance - std::max(0.0, lead) > near) {
+        contact.reset();
+      }
+    }
     const std::span<const client::Contact> contacts =
         contact ? std::span<const client::Contact>(&*contact, 1)
                 : std::span<const client::Contact>();

@@ -173,23 +173,37 @@ ServoLaw::Coupling ServoLaw::client_wrench(const ServoInputs& in, const ClientFr
   Vector6d relative = image.twist - twist;
   coupling.spring << g.k_linear * used.head<3>(), g.k_angular * used.tail<3>();
   coupling.damper << g.b_linear * relative.head<3>(), g.b_angular * relative.tail<3>();
+  Vector3d object_pressed = Vector3d::Zero();  // what the object's side adds along its contact
   if (stiff.share > 0.0) {
     const Vector3d& n = stiff.normal;
     const double depth = used.head<3>().dot(n);  // > 0: the handle presses into the surface
     // The damper comes in over the first 0.5 mm, so that touching is not a step.
     const double engaged = std::clamp(depth / 5e-4, 0.0, 1.0);
-    coupling.spring.head<3>() += stiff.stiffness * std::max(0.0, depth) * n;
     coupling.damper.head<3>() += engaged * stiff.damping * relative.head<3>().dot(n) * n;
+    // The object's side: (k + object_stiffness) on the handle's depth in the surface, in the
+    // contact's share, in place of k on the stretch and the handle's stiffening.
+    const double held = depth + stiff.penetration;
+    object_pressed = -stiff.stiffness * std::max(0.0, depth) * n;
+    if (held > 0.0) {
+      object_pressed +=
+          (stiff.object_stiffness * held + stiff.share * g.k_linear * stiff.penetration) * n;
+    }
+    coupling.spring.head<3>() += stiff.stiffness * std::max(0.0, depth) * n;
     out.contact_normal = n * stiff.share;
-    out.normal_stiffness = stiff.stiffness;
+    out.normal_stiffness = stiff.object_stiffness;
     out.normal_damping = stiff.damping;
   }
+  // The object gets the coupling stiffened along its contact to the surface's stiffness, on the
+  // handle's depth in the surface (the stretch plus the object's own penetration): at rest it is
+  // pressed into its surface with the force the hand feels there (J2: with half the stiffness,
+  // on the stretch alone, the demo's sphere pushed at 5 N onto the fixed one held 2.3 N). Its
+  // 1.3 client closes this side itself along the contact (local_coupling.cpp) ...
+  coupling.object_spring = coupling.spring;
+  coupling.object_spring.head<3>() += object_pressed;
+  coupling.object_spring *= scale;
+  coupling.object_damper = coupling.damper * scale;
   coupling.spring *= scale;
   coupling.damper *= scale;
-  // The object gets the coupling (stiffened along its contact: the small-gain argument above,
-  // its client closes it there itself) ...
-  coupling.object_spring = coupling.spring;
-  coupling.object_damper = coupling.damper;
   // ... and the hand the surface the object touches, rendered here at the surface's stiffness
   // with no delay in its loop, in place of the coupling's push out of the surface and along it;
   // the coupling's pull into it stays. Through the coupling stiffened to half the surface's

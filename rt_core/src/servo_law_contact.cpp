@@ -88,6 +88,10 @@ ServoLaw::Stiffening ServoLaw::contact_stiffening(const ServoInputs& in, const C
       best.share = weight * touching;
       best.weight = weight;
       best.stiffness = stiffness;
+      best.object_stiffness =
+          weight * touching *
+          std::max(0.0, std::min(lim.max_stiffness_linear, surface) - g.k_linear);
+      best.penetration = std::max(0.0, -gap);
       best.damping = weight * touching * std::max(0.0, lim.max_damping_linear - g.b_linear);
     }
   }

@@ -603,5 +603,72 @@ INSTANTIATE_TEST_SUITE_P(
                   {"--delay-ms", "20", "--loss", "0.1", "--jitter-ms", "2"}}),
     [](const auto& p) { return std::string(p.param.name); });
 
+class LocalFriction : public ::testing::TestWithParam<LocalCase> {};
+
+TEST_P(LocalFriction, SlidingAlongTheSurfaceRendersItsCoulombFriction) {
+  // J2: pressed 10 N into the demo's wall (mu 0.6), the handle held by 4 N along it sticks
+  // (friction 4 N, still), and pushed by 6.6 N slides, held back by mu x the normal force (6 N):
+  // mu measured as the rendered tangential force over the normal one, within 10 %, over the
+  // first 0.35 s of the slide (the arm's small mass along y accelerates under the 0.6 N left:
+  // judged later, the speed brake at 1 m/s added its damping).
+  const LocalCase& c = GetParam();
+  constexpr double kMu = 0.6;
+  with_retries(c.name, [&](int attempt) {
+    Scenario s(std::string("j2-friction-") + std::to_string(attempt), c.impairment, c.demo);
+    std::uint64_t coupled_at = 0;
+    if (const auto done = couple_and_record(s, 1s, coupled_at)) {
+      return *done;
+    }
+    EXPECT_EQ(run_hmi(s, {"force", "10", "0", "0", "0", "0", "0"}, 10s), 0);
+    std::this_thread::sleep_for(1s);
+    EXPECT_EQ(run_hmi(s, {"force", "10", "4", "0", "0", "0", "0"}, 10s), 0);
+    const std::uint64_t stuck_at = s.recorder->newest_cycle();
+    std::this_thread::sleep_for(1500ms);
+    EXPECT_EQ(run_hmi(s, {"force", "10", "6.6", "0", "0", "0", "0"}, 10s), 0);
+    const std::uint64_t slide_at = s.recorder->newest_cycle();
+    std::this_thread::sleep_for(700ms);
+    EXPECT_EQ(run_hmi(s, {"zero-force"}, 10s), 0);
+    if (s.core_failed_safe()) {
+      return false;
+    }
+    const auto r = s.recorder->records();
+    const std::size_t stuck_from = index_of(r, stuck_at + kCyclesPerSecond / 2);
+    const std::size_t stuck_to = index_of(r, stuck_at + 3 * kCyclesPerSecond / 2);
+    const std::size_t slide_from = index_of(r, slide_at + kCyclesPerSecond / 10);
+    const std::size_t slide_to = index_of(r, slide_at + 35 * kCyclesPerSecond / 100);
+    if (longest_silence(r, stuck_from, slide_to) >= 30 * kCyclesPerSecond / 1000) {
+      std::printf("%s: the link was held up in the judged windows: tried again\n", c.name);
+      return false;
+    }
+    const Judged stuck_x = judge(r, stuck_from, stuck_to, 0);
+    const Judged stuck_y = judge(r, stuck_from, stuck_to, 1);
+    double mu = 0.0;
+    for (std::size_t i = slide_from; i < slide_to; ++i) {
+      mu += (r[i].wrench[1] / r[i].wrench[0]) / static_cast<double>(slide_to - slide_from);
+    }
+    const double slid = r[slide_to - 1].position[1] - r[slide_from].position[1];
+    std::printf(
+        "%s: held by 4 N along it, %.2f N back (normal %.2f N) at %.2f mm/s; pushed by 6.6 N, "
+        "slid %.1f mm (at most %.2f m/s) with mu %.3f rendered (%.2f)\n",
+        c.name, -stuck_y.force, -stuck_x.force, stuck_y.speed * 1e3, slid * 1e3,
+        max_speed(r, slide_from, slide_to), mu, kMu);
+    EXPECT_NEAR(-stuck_y.force, 4.0, 0.4) << "sticking: the friction holds the push along it";
+    EXPECT_LT(stuck_y.speed, 0.005) << "and the handle stays";
+    EXPECT_GT(slid, 0.005) << "6.6 N is past mu_s x 10 N: it slides";
+    EXPECT_LT(max_speed(r, slide_from, slide_to), 0.8) << "below the speed brake";
+    EXPECT_NEAR(mu, kMu, 0.1 * kMu) << "J2: sliding renders mu within 10 %";
+    return true;
+  });
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    J2, LocalFriction,
+    ::testing::Values(LocalCase{"wall_direct", wall_demo(2000, "x"), 2000, {}},
+                      LocalCase{"wall_delay20ms_loss10_jitter2",
+                                wall_demo(2000, "x"),
+                                2000,
+                                {"--delay-ms", "20", "--loss", "0.1", "--jitter-ms", "2"}}),
+    [](const auto& p) { return std::string(p.param.name); });
+
 }  // namespace
 }  // namespace hapticctrl::test

@@ -85,7 +85,8 @@ TEST(ServoLawContact, TheHandFeelsTheContactAtItsStiffnessAndTheObjectAStifferCo
   // J2: behind a 20 ms link the coupling is soft (about 70 N/m); pressed 1 cm into a 1600 N/m
   // wall the object touches, the hand feels the wall itself, rendered here (16 N: through the
   // coupling stiffened to half the wall's stiffness it felt 8 N), and the object gets the
-  // coupling stiffened along the contact (800 N/m in all), which its client closes itself.
+  // coupling stiffened along the contact to the wall's 1600 N/m, which its client closes
+  // itself: it is pressed into its wall with the 16 N the hand feels.
   ServoLaw law(default_dynamics());
   ServoInputs in = slow_link_coupling(0.0);
   in.client.contact_count = 1;
@@ -97,11 +98,11 @@ TEST(ServoLawContact, TheHandFeelsTheContactAtItsStiffnessAndTheObjectAStifferCo
   out = run_on_contacts(law, in, 300);
   EXPECT_EQ(out.contacts, 1U);
   EXPECT_NEAR(out.contact_normal.x(), -1.0, 1e-9);
-  EXPECT_NEAR(out.normal_stiffness, 800.0 - k_free, 1e-6) << "half of 1600 N/m in all";
+  EXPECT_NEAR(out.normal_stiffness, 1600.0 - k_free, 1e-6) << "1600 N/m in all";
   EXPECT_NEAR(out.handle_wrench(0), -1600.0 * depth, 0.02 * 16.0)
       << "the handle pressing 1 cm into the wall is pushed out with the wall's 1600 N/m";
-  EXPECT_NEAR(out.coupling_wrench(0), 800.0 * depth, 0.02 * 8.0)
-      << "the object is pressed into its wall by the stiffened coupling";
+  EXPECT_NEAR(out.coupling_wrench(0), 1600.0 * depth, 0.02 * 16.0)
+      << "the object is pressed into its wall with what the hand feels";
 }
 
 TEST(ServoLawContact, TheWallsStiffnessIsFeltWhateverTheLoopAndBoundedByTheDevice) {
@@ -160,7 +161,7 @@ TEST(ServoLawContact, AContactThatStopsComingFadesOutWithinFortyFiveMs) {
   ASSERT_GT(out.normal_stiffness, 0.0);
   out = run(law, in, 35);
   EXPECT_GT(out.normal_stiffness, 0.0) << "fresh for 30 ms, then fading";
-  EXPECT_LT(out.normal_stiffness, 0.9 * (800.0 - out.gains.k_linear));
+  EXPECT_LT(out.normal_stiffness, 0.9 * (1600.0 - out.gains.k_linear));
   out = run(law, in, 11);
   EXPECT_EQ(out.normal_stiffness, 0.0);
   EXPECT_EQ(out.contacts, 0U);

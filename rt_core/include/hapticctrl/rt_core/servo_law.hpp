@@ -315,8 +315,13 @@ class ServoLaw {
     Vector3d normal = Vector3d::Zero();
     double share = 0.0;   ///< how much of the contact is in force (fresh, touching): 0..1
     double weight = 0.0;  ///< how fresh it is: 0..1 (contact_fresh, contact_fade)
-    double stiffness = 0.0;
+    double stiffness = 0.0;  ///< added to the handle's coupling (its share not replaced)
     double damping = 0.0;
+    /// Added to the object's, on the handle's depth in the surface (the stretch along the normal
+    /// plus the object's penetration): with the coupling's own, the surface's stiffness, so that
+    /// the object is pressed into its surface with the force the hand feels (J2).
+    double object_stiffness = 0.0;
+    double penetration = 0.0;  ///< the object's into its surface now (m, base)
     std::uint32_t fresh = 0;
   };
   Coupling client_wrench(const ServoInputs& in, const ClientFrame& frame, const ChainState& chain,

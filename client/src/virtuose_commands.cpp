@@ -1,8 +1,13 @@
 // The C API's per-cycle commands: the virtual object's state (VIRTMECH) or the wrench
 // (IMPEDANCE), sent at once, or after the periodic function when a loop runs.
+#include <array>
+#include <span>
+
 #include "virtuose_context.hpp"
 
 using hapticctrl::client::CommandType;
+using hapticctrl::client::Contact;
+using hapticctrl::client::ContactResult;
 using hapticctrl::client::Vector6;
 using hapticctrl::client::virtuose::Context;
 using hapticctrl::client::virtuose::context_of;
@@ -75,6 +80,55 @@ int virtAddForce(VirtContext VC, float* force) {
   }
   vc->wrench_pending = true;
   return 0;
+}
+
+int virtSetContacts(VirtContext VC, int count, float* contacts) {
+  Context* vc = context_of(VC, count == 0 ? static_cast<const void*>(&count) : contacts,
+                           "virtSetContacts: NULL contacts");
+  if (vc == nullptr) {
+    return -1;
+  }
+  if (count < 0 || count > VIRT_MAX_CONTACTS) {
+    return fail(VC, VIRT_E_INCORRECT_VALUE, "virtSetContacts: count outside 0-8");
+  }
+  const std::lock_guard lock(vc->mutex);
+  if (vc->command_type != CommandType::kVirtmech && vc->command_type != CommandType::kImpedance) {
+    return fail(VC, VIRT_E_WRONG_MODE, "virtSetContacts: needs COMMAND_TYPE_VIRTMECH or IMPEDANCE");
+  }
+  // Points as the application's object poses go (through indexing's offset: linear quantities
+  // do not rotate with it, so the normals stay as given).
+  const hapticctrl::client::Pose7 handle = vc->connection->snapshot().handle_pose;
+  std::array<Contact, VIRT_MAX_CONTACTS> taken{};
+  const auto n = static_cast<std::size_t>(count);
+  for (std::size_t i = 0; i < n; ++i) {
+    const float* f = contacts + i * VIRT_CONTACT_FLOATS;
+    const hapticctrl::client::Pose7 point = vc->indexing.to_physical(
+        handle, hapticctrl::client::Pose7{f[0], f[1], f[2], 0, 0, 0, 1});
+    Contact& c = taken.at(i);
+    c.point = {point[0], point[1], point[2]};
+    c.normal = {f[3], f[4], f[5]};
+    c.distance = f[6];
+    c.stiffness = f[7];
+    c.damping = f[8];
+    c.friction_static = f[9];
+    c.friction_dynamic = f[10];
+  }
+  switch (vc->connection->set_contacts(std::span<const Contact>(taken.data(), n))) {
+    case ContactResult::kAccepted:
+      return 0;
+    case ContactResult::kUnsupported:
+      return fail(VC, VIRT_E_INCOMPATIBLE_VERSION,
+                  "virtSetContacts: the controller takes no contacts (protocol 1.3)");
+    case ContactResult::kTooStiff:
+      return fail(VC, VIRT_E_INCORRECT_VALUE,
+                  "virtSetContacts: stiffer than the controller renders");
+    case ContactResult::kTooMany:
+    case ContactResult::kInvalid:
+      break;
+  }
+  return fail(VC, VIRT_E_INCORRECT_VALUE,
+              "virtSetContacts: a value out of range (non-finite, a normal that is not a unit "
+              "vector, a negative stiffness or damping, or dynamic friction above the static)");
 }
 
 // NOLINTEND(readability-identifier-naming)

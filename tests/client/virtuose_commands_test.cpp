@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
 
 #include "hapticctrl/virtuose_api.h"
 #include "support/controller_stack.hpp"
@@ -51,6 +52,44 @@ TEST(VirtuoseCommands, EachCommandNeedsItsModeAndReachesTheController) {
   EXPECT_EQ(virtGetErrorCode(vc.get()), VIRT_E_INCORRECT_VALUE);
   EXPECT_EQ(virtSetSpeed(nullptr, speed.data()), -1);
   EXPECT_EQ(virtGetErrorCode(nullptr), VIRT_E_INVALID_CONTEXT);
+}
+
+TEST(VirtuoseCommands, ContactsReachTheControllerWithTheObjectAndBadOnesAreRefused) {
+  // J2's VirtuoseAPI extension: virtSetContacts (hapticctrl's, not Haption's).
+  ControllerStack stack("capicontacts");
+  ASSERT_TRUE(stack.ready()) << stack.diagnostics();
+  const VirtuoseSession vc(stack);
+  ASSERT_TRUE(vc.open()) << virtGetErrorDetail(nullptr);
+  std::array<float, 7> pose{};
+  ASSERT_EQ(virtGetPosition(vc.get(), pose.data()), 0);
+  std::array<float, VIRT_CONTACT_FLOATS> wall{
+      pose[0] + 0.03F, pose[1], pose[2], -1, 0, 0, 0.002F, 2000, 5, 0.5F, 0.4F};
+  EXPECT_EQ(virtSetContacts(vc.get(), 1, wall.data()), -1) << "COMMAND_TYPE_NONE";
+  EXPECT_EQ(virtGetErrorCode(vc.get()), VIRT_E_WRONG_MODE);
+  ASSERT_EQ(virtSetCommandType(vc.get(), COMMAND_TYPE_VIRTMECH), 0);
+  ASSERT_EQ(virtSetContacts(vc.get(), 1, wall.data()), 0) << virtGetErrorDetail(vc.get());
+  ASSERT_EQ(virtSetPosition(vc.get(), pose.data()), 0);  // the contact goes with it
+  EXPECT_TRUE(ControllerStack::eventually([&] {
+    const shm::VprPayload v = stack.vpr();
+    return v.contact_count == 1 && v.contacts[0].stiffness == 2000.0 &&
+           std::abs(v.contacts[0].point[0] - static_cast<double>(wall[0])) < 1e-6 &&
+           std::abs(v.contacts[0].friction[1] - 0.4) < 1e-6;
+  })) << "the controller has the wall";
+
+  std::array<float, VIRT_CONTACT_FLOATS> bad = wall;
+  bad[3] = 2;  // not a unit normal
+  EXPECT_EQ(virtSetContacts(vc.get(), 1, bad.data()), -1);
+  EXPECT_EQ(virtGetErrorCode(vc.get()), VIRT_E_INCORRECT_VALUE);
+  bad = wall;
+  bad[7] = 1e7F;  // stiffer than the controller renders
+  EXPECT_EQ(virtSetContacts(vc.get(), 1, bad.data()), -1);
+  EXPECT_EQ(virtGetErrorCode(vc.get()), VIRT_E_INCORRECT_VALUE);
+  EXPECT_EQ(virtSetContacts(vc.get(), 9, wall.data()), -1);
+  EXPECT_EQ(virtSetContacts(vc.get(), 1, nullptr), -1);
+
+  ASSERT_EQ(virtSetContacts(vc.get(), 0, nullptr), 0) << "count 0 clears them";
+  ASSERT_EQ(virtSetPosition(vc.get(), pose.data()), 0);
+  EXPECT_TRUE(ControllerStack::eventually([&] { return stack.vpr().contact_count == 0; }));
 }
 
 }  // namespace

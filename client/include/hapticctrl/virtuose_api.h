@@ -273,6 +273,24 @@ int virtSetForce(VirtContext VC, float* force);
 /** IMPEDANCE: adds to the wrench of this cycle. */
 int virtAddForce(VirtContext VC, float* force);
 
+/** Floats per contact in virtSetContacts. */
+#define VIRT_CONTACT_FLOATS 11
+/** Contacts virtSetContacts takes at most. */
+#define VIRT_MAX_CONTACTS 8
+/** hapticctrl extension (not Haption's; protocol 1.3, docs/virtuose_api.md): the contacts the
+ *  virtual object (VIRTMECH) or the handle's point (IMPEDANCE) is in or near, which the
+ *  controller renders on the handle in its servo cycle (stiff at any network delay). `count`
+ *  contacts of VIRT_CONTACT_FLOATS floats each, environment frame as virtSetPosition's: point
+ *  x y z (VIRTMECH: on the object; IMPEDANCE: where the handle's point meets the surface),
+ *  unit normal x y z (the direction the surface pushes), signed gap along it (< 0
+ *  penetrating), stiffness N/m (at most the controller's limit), damping N.s/m, static and
+ *  dynamic friction coefficients. Sent with the next position or force; count 0 clears them.
+ *  Call it every step the contacts change; a contact not refreshed within 30 ms fades out.
+ *  VIRT_E_INCORRECT_VALUE for a value out of range, VIRT_E_INCOMPATIBLE_VERSION when the
+ *  controller does not take contacts, VIRT_E_WRONG_MODE outside VIRTMECH and IMPEDANCE.
+ *  Allocates nothing. */
+int virtSetContacts(VirtContext VC, int count, float* contacts);
+
 /* --- state, per cycle: the latest controller answer ----------------------------------------- */
 
 /** The avatar: the handle as indexing moved it (virtForceShiftButton), environment frame. */

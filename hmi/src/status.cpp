@@ -131,6 +131,17 @@ std::string status_json(const ControllerStatus& s) {
     json_array(out, "normal_gains", s.vp.normal_gains);
     out << ",";
     json_array(out, "gains", s.vp.gains);
+    out << ",\"surface\":{\"depth_mm\":" << JsonNumber{s.vp.surface_depth * 1e3}
+        << ",\"force\":" << JsonNumber{s.vp.surface_force}
+        << ",\"hidden_mm\":" << JsonNumber{s.vp.surface_hidden * 1e3}
+        << ",\"withheld_j\":" << JsonNumber{s.vp.surface_withheld}
+        << ",\"contact_age_ms\":"
+        << (s.vp.contact_age_ns >= 0 ? static_cast<double>(s.vp.contact_age_ns) / 1e6 : -1.0)
+        << ",";
+    json_array(out, "point", s.vp.surface_point);
+    out << ",";
+    json_array(out, "normal", s.vp.surface_normal);
+    out << "}";
   }
   std::uint64_t dropped = 0;
   for (const auto d : s.link.dropped) {

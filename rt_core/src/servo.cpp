@@ -145,6 +145,20 @@ double ServoTask::max_contact_stiffness(double speed_factor) const noexcept {
          (speed_factor > 0.0 ? speed_factor : 1.0);
 }
 
+void ServoTask::publish_surface(const ClientFrame& frame, shm::VpPayload& vp) const noexcept {
+  // In the client's frame and units, as the contacts came.
+  const ServoOutputs& o = outputs_;
+  const Vector3d point = frame.origin + frame.rotation * (o.surface_point * frame.speed_factor);
+  const Vector3d normal = frame.rotation * o.surface_normal;
+  vp.surface_point = {point.x(), point.y(), point.z()};
+  vp.surface_normal = {normal.x(), normal.y(), normal.z()};
+  vp.surface_depth = o.surface_depth * frame.speed_factor;
+  vp.surface_force = o.surface_force;
+  vp.surface_hidden = o.surface_hidden * frame.speed_factor;
+  vp.surface_withheld = o.surface_withheld;
+  vp.contact_age_ns = o.contact_age;
+}
+
 StepResult ServoTask::begin(std::uint64_t cycle, TimeNs now, TimeNs dt) noexcept {
   if (!gate_->enter(cycle)) {
     return StepResult::kNotGranted;
@@ -322,6 +336,7 @@ void ServoTask::commit(std::uint64_t cycle, TimeNs now) noexcept {
     vp.max_contact_stiffness = max_contact_stiffness(s.client.speed_factor);
     vp.contacts = outputs_.contacts;
     vp.contacts_rejected = s.contacts_rejected;
+    publish_surface(client_frame_of(s.client), vp);
     s.regions.vp->publish(vp, now);  // the UDP bridge blocks on VP: notify
   }
   if (s.regions.position != nullptr) {

@@ -132,7 +132,7 @@ ServoLaw::Coupling ServoLaw::client_wrench(const ServoInputs& in, const ClientFr
     // of the client's own push out of it and its friction (which come a loop late: a 2000 N/m
     // wall the client rendered moved at 31-689 mm/s from 1 ms one way and gave way from 5 ms,
     // J1 2026-12-03).
-    const Surface surface = local_surface(in, frame, chain, twist, false, coupling);
+    const Surface surface = local_surface(in, frame, chain, twist, false, coupling, out);
     if (surface.share > 0.0) {
       // The client's push out of the surface and along it (its friction) is the surface's,
       // rendered here; a push into it stays the client's.
@@ -210,7 +210,7 @@ ServoLaw::Coupling ServoLaw::client_wrench(const ServoInputs& in, const ClientFr
   // stiffness, the demo's 2000 N/m wall and fixed sphere were felt at 667 N/m at 10 and 20 ms one
   // way; so, at 2000 N/m (J2 end-to-end test, 2026-12-04). The object's own motion along the
   // normal (held by its surface) no longer comes back to the hand.
-  const Surface surface = local_surface(in, frame, chain, twist, true, coupling);
+  const Surface surface = local_surface(in, frame, chain, twist, true, coupling, out);
   if (surface.share > 0.0) {
     const Vector3d& n = surface.normal;
     const double in_force = std::clamp(surface.force / (surface.stiffness * 5e-4), 0.0, 1.0);
@@ -228,9 +228,20 @@ ServoLaw::Coupling ServoLaw::client_wrench(const ServoInputs& in, const ClientFr
 
 ServoLaw::Surface ServoLaw::local_surface(const ServoInputs& in, const ClientFrame& frame,
                                           const ChainState& chain, const Vector6d& twist,
-                                          bool on_object, Coupling& coupling) noexcept {
+                                          bool on_object, Coupling& coupling,
+                                          ServoOutputs& out) noexcept {
   Surface surface = reported_surface(in, frame, chain, on_object);
   render_surface(surface, chain, twist, static_cast<double>(in.dt) * 1e-9);
+  const RenderMemory& m = memory_;
+  out.surface_withheld = m.surface_withheld;
+  out.contact_age = surface.age;
+  if (m.on_surface) {
+    out.surface_normal = surface.normal;
+    out.surface_point = m.surface_point;
+    out.surface_depth = (m.surface_point - chain.handle_position).dot(surface.normal);
+    out.surface_force = surface.force * frame.force_factor;
+    out.surface_hidden = m.surface_hidden;
+  }
   if (surface.weight > 0.0) {
     coupling.contact_in_force = true;
     coupling.contact_whole = surface.weight >= 1.0;
@@ -253,6 +264,7 @@ void ServoLaw::follow_session(const ServoInputs& in) noexcept {
     m.drift.setZero();
     m.gains = CouplingGains{};  // its gains start at their design
     m.held = RenderMemory::HeldContact{};
+    m.surface_withheld = 0.0;
   }
 }
 
@@ -365,6 +377,13 @@ void ServoLaw::compute(const ServoInputs& in, bool /*degraded*/, ServoOutputs& o
   out.normal_stiffness = 0.0;
   out.normal_damping = 0.0;
   out.contacts = 0;
+  out.surface_point.setZero();
+  out.surface_normal.setZero();
+  out.surface_depth = 0.0;
+  out.surface_force = 0.0;
+  out.surface_hidden = 0.0;
+  out.contact_age = -1;
+  out.surface_withheld = memory_.surface_withheld;
   set_limits(in.client, out);
   track_loop_delay(in);
   out.loop_delay = memory_.design_delay;

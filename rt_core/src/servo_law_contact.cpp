@@ -216,6 +216,8 @@ ServoLaw::Surface ServoLaw::reported_surface(const ServoInputs& in, const Client
       continue;
     }
     ++best.fresh;
+    const TimeNs age = in.now - contact.received_ns;
+    best.age = best.age < 0 ? age : std::min(best.age, age);
     const Vector3d normal =
         (to_base * Vector3d(contact.normal[0], contact.normal[1], contact.normal[2])).normalized();
     const Vector3d point =
@@ -281,8 +283,10 @@ void ServoLaw::render_surface(Surface& surface, const ChainState& chain, const V
     m.friction_anchor = handle;
   }
   double rendered = std::clamp(before, 0.0, reported);
-  if (reported - rendered > m.surface_hidden + 1e-9) {
+  if (const double grew = reported - rendered - m.surface_hidden; grew > 1e-9) {
     ++counters_.surface_updates_held;
+    // The spring energy the update would have put in at once, had the plane come with it.
+    m.surface_withheld += surface.weight * surface.stiffness * grew * (rendered + 0.5 * grew);
   }
   // What is hidden comes back (at restretch_speed at most) only as far as the energy the
   // surface dissipated pays for the spring energy it adds (TDPA's budget, Ryu & Hannaford

@@ -67,6 +67,30 @@ TEST(Messages, CouplingCarriesLinkQuality) {
   EXPECT_EQ(m.coupling_wrench[0], 1.5);
 }
 
+TEST(Messages, CouplingCarriesTheSurfaceRenderedOnTheHandle) {
+  shm::VpPayload vp;
+  vp.contacts = 2;
+  vp.surface_point = {0.5, 0.0, 0.2};
+  vp.surface_normal = {-1.0, 0.0, 0.0};
+  vp.surface_depth = 0.005;
+  vp.surface_force = 10.0;
+  vp.surface_hidden = 0.002;
+  vp.surface_withheld = 0.004;
+  vp.contact_age_ns = 3'000'000;
+  auto m = to_coupling(vp, shm::VprPayload{}, shm::TelemetryPayload{}, 0, 0);
+  EXPECT_EQ(m.contacts, 2);
+  EXPECT_EQ(m.surface_point[0], 0.5);
+  EXPECT_EQ(m.surface_normal[0], -1.0);
+  EXPECT_DOUBLE_EQ(m.surface_depth_mm, 5.0);
+  EXPECT_EQ(m.surface_force, 10.0);
+  EXPECT_DOUBLE_EQ(m.surface_hidden_mm, 2.0);
+  EXPECT_EQ(m.surface_withheld, 0.004);
+  EXPECT_DOUBLE_EQ(m.contact_age_ms, 3.0);
+  vp.contact_age_ns = -1;
+  m = to_coupling(vp, shm::VprPayload{}, shm::TelemetryPayload{}, 0, 0);
+  EXPECT_EQ(m.contact_age_ms, -1.0) << "no contact in force";
+}
+
 TEST(Messages, CycleStatsCarryLatenciesAndTheHistogram) {
   shm::TelemetryPayload t;
   t.cycle = 1000;

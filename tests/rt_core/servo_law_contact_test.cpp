@@ -103,6 +103,12 @@ TEST(ServoLawContact, TheHandFeelsTheContactAtItsStiffnessAndTheObjectAStifferCo
       << "the handle pressing 1 cm into the wall is pushed out with the wall's 1600 N/m";
   EXPECT_NEAR(out.coupling_wrench(0), 1600.0 * depth, 0.02 * 16.0)
       << "the object is pressed into its wall with what the hand feels";
+  EXPECT_NEAR(out.surface_normal.x(), -1.0, 1e-9) << "telemetry: the surface rendered";
+  EXPECT_NEAR(out.surface_depth, depth, 1e-9);
+  EXPECT_NEAR(out.surface_force, 1600.0 * depth, 1e-6);
+  EXPECT_EQ(out.surface_hidden, 0.0);
+  EXPECT_GE(out.contact_age, 0);
+  EXPECT_LE(out.contact_age, kNsPerMs);
 }
 
 TEST(ServoLawContact, TheWallsStiffnessIsFeltWhateverTheLoopAndBoundedByTheDevice) {
@@ -332,6 +338,10 @@ TEST(ServoLawSurface, APlaneThatJumpsIntoTheHandleStepsNothingAndOneThatLeavesLe
   EXPECT_LT(trace.largest_step, 1.0) << "N per 1 ms cycle";
   EXPECT_NEAR(trace.least, -2000.0 * depth, 0.05) << "the still hand feels what it felt";
   EXPECT_NEAR(trace.most, -2000.0 * depth, 0.05);
+  ServoOutputs out = run_on_contacts(law, in, 1);
+  EXPECT_NEAR(out.surface_hidden, 0.005, 1e-6) << "telemetry: the jump held back";
+  EXPECT_NEAR(out.surface_withheld, 2000.0 * 0.005 * (depth + 0.0025), 1e-4)
+      << "J: what the jump would have stored in the spring at once";
   in.client.contacts[0].point[0] += 0.008;  // then 8 mm away: 2 mm of the 5 are left
   EXPECT_NEAR(run_on_contacts(law, in, 50).handle_wrench.x(), -2000.0 * (depth - 0.003), 0.05);
 }

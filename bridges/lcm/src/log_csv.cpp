@@ -102,7 +102,9 @@ std::map<std::string, Topic> topics() {
           columns("object_twist_", kVec6) + columns("wrench_", kVec6) + columns("handle_", kPose) +
           ",client_sequence,client_age_ms,client_stale,vpr_stale_cycles,"
           "sample_age_ms,loop_delay_ms,link_delay_ms,link_jitter_ms,link_loss" +
-          columns("gain_", {"k_lin", "b_lin", "k_ang", "b_ang"}),
+          columns("gain_", {"k_lin", "b_lin", "k_ang", "b_ang"}) + ",contacts" +
+          columns("surface_point_", {"x", "y", "z"}) + columns("surface_normal_", {"x", "y", "z"}) +
+          ",surface_depth_mm,surface_force,surface_hidden_mm,surface_withheld,contact_age_ms",
       [](const void* d, int n, Row& r) {
         hapticctrl_lcm::coupling_t m{};
         if (!decode(d, n, m)) {
@@ -118,6 +120,11 @@ std::map<std::string, Topic> topics() {
           << ',' << m.vpr_stale_cycles << ',' << m.sample_age_ms << ',' << m.loop_delay_ms << ','
           << m.link_delay_ms << ',' << m.link_jitter_ms << ',' << m.link_loss;
         put(r, m.gains);
+        r << ',' << m.contacts;
+        put(r, m.surface_point);
+        put(r, m.surface_normal);
+        r << ',' << m.surface_depth_mm << ',' << m.surface_force << ',' << m.surface_hidden_mm
+          << ',' << m.surface_withheld << ',' << m.contact_age_ms;
         return true;
       }};
   std::string histogram;

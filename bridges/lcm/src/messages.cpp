@@ -74,6 +74,14 @@ hapticctrl_lcm::coupling_t to_coupling(const shm::VpPayload& vp, const shm::VprP
   m.channel_energy_in = vp.channel_energy_in;
   m.channel_energy_out = vp.channel_energy_out;
   m.client_energy_in = vpr.client_energy_in;
+  m.contacts = static_cast<std::int32_t>(vp.contacts);
+  copy(vp.surface_point, m.surface_point);
+  copy(vp.surface_normal, m.surface_normal);
+  m.surface_depth_mm = vp.surface_depth * 1e3;
+  m.surface_force = vp.surface_force;
+  m.surface_hidden_mm = vp.surface_hidden * 1e3;
+  m.surface_withheld = vp.surface_withheld;
+  m.contact_age_ms = vp.contact_age_ns >= 0 ? static_cast<double>(vp.contact_age_ns) / 1e6 : -1.0;
   return m;
 }
 

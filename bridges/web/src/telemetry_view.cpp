@@ -45,7 +45,14 @@ Json coupling_json(const hapticctrl_lcm::coupling_t& m) {
           {"object_pose", array_of(m.object_pose)},
           {"coupling_wrench", array_of(m.coupling_wrench)},
           {"client_age_ms", m.client_age_ms},
-          {"client_stale", m.client_stale}};
+          {"client_stale", m.client_stale},
+          {"contacts", m.contacts},
+          {"surface_point", array_of(m.surface_point)},
+          {"surface_normal", array_of(m.surface_normal)},
+          {"surface_depth_mm", m.surface_depth_mm},
+          {"surface_force", m.surface_force},
+          {"surface_hidden_mm", m.surface_hidden_mm},
+          {"contact_age_ms", m.contact_age_ms}};
 }
 
 Json stats_json(const hapticctrl_lcm::cycle_stats_t& m, const StatsInterval& interval) {

@@ -219,6 +219,12 @@ function showState(frame) {
   $('contact').textContent = scene
     ? `${vec3(scene.contact_force, 2, ' N')} · ${(scene.penetration * 1000).toFixed(2)} mm`
     : 'no scene (a running hapticctrl-demo publishes it)';
+  const surface = coupling && coupling.contact_age_ms >= 0;
+  $('surface').textContent = surface
+    ? `${coupling.surface_force.toFixed(2)} N · ${coupling.surface_depth_mm.toFixed(2)} mm deep` +
+      ` · ${coupling.contacts} contact(s), newest ${coupling.contact_age_ms.toFixed(0)} ms old` +
+      (coupling.surface_hidden_mm > 0.05 ? ` · ${coupling.surface_hidden_mm.toFixed(1)} mm held back` : '')
+    : 'none reported';
 }
 
 function addEvents(events) {

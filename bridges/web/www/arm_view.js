@@ -9,6 +9,8 @@ const NEWTONS_TO_METRES = 0.01; // arrow length per newton: 10 N draws 10 cm
 const SMALLEST_ARROW_N = 0.05;
 const MIN_RENDER_INTERVAL_MS = 40; // at most 25 frames a second
 const MOBILE_FREE = 0x2ecc71; // the demo's sphere coupled to the handle
+const SURFACE_COLOUR = 0x3fa9f5; // the surface rendered on the handle (J2)
+const SURFACE_SIZE_M = 0.1;
 const MOBILE_TOUCHING = 0xff8a3d;
 const COLOURS = { operator: 0xf0c040, rendered: 0xff4fd8, contact: 0x40d0ff };
 
@@ -82,6 +84,16 @@ export class ArmView {
     this.mobileSphere.add(new THREE.AxesHelper(1.3)); // shows the sphere's rotation
     this.fixedSphere.visible = this.mobileSphere.visible = false;
     this.scene.add(this.fixedSphere, this.mobileSphere);
+    // The surface the controller renders on the handle in its servo cycle (J2): a square of the
+    // plane through its point, drawn through the scene's spheres like the arrows.
+    this.surface = new THREE.Mesh(new THREE.PlaneGeometry(SURFACE_SIZE_M, SURFACE_SIZE_M),
+      new THREE.MeshBasicMaterial({ color: SURFACE_COLOUR, transparent: true, opacity: 0.35,
+        side: THREE.DoubleSide, depthWrite: false }));
+    this.surface.add(new THREE.LineSegments(
+      new THREE.EdgesGeometry(new THREE.PlaneGeometry(SURFACE_SIZE_M, SURFACE_SIZE_M)),
+      new THREE.LineBasicMaterial({ color: SURFACE_COLOUR })));
+    this.surface.visible = false;
+    this.scene.add(this.surface);
     this.framesRendered = 0;
     // Render on demand (new telemetry, camera moved, resize), not at the display's full rate:
     // software WebGL on the controller's own host would otherwise take CPU from the cycle
@@ -161,6 +173,18 @@ export class ArmView {
       setArrow(this.arrows.rendered, handle, arm.coupling_wrench);
     }
     this.updateScene(frame.scene);
+    this.updateSurface(frame.coupling);
+  }
+
+  /** The rendered surface's plane, when there is one (its normal is not zero). */
+  updateSurface(coupling) {
+    const n = coupling?.surface_normal;
+    const normal = n ? new THREE.Vector3(n[0], n[1], n[2]) : new THREE.Vector3();
+    this.surface.visible = normal.lengthSq() > 0.5;
+    if (!this.surface.visible) return;
+    this.surface.position.copy(vec(coupling.surface_point));
+    this.surface.quaternion.setFromUnitVectors(new THREE.Vector3(0, 0, 1), normal.normalize());
+    this.surface.material.opacity = coupling.surface_force > 0 ? 0.55 : 0.25;
   }
 
   updateScene(scene) {

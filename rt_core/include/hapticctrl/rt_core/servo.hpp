@@ -197,6 +197,8 @@ class ServoTask {
   /// The stiffest contact the device renders, in the client's units (N per client metre).
   [[nodiscard]] double max_contact_stiffness(double speed_factor) const noexcept;
   void commit(std::uint64_t cycle, TimeNs now) noexcept;
+  /// The surface rendered on the handle, into VP in the client's frame and units.
+  void publish_surface(const ClientFrame& frame, shm::VpPayload& vp) const noexcept;
 
   CycleGate* gate_;
   GateOwnedState* state_;

@@ -80,6 +80,16 @@ struct ServoOutputs {
   double normal_stiffness = 0.0;
   double normal_damping = 0.0;
   std::uint32_t contacts = 0;  ///< the client's contacts in force (fresh)
+  /// The reported surface rendered on the handle (base frame; normal zero: none): a point on
+  /// the plane as rendered, how deep the handle's point is in it, its force along the normal,
+  /// the depth a model update hid, and the age of the newest contact in force (-1: none).
+  Vector3d surface_point = Vector3d::Zero();
+  Vector3d surface_normal = Vector3d::Zero();
+  double surface_depth = 0.0;
+  double surface_force = 0.0;
+  double surface_hidden = 0.0;
+  TimeNs contact_age = -1;
+  double surface_withheld = 0.0;  ///< J this session: what hidden depth kept from the hand
   double force_limit = 0.0;    ///< the coupling's force and torque limits in force
   double torque_limit = 0.0;
   /// Two-port passivity, the core's end of the channel (J since the session began).
@@ -207,6 +217,7 @@ struct RenderMemory {
   Vector3d surface_point = Vector3d::Zero();
   Vector3d surface_normal = Vector3d::Zero();
   double surface_budget = 0.0;
+  double surface_withheld = 0.0;  ///< J this session (ServoOutputs::surface_withheld)
   Vector3d friction_anchor = Vector3d::Zero();
   /// The contact the coupling rendered last on a fresh link, wholly engaged: rendered for the
   /// handle while the link is silent (ServoLaw::held_contact_force), as the surface the hand
@@ -302,6 +313,7 @@ class ServoLaw {
     double stiffness = 0.0;  ///< N/m, base metres
     double damping = 0.0;    ///< N.s/m
     std::uint32_t fresh = 0;
+    TimeNs age = -1;  ///< of the newest fresh contact (our clock); -1: none
   };
   /// Where the client's object is now, as the coupling sees it (base frame).
   struct ObjectImage {
@@ -341,7 +353,8 @@ class ServoLaw {
                       double dt) noexcept;
   /// The reported surface rendered for the handle, noted in `coupling` as its contact.
   Surface local_surface(const ServoInputs& in, const ClientFrame& frame, const ChainState& chain,
-                        const Vector6d& twist, bool on_object, Coupling& coupling) noexcept;
+                        const Vector6d& twist, bool on_object, Coupling& coupling,
+                        ServoOutputs& out) noexcept;
   /// Notes the contact in force while the link is fresh and the coupling whole (or forgets it
   /// when none is), for held_contact_force.
   void hold_contact(const ServoInputs& in, const Coupling& coupling, double engage) noexcept;

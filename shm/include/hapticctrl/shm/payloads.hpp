@@ -171,6 +171,18 @@ struct VpPayload {
   double max_contact_stiffness = 0.0;   ///< N/m, the stiffest contact the core accepts
   std::uint32_t contacts = 0;           ///< contact slots in force (fresh)
   std::uint32_t contacts_rejected = 0;  ///< contacts refused this session (stiffer than the limit)
+  /// J2: the reported surface the core renders on the handle (client frame; normal 0 0 0: none):
+  /// a point on the plane as rendered and its normal, how deep the handle's point is in it as
+  /// rendered, the force it renders along the normal, how much of the reported depth a model
+  /// update hid (passive updates), the age of the newest contact in force (-1: none) and the
+  /// energy the hidden depth withheld from the hand this session.
+  std::array<double, 3> surface_point{};
+  std::array<double, 3> surface_normal{};
+  double surface_depth = 0.0;    ///< m
+  double surface_force = 0.0;    ///< N
+  double surface_hidden = 0.0;   ///< m
+  double surface_withheld = 0.0; ///< J
+  std::int64_t contact_age_ns = -1;
 };
 
 /// A spring-damper hand gripping the simulated handle: it pulls the handle point towards
@@ -310,7 +322,7 @@ struct LinkStatsPayload {
 // Layout pins: a change here is an ABI change (bump kAbiVersion in layout.hpp).
 static_assert(sizeof(ContactSlot) == 160);
 static_assert(sizeof(VprPayload) == 1752);
-static_assert(sizeof(VpPayload) == 448);
+static_assert(sizeof(VpPayload) == 536);
 static_assert(sizeof(ForcePayload) == 112);
 static_assert(sizeof(PositionPayload) == 360);
 static_assert(sizeof(LatencySummary) == 64);

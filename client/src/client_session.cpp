@@ -262,10 +262,10 @@ double ClientSession::contact_penetration() const noexcept {
   double deepest = 0.0;
   for (std::uint32_t i = 0; i < contact_count_ && length > 1e-6; ++i) {
     const hcp_contact& c = contacts_[i];
-    const double along = (static_cast<double>(c.normal[0]) * nx +
-                          static_cast<double>(c.normal[1]) * ny +
-                          static_cast<double>(c.normal[2]) * nz) /
-                         length;
+    const double along =
+        (static_cast<double>(c.normal[0]) * nx + static_cast<double>(c.normal[1]) * ny +
+         static_cast<double>(c.normal[2]) * nz) /
+        length;
     if (along > 0.9) {
       deepest = std::max(deepest, -static_cast<double>(c.distance));
     }

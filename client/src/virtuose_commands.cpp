@@ -102,8 +102,8 @@ int virtSetContacts(VirtContext VC, int count, float* contacts) {
   const auto n = static_cast<std::size_t>(count);
   for (std::size_t i = 0; i < n; ++i) {
     const float* f = contacts + i * VIRT_CONTACT_FLOATS;
-    const hapticctrl::client::Pose7 point = vc->indexing.to_physical(
-        handle, hapticctrl::client::Pose7{f[0], f[1], f[2], 0, 0, 0, 1});
+    const hapticctrl::client::Pose7 point =
+        vc->indexing.to_physical(handle, hapticctrl::client::Pose7{f[0], f[1], f[2], 0, 0, 0, 1});
     Contact& c = taken.at(i);
     c.point = {point[0], point[1], point[2]};
     c.normal = {f[3], f[4], f[5]};

@@ -365,8 +365,9 @@ class DemoRun {
     const client::LinkStatistics link = c_->statistics();
     const double near =
         kContactNear + kReachSpeed * 2e-6 * std::max(link.rtt_mean_us, link.loop_delay_us);
-    std::optional<client::Contact> contact =
-        scene_->contact_report(std::numeric_limits<double>::infinity(), link.max_contact_stiffness);
+    const Eigen::Vector3d handle(s_.handle_pose[0], s_.handle_pose[1], s_.handle_pose[2]);
+    std::optional<client::Contact> contact = scene_->contact_report_toward(
+        handle, std::numeric_limits<double>::infinity(), link.max_contact_stiffness);
     if (contact) {
       const client::Pose7 object = scene_->pose();
       double lead = 0.0;  // how far the handle is ahead of the object toward the surface

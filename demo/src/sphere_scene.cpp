@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -190,6 +191,33 @@ std::optional<client::Contact> SphereScene::contact_report(double near,
   out.damping = config_.contact_damping;
   out.friction_static = config_.friction;
   out.friction_dynamic = config_.friction;
+  return out;
+}
+
+std::optional<client::Contact> SphereScene::contact_report_toward(
+    const Eigen::Vector3d& probe, double near, double max_stiffness) const noexcept {
+  // Mark et al. 1996: the local plane is the surface's tangent plane nearest the haptic probe.
+  // Tangent at the mobile sphere instead, behind a 10 ms cycle (a soft coupling) the plane
+  // turned under the handle as the sphere rolled off the fixed one, and the handle slid off with
+  // it (2026-12-04).
+  std::optional<client::Contact> out = contact_report(near, max_stiffness);
+  const Eigen::Vector3d toward = probe - config_.fixed_center;
+  if (config_.obstacle == Obstacle::kWall || toward.norm() <= 0.0) {
+    return out;
+  }
+  const Eigen::Vector3d n = toward.normalized();
+  const double gap = (state_.position - config_.fixed_center).dot(n) - config_.fixed_radius -
+                     config_.mobile_radius;
+  if (gap > near) {
+    return std::nullopt;
+  }
+  if (!out) {
+    out = contact_report(std::numeric_limits<double>::infinity(), max_stiffness);
+  }
+  const Eigen::Vector3d point = state_.position - config_.mobile_radius * n;
+  out->point = {point.x(), point.y(), point.z()};
+  out->normal = {n.x(), n.y(), n.z()};
+  out->distance = gap;
   return out;
 }
 

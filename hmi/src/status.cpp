@@ -134,8 +134,7 @@ std::string status_json(const ControllerStatus& s) {
     out << ",\"surface\":{\"depth_mm\":" << JsonNumber{s.vp.surface_depth * 1e3}
         << ",\"force\":" << JsonNumber{s.vp.surface_force}
         << ",\"hidden_mm\":" << JsonNumber{s.vp.surface_hidden * 1e3}
-        << ",\"withheld_j\":" << JsonNumber{s.vp.surface_withheld}
-        << ",\"contact_age_ms\":"
+        << ",\"withheld_j\":" << JsonNumber{s.vp.surface_withheld} << ",\"contact_age_ms\":"
         << (s.vp.contact_age_ns >= 0 ? static_cast<double>(s.vp.contact_age_ns) / 1e6 : -1.0)
         << ",";
     json_array(out, "point", s.vp.surface_point);

@@ -418,8 +418,8 @@ void ServoLaw::compute(const ServoInputs& in, bool /*degraded*/, ServoOutputs& o
   const double damper_share = std::min(1.0, engage * static_cast<double>(config_.engage_duration) /
                                                 static_cast<double>(config_.hold_release));
   Vector6d target = parts.spring * engage + parts.damper * damper_share;
-  const SaturatedParts object_parts = saturate_parts(
-      coupling.object_spring, coupling.object_damper, out.force_limit, out.torque_limit);
+  const SaturatedParts object_parts = saturate_parts(coupling.object_spring, coupling.object_damper,
+                                                     out.force_limit, out.torque_limit);
   // The object's side of the coupling: the same spring (re-anchored alike: on the true stretch,
   // the object got the spring the handle's motion through a 300 ms blackout had stored, 33 N at
   // once, an energy the channel made; the weighted sphere flew past the handle and pulled it up,

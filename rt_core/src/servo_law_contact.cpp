@@ -203,10 +203,10 @@ ServoLaw::Surface ServoLaw::reported_surface(const ServoInputs& in, const Client
   const ClientSample& c = in.client;
   const Matrix3d to_base = frame.rotation.conjugate().toRotationMatrix();
   const double period = static_cast<double>(in.dt) * 1e-9;
-  const double bound =
-      period > 0.0 ? std::min(lim.max_stiffness_linear,
-                              config_.surface_bound_share * 2.0 * lim.max_damping_linear / period)
-                   : lim.max_stiffness_linear;
+  const double bound = period > 0.0
+                           ? std::min(lim.max_stiffness_linear, config_.surface_bound_share * 2.0 *
+                                                                    lim.max_damping_linear / period)
+                           : lim.max_stiffness_linear;
   Surface best;
   double deepest = -std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < std::min<std::size_t>(c.contact_count, c.contacts.size()); ++i) {
@@ -221,17 +221,16 @@ ServoLaw::Surface ServoLaw::reported_surface(const ServoInputs& in, const Client
     const Vector3d normal =
         (to_base * Vector3d(contact.normal[0], contact.normal[1], contact.normal[2])).normalized();
     const Vector3d point =
-        on_object
-            ? Vector3d(to_base *
-                           (Vector3d(contact.object_pose[0], contact.object_pose[1],
-                                     contact.object_pose[2]) -
-                            frame.origin) /
-                           frame.speed_factor -
-                       contact.distance / frame.speed_factor * normal)
-            : Vector3d(to_base *
-                       (Vector3d(contact.point[0], contact.point[1], contact.point[2]) -
-                        frame.origin) /
-                       frame.speed_factor);
+        on_object ? Vector3d(to_base *
+                                 (Vector3d(contact.object_pose[0], contact.object_pose[1],
+                                           contact.object_pose[2]) -
+                                  frame.origin) /
+                                 frame.speed_factor -
+                             contact.distance / frame.speed_factor * normal)
+                  : Vector3d(to_base *
+                             (Vector3d(contact.point[0], contact.point[1], contact.point[2]) -
+                              frame.origin) /
+                             frame.speed_factor);
     const double depth = (point - chain.handle_position).dot(normal);
     if (depth <= deepest) {
       continue;

@@ -62,8 +62,8 @@ TEST(VirtuoseCommands, ContactsReachTheControllerWithTheObjectAndBadOnesAreRefus
   ASSERT_TRUE(vc.open()) << virtGetErrorDetail(nullptr);
   std::array<float, 7> pose{};
   ASSERT_EQ(virtGetPosition(vc.get(), pose.data()), 0);
-  std::array<float, VIRT_CONTACT_FLOATS> wall{
-      pose[0] + 0.03F, pose[1], pose[2], -1, 0, 0, 0.002F, 2000, 5, 0.5F, 0.4F};
+  std::array<float, VIRT_CONTACT_FLOATS> wall{pose[0] + 0.03F, pose[1], pose[2], -1,   0,   0,
+                                              0.002F,          2000,    5,       0.5F, 0.4F};
   EXPECT_EQ(virtSetContacts(vc.get(), 1, wall.data()), -1) << "COMMAND_TYPE_NONE";
   EXPECT_EQ(virtGetErrorCode(vc.get()), VIRT_E_WRONG_MODE);
   ASSERT_EQ(virtSetCommandType(vc.get(), COMMAND_TYPE_VIRTMECH), 0);

@@ -47,6 +47,39 @@ TEST(SphereScene, PushedOntoTheFixedSphereItComesToRestWithTheContactBalancingTh
   EXPECT_LT(scene.state().velocity.norm(), 1e-5);
 }
 
+TEST(SphereScene, TheContactReportIsTheFixedSphereTangentPlaneTowardTheHandle) {
+  SphereScene scene(touching_scene(), {});  // mobile at the origin, fixed at x = 0.1: 4 cm gap
+  EXPECT_FALSE(scene.contact_report(0.01, 0.0)) << "4 cm away: nothing within 1 cm";
+  const auto ahead = scene.contact_report(0.05, 1500.0);
+  ASSERT_TRUE(ahead);
+  EXPECT_NEAR(ahead->distance, 0.04, 1e-12);
+  EXPECT_NEAR(ahead->normal[0], -1.0, 1e-12) << "the surface pushes the object back along -x";
+  EXPECT_NEAR(ahead->point[0], 0.03, 1e-12) << "on the mobile sphere, facing the fixed one";
+  EXPECT_DOUBLE_EQ(ahead->stiffness, 1500.0) << "clamped to the controller's limit";
+
+  // The handle 45 degrees off the line of centres, 2 cm out from the fixed sphere: the plane
+  // turns to face it (Mark et al. 1996), the mobile sphere's gap measured along that normal.
+  const Eigen::Vector3d fixed = scene.config().fixed_center;
+  const Eigen::Vector3d toward = Eigen::Vector3d(-1.0, 1.0, 0.0).normalized();
+  const Eigen::Vector3d handle = fixed + 0.05 * toward;
+  const auto tangent = scene.contact_report_toward(handle, 0.1, 0.0);
+  ASSERT_TRUE(tangent);
+  const Eigen::Vector3d n(tangent->normal[0], tangent->normal[1], tangent->normal[2]);
+  EXPECT_NEAR((n - toward).norm(), 0.0, 1e-12);
+  const double gap = (Eigen::Vector3d::Zero() - fixed).dot(toward) - 0.03 - 0.03;
+  EXPECT_NEAR(tangent->distance, gap, 1e-12);
+  EXPECT_FALSE(scene.contact_report_toward(handle, gap - 1e-3, 0.0)) << "farther than near";
+
+  SceneConfig wall = touching_scene();
+  wall.obstacle = Obstacle::kWall;
+  SphereScene walled(wall, {});
+  const auto plane = walled.contact_report(1.0, 0.0);
+  const auto same = walled.contact_report_toward(handle, 1.0, 0.0);
+  ASSERT_TRUE(plane && same);
+  EXPECT_EQ(plane->normal, same->normal) << "a wall is one plane wherever the handle is";
+  EXPECT_EQ(plane->distance, same->distance);
+}
+
 TEST(SphereScene, ContactNeverPullsAndBouncingLosesEnergy) {
   SphereState start;
   start.velocity = {0.2, 0, 0};  // coasting into the fixed sphere, 4 cm away

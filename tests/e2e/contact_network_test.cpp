@@ -587,20 +587,19 @@ TEST_P(LocalContact, TheSurfaceIsFeltAtItsStiffnessAtAnyDelay) {
 
 INSTANTIATE_TEST_SUITE_P(
     J2, LocalContact,
-    ::testing::Values(
-        LocalCase{"wall2000_direct", wall_demo(2000, "x"), 2000, {}},
-        LocalCase{"wall2000_delay10ms_loss10_jitter2",
-                  wall_demo(2000, "x"),
-                  2000,
-                  {"--delay-ms", "10", "--loss", "0.1", "--jitter-ms", "2"}},
-        LocalCase{"wall2000_delay100ms_loss10_jitter2",
-                  wall_demo(2000, "x"),
-                  2000,
-                  {"--delay-ms", "100", "--loss", "0.1", "--jitter-ms", "2"}},
-        LocalCase{"sphere_delay20ms_loss10_jitter2",
-                  {"--toward", "x", "--gap", "0"},
-                  2000,
-                  {"--delay-ms", "20", "--loss", "0.1", "--jitter-ms", "2"}}),
+    ::testing::Values(LocalCase{"wall2000_direct", wall_demo(2000, "x"), 2000, {}},
+                      LocalCase{"wall2000_delay10ms_loss10_jitter2",
+                                wall_demo(2000, "x"),
+                                2000,
+                                {"--delay-ms", "10", "--loss", "0.1", "--jitter-ms", "2"}},
+                      LocalCase{"wall2000_delay100ms_loss10_jitter2",
+                                wall_demo(2000, "x"),
+                                2000,
+                                {"--delay-ms", "100", "--loss", "0.1", "--jitter-ms", "2"}},
+                      LocalCase{"sphere_delay20ms_loss10_jitter2",
+                                {"--toward", "x", "--gap", "0"},
+                                2000,
+                                {"--delay-ms", "20", "--loss", "0.1", "--jitter-ms", "2"}}),
     [](const auto& p) { return std::string(p.param.name); });
 
 class LocalFriction : public ::testing::TestWithParam<LocalCase> {};
@@ -661,14 +660,14 @@ TEST_P(LocalFriction, SlidingAlongTheSurfaceRendersItsCoulombFriction) {
   });
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    J2, LocalFriction,
-    ::testing::Values(LocalCase{"wall_direct", wall_demo(2000, "x"), 2000, {}},
-                      LocalCase{"wall_delay20ms_loss10_jitter2",
-                                wall_demo(2000, "x"),
-                                2000,
-                                {"--delay-ms", "20", "--loss", "0.1", "--jitter-ms", "2"}}),
-    [](const auto& p) { return std::string(p.param.name); });
+INSTANTIATE_TEST_SUITE_P(J2, LocalFriction,
+                         ::testing::Values(LocalCase{"wall_direct", wall_demo(2000, "x"), 2000, {}},
+                                           LocalCase{"wall_delay20ms_loss10_jitter2",
+                                                     wall_demo(2000, "x"),
+                                                     2000,
+                                                     {"--delay-ms", "20", "--loss", "0.1",
+                                                      "--jitter-ms", "2"}}),
+                         [](const auto& p) { return std::string(p.param.name); });
 
 }  // namespace
 }  // namespace hapticctrl::test

@@ -146,6 +146,34 @@ test('a small force shows as an arrow drawn over the sphere the handle sits in',
   assert.ok(await until(() => Math.abs(stack.status().operator_wrench[2]) < 0.1), 'the force was not released');
 });
 
+test('the surface the controller renders on the handle is drawn while the hand pushes on it', async () => {
+  // J2: pushed along +x onto the demo's fixed sphere (about 1 cm away), the handle meets its
+  // surface, which the controller renders in its servo cycle: the page draws its plane and says
+  // what it renders.
+  await page.locator('[data-testid=slider-Fx]').fill('5');
+  try {
+    const surface = () => page.evaluate(() => {
+      const v = window.hapticctrl.view;
+      const c = window.hapticctrl.frame?.coupling;
+      return { visible: !!v?.surface.visible, force: c?.surface_force ?? 0,
+        normal: c?.surface_normal, text: document.getElementById('surface').textContent };
+    });
+    const s = await until(async () => {
+      const now = await surface();
+      return now.visible && now.force > 4 ? now : null;
+    }, { timeoutMs: 8000 });
+    assert.ok(s, `no rendered surface: ${JSON.stringify(await surface())}`);
+    // (The earlier tests left the handle off the line of centres: the normal is the sphere's
+    // there, not -x.)
+    assert.ok(Math.abs(Math.hypot(...s.normal) - 1) < 1e-3, `a unit normal: ${JSON.stringify(s.normal)}`);
+    assert.match(s.text, /N · [0-9.]+ mm deep/);
+    await shot('03-surface');
+  } finally {
+    await page.click('[data-testid=release]'); // a failure here must not hold 5 N into the next test
+  }
+  assert.ok(await until(() => Math.abs(stack.status().operator_wrench[0]) < 0.1), 'the force was not released');
+});
+
 test('the emergency stop button latches the stop, and reset clears it', async () => {
   await page.click('[data-testid=estop]');
   assert.ok(await until(() => stack.status().emergency_stop), 'the e-stop did not latch');

@@ -81,6 +81,12 @@ class SphereScene {
   /// damping and friction. Nothing when farther apart.
   [[nodiscard]] std::optional<client::Contact> contact_report(double near,
                                                               double max_stiffness) const noexcept;
+  /// The same, with the fixed sphere's surface as the plane tangent to it toward `probe` (the
+  /// handle, which the controller renders the plane for: J2) instead of toward the mobile
+  /// sphere, which a soft coupling lets lag the handle; `distance` is the mobile sphere's gap to
+  /// that plane. A wall is the same plane either way.
+  [[nodiscard]] std::optional<client::Contact> contact_report_toward(
+      const Eigen::Vector3d& probe, double near, double max_stiffness) const noexcept;
   /// IMPEDANCE (protocol 1.3): the same surface as a plane for the mobile sphere's centre (the
   /// handle's point): `point` is where the centre touches it, the sphere's radius taken in.
   [[nodiscard]] std::optional<client::Contact> surface_for_center(

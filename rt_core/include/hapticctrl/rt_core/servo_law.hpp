@@ -90,7 +90,7 @@ struct ServoOutputs {
   double surface_hidden = 0.0;
   TimeNs contact_age = -1;
   double surface_withheld = 0.0;  ///< J this session: what hidden depth kept from the hand
-  double force_limit = 0.0;    ///< the coupling's force and torque limits in force
+  double force_limit = 0.0;       ///< the coupling's force and torque limits in force
   double torque_limit = 0.0;
   /// Two-port passivity, the core's end of the channel (J since the session began).
   double channel_energy_in = 0.0;
@@ -325,8 +325,8 @@ class ServoLaw {
   /// The stiffening along the dominant contact (base frame).
   struct Stiffening {
     Vector3d normal = Vector3d::Zero();
-    double share = 0.0;   ///< how much of the contact is in force (fresh, touching): 0..1
-    double weight = 0.0;  ///< how fresh it is: 0..1 (contact_fresh, contact_fade)
+    double share = 0.0;      ///< how much of the contact is in force (fresh, touching): 0..1
+    double weight = 0.0;     ///< how fresh it is: 0..1 (contact_fresh, contact_fade)
     double stiffness = 0.0;  ///< added to the handle's coupling (its share not replaced)
     double damping = 0.0;
     /// Added to the object's, on the handle's depth in the surface (the stretch along the normal

@@ -178,10 +178,10 @@ struct VpPayload {
   /// energy the hidden depth withheld from the hand this session.
   std::array<double, 3> surface_point{};
   std::array<double, 3> surface_normal{};
-  double surface_depth = 0.0;    ///< m
-  double surface_force = 0.0;    ///< N
-  double surface_hidden = 0.0;   ///< m
-  double surface_withheld = 0.0; ///< J
+  double surface_depth = 0.0;     ///< m
+  double surface_force = 0.0;     ///< N
+  double surface_hidden = 0.0;    ///< m
+  double surface_withheld = 0.0;  ///< J
   std::int64_t contact_age_ns = -1;
 };
 

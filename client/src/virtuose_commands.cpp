@@ -1,5 +1,6 @@
 // The C API's per-cycle commands: the virtual object's state (VIRTMECH) or the wrench
 // (IMPEDANCE), sent at once, or after the periodic function when a loop runs.
+#include <algorithm>
 #include <array>
 #include <span>
 
@@ -101,7 +102,8 @@ int virtSetContacts(VirtContext VC, int count, float* contacts) {
   std::array<Contact, VIRT_MAX_CONTACTS> taken{};
   const auto n = static_cast<std::size_t>(count);
   for (std::size_t i = 0; i < n; ++i) {
-    const float* f = contacts + i * VIRT_CONTACT_FLOATS;
+    std::array<double, VIRT_CONTACT_FLOATS> f{};
+    std::copy_n(contacts + i * VIRT_CONTACT_FLOATS, VIRT_CONTACT_FLOATS, f.begin());
     const hapticctrl::client::Pose7 point =
         vc->indexing.to_physical(handle, hapticctrl::client::Pose7{f[0], f[1], f[2], 0, 0, 0, 1});
     Contact& c = taken.at(i);

@@ -32,9 +32,9 @@ ScriptEvent parse_event(const std::string& content, const std::string& where) {
     throw std::invalid_argument(where + "expected 't action [values]'");
   }
   if (!(fields >> action)) {
-    throw std::invalid_argument(where + "missing action (push, twist, release, quit)");
+    throw std::invalid_argument(where + "missing action (push, twist, release, quit, obstacle)");
   }
-  const bool with_values = action == "push" || action == "twist";
+  const bool with_values = action == "push" || action == "twist" || action == "obstacle";
   if (action == "push") {
     e.kind = ScriptEvent::Kind::kPush;
   } else if (action == "twist") {
@@ -43,6 +43,8 @@ ScriptEvent parse_event(const std::string& content, const std::string& where) {
     e.kind = ScriptEvent::Kind::kRelease;
   } else if (action == "quit") {
     e.kind = ScriptEvent::Kind::kQuit;
+  } else if (action == "obstacle") {
+    e.kind = ScriptEvent::Kind::kObstacle;
   } else {
     throw std::invalid_argument(where + "unknown action '" + action + "'");
   }
@@ -53,13 +55,16 @@ ScriptEvent parse_event(const std::string& content, const std::string& where) {
   if (fields >> extra) {
     throw std::invalid_argument(where + "unexpected '" + extra + "'");
   }
-  const double limit = e.kind == ScriptEvent::Kind::kPush ? kMaxAppliedForce : kMaxAppliedTorque;
+  const double limit = e.kind == ScriptEvent::Kind::kPush       ? kMaxAppliedForce
+                      : e.kind == ScriptEvent::Kind::kObstacle ? kMaxObstacleMove
+                                                               : kMaxAppliedTorque;
   if (!std::isfinite(e.t) || e.t < 0.0 || !std::isfinite(e.x) || !std::isfinite(e.y) ||
       !std::isfinite(e.z) || std::abs(e.x) > limit || std::abs(e.y) > limit ||
       std::abs(e.z) > limit) {
     throw std::invalid_argument(
         where + "values must be finite, t >= 0, |force| <= " + std::to_string(kMaxAppliedForce) +
-        " N, |torque| <= " + std::to_string(kMaxAppliedTorque) + " N.m");
+        " N, |torque| <= " + std::to_string(kMaxAppliedTorque) +
+        " N.m, |obstacle move| <= " + std::to_string(kMaxObstacleMove) + " m");
   }
   return e;
 }
@@ -124,7 +129,8 @@ DemoScript DemoScript::load(const std::string& path) {
   return parse(text.str(), path);
 }
 
-InputResult DemoScript::advance(double t, AppliedWrench& applied) noexcept {
+InputResult DemoScript::advance(double t, AppliedWrench& applied,
+                                std::array<double, 3>& obstacle_move) noexcept {
   InputResult result = InputResult::kNone;
   for (; next_ < events_.size() && events_[next_].t <= t; ++next_) {
     const ScriptEvent& e = events_[next_];
@@ -137,6 +143,11 @@ InputResult DemoScript::advance(double t, AppliedWrench& applied) noexcept {
         break;
       case ScriptEvent::Kind::kRelease:
         applied.wrench = {};
+        break;
+      case ScriptEvent::Kind::kObstacle:
+        obstacle_move[0] += e.x;
+        obstacle_move[1] += e.y;
+        obstacle_move[2] += e.z;
         break;
       case ScriptEvent::Kind::kQuit:
         return InputResult::kQuit;

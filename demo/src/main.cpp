@@ -313,10 +313,12 @@ class DemoRun {
   /// the object state sent back, the outputs.
   void step(double dt, std::uint64_t& last_cycle) {
     const double t = elapsed();
-    if (script_ && script_->advance(t, applied_) == demo::InputResult::kQuit) {
+    std::array<double, 3> obstacle_move{};
+    if (script_ && script_->advance(t, applied_, obstacle_move) == demo::InputResult::kQuit) {
       ended_ = "script";
       quit_ = true;
     }
+    scene_->move_obstacle(Eigen::Vector3d(obstacle_move[0], obstacle_move[1], obstacle_move[2]));
     for (int key = keyboard_ ? keyboard_->poll() : -1; key >= 0; key = keyboard_->poll()) {
       if (demo::apply_demo_key(key, applied_) == demo::InputResult::kQuit) {
         ended_ = "quit";

@@ -70,6 +70,12 @@ SphereScene::ContactGains SphereScene::gains_for(double dt) const noexcept {
   return g;
 }
 
+void SphereScene::move_obstacle(const Eigen::Vector3d& by) noexcept {
+  if (by.allFinite()) {
+    config_.fixed_center += by;
+  }
+}
+
 double SphereScene::penetration() const noexcept {
   return std::max(0.0, contact().depth);
 }

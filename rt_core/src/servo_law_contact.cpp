@@ -22,6 +22,11 @@ constexpr double kTouchBand = 1e-3;  // m
 /// faster motion away along a hidden stretch or depth is the handle being carried (m/s).
 constexpr double kCreepSpeed = 0.02;
 
+/// The most dissipated energy a surface keeps to give a hidden depth back with (J): a fifth of
+/// J2's 1 mJ bound on what a model update may put out. A hand that moves on the surface pays as
+/// it goes (sliding 1 cm at 5 N with mu 0.6 dissipates 30 mJ).
+constexpr double kSurfaceBudgetBound = 2e-4;
+
 /// How fast a hidden stretch or depth comes back: `speed` less the handle's own speed away
 /// along it (`leaving`, m/s) beyond the creep, never below zero.
 double return_speed(double speed, double leaving) noexcept {
@@ -311,8 +316,15 @@ void ServoLaw::render_surface(Surface& surface, const ChainState& chain, const V
     m.friction_anchor = handle;
     return;
   }
+  // The budget is what the surface dissipated lately, not in all its history: banked without
+  // bound, the damping of the first touch and of the resting handle's encoder dither paid, when
+  // the wall jumped 5 mm into a handle held still, for pushing it 0.5 mm back out (2.3 mJ out
+  // of the port, 2000 N/m, 2026-12-05).
+  const auto bank = [&m](double dissipated) {
+    m.surface_budget = std::min(m.surface_budget + dissipated, kSurfaceBudgetBound);
+  };
   if (spring - damper > 0.0) {
-    m.surface_budget += surface.weight * engaged * surface.damping * v.dot(n) * v.dot(n) * dt;
+    bank(surface.weight * engaged * surface.damping * v.dot(n) * v.dot(n) * dt);
   }
   // Coulomb friction as a proxy (Zilles & Salisbury 1995; Ruspini et al. 1997): the handle
   // sticks to an anchor on the surface through a tangential spring (the surface's stiffness,
@@ -326,7 +338,7 @@ void ServoLaw::render_surface(Surface& surface, const ChainState& chain, const V
     const double kept = surface.friction_dynamic * surface.force / surface.stiffness;
     const Vector3d slide = slip - slip.normalized() * kept;
     m.friction_anchor += slide;  // slides after the handle, dissipating mu_d F per metre
-    m.surface_budget += surface.friction_dynamic * surface.force * slide.norm();
+    bank(surface.friction_dynamic * surface.force * slide.norm());
     slip = tangential(handle - m.friction_anchor);
   }
   surface.friction = -surface.stiffness * slip - engaged * surface.damping * tangential(v);

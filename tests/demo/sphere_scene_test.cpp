@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 namespace hapticctrl::demo {
 namespace {
 
@@ -78,6 +80,17 @@ TEST(SphereScene, TheContactReportIsTheFixedSphereTangentPlaneTowardTheHandle) {
   ASSERT_TRUE(plane && same);
   EXPECT_EQ(plane->normal, same->normal) << "a wall is one plane wherever the handle is";
   EXPECT_EQ(plane->distance, same->distance);
+}
+
+TEST(SphereScene, AMovedObstacleMovesItsSurface) {
+  SceneConfig c = touching_scene();
+  c.obstacle = Obstacle::kWall;
+  SphereScene scene(c, {});
+  const double before = scene.contact_report(1.0, 0.0)->distance;
+  scene.move_obstacle({-0.005, 0.0, 0.0});
+  EXPECT_NEAR(scene.contact_report(1.0, 0.0)->distance, before - 0.005, 1e-12) << "5 mm nearer";
+  scene.move_obstacle({std::nan(""), 0.0, 0.0});
+  EXPECT_NEAR(scene.config().fixed_center.x(), 0.095, 1e-12) << "a non-finite move is ignored";
 }
 
 TEST(SphereScene, ContactNeverPullsAndBouncingLosesEnergy) {

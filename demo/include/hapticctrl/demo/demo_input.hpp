@@ -7,7 +7,10 @@
 ///
 /// Script file: one event per line, `t action values`, t in seconds from the start, strictly
 /// increasing; `#` comments. Actions: `push fx fy fz` (N, client frame), `twist tx ty tz`
-/// (N.m), `release`, `quit`. A push or twist holds until the next event changes it.
+/// (N.m), `release`, `quit`, and `obstacle dx dy dz`, which moves the obstacle at once by that
+/// much (m, client frame, each at most kMaxObstacleMove): a surface that jumps (J2). A push or
+/// twist holds until the next event changes it.
+#include <array>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -19,6 +22,8 @@ namespace hapticctrl::demo {
 /// Largest force (N) and torque (N.m) the user may apply to the sphere.
 inline constexpr double kMaxAppliedForce = 50.0;
 inline constexpr double kMaxAppliedTorque = 2.0;
+/// Largest move of the obstacle in one script event, per axis (m).
+inline constexpr double kMaxObstacleMove = 0.1;
 
 struct AppliedWrench {
   client::Vector6 wrench{};
@@ -32,7 +37,7 @@ enum class InputResult { kNone, kChanged, kQuit };
 InputResult apply_demo_key(int key, AppliedWrench& applied) noexcept;
 
 struct ScriptEvent {
-  enum class Kind { kPush, kTwist, kRelease, kQuit };
+  enum class Kind { kPush, kTwist, kRelease, kQuit, kObstacle };
   double t = 0.0;
   Kind kind = Kind::kRelease;
   double x = 0.0;
@@ -46,9 +51,11 @@ class DemoScript {
   static DemoScript parse(const std::string& text, const std::string& source);
   static DemoScript load(const std::string& path);
 
-  /// Applies every event due by `t` (seconds from the start). Returns kQuit once a quit event
-  /// is due, kChanged if the wrench changed. Allocation-free.
-  InputResult advance(double t, AppliedWrench& applied) noexcept;
+  /// Applies every event due by `t` (seconds from the start): wrenches to `applied`, obstacle
+  /// moves added to `obstacle_move` (m). Returns kQuit once a quit event is due, kChanged if
+  /// either changed. Allocation-free.
+  InputResult advance(double t, AppliedWrench& applied,
+                      std::array<double, 3>& obstacle_move) noexcept;
   [[nodiscard]] const std::vector<ScriptEvent>& events() const noexcept { return events_; }
 
  private:

@@ -65,6 +65,9 @@ class SphereScene {
 
   [[nodiscard]] const SphereState& state() const noexcept { return state_; }
   [[nodiscard]] const SceneConfig& config() const noexcept { return config_; }
+  /// Moves the obstacle (sphere or wall) by `by` (m, client frame) at once: a surface that
+  /// jumps, for the model updates J2 keeps passive. A non-finite move is ignored.
+  void move_obstacle(const Eigen::Vector3d& by) noexcept;
   /// Contact force the fixed sphere exerts on the mobile one at the current state (N): normal
   /// push plus friction.
   [[nodiscard]] Eigen::Vector3d contact_force() const noexcept;

@@ -16,7 +16,10 @@
 #     stiffness bound and F / K_series (coupling.md); and in contact (bench/contact.sh, J1): the
 #     demo's sphere on a stiff wall (VIRTMECH 3000 and 5000 N/m, an IMPEDANCE client's 2000
 #     N/m) pushed at 10 N, then a hand wandering into and along it, with the two-port balance
-#     (contact.md);
+#     (contact.md); and the local contact models (bench/local_contact.sh, J2): per one-way delay
+#     and loss, the wall and the fixed sphere the demo reports, rendered in the servo cycle
+#     (stiffness felt against the coupling alone in the same run, penetration, a wall jumping
+#     into the handle, mu, a blackout, a wandering hand; local.md);
 #  6. the weighted sphere at rest (bench/gravity_rest.sh, H1): `hapticctrl-demo --gravity`,
 #     nobody touching, 10 minutes (gravity.md);
 #  7. the peers (H8): the seqlock regions against iceoryx, LCM and UDP, cross-process, in one
@@ -24,10 +27,11 @@
 #     stopped and a killed reader), in report.md's section 5.
 #
 # usage: scripts/bench.sh [--out DIR] [--build DIR] [--seconds N] [--long] [--smoke]
-#   default about 95 minutes (8 s per latency run, 15 s per link run, 14 coupling cases of
-#   ~90 s, 48 contact cases of ~70 s, 10 minutes at rest); --long: 60 s and 120 s latency and
-#   link runs; --smoke: 1 s runs, 2 coupling and 2 contact cases with 8 s of hand motion, 20 s
-#   at rest (checks the pipeline, not the machine).
+#   default about 125 minutes (8 s per latency run, 15 s per link run, 14 coupling cases of
+#   ~90 s, 48 contact cases of ~70 s, 16 local-model cases of ~110 s, 10 minutes at rest);
+#   --long: 60 s and 120 s latency and link runs; --smoke: 1 s runs, 2 coupling, 2 contact and
+#   2 local-model cases with 8 s of hand motion, 20 s at rest (checks the pipeline, not the
+#   machine).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 OUT=bench-report BUILD=build LAT_S=8 LINK_S=15 MIN_TIME=0.2 PINGS=20000 SMOKE=
@@ -173,6 +177,8 @@ echo "bench: the coupling over an impaired link (hapticctrl-netem)" >&2
 bench/coupling.sh "$OUT" "$BUILD" $SMOKE
 echo "bench: the coupling in contact (stiff walls, hapticctrl-netem)" >&2
 bench/contact.sh "$OUT" "$BUILD" $SMOKE
+echo "bench: local contact models (J2, hapticctrl-netem)" >&2
+bench/local_contact.sh "$OUT" "$BUILD" $SMOKE
 
 # 6: the weighted sphere at rest.
 echo "bench: the weighted sphere at rest (hapticctrl-demo --gravity)" >&2
@@ -186,7 +192,10 @@ echo "bench: the seqlock regions against iceoryx, LCM and UDP (hapticctrl-bench-
 python3 bench/report.py "$OUT"
 python3 bench/coupling_report.py "$OUT" >/dev/null
 python3 bench/contact_report.py "$OUT" >/dev/null
+python3 bench/local_contact_report.py "$OUT" >/dev/null
 python3 bench/gravity_report.py "$OUT" >/dev/null
-{ echo; cat "$OUT/coupling.md"; echo; cat "$OUT/contact.md"; echo; cat "$OUT/gravity.md"; } \
-  >>"$OUT/report.md"
+{
+  echo; cat "$OUT/coupling.md"; echo; cat "$OUT/contact.md"; echo; cat "$OUT/local.md"
+  echo; cat "$OUT/gravity.md"
+} >>"$OUT/report.md"
 echo "bench: report in $OUT/report.md" >&2

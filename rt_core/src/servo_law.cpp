@@ -205,21 +205,20 @@ ServoLaw::Coupling ServoLaw::client_wrench(const ServoInputs& in, const ClientFr
   coupling.spring *= scale;
   coupling.damper *= scale;
   // ... and the hand the surface the object touches, rendered here at the surface's stiffness
-  // with no delay in its loop, in place of the coupling's push out of the surface and along it;
-  // the coupling's pull into it stays. Through the coupling stiffened to half the surface's
-  // stiffness, the demo's 2000 N/m wall and fixed sphere were felt at 667 N/m at 10 and 20 ms one
-  // way; so, at 2000 N/m (J2 end-to-end test, 2026-12-04). The object's own motion along the
-  // normal (held by its surface) no longer comes back to the hand.
+  // with no delay in its loop, in place of the coupling's force (along the normal and along the
+  // surface, where the friction proxy acts) while the surface pushes. Through the coupling
+  // stiffened to half the surface's stiffness, the demo's 2000 N/m wall and fixed sphere were
+  // felt at 667 N/m at 10 and 20 ms one way; so, at 2000 N/m (J2 end-to-end test, 2026-12-04).
+  // The object's own motion along the normal (held by its surface) does not come back to the
+  // hand: with the coupling's pull into the surface kept, an object the wall had kicked away
+  // during a 0.5 s blackout came back deeper than the handle and pulled it in (the felt 5 N fell
+  // to 2 N, then rose to 7.4 N in steps of 1.3 N per cycle; 10 ms one way, 2026-12-05).
   const Surface surface = local_surface(in, frame, chain, twist, true, coupling, out);
   if (surface.share > 0.0) {
     const Vector3d& n = surface.normal;
     const double in_force = std::clamp(surface.force / (surface.stiffness * 5e-4), 0.0, 1.0);
-    const auto into_only = [&n, in_force](Vector6d& part) {
-      const Vector3d f = part.head<3>();
-      part.head<3>() = (1.0 - in_force) * f + in_force * std::min(0.0, f.dot(n)) * n;
-    };
-    into_only(coupling.spring);
-    into_only(coupling.damper);
+    coupling.spring.head<3>() *= 1.0 - in_force;
+    coupling.damper.head<3>() *= 1.0 - in_force;
     coupling.local.head<3>() = (surface.force * n + surface.friction) * scale;
   }
   out.coupled = true;

@@ -17,6 +17,7 @@ for heading in ("## The seeds' requirements", "## 1. Wake-up latency", "## 2. SE
                 "## 3. End to end at 1 kHz", "## 4. Micro-benchmarks",
                 "## 5. Side by side with the peers",
                 "## Coupling over an impaired link (H1)", "## The coupling in contact (J1)",
+                "## Local contact models (J2)",
                 "## The weighted sphere at rest (H1)"):
     assert heading in report, f"report.md lacks '{heading}'"
 assert "The DDS path (H7" in report and "against LCM" in report and "against UDP" in report
@@ -68,6 +69,16 @@ for c in walls:
     for key in ("push_speed", "felt_n", "saturated_cycles", "port_energy_j", "core_excess_j",
                 "client_excess_j", "meets_j1", "stalls_ridden"):
         assert c.get(key) is not None, (key, c)
+# Local contact models (J2): both smoke cases, every run judged and every figure measured.
+local = json.load(open(os.path.join(out, "local.json"), encoding="utf-8"))
+assert sorted(c["delay_ms"] for c in local) == [10, 100], local
+for c in local:
+    assert all(c["judged"].values()), c
+    for key in ("k_ratio", "pen10_mm", "jump_step_n", "jump_energy_j", "mu", "blackout_min_n",
+                "port_energy_j", "saturated_cycles"):
+        assert c["wall"].get(key) is not None, (key, c)
+    assert c["sphere"]["k_ratio"] is not None and c["soft"]["k_ratio"] is not None, c
+    assert c.get("meets_j2") is not None, c
 with open(os.path.join(out, "contact.png"), "rb") as f:
     assert f.read(8) == b"\x89PNG\r\n\x1a\n", "contact.png is not a PNG"
 # The peers (H8): every transport and read mode measured in the same run, none left out.

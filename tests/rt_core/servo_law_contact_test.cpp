@@ -416,6 +416,26 @@ TEST(ServoLawHeldContact, ThroughABlackoutTheHandPressesOnTheContactItFeltAndNot
   EXPECT_EQ(law.memory().engage, 1.0);
 }
 
+TEST(ServoLawHeldContact, AnObjectDeeperInItsSurfaceThanTheHandleDoesNotPullTheHandIn) {
+  // While the surface pushes, the handle meets the surface alone along its normal: an object
+  // that comes back to its wall deeper than the handle and still moving into it (kicked off
+  // during a blackout, it returned at speed) does not drag the hand in through the coupling
+  // (kept, it turned a felt 5 N into 2 N, then 7.4 N in steps of 1.3 N, 2026-12-05).
+  ServoLaw law(default_dynamics());
+  ServoInputs in;
+  const double felt = pressed_on_wall(law, in);
+  in.loop_delay = 4 * kNsPerMs;  // a stiff coupling: what it would pull shows
+  ForceTrace trace = run_link(law, in, 300, true);
+  ASSERT_NEAR(trace.last, felt, 0.2);
+  in.client.object_pose[0] += 0.02;  // 2 cm deeper than the handle, going in at 0.3 m/s
+  in.client.object_twist[0] = 0.3;
+  in.client.contacts[0] = wall_at(in.client.object_pose, 1600.0, in.now);
+  in.client.contacts[0].distance = -0.02 - 0.01;  // the same plane, the object 3 cm in it
+  trace = run_link(law, in, 100, true);
+  EXPECT_NEAR(trace.least, felt, 0.2) << "the wall alone along its normal";
+  EXPECT_NEAR(trace.most, felt, 0.2);
+}
+
 TEST(ServoLawHeldContact, IsUnilateralAndForgottenWhenTheClientWithdrawsItOnALiveLink) {
   ServoLaw law(default_dynamics());
   ServoInputs in;

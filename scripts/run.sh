@@ -14,7 +14,10 @@
 # sphere, read the contact force) and prints the outcome. Extra arguments go to hapticctrl-core.
 #
 # When the controller fails safe the panel says why and when, and R starts a new controller
-# (powered off, as after any fail-safe); the bridges and the demo re-attach by themselves.
+# (powered off, as after any fail-safe); the bridges and the demo re-attach by themselves, and
+# the demo waits for you to power the arm on (p): a controller restarted after a fault refuses a
+# client's power-on until its operator's (docs/rt_core.md). This run's first controller is your
+# own deliberate start (--fresh-start).
 #
 # --supervise (first argument): keep a controller running: one that failed safe is started
 # again at once (powered off), and without a terminal run.sh serves until Ctrl-C or SIGTERM
@@ -170,13 +173,19 @@ fail_safe_reason() {
 # alike): a start that fails the same way every time is a fault to fix, not to retry. Giving up
 # says why and ends the run with the fail-safe's exit code. Returns the last controller's exit
 # status.
-run_core() {
-  local starts=0 rc delay=0.5 started ran reason last_reason="" stamp
-  local -a recent=()
+run_core() {  # fresh (1: this run's first controller, started by its operator), core options...
+  local fresh=$1 starts=0 rc delay=0.5 started ran reason last_reason="" stamp
+  shift
+  local -a recent=() first=()
+  # The run's first controller is its operator's deliberate start; a restart (the supervisor's,
+  # or R in the panel) after a fault refuses a client's power-on until the operator powers the
+  # arm on (p in the panel): J8, IEC 60204-1 7.5.
+  [[ $fresh -eq 1 ]] && first=(--fresh-start)
   while true; do
     started=$SECONDS
-    "$BUILD/rt_core/hapticctrl-core" --instance "$INSTANCE" --json "$@" >"$RUN_DIR/core.json" \
-      2>>"$RUN_DIR/core.log" &
+    "$BUILD/rt_core/hapticctrl-core" --instance "$INSTANCE" --json "${first[@]}" "$@" \
+      >"$RUN_DIR/core.json" 2>>"$RUN_DIR/core.log" &
+    first=()
     echo $! >"$RUN_DIR/core.pid"
     rc=0
     wait $! || rc=$?
@@ -203,7 +212,8 @@ run_core() {
       return "$rc"
     fi
     [[ $ran -ge 60 ]] && delay=0.5
-    echo "run: supervisor: starting controller #$((starts + 1)) in $delay s (powered off)" >&2
+    echo "run: supervisor: starting controller #$((starts + 1)) in $delay s (powered off, until" \
+      "an operator powers it on: p in the panel, or ${HMI[*]} power-on)" >&2
     sleep "$delay"
     delay=$(awk -v d="$delay" 'BEGIN { print (d * 2 > 8 ? 8 : d * 2) }')
     [[ -e "$RUN_DIR/stopping" ]] && return "$rc"
@@ -217,8 +227,10 @@ did_not_start() {  # name log
   exit 1
 }
 
+FRESH=1
 start_core() {
-  run_core "$@" &
+  run_core "$FRESH" "$@" &
+  FRESH=0
   CORE_PID=$!
   for _ in $(seq 100); do
     "${HMI[@]}" status >/dev/null 2>&1 && return 0
@@ -313,7 +325,7 @@ if [[ -t 0 && -t 1 ]]; then
     [[ $panel -eq 75 ]] || break
     reap_core
     [[ $CORE_RC -eq 3 ]] && report_fail_safe
-    echo "run: starting a new controller (powered off)"
+    echo "run: starting a new controller (powered off; a client may power it on once you have: p)"
     start_core "${PERIOD_ARGS[@]}" "$@"
   done
   exit 0  # stop_all (EXIT) stops the controller and the rest

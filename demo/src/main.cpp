@@ -281,6 +281,12 @@ class DemoRun {
       std::fprintf(stderr, "hapticctrl-demo: reconnected (%llu)\n",
                    static_cast<unsigned long long>(reconnects_));
     }
+    if (s_.awaiting_operator() && o_.power_on) {
+      std::fprintf(stderr,
+                   "hapticctrl-demo: the controller restarted after a fault and refuses this "
+                   "client's power-on: waiting for the operator to power the arm on (the "
+                   "panel's p, or hapticctrl-hmi power-on)\n");
+    }
   }
 
   /// Steps the scene on every answer until the session ends or the run does.

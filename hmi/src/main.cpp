@@ -38,9 +38,12 @@ void print_status(const ControllerStatus& s, bool json) {
     return;
   }
   const auto& p = s.position.handle_pose;
-  std::printf("instance '%s': %s, %s%s, cycle %llu, handle at (%.4f, %.4f, %.4f) m, client %s\n",
+  std::printf("instance '%s': %s, %s%s%s, cycle %llu, handle at (%.4f, %.4f, %.4f) m, client %s\n",
               s.instance.c_str(), shm::core_state_name(s.vp.core_state),
               s.powered() ? "powered" : "unpowered", s.emergency_stop() ? ", EMERGENCY STOP" : "",
+              s.has_state_bit(shm::state_bits::kAwaitingOperator)
+                  ? ", restarted after a fault: awaiting the operator's power-on"
+                  : "",
               static_cast<unsigned long long>(s.vp.cycle), p[0], p[1], p[2],
               s.client_connected() ? "connected" : "not connected");
 }

@@ -69,6 +69,9 @@ void draw(const ControllerStatus& s, const PanelForce& force, const Operator& op
   clrtoeol();
   badge(row, 0, s.powered() ? " POWER ON " : " power off ", s.powered());
   badge(row, 14, s.emergency_stop() ? " EMERGENCY STOP " : " e-stop clear ", s.emergency_stop());
+  if (s.has_state_bit(shm::state_bits::kAwaitingOperator)) {
+    badge(row, 32, " RESTARTED: p powers on (clients may not until then) ", true);
+  }
   line(++row, "state %s   command %s%s%s", shm::core_state_name(s.vp.core_state),
        kCommandTypes[s.vp.command_type < 3 ? s.vp.command_type : 0],
        s.has_state_bit(shm::state_bits::kCoupled) ? "   coupled" : "",

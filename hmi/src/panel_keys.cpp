@@ -37,6 +37,9 @@ const char* command_feedback(shm::CtrlCode code, std::uint32_t state_word) noexc
       if (estop) {
         return "power on refused: the emergency stop is latched (r resets it)";
       }
+      if ((state_word & shm::state_bits::kAwaitingOperator) != 0) {
+        return "power on requested (the operator's acknowledgement of the restart)";
+      }
       return powered ? "already powered" : "power on requested";
     case shm::CtrlCode::kPowerOff:
       return powered ? "power off requested" : "already unpowered";

@@ -86,6 +86,7 @@ std::string status_json(const ControllerStatus& s) {
       << shm::core_state_name(s.vp.core_state) << "\",\"stop_reason\":\""
       << shm::stop_reason_name(s.vp.stop_reason) << "\",\"powered\":" << std::boolalpha
       << s.powered() << ",\"emergency_stop\":" << s.emergency_stop()
+      << ",\"awaiting_operator\":" << s.has_state_bit(shm::state_bits::kAwaitingOperator)
       << ",\"fail_safe\":" << s.has_state_bit(shm::state_bits::kFailSafe)
       << ",\"degraded\":" << s.has_state_bit(shm::state_bits::kDegraded)
       << ",\"coupled\":" << s.has_state_bit(shm::state_bits::kCoupled)

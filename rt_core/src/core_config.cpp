@@ -91,6 +91,10 @@ void declare(program::Options& o, CoreConfig& c) {
          "simulated arm only: a tripped miss rule (5 consecutive misses, chronic misses) is "
          "counted as a would-be fail-safe and the core runs on (a stall pauses the simulated "
          "arm); for measurements on machines that stall, never for an arm that moves");
+  o.flag("--fresh-start", c.fresh_start,
+         "this start is an operator's deliberate one (scripts/run.sh's first): a core before it "
+         "that did not stop in order is said, and a client may power on; otherwise such a "
+         "restart refuses a client's power-on until an operator powers the arm on");
 }
 
 }  // namespace

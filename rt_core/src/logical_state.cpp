@@ -13,12 +13,16 @@ constexpr std::uint32_t kMaxInjectedOverrun = 1000;
 bool CommandInterpreter::apply(const shm::CtrlCommand& command,
                                LogicalState& state) const noexcept {
   switch (command.code) {
-    case shm::CtrlCode::kPowerOn:
-      if (state.estop || state.stop_requested) {
+    case shm::CtrlCode::kPowerOn: {
+      const bool by_client = command.arg == shm::kPowerOnByClient;
+      if (state.estop || state.stop_requested || (by_client && state.awaiting_operator) ||
+          (!by_client && command.arg != shm::kPowerOnByOperator)) {
         return false;
       }
+      state.awaiting_operator = false;  // an operator's power-on is the acknowledgement
       state.powered = true;
       return true;
+    }
     case shm::CtrlCode::kPowerOff:
       state.powered = false;
       return true;

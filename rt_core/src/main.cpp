@@ -20,6 +20,7 @@
 #include "hapticctrl/rt_core/core_report.hpp"
 #include "hapticctrl/rt_core/estop_latch.hpp"
 #include "hapticctrl/rt_core/executive.hpp"
+#include "hapticctrl/rt_core/restart_marker.hpp"
 #include "hapticctrl/rt_core/rt_preflight.hpp"
 #include "hapticctrl/rt_core/servo.hpp"
 #include "hapticctrl/rt_core/threaded_servo_tasks.hpp"
@@ -142,6 +143,7 @@ int run_core(const CoreConfig& config) {
   const PrivateDirectory state_directory(config.state_dir.empty() ? shm::creator_runtime_directory()
                                                                   : config.state_dir);
   EstopLatchFile estop_latch(state_directory, config.instance);
+  RestartMarker restart_marker(state_directory, config.instance);
   const Vector6d ready_pose = (Vector6d() << 0, -0.6, 1.2, 0, -0.6, 0).finished();
   SimulatorOptions sim_options;
   sim_options.max_substep = static_cast<double>(config.sim_substep) * 1e-9;
@@ -157,6 +159,15 @@ int run_core(const CoreConfig& config) {
               << (estop_latch.left_note().empty() ? "left by an earlier core"
                                                   : estop_latch.left_note())
               << "): power-on is refused until an operator resets it\n";
+  }
+  if (restart_marker.left_by_earlier()) {
+    shared.state.logical.awaiting_operator = !config.fresh_start;  // before any task runs
+    std::cerr << "hapticctrl-core: the core before this one did not stop in order ("
+              << (restart_marker.left_note().empty() ? "killed, crashed or failed safe"
+                                                     : restart_marker.left_note())
+              << (config.fresh_start
+                      ? "): this start is an operator's own (--fresh-start)\n"
+                      : "): a client's power-on is refused until an operator powers the arm on\n");
   }
   ServoTask main_task(shared, ServoRole::kMain, ServoLaw(dynamics));
   ServoTask degraded_task(shared, ServoRole::kDegraded, ServoLaw(dynamics));
@@ -211,6 +222,13 @@ int run_core(const CoreConfig& config) {
   latch_keeper.request_stop();
   latch_keeper.join();
   follow_latch(estop_latch, segment);  // the state of the last cycle
+  if (!result.fail_safe) {
+    try {
+      restart_marker.stopped_in_order();
+    } catch (const std::exception& e) {
+      std::cerr << "hapticctrl-core: the restart marker: " << e.what() << "\n";
+    }
+  }
 
   std::string black_box_path;
   if (result.fail_safe) {

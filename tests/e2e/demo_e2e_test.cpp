@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <thread>
 
 #include "hapticctrl/shm/payloads.hpp"
 #include "support/controller_stack.hpp"
@@ -232,7 +233,9 @@ TEST(DemoEndToEnd, StopFromTheHmiShutsTheControllerDownInTheFailSafeOrder) {
 TEST(DemoEndToEnd, TheDemoRecouplesAfterTenCoreKillsInARow) {
   // J4 review of f3c5aec: after a SIGKILL of the core the demo exited 0 ("controller stopped")
   // while every other process re-attached. A lost controller is not an orderly stop: the demo
-  // waits for the next core and couples again through the ramp, kill after kill.
+  // waits for the next core and couples again through the ramp, kill after kill, once the
+  // operator has powered the restarted controller on (J8: a client may not; the demo says it
+  // waits for that).
   ControllerStack stack("e2e-kills", kPeriodUs);
   ASSERT_TRUE(stack.ready()) << stack.diagnostics();
   Demo demo(stack, {});
@@ -251,6 +254,10 @@ TEST(DemoEndToEnd, TheDemoRecouplesAfterTenCoreKillsInARow) {
     ASSERT_TRUE(ControllerStack::eventually(
         [&] { return demo.err().find(said) != std::string::npos; }, 15s))
         << "kill " << kill << ": " << demo.err();
+    std::this_thread::sleep_for(100ms);  // the demo's power-on request, refused
+    EXPECT_EQ(stack.vp().state_word & shm::state_bits::kPowered, 0U)
+        << "kill " << kill << ": the demo powered a restarted controller on";
+    ASSERT_TRUE(stack.operator_power_on()) << "kill " << kill;
     ASSERT_TRUE(ControllerStack::eventually(coupled, 10s))
         << "kill " << kill << ": not coupled again; " << demo.err();
   }
@@ -262,6 +269,7 @@ TEST(DemoEndToEnd, TheDemoRecouplesAfterTenCoreKillsInARow) {
     ++lost;
   }
   EXPECT_EQ(lost, 10U) << "each loss said as such: " << err;
+  EXPECT_NE(err.find("waiting for the operator to power the arm on"), std::string::npos) << err;
   demo.finish();
 }
 

@@ -16,8 +16,13 @@ cat "$OUT/log"
 [[ $status -eq 11 ]] || fail "expected exit 11 (a fail-safe on consecutive misses), got $status"
 grep -q "^run: the controller FAILED SAFE: after cycle [0-9]*: 5 consecutive deadline misses" \
   "$OUT/log" || fail "the fail-safe's reason is not printed"
-left=$(find "$HAPTICCTRL_RUNTIME_DIR" -mindepth 1 ! -name "hapticctrl-blackbox-$HAPTICCTRL_INSTANCE.*.csv")
+# What stays is the record of the fault: the black box, and the marker of a controller that did
+# not stop in order, so that the next one started after it waits for the operator (J8).
+left=$(find "$HAPTICCTRL_RUNTIME_DIR" -mindepth 1 ! -name "hapticctrl-blackbox-$HAPTICCTRL_INSTANCE.*.csv" \
+  ! -name "hapticctrl-running.$HAPTICCTRL_INSTANCE")
 [[ -z $left ]] || fail "the instance's socket or lock was left behind: $left"
+[[ -f $HAPTICCTRL_RUNTIME_DIR/hapticctrl-running.$HAPTICCTRL_INSTANCE ]] ||
+  fail "no marker of the controller that failed safe"
 grep -q "black box: $HAPTICCTRL_RUNTIME_DIR/hapticctrl-blackbox-$HAPTICCTRL_INSTANCE\.[0-9]*\.csv" \
   "$OUT/log" || fail "the black box is not in the instance's runtime directory, or not said"
 if pgrep -f -- "--instance $HAPTICCTRL_INSTANCE" >/dev/null; then

@@ -64,6 +64,13 @@ until_true 20 status_ok || fail "the new controller does not answer"
 [[ $(cat "$RUN_DIR/core.pid") != "$first" ]] || fail "core.pid still names the stalled core"
 until_true 20 grep -q "reconnected" "$RUN_DIR/demo.log" ||
   fail "the demo did not reconnect; its log: $(tail -n 20 "$RUN_DIR/demo.log")"
+# J8: a controller restarted after a fault is powered on by the operator, never by the demo.
+until_true 10 grep -q "waiting for the operator to power the arm on" "$RUN_DIR/demo.log" ||
+  fail "the demo did not say it waits for the operator; its log: $(tail -n 20 "$RUN_DIR/demo.log")"
+"$BUILD/hmi/hapticctrl-hmi" --instance "$HAPTICCTRL_INSTANCE" status --json |
+  grep -q '"powered":false' || fail "the restarted controller was powered on by a client"
+"$BUILD/hmi/hapticctrl-hmi" --instance "$HAPTICCTRL_INSTANCE" power-on >/dev/null ||
+  fail "the operator's power-on was refused"
 status=0
 stop_run || status=$?
 [[ $status -eq 130 ]] || fail "expected exit 130 (stopped by a signal), got $status"

@@ -34,6 +34,8 @@ TEST(PanelKeys, CommandFeedbackSaysWhatToExpectAndWhyNot) {
                "power on refused: the emergency stop is latched (r resets it)");
   EXPECT_STREQ(command_feedback(CtrlCode::kPowerOn, 0), "power on requested");
   EXPECT_STREQ(command_feedback(CtrlCode::kPowerOn, bits::kPowered), "already powered");
+  EXPECT_STREQ(command_feedback(CtrlCode::kPowerOn, bits::kAwaitingOperator),
+               "power on requested (the operator's acknowledgement of the restart)");
   EXPECT_STREQ(command_feedback(CtrlCode::kPowerOff, 0), "already unpowered");
   EXPECT_STREQ(command_feedback(CtrlCode::kEmergencyReset, 0), "no emergency stop to reset");
   EXPECT_STREQ(command_feedback(CtrlCode::kEmergencyReset, bits::kEmergencyStop),

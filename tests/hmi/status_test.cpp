@@ -60,6 +60,10 @@ TEST(Status, JsonCarriesStateWrenchesHealthAndLink) {
     EXPECT_NE(json.find(part), std::string::npos) << part << " in " << json;
   }
   EXPECT_NE(status_json(ControllerStatus{}).find("\"connected\":false"), std::string::npos);
+  EXPECT_NE(json.find("\"awaiting_operator\":false"), std::string::npos);
+  s.vp.state_word |= shm::state_bits::kAwaitingOperator;
+  EXPECT_NE(status_json(s).find("\"awaiting_operator\":true"), std::string::npos)
+      << "restarted after a fault: waiting for the operator's power-on";
 }
 
 TEST(Status, JsonSaysNullForWhatIsNotANumber) {

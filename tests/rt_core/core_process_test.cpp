@@ -243,6 +243,56 @@ TEST(CoreProcess, ALatchedEmergencyStopOutlivesAKilledCoreUntilAReset) {
   EXPECT_EQ(next.wait(), 0) << next.err();
 }
 
+TEST(CoreProcess, AfterAKilledCoreOnlyAnOperatorPowersTheNextOneOn) {
+  // J8 / IEC 60204-1 7.5: a controller restarted after a fault does not start by itself: `R` in
+  // the panel, then the demo powered the new controller on 18 cycles later (J8 review). After an
+  // orderly stop nothing is awaited.
+  const std::string instance = test::unique_instance("restart");
+  const test::TempDirectory state("state");
+  const auto args = core_args(instance, {"--state-dir", state.path()});
+  const auto powered = [](const shm::VpPayload& vp) {
+    return (vp.state_word & shm::state_bits::kPowered) != 0;
+  };
+  const auto awaiting = [](const shm::VpPayload& vp) {
+    return (vp.state_word & shm::state_bits::kAwaitingOperator) != 0;
+  };
+  {
+    SpawnedProcess core(HAPTICCTRL_CORE_BINARY, args);
+    auto seg = attach_when_ready(instance, true);
+    ASSERT_TRUE(seg.has_value()) << core.err();
+    ASSERT_TRUE(wait_vp(*seg, [&](const shm::VpPayload& vp) { return !awaiting(vp); }));
+    seg->ctrl_writer().send(shm::CtrlCode::kPowerOn, shm::kPowerOnByClient, 0);
+    ASSERT_TRUE(wait_vp(*seg, powered)) << "a first start: a client powers on";
+    seg.reset();
+    core.signal(SIGKILL);
+    EXPECT_EQ(core.wait(), 128 + SIGKILL);
+  }
+  SpawnedProcess next(HAPTICCTRL_CORE_BINARY, args);
+  auto seg = attach_when_ready(instance, true);
+  ASSERT_TRUE(seg.has_value()) << next.err();
+  ASSERT_TRUE(wait_vp(*seg, awaiting)) << "the next core awaits an operator";
+  EXPECT_NE(next.err().find("did not stop in order (running since "), std::string::npos)
+      << next.err();
+  seg->ctrl_writer().send(shm::CtrlCode::kPowerOn, shm::kPowerOnByClient, 0);
+  EXPECT_FALSE(wait_vp(*seg, powered, 500ms)) << "a client's power-on is refused";
+  seg->ctrl_writer().send(shm::CtrlCode::kPowerOn, shm::kPowerOnByOperator, 0);
+  EXPECT_TRUE(wait_vp(*seg, [&](const shm::VpPayload& vp) {
+    return powered(vp) && !awaiting(vp);
+  })) << "the operator's power-on is the acknowledgement";
+  seg.reset();
+  next.signal(SIGTERM);
+  EXPECT_EQ(next.wait(), 0) << next.err();
+  SpawnedProcess third(HAPTICCTRL_CORE_BINARY, args);
+  seg = attach_when_ready(instance, true);
+  ASSERT_TRUE(seg.has_value()) << third.err();
+  ASSERT_TRUE(wait_vp(*seg, [&](const shm::VpPayload& vp) { return !awaiting(vp); }))
+      << "after an orderly stop nothing is awaited";
+  EXPECT_EQ(third.err().find("did not stop in order"), std::string::npos) << third.err();
+  seg.reset();
+  third.signal(SIGTERM);
+  EXPECT_EQ(third.wait(), 0) << third.err();
+}
+
 TEST(CoreProcess, StopRequestExitsZeroAndLeavesNoSegment) {
   const std::string instance = test::unique_instance("stop");
   SpawnedProcess core(HAPTICCTRL_CORE_BINARY, core_args(instance));

@@ -34,6 +34,23 @@ TEST(LogicalState, EmergencyStopLatchesUntilResetAndResetDoesNotPowerOn) {
   EXPECT_NE(s.state_word() & shm::state_bits::kPowered, 0U);
 }
 
+TEST(LogicalState, AfterARestartOnlyAnOperatorPowersOnThenClientsMayAgain) {
+  LogicalState s;
+  s.awaiting_operator = true;  // the core before did not stop in order
+  EXPECT_NE(s.state_word() & shm::state_bits::kAwaitingOperator, 0U);
+  CommandInterpreter interp(false);
+  EXPECT_FALSE(interp.apply(cmd(shm::CtrlCode::kPowerOn, shm::kPowerOnByClient), s))
+      << "a client may not power a restarted controller on";
+  EXPECT_FALSE(s.powered);
+  EXPECT_FALSE(interp.apply(cmd(shm::CtrlCode::kPowerOn, 7), s)) << "an unknown requester";
+  EXPECT_TRUE(interp.apply(cmd(shm::CtrlCode::kPowerOn, shm::kPowerOnByOperator), s));
+  EXPECT_TRUE(s.powered);
+  EXPECT_EQ(s.state_word() & shm::state_bits::kAwaitingOperator, 0U) << "acknowledged";
+  EXPECT_TRUE(interp.apply(cmd(shm::CtrlCode::kPowerOff), s));
+  EXPECT_TRUE(interp.apply(cmd(shm::CtrlCode::kPowerOn, shm::kPowerOnByClient), s))
+      << "once acknowledged, a client powers on as before";
+}
+
 TEST(LogicalState, StopRequestBlocksPowerOn) {
   LogicalState s;
   CommandInterpreter interp(false);

@@ -14,6 +14,8 @@
 #include <utility>
 #include <vector>
 
+#include "hapticctrl/shm/ctrl.hpp"
+#include "hapticctrl/shm/payloads.hpp"
 #include "hapticctrl/shm/segment.hpp"
 #include "support/child_process.hpp"
 #include "support/machine_disturbance.hpp"
@@ -168,6 +170,16 @@ class ControllerStack {
     return latest<shm::RegionId::kLinkStats>();
   }
 
+  /// Powers the arm on as an operator does (a ctrl slot of its own, as the HMI): what a core
+  /// restarted after a fault waits for before a client may power on (J8). True once powered
+  /// (within 2 s).
+  [[nodiscard]] bool operator_power_on() const {
+    shm::Segment seat = shm::Segment::attach(instance_, {.ctrl_writer = true});
+    seat.ctrl_writer().send(shm::CtrlCode::kPowerOn, shm::kPowerOnByOperator, 0);
+    return eventually([&] { return (vp().state_word & shm::state_bits::kPowered) != 0; },
+                      std::chrono::seconds(2));
+  }
+
   /// Polls `predicate` every 5 ms for at most `timeout`.
   template <typename Predicate>
   static bool eventually(Predicate predicate,
@@ -189,6 +201,7 @@ class ControllerStack {
   void remove_core_state(const std::string& directory) const {
     std::error_code ignored;
     std::filesystem::remove(directory + "/hapticctrl-estop." + instance_, ignored);
+    std::filesystem::remove(directory + "/hapticctrl-running." + instance_, ignored);
     const std::string prefix = "hapticctrl-blackbox-" + instance_ + ".";
     for (const auto& entry : std::filesystem::directory_iterator(directory, ignored)) {
       const std::string name = entry.path().filename().string();

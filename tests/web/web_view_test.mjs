@@ -95,6 +95,42 @@ test('power on from the page powers the arm', async () => {
   assert.equal(await page.locator('[data-testid=power]').innerText(), 'powered');
 });
 
+test('the surface the controller renders on the handle is drawn while the hand pushes on it', async () => {
+  // J2: pushed toward the demo's fixed sphere's centre, the handle meets its surface, which the
+  // controller renders in its servo cycle: the page draws its plane and says what it renders.
+  // Toward the centre, right after power-on, where the demo put the spheres: after the slider
+  // tests, pushed along +x from off the line of centres, the push's part along the surface beat
+  // its friction and the handle slid around the sphere (3 of 3 beside stress-ng, 2026-12-05).
+  const toward = await page.evaluate(() => {
+    const f = window.hapticctrl.frame;
+    const d = f.scene.fixed_center.map((c, i) => c - f.arm.handle_pose[i]);
+    const n = Math.hypot(...d);
+    return d.map((x) => Math.round((8 * x) / n / 0.5) * 0.5); // 8 N, the sliders' 0.5 N steps
+  });
+  try {
+    for (const [i, axis] of ['Fx', 'Fy', 'Fz'].entries()) {
+      await page.locator(`[data-testid=slider-${axis}]`).fill(String(toward[i]));
+    }
+    const surface = () => page.evaluate(() => {
+      const v = window.hapticctrl.view;
+      const c = window.hapticctrl.frame?.coupling;
+      return { visible: !!v?.surface.visible, force: c?.surface_force ?? 0,
+        normal: c?.surface_normal, text: document.getElementById('surface').textContent };
+    });
+    const s = await until(async () => {
+      const now = await surface();
+      return now.visible && now.force > 4 ? now : null;
+    }, { timeoutMs: 8000 });
+    assert.ok(s, `no rendered surface: ${JSON.stringify(await surface())} pushed ${JSON.stringify(toward)}`);
+    assert.ok(Math.abs(Math.hypot(...s.normal) - 1) < 1e-3, `a unit normal: ${JSON.stringify(s.normal)}`);
+    assert.match(s.text, /N · [0-9.]+ mm deep/);
+    await shot('03-surface');
+  } finally {
+    await page.click('[data-testid=release]'); // a failure here must not hold 5 N into the next test
+  }
+  assert.ok(await until(() => Math.abs(stack.status().operator_wrench[0]) < 0.1), 'the force was not released');
+});
+
 test('a force slider moves the handle', async () => {
   const before = stack.status().handle_pose;
   await page.locator('[data-testid=slider-Fy]').fill('5');
@@ -144,34 +180,6 @@ test('a small force shows as an arrow drawn over the sphere the handle sits in',
     await page.click('[data-testid=release]'); // a failure here must not hold 2 N into the next test
   }
   assert.ok(await until(() => Math.abs(stack.status().operator_wrench[2]) < 0.1), 'the force was not released');
-});
-
-test('the surface the controller renders on the handle is drawn while the hand pushes on it', async () => {
-  // J2: pushed along +x onto the demo's fixed sphere (about 1 cm away), the handle meets its
-  // surface, which the controller renders in its servo cycle: the page draws its plane and says
-  // what it renders.
-  await page.locator('[data-testid=slider-Fx]').fill('5');
-  try {
-    const surface = () => page.evaluate(() => {
-      const v = window.hapticctrl.view;
-      const c = window.hapticctrl.frame?.coupling;
-      return { visible: !!v?.surface.visible, force: c?.surface_force ?? 0,
-        normal: c?.surface_normal, text: document.getElementById('surface').textContent };
-    });
-    const s = await until(async () => {
-      const now = await surface();
-      return now.visible && now.force > 4 ? now : null;
-    }, { timeoutMs: 8000 });
-    assert.ok(s, `no rendered surface: ${JSON.stringify(await surface())}`);
-    // (The earlier tests left the handle off the line of centres: the normal is the sphere's
-    // there, not -x.)
-    assert.ok(Math.abs(Math.hypot(...s.normal) - 1) < 1e-3, `a unit normal: ${JSON.stringify(s.normal)}`);
-    assert.match(s.text, /N · [0-9.]+ mm deep/);
-    await shot('03-surface');
-  } finally {
-    await page.click('[data-testid=release]'); // a failure here must not hold 5 N into the next test
-  }
-  assert.ok(await until(() => Math.abs(stack.status().operator_wrench[0]) < 0.1), 'the force was not released');
 });
 
 test('the emergency stop button latches the stop, and reset clears it', async () => {

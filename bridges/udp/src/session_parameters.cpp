@@ -44,6 +44,7 @@ std::size_t Session::on_param(const hcp_frame& in, bool values_ok, TimeNs now,
 hcp_ack_status Session::apply(const hcp_param& param, TimeNs now) noexcept {
   const auto& u = param.hcp_param_u;
   shm::CtrlCode ctrl = shm::CtrlCode::kNone;
+  std::uint32_t arg = 0;
   switch (param.id) {
     case HCP_P_TIME_STEP:
       vpr_.client_time_step = u.time_step;
@@ -90,6 +91,7 @@ hcp_ack_status Session::apply(const hcp_param& param, TimeNs now) noexcept {
       break;
     case HCP_P_POWER:
       ctrl = u.power_on != 0 ? shm::CtrlCode::kPowerOn : shm::CtrlCode::kPowerOff;
+      arg = u.power_on != 0 ? shm::kPowerOnByClient : 0;  // refused after a restart (J8)
       break;
     case HCP_P_EMERGENCY_STOP:
       ctrl = shm::CtrlCode::kEmergencyStop;
@@ -99,7 +101,7 @@ hcp_ack_status Session::apply(const hcp_param& param, TimeNs now) noexcept {
       break;
   }
   if (ctrl != shm::CtrlCode::kNone) {
-    if (ports_.ctrl == nullptr || ports_.ctrl->send(ctrl, 0, now) != shm::CtrlSendStatus::kQueued) {
+    if (ports_.ctrl == nullptr || ports_.ctrl->send(ctrl, arg, now) != shm::CtrlSendStatus::kQueued) {
       return HCP_ACK_RETRY;
     }
     return HCP_ACK_OK;

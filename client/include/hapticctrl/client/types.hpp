@@ -40,6 +40,9 @@ inline constexpr std::uint32_t kStopping = 1U << 6;
 inline constexpr std::uint32_t kSaturated = 1U << 7;
 /// 1.2: bits 8 + 2j / 9 + 2j joint j (0-5) in its lower / upper wall; 20 / 21 the J2 + J3 sum.
 inline constexpr unsigned kJointBoundsShift = 8;
+/// The controller restarted after one that did not stop in order: it refuses this client's
+/// power-on until an operator powers the arm on.
+inline constexpr std::uint32_t kAwaitingOperator = 1U << 22;
 }  // namespace state_bits
 
 /// StateSnapshot::stop_reason values a client acts on (the rest name a fault for the log).
@@ -70,6 +73,11 @@ struct StateSnapshot {
   }
   [[nodiscard]] bool fail_safe() const noexcept {
     return (state_word & state_bits::kFailSafe) != 0;
+  }
+  /// The controller restarted after a fault and waits for an operator to power the arm on; a
+  /// client's power-on is refused until then.
+  [[nodiscard]] bool awaiting_operator() const noexcept {
+    return (state_word & state_bits::kAwaitingOperator) != 0;
   }
   /// The controller rendered the coupling to the virtual object this cycle.
   [[nodiscard]] bool coupled() const noexcept { return (state_word & state_bits::kCoupled) != 0; }

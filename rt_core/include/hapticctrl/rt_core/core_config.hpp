@@ -35,6 +35,7 @@ struct CoreConfig {
   ChronicMissConfig chronic;
   TimeNs sim_substep = 125 * kNsPerUs;  ///< simulator's longest integration sub-step
   bool benchmark_mode = false;          ///< miss rules counted, not acted on (simulated arm)
+  bool fresh_start = false;  ///< an operator's deliberate start: no restart awaits the operator
   bool show_help = false;
 };
 

@@ -35,6 +35,13 @@ enum class CtrlCode : std::uint32_t {
   kInjectOverrun = 6,  ///< fault injection: SERVO overruns for `arg` cycles (if enabled)
 };
 
+/// The `arg` of kPowerOn: who asks. 0: an operator (the HMI, and the LCM, DDS and web inputs
+/// with their rules); kPowerOnByClient: a client application through the UDP bridge, refused
+/// while the core awaits an operator after a restart (state_bits::kAwaitingOperator). Any
+/// other value is refused.
+inline constexpr std::uint32_t kPowerOnByOperator = 0;
+inline constexpr std::uint32_t kPowerOnByClient = 1;
+
 inline constexpr std::size_t kCtrlSlots = 8;
 inline constexpr std::size_t kCtrlRingSize = 32;
 

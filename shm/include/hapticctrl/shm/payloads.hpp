@@ -57,6 +57,10 @@ inline constexpr std::uint32_t kSaturated = 1U << 7;
 /// its lower / upper wall (the arm model's coupled limit). `joint_bound(j, upper)` names them.
 inline constexpr std::uint32_t kJointBoundsShift = 8;
 inline constexpr std::uint32_t kJointBoundsMask = 0x3FFFU << kJointBoundsShift;
+/// The core before this one did not stop in order (killed, crashed or failed safe): a client's
+/// power-on is refused until an operator powers the arm on (J8; IEC 60204-1 7.5: no restart of
+/// its own after a fault).
+inline constexpr std::uint32_t kAwaitingOperator = 1U << 22;
 /// The bound bit of joint `j` (0-5; 6 for the J2 + J3 sum), lower or upper.
 [[nodiscard]] constexpr std::uint32_t joint_bound(unsigned j, bool upper) noexcept {
   return 1U << (kJointBoundsShift + 2U * j + (upper ? 1U : 0U));

@@ -56,8 +56,8 @@ ScriptEvent parse_event(const std::string& content, const std::string& where) {
     throw std::invalid_argument(where + "unexpected '" + extra + "'");
   }
   const double limit = e.kind == ScriptEvent::Kind::kPush       ? kMaxAppliedForce
-                      : e.kind == ScriptEvent::Kind::kObstacle ? kMaxObstacleMove
-                                                               : kMaxAppliedTorque;
+                       : e.kind == ScriptEvent::Kind::kObstacle ? kMaxObstacleMove
+                                                                : kMaxAppliedTorque;
   if (!std::isfinite(e.t) || e.t < 0.0 || !std::isfinite(e.x) || !std::isfinite(e.y) ||
       !std::isfinite(e.z) || std::abs(e.x) > limit || std::abs(e.y) > limit ||
       std::abs(e.z) > limit) {

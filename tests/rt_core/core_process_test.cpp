@@ -276,9 +276,8 @@ TEST(CoreProcess, AfterAKilledCoreOnlyAnOperatorPowersTheNextOneOn) {
   seg->ctrl_writer().send(shm::CtrlCode::kPowerOn, shm::kPowerOnByClient, 0);
   EXPECT_FALSE(wait_vp(*seg, powered, 500ms)) << "a client's power-on is refused";
   seg->ctrl_writer().send(shm::CtrlCode::kPowerOn, shm::kPowerOnByOperator, 0);
-  EXPECT_TRUE(wait_vp(*seg, [&](const shm::VpPayload& vp) {
-    return powered(vp) && !awaiting(vp);
-  })) << "the operator's power-on is the acknowledgement";
+  EXPECT_TRUE(wait_vp(*seg, [&](const shm::VpPayload& vp) { return powered(vp) && !awaiting(vp); }))
+      << "the operator's power-on is the acknowledgement";
   seg.reset();
   next.signal(SIGTERM);
   EXPECT_EQ(next.wait(), 0) << next.err();

@@ -101,7 +101,8 @@ hcp_ack_status Session::apply(const hcp_param& param, TimeNs now) noexcept {
       break;
   }
   if (ctrl != shm::CtrlCode::kNone) {
-    if (ports_.ctrl == nullptr || ports_.ctrl->send(ctrl, arg, now) != shm::CtrlSendStatus::kQueued) {
+    if (ports_.ctrl == nullptr ||
+        ports_.ctrl->send(ctrl, arg, now) != shm::CtrlSendStatus::kQueued) {
       return HCP_ACK_RETRY;
     }
     return HCP_ACK_OK;

@@ -31,23 +31,13 @@ for delay in 0 1 2 5 10 20 50 100; do
   done
 done
 HAND_S=60
-ONLY=()
-while [[ $# -gt 0 ]]; do
-  case $1 in
-    --smoke) CASES=(virtmech:3000:10:0.1 impedance:2000:0:0); HAND_S=8 ;;
-    --case) ONLY+=("$2"); shift ;;
-    *) echo "bench/contact.sh: unknown argument '$1'" >&2; exit 64 ;;
-  esac
-  shift
-done
-if [[ ${#ONLY[@]} -gt 0 ]]; then CASES=("${ONLY[@]}"); fi
+source "$(dirname "$0")/processes.sh"
+cases_from_arguments bench/contact.sh "virtmech:3000:10:0.1 impedance:2000:0:0" "$@"
 
 # Push: 10 N along +x (into the wall) from 0 to 3 s, then released.
-printf '%s\n' "0 10 0 0 0 0 0" "3 10 0 0 0 0 0" >"$RAW/push.seq"
+sequence "$RAW/push.seq" "0 10 0 0 0 0 0" "3 10 0 0 0 0 0"
 # Hand: 3 N into the wall while it wanders.
-printf '%s\n' "0 3 0 0 0 0 0" "$HAND_S 3 0 0 0 0 0" >"$RAW/hand.seq"
-
-source "$(dirname "$0")/processes.sh"
+sequence "$RAW/hand.seq" "0 3 0 0 0 0 0" "$HAND_S 3 0 0 0 0 0"
 
 wait_until_still() {  # instance: the handle still for 0.2 s (at most 3 s), as the tests judge
   local hmi=("$BUILD/hmi/hapticctrl-hmi" --instance "$1")

@@ -33,22 +33,9 @@ for delay in 0 1 2 5 10 20 50; do
   for loss in 0 0.1; do CASES+=("$delay:$loss"); done
 done
 HAND_S=60
-ONLY=()
-while [[ $# -gt 0 ]]; do
-  case $1 in
-    --smoke) CASES=(1:0.1 10:0.1); HAND_S=8 ;;
-    --case) ONLY+=("$2"); shift ;;
-    *) echo "bench/coupling.sh: unknown argument '$1'" >&2; exit 64 ;;
-  esac
-  shift
-done
-if [[ ${#ONLY[@]} -gt 0 ]]; then CASES=("${ONLY[@]}"); fi
+source "$(dirname "$0")/processes.sh"
+cases_from_arguments bench/coupling.sh "1:0.1 10:0.1" "$@"
 
-sequence() {  # file, then "t fx fy fz tx ty tz" lines
-  local file=$1
-  shift
-  printf '%s\n' "$@" >"$file"
-}
 # Contact: 2 N along +x from 0.5 s, 4 N from 3.5 s, released at 6.5 s; ends at 8 s.
 sequence "$RAW/contact.seq" "0 0 0 0 0 0 0" "0.5 0 0 0 0 0 0" "0.501 2 0 0 0 0 0" \
   "3.5 2 0 0 0 0 0" "3.501 4 0 0 0 0 0" "6.5 4 0 0 0 0 0" "6.501 0 0 0 0 0 0" "8 0 0 0 0 0 0"
@@ -62,8 +49,6 @@ sequence "$RAW/press.seq" "0 0 0 0 0 0 0" "0.3 0 0 0 0 0 0" "0.301 2 0 0 0 0 0" 
   "2.5 2 0 0 0 0 0"
 # Hand: no wrench of its own.
 sequence "$RAW/hand.seq" "0 0 0 0 0 0 0" "$HAND_S 0 0 0 0 0 0"
-
-source "$(dirname "$0")/processes.sh"
 
 case_run() {  # name delay_ms loss jitter_ms
   local name=$1 delay=$2 loss=$3 jitter=$4 dir=$RAW/$1

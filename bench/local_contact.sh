@@ -35,22 +35,9 @@ for delay in 0 1 2 5 10 20 50 100; do
   for loss in 0 0.1; do CASES+=("$delay:$loss"); done
 done
 HAND_S=60
-ONLY=()
-while [[ $# -gt 0 ]]; do
-  case $1 in
-    --smoke) CASES=(10:0.1 100:0.1); HAND_S=8 ;;
-    --case) ONLY+=("$2"); shift ;;
-    *) echo "bench/local_contact.sh: unknown argument '$1'" >&2; exit 64 ;;
-  esac
-  shift
-done
-if [[ ${#ONLY[@]} -gt 0 ]]; then CASES=("${ONLY[@]}"); fi
+source "$(dirname "$0")/processes.sh"
+cases_from_arguments bench/local_contact.sh "10:0.1 100:0.1" "$@"
 
-sequence() {  # file, then "t fx fy fz tx ty tz" lines
-  local file=$1
-  shift
-  printf '%s\n' "$@" >"$file"
-}
 sequence "$RAW/jump.seq" "0 5 0 0 0 0 0" "6 5 0 0 0 0 0"
 echo "4.5 obstacle -0.005 0 0" >"$RAW/jump.script"
 # Press: nothing for 1 s, 5 N from 1 s, 10 N from 3.5 s, released at 6 s; ends at 6.5 s.
@@ -63,8 +50,6 @@ sequence "$RAW/friction.seq" "0 10 0 0 0 0 0" "1 10 0 0 0 0 0" "1.001 10 2 0 0 0
 # Blackout: 5 N into it for 3 s, the link cut from about 1.2 s to 1.7 s.
 sequence "$RAW/blackout.seq" "0 5 0 0 0 0 0" "3 5 0 0 0 0 0"
 sequence "$RAW/hand.seq" "0 3 0 0 0 0 0" "$HAND_S 3 0 0 0 0 0"
-
-source "$(dirname "$0")/processes.sh"
 
 start_demo() {  # dir, then the demo's scene options: through the relay that start_relay started
   local dir=$1

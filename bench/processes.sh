@@ -1,5 +1,31 @@
 # Sourced by the benchmark scripts that start the product's processes: PIDS, stop_all (also on
-# exit), start_core_and_bridge, start_relay, wait_for_ready and port_of. Expects BUILD.
+# exit), start_core_and_bridge, start_relay, wait_for_ready and port_of; and the case scripts'
+# cases_from_arguments and sequence. Expects BUILD.
+# The case scripts' own arguments (bench/coupling.sh, contact.sh, local_contact.sh): CASES (the
+# script's default list) and HAND_S (60 s) are set before; --smoke replaces the cases with the
+# script's smoke cases and the hand's time with 8 s, --case CASE (repeatable) chooses cases.
+# usage: cases_from_arguments SCRIPT "SMOKE CASES" "$@"
+cases_from_arguments() {
+  local script=$1 smoke=$2
+  shift 2
+  local -a only=()
+  while [[ $# -gt 0 ]]; do
+    case $1 in
+      --smoke) read -ra CASES <<<"$smoke"; HAND_S=8 ;;
+      --case) only+=("$2"); shift ;;
+      *) echo "$script: unknown argument '$1'" >&2; exit 64 ;;
+    esac
+    shift
+  done
+  if [[ ${#only[@]} -gt 0 ]]; then CASES=("${only[@]}"); fi
+}
+
+sequence() {  # file, then "t fx fy fz tx ty tz" lines: a force sequence for hapticctrl-hmi play
+  local file=$1
+  shift
+  printf '%s\n' "$@" >"$file"
+}
+
 PIDS=()
 stop_all() {  # TERM every started process and wait for it
   for pid in "${PIDS[@]}"; do kill -TERM "$pid" 2>/dev/null || true; done

@@ -206,10 +206,9 @@ std::optional<client::Contact> SphereScene::contact_report_toward(
   // Tangent at the mobile sphere instead, behind a 10 ms cycle (a soft coupling) the plane
   // turned under the handle as the sphere rolled off the fixed one, and the handle slid off with
   // it (2026-12-04).
-  std::optional<client::Contact> out = contact_report(near, max_stiffness);
   const Eigen::Vector3d toward = probe - config_.fixed_center;
   if (config_.obstacle == Obstacle::kWall || toward.norm() <= 0.0) {
-    return out;
+    return contact_report(near, max_stiffness);
   }
   const Eigen::Vector3d n = toward.normalized();
   const double gap = (state_.position - config_.fixed_center).dot(n) - config_.fixed_radius -
@@ -217,9 +216,9 @@ std::optional<client::Contact> SphereScene::contact_report_toward(
   if (gap > near) {
     return std::nullopt;
   }
-  if (!out) {
-    out = contact_report(std::numeric_limits<double>::infinity(), max_stiffness);
-  }
+  // The surface's gains as contact_report gives them; its plane, the one toward the probe.
+  std::optional<client::Contact> out =
+      contact_report(std::numeric_limits<double>::infinity(), max_stiffness);
   const Eigen::Vector3d point = state_.position - config_.mobile_radius * n;
   out->point = {point.x(), point.y(), point.z()};
   out->normal = {n.x(), n.y(), n.z()};

@@ -27,6 +27,7 @@ ALLOWED = {
     "bridges/dds": CONTRACTS | {"program"},
     "hmi": {"shm", "lcmtypes", "program"},
     "demo": {"client", "lcmtypes", "program"},  # an application of the client library
+    "mujoco": {"client", "lcmtypes", "program"},  # another: a MuJoCo scene as the client
     "bench/netem": {"protocol", "program"},  # the impairment relay the tests and benchmarks use
 }
 # Rooms that may use anything: they test or measure the others.

@@ -23,6 +23,8 @@ PACKAGES=(
   systemd
   # the web view (bridges/web): HTTP/WebSocket server, JSON, and the browser its test drives
   civetweb libcivetweb-dev nlohmann-json3-dev chromium
+  # the MuJoCo client (J3): the physics engine, and the Qhull headers its CMake target names
+  libmujoco-dev libqhull-dev
 )
 # Node.js and npm install the web page's libraries (pinned by bridges/web/package-lock.json) at
 # build time and run its browser test. A Node.js from elsewhere (NodeSource ships npm inside its

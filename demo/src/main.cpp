@@ -4,8 +4,6 @@
 // A session lost with its link, or ended by a controller that failed safe, is opened again
 // (--no-reconnect: the demo exits instead).
 // Exit: 0 done, 1 error, 2 the controller failed safe (--no-reconnect), 64 usage.
-#include <fcntl.h>
-#include <termios.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -29,11 +27,13 @@
 #include "hapticctrl/demo/scene_publisher.hpp"
 #include "hapticctrl/demo/sphere_scene.hpp"
 #include "hapticctrl/program/main_skeleton.hpp"
+#include "hapticctrl/program/raw_keyboard.hpp"
 
 namespace {
 
 namespace client = hapticctrl::client;
 namespace demo = hapticctrl::demo;
+namespace program = hapticctrl::program;
 using Clock = std::chrono::steady_clock;
 
 std::atomic<bool> g_stop{false};
@@ -41,61 +41,9 @@ void on_signal(int /*sig*/) {
   g_stop.store(true);
 }
 
-/// Raw, non-blocking keyboard for the session's lifetime; restores the terminal on exit.
-class RawKeyboard {
- public:
-  RawKeyboard() {
-    if (tcgetattr(STDIN_FILENO, &saved_) != 0) {
-      return;
-    }
-    termios raw = saved_;
-    raw.c_lflag &= ~static_cast<tcflag_t>(ICANON | ECHO);
-    raw.c_cc[VMIN] = 0;
-    raw.c_cc[VTIME] = 0;
-    active_ = tcsetattr(STDIN_FILENO, TCSANOW, &raw) == 0;
-  }
-  ~RawKeyboard() {
-    if (active_) {
-      tcsetattr(STDIN_FILENO, TCSANOW, &saved_);
-    }
-  }
-  RawKeyboard(const RawKeyboard&) = delete;
-  RawKeyboard& operator=(const RawKeyboard&) = delete;
-  /// The next key pressed, or -1.
-  [[nodiscard]] int poll() const {
-    unsigned char c = 0;
-    return active_ && read(STDIN_FILENO, &c, 1) == 1 ? c : -1;
-  }
-
- private:
-  termios saved_{};
-  bool active_ = false;
-};
-
 std::int64_t monotonic_us() {
   return std::chrono::duration_cast<std::chrono::microseconds>(Clock::now().time_since_epoch())
       .count();
-}
-
-/// StateSnapshot::core_state from which the controller is going away (fail-safe, stopping).
-constexpr std::uint32_t kCoreFailSafe = 2;
-
-/// Why the session ended, from the last cycle the controller sent.
-const char* ending_of(const client::StateSnapshot& s) {
-  if (s.fail_safe()) {
-    return "controller failed safe";
-  }
-  if (s.controller_lost()) {
-    return "controller lost (killed or crashed)";
-  }
-  return s.core_state > kCoreFailSafe ? "controller stopped" : "session closed";
-}
-
-/// The controller left in order (an operator's stop): the demo ends too. A fail-safe or a lost
-/// controller process is not that: a new controller may follow, and the demo waits for it (J4:
-/// it exited 0 after a SIGKILL of the core, "controller stopped").
-bool stopped_in_order(const client::StateSnapshot& s) {
-  return !s.fail_safe() && !s.controller_lost() && s.core_state > kCoreFailSafe;
 }
 
 /// The seeds' initialisation: references and frames, units and factors, time step, command
@@ -242,7 +190,7 @@ class DemoRun {
         scene_.emplace(scene_at(s_, o_));  // a new session starts with the sphere at the handle
         announce();
         run_session();
-        orderly_stop = stopped_in_order(s_);
+        orderly_stop = s_.stopped_in_order();
       } else if (o_.reconnect) {
         ended_ = "no answer from the controller within 2 s";  // failing safe again, or stalled
       } else {
@@ -305,8 +253,8 @@ class DemoRun {
         break;
       }
       const bool answered = c_->wait_for_answer(s_.cycle, std::chrono::milliseconds(100), s_);
-      if (!c_->is_open() || s_.fail_safe() || s_.core_state >= kCoreFailSafe) {
-        ended_ = ending_of(s_);
+      if (!c_->is_open() || s_.session_over()) {
+        ended_ = s_.ending();
         break;
       }
       if (answered) {
@@ -449,7 +397,7 @@ class DemoRun {
   std::optional<demo::DemoScript> script_;
   std::ofstream log_;
   std::optional<demo::ScenePublisher> scene_out_;
-  std::optional<RawKeyboard> keyboard_;
+  std::optional<program::RawKeyboard> keyboard_;
   demo::AppliedWrench applied_;
   Clock::time_point next_status_;
   std::uint64_t steps_ = 0;

@@ -45,6 +45,15 @@ inline constexpr unsigned kJointBoundsShift = 8;
 inline constexpr std::uint32_t kAwaitingOperator = 1U << 22;
 }  // namespace state_bits
 
+/// StateSnapshot::core_state values.
+namespace core_states {
+inline constexpr std::uint32_t kStarting = 0;
+inline constexpr std::uint32_t kRunning = 1;
+inline constexpr std::uint32_t kFailSafe = 2;  ///< from here on the controller is going away
+inline constexpr std::uint32_t kStopping = 3;
+inline constexpr std::uint32_t kStopped = 4;
+}  // namespace core_states
+
 /// StateSnapshot::stop_reason values a client acts on (the rest name a fault for the log).
 namespace stop_reasons {
 /// Never recorded by the controller: the bridge's verdict that the controller process is gone
@@ -85,6 +94,25 @@ struct StateSnapshot {
   /// fail-safe it went through; the next controller of the instance serves a new session.
   [[nodiscard]] bool controller_lost() const noexcept {
     return stop_reason == stop_reasons::kControllerLost;
+  }
+  /// The controller is failing safe, stopping or gone: the session is over.
+  [[nodiscard]] bool session_over() const noexcept {
+    return fail_safe() || core_state >= core_states::kFailSafe;
+  }
+  /// The controller left in order (an operator's stop): the client ends too. A fail-safe or a
+  /// lost controller process is not that: a new controller may follow, worth connecting to.
+  [[nodiscard]] bool stopped_in_order() const noexcept {
+    return !fail_safe() && !controller_lost() && core_state > core_states::kFailSafe;
+  }
+  /// Why the session ended, in words, from this last cycle.
+  [[nodiscard]] const char* ending() const noexcept {
+    if (fail_safe()) {
+      return "controller failed safe";
+    }
+    if (controller_lost()) {
+      return "controller lost (killed or crashed)";
+    }
+    return core_state > core_states::kFailSafe ? "controller stopped" : "session closed";
   }
 };
 

@@ -1,0 +1,66 @@
+#pragma once
+/// @file world.hpp
+/// A MuJoCo model and its data, with the one free body the operator holds through the arm.
+/// Setup (load) throws; the step and the getters do not allocate (MuJoCo's data is allocated at
+/// load) and never throw: they run in hapticctrl-mujoco's stepping loop.
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+
+#include "hapticctrl/client/types.hpp"
+#include "hapticctrl/mujoco/contact_mapping.hpp"
+
+namespace hapticctrl::mujoco {
+
+class World {
+ public:
+  /// Loads an MJCF file and finds the coupled body: `body`, or (empty) the model's custom text
+  /// "hapticctrl_body". Throws std::invalid_argument with MuJoCo's own error text for a bad file,
+  /// and a clear message for a body that is missing or not free (a free joint, its only joint).
+  /// `timestep` > 0 overrides the model's.
+  World(const std::string& path, const std::string& body, double timestep);
+  ~World();
+  World(World&&) noexcept;
+  World& operator=(World&&) noexcept;
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  [[nodiscard]] double timestep() const noexcept;
+  [[nodiscard]] double time() const noexcept;
+  [[nodiscard]] const std::string& body_name() const noexcept { return body_name_; }
+  [[nodiscard]] double mass() const noexcept;
+  /// Principal moments of inertia about the body's centre of mass [kg.m^2].
+  [[nodiscard]] std::array<double, 3> inertia() const noexcept;
+
+  /// One engine step with `wrench` (force, torque; world frame) applied at the body's origin,
+  /// the point whose pose is sent. A non-finite wrench is applied as zero. Cycle-safe.
+  void step(const client::Vector6& wrench) noexcept;
+  /// The body's origin and orientation in the world (from the state after the last step).
+  [[nodiscard]] client::Pose7 pose() const noexcept;
+  /// Its origin's velocity and its angular velocity, world frame.
+  [[nodiscard]] client::Vector6 twist() const noexcept;
+  /// Contacts are found this far apart (m) and reported, without changing the physics: the
+  /// body's geoms get this much more margin and as much more gap (contacts in the gap are not
+  /// given to the solver). Clamped to 0..1 m.
+  void set_report_distance(double distance) noexcept;
+  /// The body's contacts from the last step, deepest first, at most out.size(): the count.
+  std::size_t contacts(std::span<EngineContact> out) const noexcept;
+  /// Total force the contacts put on the body in the last step (world frame, N).
+  [[nodiscard]] std::array<double, 3> contact_force() const noexcept;
+  /// Steps MuJoCo found unstable and reset (its bad-acceleration warning).
+  [[nodiscard]] int instabilities() const noexcept;
+  /// The model's initial state again (the 'r' key).
+  void reset() noexcept;
+
+ private:
+  struct Engine;
+  std::unique_ptr<Engine> engine_;
+  std::string body_name_;
+};
+
+/// The MuJoCo library's version, for the start line.
+[[nodiscard]] std::string engine_version();
+
+}  // namespace hapticctrl::mujoco

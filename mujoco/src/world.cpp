@@ -1,0 +1,269 @@
+// Implements world.hpp: the MuJoCo model, its data and the coupled free body.
+#include "hapticctrl/mujoco/world.hpp"
+
+#include <mujoco/mujoco.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <vector>
+
+namespace hapticctrl::mujoco {
+namespace {
+
+constexpr int kErrorTextSize = 1000;
+constexpr double kMaxReportDistance = 1.0;  // m, the protocol's largest gap
+
+/// MuJoCo's own handlers print to stdout (where the --json summary goes) and append to
+/// MUJOCO_LOG.TXT in the working directory: these say it on stderr, once per text, and nothing
+/// is written to disk.
+void warn(const char* text) {
+  static std::string last;
+  if (last != text) {
+    last = text;
+    std::fprintf(stderr, "hapticctrl-mujoco: MuJoCo: %s\n", text);
+  }
+}
+[[noreturn]] void fail(const char* text) {
+  // A MuJoCo error inside a step leaves its data unusable and MuJoCo expects no return: the
+  // program ends; the controller's session watchdog takes the arm to its safe state.
+  std::fprintf(stderr, "hapticctrl-mujoco: MuJoCo error: %s\n", text);
+  std::_Exit(1);
+}
+
+/// The custom text MJCF element naming the coupled body: <custom><text name="hapticctrl_body"
+/// data="NAME"/></custom>.
+std::string body_named_by(const mjModel* m) {
+  const int id = mj_name2id(m, mjOBJ_TEXT, "hapticctrl_body");
+  if (id < 0) {
+    return {};
+  }
+  const int length = m->text_size[id];
+  return std::string(m->text_data + m->text_adr[id],
+                     static_cast<std::size_t>(std::max(0, length - 1)));
+}
+
+std::string free_bodies(const mjModel* m) {
+  std::string names;
+  for (int b = 1; b < m->nbody; ++b) {
+    if (m->body_jntnum[b] == 1 && m->jnt_type[m->body_jntadr[b]] == mjJNT_FREE) {
+      const char* name = mj_id2name(m, mjOBJ_BODY, b);
+      names += names.empty() ? "" : ", ";
+      names += name != nullptr ? name : "(unnamed, body " + std::to_string(b) + ")";
+    }
+  }
+  return names.empty() ? "none" : names;
+}
+
+}  // namespace
+
+struct World::Engine {
+  mjModel* model = nullptr;
+  mjData* data = nullptr;
+  int body = -1;
+  int qpos = 0;  ///< the free joint's address in qpos (position, then quaternion w x y z)
+  int dof = 0;   ///< and in qvel (linear velocity in the world, angular in the body's frame)
+  std::vector<double> margin;  ///< the body's geoms' own margin and gap
+  std::vector<double> gap;
+
+  Engine() = default;
+  Engine(const Engine&) = delete;
+  Engine& operator=(const Engine&) = delete;
+  ~Engine() {
+    mj_deleteData(data);
+    mj_deleteModel(model);
+  }
+};
+
+World::World(const std::string& path, const std::string& body, double timestep)
+    : engine_(std::make_unique<Engine>()) {
+  mju_user_warning = warn;
+  mju_user_error = fail;
+  std::array<char, kErrorTextSize> error{};
+  Engine& e = *engine_;
+  e.model = mj_loadXML(path.c_str(), nullptr, error.data(), static_cast<int>(error.size()));
+  if (e.model == nullptr) {
+    throw std::invalid_argument("cannot load the model '" + path + "': " + error.data());
+  }
+  if (timestep > 0.0) {
+    e.model->opt.timestep = timestep;
+  }
+  body_name_ = body.empty() ? body_named_by(e.model) : body;
+  if (body_name_.empty()) {
+    throw std::invalid_argument("no body to couple: name one with --body (free bodies in '" + path +
+                                "': " + free_bodies(e.model) + ")");
+  }
+  e.body = mj_name2id(e.model, mjOBJ_BODY, body_name_.c_str());
+  if (e.body < 0) {
+    throw std::invalid_argument("the model has no body '" + body_name_ +
+                                "' (free bodies: " + free_bodies(e.model) + ")");
+  }
+  const int joint = e.model->body_jntadr[e.body];
+  if (e.model->body_jntnum[e.body] != 1 || e.model->jnt_type[joint] != mjJNT_FREE) {
+    throw std::invalid_argument("the body '" + body_name_ +
+                                "' is not free: the hand holds a body with a free joint "
+                                "(<freejoint/>) and no other (free bodies: " +
+                                free_bodies(e.model) + ")");
+  }
+  e.qpos = e.model->jnt_qposadr[joint];
+  e.dof = e.model->jnt_dofadr[joint];
+  const int first = e.model->body_geomadr[e.body];
+  for (int g = first; g >= 0 && g < first + e.model->body_geomnum[e.body]; ++g) {
+    e.margin.push_back(e.model->geom_margin[g]);
+    e.gap.push_back(e.model->geom_gap[g]);
+  }
+  e.data = mj_makeData(e.model);
+  if (e.data == nullptr) {
+    throw std::runtime_error("MuJoCo could not allocate the model's data");
+  }
+  mj_forward(e.model, e.data);
+}
+
+World::~World() = default;
+World::World(World&&) noexcept = default;
+World& World::operator=(World&&) noexcept = default;
+
+double World::timestep() const noexcept {
+  return engine_->model->opt.timestep;
+}
+
+double World::time() const noexcept {
+  return engine_->data->time;
+}
+
+double World::mass() const noexcept {
+  return engine_->model->body_mass[engine_->body];
+}
+
+std::array<double, 3> World::inertia() const noexcept {
+  const double* i = engine_->model->body_inertia + 3 * engine_->body;
+  return {i[0], i[1], i[2]};
+}
+
+void World::step(const client::Vector6& wrench) noexcept {
+  const Engine& e = *engine_;
+  const bool finite =
+      std::all_of(wrench.begin(), wrench.end(), [](double v) { return std::isfinite(v); });
+  // MuJoCo applies xfrc_applied at the centre of mass: the torque of the force about it is added
+  // (the wrench acts at the body's origin, which is what the controller is sent).
+  mjtNum rotation[9];
+  mju_quat2Mat(rotation, e.data->qpos + e.qpos + 3);
+  mjtNum to_com[3];
+  mju_rotVecMat(to_com, e.model->body_ipos + 3 * e.body, rotation);
+  mjtNum* out = e.data->xfrc_applied + 6 * e.body;
+  for (int i = 0; i < 6; ++i) {
+    out[i] = finite ? wrench[static_cast<std::size_t>(i)] : 0.0;
+  }
+  mjtNum lever[3];  // (origin - com) x force
+  const mjtNum back[3] = {-to_com[0], -to_com[1], -to_com[2]};
+  mju_cross(lever, back, out);
+  mju_addTo3(out + 3, lever);
+  mj_step(e.model, e.data);
+}
+
+client::Pose7 World::pose() const noexcept {
+  const mjtNum* q = engine_->data->qpos + engine_->qpos;
+  return {q[0], q[1], q[2], q[4], q[5], q[6], q[3]};  // MuJoCo's quaternion is w x y z
+}
+
+client::Vector6 World::twist() const noexcept {
+  const Engine& e = *engine_;
+  const mjtNum* v = e.data->qvel + e.dof;
+  mjtNum rotation[9];
+  mju_quat2Mat(rotation, e.data->qpos + e.qpos + 3);
+  mjtNum angular[3];
+  mju_rotVecMat(angular, v + 3, rotation);  // body frame -> world
+  return {v[0], v[1], v[2], angular[0], angular[1], angular[2]};
+}
+
+void World::set_report_distance(double distance) noexcept {
+  const Engine& e = *engine_;
+  const double d = std::isfinite(distance) ? std::clamp(distance, 0.0, kMaxReportDistance) : 0.0;
+  const int first = e.model->body_geomadr[e.body];
+  for (std::size_t i = 0; i < e.margin.size(); ++i) {
+    e.model->geom_margin[first + static_cast<int>(i)] = e.margin[i] + d;
+    e.model->geom_gap[first + static_cast<int>(i)] = e.gap[i] + d;
+  }
+}
+
+std::size_t World::contacts(std::span<EngineContact> out) const noexcept {
+  const Engine& e = *engine_;
+  std::size_t count = 0;
+  for (int i = 0; i < e.data->ncon; ++i) {
+    const mjContact& c = e.data->contact[i];
+    const bool first = e.model->geom_bodyid[c.geom1] == e.body;
+    const bool second = e.model->geom_bodyid[c.geom2] == e.body;
+    // In the solver (0) or in the gap (1); fused, equality or motionless pairs are not contacts.
+    if ((!first && !second) || c.exclude > 1) {
+      continue;
+    }
+    EngineContact found;
+    found.distance = c.dist;
+    found.body_is_geom2 = second;
+    found.condim = c.dim;
+    found.pyramidal = e.model->opt.cone == mjCONE_PYRAMIDAL;
+    std::copy_n(c.friction, found.friction.size(), found.friction.begin());
+    found.inverse_weight = e.model->body_invweight0[2 * e.model->geom_bodyid[c.geom1]] +
+                           e.model->body_invweight0[2 * e.model->geom_bodyid[c.geom2]];
+    for (std::size_t k = 0; k < 3; ++k) {
+      found.midpoint[k] = c.pos[k];
+      found.normal[k] = c.frame[k];
+    }
+    std::copy_n(c.solref, found.solref.size(), found.solref.begin());
+    std::copy_n(c.solimp, found.solimp.size(), found.solimp.begin());
+    // Insertion into the deepest-first list, of at most out.size().
+    std::size_t at = count;
+    while (at > 0 && out[at - 1].distance > found.distance) {
+      --at;
+    }
+    if (at >= out.size()) {
+      continue;
+    }
+    count = std::min(count + 1, out.size());
+    for (std::size_t k = count - 1; k > at; --k) {
+      out[k] = out[k - 1];
+    }
+    out[at] = found;
+  }
+  return count;
+}
+
+std::array<double, 3> World::contact_force() const noexcept {
+  const Engine& e = *engine_;
+  std::array<double, 3> total{};
+  for (int i = 0; i < e.data->ncon; ++i) {
+    const mjContact& c = e.data->contact[i];
+    const bool first = e.model->geom_bodyid[c.geom1] == e.body;
+    const bool second = e.model->geom_bodyid[c.geom2] == e.body;
+    if ((!first && !second) || c.efc_address < 0) {
+      continue;
+    }
+    mjtNum local[6];
+    mj_contactForce(e.model, e.data, i, local);
+    // In the contact's frame (rows: normal, two tangents), the force on geom2.
+    const double sign = second ? 1.0 : -1.0;
+    for (std::size_t k = 0; k < 3; ++k) {
+      total[k] +=
+          sign * (local[0] * c.frame[k] + local[1] * c.frame[3 + k] + local[2] * c.frame[6 + k]);
+    }
+  }
+  return total;
+}
+
+int World::instabilities() const noexcept {
+  return engine_->data->warning[mjWARN_BADQACC].number;
+}
+
+void World::reset() noexcept {
+  const int bad = instabilities();
+  mj_resetData(engine_->model, engine_->data);
+  engine_->data->warning[mjWARN_BADQACC].number = bad;  // counted over the whole run
+  mj_forward(engine_->model, engine_->data);
+}
+
+std::string engine_version() {
+  return "MuJoCo " + std::string(mj_versionString());
+}
+
+}  // namespace hapticctrl::mujoco

@@ -34,8 +34,4 @@ std::array<double, 3> Grasp::point_to_client(const std::array<double, 3>& p) con
   return {p[0] - offset_[0], p[1] - offset_[1], p[2] - offset_[2]};
 }
 
-std::array<double, 3> Grasp::point_to_scene(const std::array<double, 3>& p) const noexcept {
-  return {p[0] + offset_[0], p[1] + offset_[1], p[2] + offset_[2]};
-}
-
 }  // namespace hapticctrl::mujoco

@@ -90,9 +90,11 @@ class MujocoRun {
   }
 
   int run() {
-    std::fprintf(stderr, "hapticctrl-mujoco: %s; '%s', body '%s' (%.3f kg), time step %.3f ms\n",
+    std::fprintf(stderr,
+                 "hapticctrl-mujoco: %s; '%s', body '%s' (%.3f kg), time step %.3f ms%s\n",
                  mj::engine_version().c_str(), o_.model_path.c_str(), world_.body_name().c_str(),
-                 world_.mass(), world_.timestep() * 1e3);
+                 world_.mass(), world_.timestep() * 1e3,
+                 world_.has_grip() ? "; g: grip on/off" : "");
     while (!quit_ && time_left()) {
       std::optional<client::Connection> next = open_session();
       if (!next) {
@@ -241,7 +243,13 @@ class MujocoRun {
         quit_ = true;
       } else if (key == 'r') {
         world_.reset();
+        world_.set_grip(gripping_);
         grasp_ = mj::Grasp::between(world_.pose(), s_.handle_pose);
+      } else if (key == 'g' && world_.has_grip()) {
+        gripping_ = !gripping_;
+        world_.set_grip(gripping_);
+        std::fprintf(stderr, "%shapticctrl-mujoco: grip %s\n", keyboard_ ? "\r\n" : "",
+                     gripping_ ? "on" : "off");
       }
     }
   }
@@ -347,7 +355,7 @@ class MujocoRun {
         "\"steps_dropped\":%llu,\"steps_paused\":%llu,\"catch_ups\":%llu,"
         "\"cpu_us_per_step_mean\":%.2f,\"cpu_us_per_step_max\":%.1f,"
         "\"contact_reports\":%llu,\"contacts_supported\":%s,\"instabilities\":%d,"
-        "\"reconnections\":%llu,\"powered\":%s}\n",
+        "\"reconnections\":%llu,\"powered\":%s,\"gripping\":%s,",
         ended_, world_.body_name().c_str(), world_.mass(), world_.timestep(), p[0], p[1], p[2],
         p[3], p[4], p[5], p[6], f[0], f[1], f[2], w[0], w[1], w[2], w[3], w[4], w[5],
         static_cast<unsigned long long>(steps_.run()), steps_per_second(), 1.0 / world_.timestep(),
@@ -357,7 +365,21 @@ class MujocoRun {
         static_cast<double>(load_.cpu_max_ns) / 1e3, static_cast<unsigned long long>(reported_),
         contacts_unsupported_ ? "false" : "true", world_.instabilities(),
         static_cast<unsigned long long>(reconnects_),
-        (s_.state_word & client::state_bits::kPowered) != 0 ? "true" : "false");
+        s_.powered() ? "true" : "false", gripping_ ? "true" : "false");
+    // The scene's other free bodies and its hinges and slides: what the hand moved.
+    const char* separator = "";
+    std::printf("\"bodies\":{");
+    for (const auto& [name, at] : world_.free_bodies()) {
+      std::printf("%s\"%s\":[%.6f,%.6f,%.6f]", separator, name.c_str(), at[0], at[1], at[2]);
+      separator = ",";
+    }
+    separator = "";
+    std::printf("},\"joints\":{");
+    for (const auto& [name, q] : world_.joints()) {
+      std::printf("%s\"%s\":%.6f", separator, name.c_str(), q);
+      separator = ",";
+    }
+    std::printf("}}\n");
   }
 
   const mj::MujocoOptions& o_;
@@ -374,6 +396,7 @@ class MujocoRun {
   bool quit_ = false;
   bool contacts_unsupported_ = false;
   bool refusal_said_ = false;
+  bool gripping_ = false;
   std::optional<client::Connection> c_;
   client::StateSnapshot s_;
 };

@@ -15,7 +15,8 @@ constexpr const char* kDescription =
     "from the model); the engine steps in real time at the model's time step with the coupling "
     "wrench on the body, and sends the body's pose and twist; the body's contacts go to the "
     "controller as its local contact model (protocol 1.3), so they feel hard at any delay. "
-    "Keys (with a terminal): r puts the scene back to its start, q quits. A lost session or a "
+    "Keys (with a terminal): r puts the scene back to its start, g switches the grip (a model's "
+    "adhesion actuator on the body), q quits. A lost session or a "
     "controller that failed safe is reconnected (the scene is held where the handle is) unless "
     "--no-reconnect. Exit: 0 done, 1 error, 2 (--no-reconnect) the controller ended the session "
     "abnormally, 64 usage or a model MuJoCo refuses (its own error text).";

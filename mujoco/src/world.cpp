@@ -44,16 +44,35 @@ std::string body_named_by(const mjModel* m) {
                      static_cast<std::size_t>(std::max(0, length - 1)));
 }
 
-std::string free_bodies(const mjModel* m) {
+bool is_free(const mjModel* m, int body) {
+  return m->body_jntnum[body] == 1 && m->jnt_type[m->body_jntadr[body]] == mjJNT_FREE;
+}
+
+std::string name_of_body(const mjModel* m, int body) {
+  const char* name = mj_id2name(m, mjOBJ_BODY, body);
+  return name != nullptr ? name : "body " + std::to_string(body);
+}
+
+std::string free_body_names(const mjModel* m) {
   std::string names;
   for (int b = 1; b < m->nbody; ++b) {
-    if (m->body_jntnum[b] == 1 && m->jnt_type[m->body_jntadr[b]] == mjJNT_FREE) {
-      const char* name = mj_id2name(m, mjOBJ_BODY, b);
+    if (is_free(m, b)) {
       names += names.empty() ? "" : ", ";
-      names += name != nullptr ? name : "(unnamed, body " + std::to_string(b) + ")";
+      names += name_of_body(m, b);
     }
   }
   return names.empty() ? "none" : names;
+}
+
+/// The adhesion actuators on `body` (a body transmission).
+std::vector<int> grips_of(const mjModel* m, int body) {
+  std::vector<int> grips;
+  for (int a = 0; a < m->nu; ++a) {
+    if (m->actuator_trntype[a] == mjTRN_BODY && m->actuator_trnid[2 * a] == body) {
+      grips.push_back(a);
+    }
+  }
+  return grips;
 }
 
 }  // namespace
@@ -66,6 +85,7 @@ struct World::Engine {
   int dof = 0;   ///< and in qvel (linear velocity in the world, angular in the body's frame)
   std::vector<double> margin;  ///< the body's geoms' own margin and gap
   std::vector<double> gap;
+  std::vector<int> grips;  ///< adhesion actuators on the body
 
   Engine() = default;
   Engine(const Engine&) = delete;
@@ -92,19 +112,19 @@ World::World(const std::string& path, const std::string& body, double timestep)
   body_name_ = body.empty() ? body_named_by(e.model) : body;
   if (body_name_.empty()) {
     throw std::invalid_argument("no body to couple: name one with --body (free bodies in '" + path +
-                                "': " + free_bodies(e.model) + ")");
+                                "': " + free_body_names(e.model) + ")");
   }
   e.body = mj_name2id(e.model, mjOBJ_BODY, body_name_.c_str());
   if (e.body < 0) {
     throw std::invalid_argument("the model has no body '" + body_name_ +
-                                "' (free bodies: " + free_bodies(e.model) + ")");
+                                "' (free bodies: " + free_body_names(e.model) + ")");
   }
   const int joint = e.model->body_jntadr[e.body];
-  if (e.model->body_jntnum[e.body] != 1 || e.model->jnt_type[joint] != mjJNT_FREE) {
+  if (!is_free(e.model, e.body)) {
     throw std::invalid_argument("the body '" + body_name_ +
                                 "' is not free: the hand holds a body with a free joint "
                                 "(<freejoint/>) and no other (free bodies: " +
-                                free_bodies(e.model) + ")");
+                                free_body_names(e.model) + ")");
   }
   e.qpos = e.model->jnt_qposadr[joint];
   e.dof = e.model->jnt_dofadr[joint];
@@ -113,6 +133,7 @@ World::World(const std::string& path, const std::string& body, double timestep)
     e.margin.push_back(e.model->geom_margin[g]);
     e.gap.push_back(e.model->geom_gap[g]);
   }
+  e.grips = grips_of(e.model, e.body);
   e.data = mj_makeData(e.model);
   if (e.data == nullptr) {
     throw std::runtime_error("MuJoCo could not allocate the model's data");
@@ -260,6 +281,44 @@ void World::reset() noexcept {
   mj_resetData(engine_->model, engine_->data);
   engine_->data->warning[mjWARN_BADQACC].number = bad;  // counted over the whole run
   mj_forward(engine_->model, engine_->data);
+}
+
+bool World::has_grip() const noexcept {
+  return !engine_->grips.empty();
+}
+
+void World::set_grip(bool on) noexcept {
+  const Engine& e = *engine_;
+  for (const int a : e.grips) {
+    // An unlimited control range has no top: 1 is then the actuator's gain as written.
+    const bool limited = e.model->actuator_ctrllimited[a] != 0;
+    e.data->ctrl[a] = on ? (limited ? e.model->actuator_ctrlrange[2 * a + 1] : 1.0) : 0.0;
+  }
+}
+
+std::vector<std::pair<std::string, std::array<double, 3>>> World::free_bodies() const {
+  const Engine& e = *engine_;
+  std::vector<std::pair<std::string, std::array<double, 3>>> out;
+  for (int b = 1; b < e.model->nbody; ++b) {
+    if (b != e.body && is_free(e.model, b)) {
+      const mjtNum* q = e.data->qpos + e.model->jnt_qposadr[e.model->body_jntadr[b]];
+      out.emplace_back(name_of_body(e.model, b), std::array<double, 3>{q[0], q[1], q[2]});
+    }
+  }
+  return out;
+}
+
+std::vector<std::pair<std::string, double>> World::joints() const {
+  const Engine& e = *engine_;
+  std::vector<std::pair<std::string, double>> out;
+  for (int j = 0; j < e.model->njnt; ++j) {
+    const char* name = mj_id2name(e.model, mjOBJ_JOINT, j);
+    const int type = e.model->jnt_type[j];
+    if (name != nullptr && (type == mjJNT_HINGE || type == mjJNT_SLIDE)) {
+      out.emplace_back(name, e.data->qpos[e.model->jnt_qposadr[j]]);
+    }
+  }
+  return out;
 }
 
 std::string engine_version() {

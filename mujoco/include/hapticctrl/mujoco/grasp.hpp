@@ -23,8 +23,6 @@ class Grasp {
   /// A point of the scene (a contact's) in the client's frame.
   [[nodiscard]] std::array<double, 3> point_to_client(
       const std::array<double, 3>& p) const noexcept;
-  /// A point of the client's frame (the handle) in the scene.
-  [[nodiscard]] std::array<double, 3> point_to_scene(const std::array<double, 3>& p) const noexcept;
 
  private:
   std::array<double, 3> offset_{};          ///< scene minus client

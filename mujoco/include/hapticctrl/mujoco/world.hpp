@@ -8,6 +8,8 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "hapticctrl/client/types.hpp"
 #include "hapticctrl/mujoco/contact_mapping.hpp"
@@ -53,6 +55,19 @@ class World {
   [[nodiscard]] int instabilities() const noexcept;
   /// The model's initial state again (the 'r' key).
   void reset() noexcept;
+
+  /// Whether the model gives the coupled body a grip: an adhesion actuator on it (MJCF
+  /// <adhesion body="..."/>), which the 'g' key switches.
+  [[nodiscard]] bool has_grip() const noexcept;
+  /// The grip fully on (its control range's top) or off. Cycle-safe.
+  void set_grip(bool on) noexcept;
+
+  /// Where the scene's other free bodies are (name, position in the world; unnamed ones as
+  /// "body N"), for the summary. Allocates: not for the stepping loop.
+  [[nodiscard]] std::vector<std::pair<std::string, std::array<double, 3>>> free_bodies() const;
+  /// The scene's named hinge and slide joints and their positions (rad, m), for the summary.
+  /// Allocates: not for the stepping loop.
+  [[nodiscard]] std::vector<std::pair<std::string, double>> joints() const;
 
  private:
   struct Engine;

@@ -31,7 +31,8 @@ namespace hapticctrl::client {
 
 class ChannelPassivity {
  public:
-  /// The object's mass and largest principal inertia (virtAttachVO): they bound the damper.
+  /// The object's mass and smallest principal moment of inertia (virtAttachVO): they bound the
+  /// damper.
   void set_object(double mass, double inertia) noexcept;
   /// The controller's energy into the channel so far (J), from an answer.
   void on_controller_energy(double joules) noexcept;

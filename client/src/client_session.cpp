@@ -528,8 +528,13 @@ void ClientSession::on_param_applied(const hcp_param& param) noexcept {
       break;
     case HCP_P_OBJECT:
       if (v.object.attached != 0) {
-        passivity_.set_object(v.object.mass, std::max({v.object.inertia[0], v.object.inertia[1],
-                                                       v.object.inertia[2]}));
+        // The damper acts on every axis: the smallest moment bounds it (J3: with the largest, a
+        // slender MuJoCo peg's damper was 5.5 times its integration's bound about its long axis).
+        double smallest = 0.0;
+        for (const double moment : v.object.inertia) {
+          smallest = moment > 0.0 && (smallest == 0.0 || moment < smallest) ? moment : smallest;
+        }
+        passivity_.set_object(v.object.mass, smallest);
       }
       break;
     default:

@@ -83,14 +83,21 @@ struct World::Engine {
   int body = -1;
   int qpos = 0;  ///< the free joint's address in qpos (position, then quaternion w x y z)
   int dof = 0;   ///< and in qvel (linear velocity in the world, angular in the body's frame)
-  std::vector<double> margin;  ///< the body's geoms' own margin and gap
-  std::vector<double> gap;
-  std::vector<int> grips;  ///< adhesion actuators on the body
+  /// The contacts are found on a copy of the model whose body's geoms have the report distance
+  /// added to their margin, on a copy of the state: raising the physics model's own margins
+  /// (with as much gap, so the solver would skip the far contacts) changed box-box contacts
+  /// that touched: the peg, pushed into its hole, turned 90 degrees and jammed (2026-12-05).
+  mjModel* report_model = nullptr;
+  mjData* report_data = nullptr;
+  std::vector<double> margin;  ///< the body's geoms' own margin
+  std::vector<int> grips;      ///< adhesion actuators on the body
 
   Engine() = default;
   Engine(const Engine&) = delete;
   Engine& operator=(const Engine&) = delete;
   ~Engine() {
+    mj_deleteData(report_data);
+    mj_deleteModel(report_model);
     mj_deleteData(data);
     mj_deleteModel(model);
   }
@@ -131,11 +138,12 @@ World::World(const std::string& path, const std::string& body, double timestep)
   const int first = e.model->body_geomadr[e.body];
   for (int g = first; g >= 0 && g < first + e.model->body_geomnum[e.body]; ++g) {
     e.margin.push_back(e.model->geom_margin[g]);
-    e.gap.push_back(e.model->geom_gap[g]);
   }
   e.grips = grips_of(e.model, e.body);
   e.data = mj_makeData(e.model);
-  if (e.data == nullptr) {
+  e.report_model = mj_copyModel(nullptr, e.model);
+  e.report_data = e.report_model != nullptr ? mj_makeData(e.report_model) : nullptr;
+  if (e.data == nullptr || e.report_data == nullptr) {
     throw std::runtime_error("MuJoCo could not allocate the model's data");
   }
   mj_forward(e.model, e.data);
@@ -203,19 +211,25 @@ void World::set_report_distance(double distance) noexcept {
   const double d = std::isfinite(distance) ? std::clamp(distance, 0.0, kMaxReportDistance) : 0.0;
   const int first = e.model->body_geomadr[e.body];
   for (std::size_t i = 0; i < e.margin.size(); ++i) {
-    e.model->geom_margin[first + static_cast<int>(i)] = e.margin[i] + d;
-    e.model->geom_gap[first + static_cast<int>(i)] = e.gap[i] + d;
+    e.report_model->geom_margin[first + static_cast<int>(i)] = e.margin[i] + d;
   }
 }
 
-std::size_t World::contacts(std::span<EngineContact> out) const noexcept {
+std::size_t World::contacts(std::span<EngineContact> out) noexcept {
   const Engine& e = *engine_;
+  // The state now, positions only, through the collision pass of the report model.
+  mju_copy(e.report_data->qpos, e.data->qpos, e.model->nq);
+  mju_copy(e.report_data->mocap_pos, e.data->mocap_pos, 3 * e.model->nmocap);
+  mju_copy(e.report_data->mocap_quat, e.data->mocap_quat, 4 * e.model->nmocap);
+  mj_kinematics(e.report_model, e.report_data);
+  mj_collision(e.report_model, e.report_data);
+  const mjModel* m = e.report_model;
   std::size_t count = 0;
-  for (int i = 0; i < e.data->ncon; ++i) {
-    const mjContact& c = e.data->contact[i];
-    const bool first = e.model->geom_bodyid[c.geom1] == e.body;
-    const bool second = e.model->geom_bodyid[c.geom2] == e.body;
-    // In the solver (0) or in the gap (1); fused, equality or motionless pairs are not contacts.
+  for (int i = 0; i < e.report_data->ncon; ++i) {
+    const mjContact& c = e.report_data->contact[i];
+    const bool first = m->geom_bodyid[c.geom1] == e.body;
+    const bool second = m->geom_bodyid[c.geom2] == e.body;
+    // Fused, equality or motionless pairs (exclude > 1) are not contacts.
     if ((!first && !second) || c.exclude > 1) {
       continue;
     }
@@ -223,10 +237,10 @@ std::size_t World::contacts(std::span<EngineContact> out) const noexcept {
     found.distance = c.dist;
     found.body_is_geom2 = second;
     found.condim = c.dim;
-    found.pyramidal = e.model->opt.cone == mjCONE_PYRAMIDAL;
+    found.pyramidal = m->opt.cone == mjCONE_PYRAMIDAL;
     std::copy_n(c.friction, found.friction.size(), found.friction.begin());
-    found.inverse_weight = e.model->body_invweight0[2 * e.model->geom_bodyid[c.geom1]] +
-                           e.model->body_invweight0[2 * e.model->geom_bodyid[c.geom2]];
+    found.inverse_weight = m->body_invweight0[2 * m->geom_bodyid[c.geom1]] +
+                           m->body_invweight0[2 * m->geom_bodyid[c.geom2]];
     for (std::size_t k = 0; k < 3; ++k) {
       found.midpoint[k] = c.pos[k];
       found.normal[k] = c.frame[k];

@@ -46,10 +46,17 @@ CouplingGains ServoLaw::derive_gains(const ClientSample& c, double loop_delay) c
   // and its integration adds one client step: that lag bounds the stiffness it can take.
   const double client_step = c.time_step > 0.0 ? c.time_step : config_.default_time_step;
   const double step = client_step + std::max(0.0, loop_delay);
-  const double largest_inertia =
-      std::max({c.object_inertia[0], c.object_inertia[1], c.object_inertia[2]});
-  // Without a declared inertia: a solid 5 cm sphere of the object's mass.
-  const double inertia = largest_inertia > 0.0 ? largest_inertia : 0.4 * mass * 0.05 * 0.05;
+  // The angular coupling acts on every axis of the object: its smallest principal moment bounds
+  // it (J3: a 19 mm x 60 mm MuJoCo peg, 3.3e-5 and 6e-6 kg.m^2, held with gains for its largest
+  // moment, went unstable about its long axis in 0.27 s, 2026-12-05). Without a declared
+  // inertia: a solid 5 cm sphere of the object's mass.
+  double smallest_inertia = 0.0;
+  for (const double moment : c.object_inertia) {
+    smallest_inertia = moment > 0.0 && (smallest_inertia == 0.0 || moment < smallest_inertia)
+                           ? moment
+                           : smallest_inertia;
+  }
+  const double inertia = smallest_inertia > 0.0 ? smallest_inertia : 0.4 * mass * 0.05 * 0.05;
   CouplingGains g;
   g.k_linear = bounded(kStiffnessFraction * mass / (step * step), lim.max_stiffness_linear);
   g.b_linear = bounded(2.0 * kDampingRatio * std::sqrt(g.k_linear * mass),

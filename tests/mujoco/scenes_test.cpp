@@ -59,12 +59,17 @@ class Hand {
         anchor_[k] += velocity[k] * w.timestep();
       }
       w.step(wrench(w));
+      // As hapticctrl-mujoco does after its steps: the contacts within 1 cm are looked for,
+      // which must not change the physics.
+      w.set_report_distance(0.01);
+      (void)w.contacts(contacts_);
     }
   }
 
  private:
   std::array<double, 4> hold_;
   double weight_;
+  std::array<EngineContact, 16> contacts_{};
 };
 
 double joint(const World& w, const std::string& name) {

@@ -48,6 +48,20 @@ TEST(ServoLaw, GainsFallWithTheMeasuredLoopDelay) {
   EXPECT_LT(slow.b_linear, fast.b_linear);
 }
 
+TEST(ServoLaw, TheAngularGainsAreBoundedByTheSmallestPrincipalMoment) {
+  // A slender peg (J3): stable about its long axis, not only about the two others.
+  ServoLaw law(default_dynamics());
+  ClientSample c;
+  c.object_mass = 0.1;
+  c.object_inertia = {3.3e-5, 3.3e-5, 6.0e-6};
+  c.time_step = 1e-3;
+  const CouplingGains g = law.derive_gains(c, 0.002);
+  EXPECT_NEAR(g.k_angular, 0.25 * 6.0e-6 / (0.003 * 0.003), 1e-12);
+  EXPECT_LE(g.b_angular, 6.0e-6 / 0.003 + 1e-15);
+  c.object_inertia = {0.0, 6.0e-6, 0.0};  // undeclared moments are not the smallest
+  EXPECT_NEAR(law.derive_gains(c, 0.002).k_angular, g.k_angular, 1e-12);
+}
+
 TEST(ServoLaw, TheLoopDelayEnvelopeFollowsTheMedianUpAtOnceAndDownSlowly) {
   ServoLaw law(default_dynamics());
   ServoInputs in = coupled_to_object_ahead(0.0);

@@ -43,12 +43,13 @@ class World {
   [[nodiscard]] client::Pose7 pose() const noexcept;
   /// Its origin's velocity and its angular velocity, world frame.
   [[nodiscard]] client::Vector6 twist() const noexcept;
-  /// Contacts are found this far apart (m) and reported, without changing the physics: the
-  /// body's geoms get this much more margin and as much more gap (contacts in the gap are not
-  /// given to the solver). Clamped to 0..1 m.
+  /// Contacts are found this far apart (m) and reported; the physics is not changed (they are
+  /// found on a copy of the model and the state). Clamped to 0..1 m. Cycle-safe.
   void set_report_distance(double distance) noexcept;
-  /// The body's contacts from the last step, deepest first, at most out.size(): the count.
-  std::size_t contacts(std::span<EngineContact> out) const noexcept;
+  /// The body's contacts and near contacts in the state after the last step, deepest first, at
+  /// most out.size(): the count. Runs MuJoCo's collision pass on the copy (a few microseconds
+  /// for the shipped scenes); allocates nothing. Cycle-safe.
+  std::size_t contacts(std::span<EngineContact> out) noexcept;
   /// Total force the contacts put on the body in the last step (world frame, N).
   [[nodiscard]] std::array<double, 3> contact_force() const noexcept;
   /// Steps MuJoCo found unstable and reset (its bad-acceleration warning).

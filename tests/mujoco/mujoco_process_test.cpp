@@ -1,0 +1,149 @@
+// hapticctrl-mujoco through the real processes: the core (1 ms, benchmark mode: a VM stall is
+// counted, not failed safe), the UDP bridge and the program on every shipped scene, the operator
+// pushing through the force region (hapticctrl-hmi force); and its error paths.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "support/controller_stack.hpp"
+#include "support/json_fields.hpp"
+#include "support/machine_retries.hpp"
+#include "support/spawned_process.hpp"
+
+namespace hapticctrl::test {
+namespace {
+
+using namespace std::chrono_literals;
+
+const std::string kScenes = HAPTICCTRL_MUJOCO_SCENES;
+
+#ifdef HAPTICCTRL_SANITIZED
+constexpr int kPeriodUs = ControllerStack::kDefaultPeriodUs;
+#else
+constexpr int kPeriodUs = 1000;
+#endif
+
+/// What a scene's run does: the operator's push (N, base frame) from `push_at` s on, and the
+/// run's length.
+struct SceneCase {
+  const char* scene;
+  std::vector<std::string> push;  // hapticctrl-hmi force arguments; empty: no push
+  double push_at = 1.5;
+  double duration = 4.0;
+};
+
+void PrintTo(const SceneCase& c, std::ostream* os) {  // NOLINT(readability-identifier-naming)
+  *os << c.scene;
+}
+
+int run_hmi(const ControllerStack& stack, std::vector<std::string> args) {
+  args.insert(args.begin(), {"--instance", stack.instance()});
+  SpawnedProcess hmi(HAPTICCTRL_HMI_BINARY, args);
+  return hmi.wait(20s);
+}
+
+/// The scene run to its end with the case's push; its JSON summary ("" if it failed).
+std::string run_scene(const ControllerStack& stack, const SceneCase& c) {
+  SpawnedProcess mujoco(HAPTICCTRL_MUJOCO_BINARY,
+                        {"--model", kScenes + "/" + c.scene + ".xml", "--server",
+                         "127.0.0.1:" + std::to_string(stack.port()), "--headless", "--json",
+                         "--duration", std::to_string(c.duration)});
+  if (!c.push.empty()) {
+    std::this_thread::sleep_for(std::chrono::duration<double>(c.push_at));
+    std::vector<std::string> force{"force"};
+    force.insert(force.end(), c.push.begin(), c.push.end());
+    EXPECT_EQ(run_hmi(stack, force), 0);
+  }
+  const int status = mujoco.wait(std::chrono::seconds(static_cast<int>(c.duration) + 20));
+  EXPECT_EQ(status, 0) << mujoco.err();
+  (void)run_hmi(stack, {"zero-force"});
+  std::printf("%s: %s", c.scene, mujoco.out().c_str());
+  return status == 0 ? mujoco.out() : std::string{};
+}
+
+class ShippedScene : public ::testing::TestWithParam<SceneCase> {};
+
+TEST_P(ShippedScene, KeepsRealTimeStaysStableAndReportsItsContacts) {
+  const SceneCase& c = GetParam();
+  retry_what_the_machine_disturbed(c.scene, 3, [&](int attempt) {
+    ControllerStack stack(std::string("mj-") + c.scene + std::to_string(attempt), kPeriodUs, {},
+                          {"--benchmark-mode"});
+    EXPECT_TRUE(stack.ready()) << stack.diagnostics();
+    const std::string summary = run_scene(stack, c);
+    if (summary.empty()) {
+      return true;  // judged: the expectations above failed
+    }
+    EXPECT_EQ(json_number(summary, "instabilities"), 0.0) << "MuJoCo never reset the state";
+    EXPECT_NE(summary.find("\"contacts_supported\":true"), std::string::npos);
+    EXPECT_NE(summary.find("\"powered\":true"), std::string::npos);
+    const double rate = json_number(summary, "steps_per_second");
+    const double model = json_number(summary, "model_steps_per_second");
+    if (rate < 0.95 * model && json_number(summary, "steps_dropped") > 0) {
+      std::printf("%s: %.0f of %.0f steps/s with steps dropped after a stall: tried again\n",
+                  c.scene, rate, model);
+      return false;
+    }
+    EXPECT_GE(rate, 0.95 * model) << "the engine keeps real time";
+    const std::string scene = c.scene;
+    const std::vector<double> pose = json_numbers(summary, "body_pose");
+    EXPECT_EQ(pose.size(), 7U);
+    if (scene == "peg_in_hole" && pose.size() == 7) {
+      EXPECT_LT(pose[2], 0.005) << "pushed 3 N down, the peg is in the hole (floor 30 mm down)";
+      EXPECT_LT(std::hypot(pose[0], pose[1]), 0.001) << "on the hole's axis";
+    }
+    if (scene == "test_box") {
+      const std::vector<double> f = json_numbers(summary, "contact_force");
+      EXPECT_NEAR(f.size() == 3 ? f[2] : 0.0, 0.5 * 9.81 + 2.0, 0.5) << "its weight and the push";
+    }
+    return true;
+  });
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    J3, ShippedScene,
+    ::testing::Values(SceneCase{"test_box", {"0", "0", "-2", "0", "0", "0"}},
+                      SceneCase{"peg_in_hole", {"0", "0", "-3", "0", "0", "0"}, 1.5, 5.0},
+                      SceneCase{"table_blocks", {}}, SceneCase{"door_latch", {}},
+                      SceneCase{"heavy_lift", {}}),
+    [](const auto& p) { return std::string(p.param.scene); });
+
+/// The program's exit status and its words, run with `args` (no controller needed).
+std::pair<int, std::string> run_alone(const std::vector<std::string>& args) {
+  SpawnedProcess mujoco(HAPTICCTRL_MUJOCO_BINARY, args);
+  const int status = mujoco.wait(20s);
+  return {status, mujoco.err()};
+}
+
+TEST(MujocoProgram, AModelMujocoRefusesExits64WithItsOwnWords) {
+  const std::string path = "/tmp/hapticctrl-mujoco-bad-" + std::to_string(getpid()) + ".xml";
+  {
+    std::FILE* f = std::fopen(path.c_str(), "w");
+    ASSERT_NE(f, nullptr);
+    std::fputs("<mujoco><worldbody><geom type=\"box\" size=\"0.1 0.1\"/></worldbody></mujoco>",
+               f);
+    std::fclose(f);
+  }
+  const auto [status, err] = run_alone({"--model", path, "--headless"});
+  std::remove(path.c_str());
+  EXPECT_EQ(status, 64);
+  EXPECT_NE(err.find("size"), std::string::npos) << err;
+  const auto [missing, missing_err] = run_alone({"--model", "/nonexistent.xml"});
+  EXPECT_EQ(missing, 64);
+  EXPECT_NE(missing_err.find("/nonexistent.xml"), std::string::npos) << missing_err;
+}
+
+TEST(MujocoProgram, ABodyThatIsNotFreeOrNoModelIsAUsageError) {
+  const auto [status, err] =
+      run_alone({"--model", kScenes + "/test_box.xml", "--body", "fixture"});
+  EXPECT_EQ(status, 64);
+  EXPECT_NE(err.find("is not free"), std::string::npos) << err;
+  EXPECT_EQ(run_alone({}).first, 64);
+  const auto [help, help_text] = run_alone({"--help"});
+  EXPECT_EQ(help, 0);
+}
+
+}  // namespace
+}  // namespace hapticctrl::test

@@ -19,6 +19,11 @@
 # client's power-on until its operator's (docs/rt_core.md). This run's first controller is your
 # own deliberate start (--fresh-start).
 #
+# --scene NAME (first, or after --supervise): a MuJoCo scene as the client instead of the demo
+# (hapticctrl-mujoco with mujoco/scenes/NAME.xml: table_blocks, peg_in_hole, door_latch,
+# heavy_lift; docs/mujoco.md); the handle holds the scene's tool. Without a terminal its scenario
+# pushes the tool 3 N down for 3 s and prints where it went and the contact force.
+#
 # --supervise (first argument): keep a controller running: one that failed safe is started
 # again at once (powered off), and without a terminal run.sh serves until Ctrl-C or SIGTERM
 # instead of playing the scenario. For unattended demos and soak runs, never for a person at the
@@ -52,6 +57,18 @@ if [[ ${1:-} == --supervise ]]; then
   SUPERVISE=1
   shift
 fi
+SCENE=""
+if [[ ${1:-} == --scene ]]; then
+  SCENE=${2:-}
+  shift 2 || true
+  if [[ ! -f mujoco/scenes/$SCENE.xml ]]; then
+    echo "run: no scene '$SCENE': mujoco/scenes/ has" \
+      "$(cd mujoco/scenes && ls ./*.xml | sed 's|^./||; s|\.xml$||' | tr '\n' ' ')" >&2
+    exit 1
+  fi
+fi
+CLIENT=demo  # its logs: $RUN_DIR/$CLIENT.log and .json
+[[ -n $SCENE ]] && CLIENT=mujoco
 BUILD=${HAPTICCTRL_BUILD_DIR:-build}
 # One run.sh per build directory (its logs and its run/ are the build's): a second one refuses
 # at once, naming the first, and touches none of its files (J8: it truncated the first run's
@@ -270,7 +287,7 @@ if grep -q "the emergency stop is still latched" "$RUN_DIR/core.log"; then
     exit 4
   fi
 fi
-echo "run: starting the UDP bridge, the LCM bridge, the web view and the demo client"
+echo "run: starting the UDP bridge, the LCM bridge, the web view and the $CLIENT client"
 "$BUILD/bridges/udp/hapticctrl-udp" --instance "$INSTANCE" --port "$PORT" >"$RUN_DIR/udp.log" 2>&1 &
 PIDS+=($!)
 # The web page watches, and its emergency stop always acts. With HAPTICCTRL_WEB_CONTROL=1 (and
@@ -285,12 +302,17 @@ PIDS+=($!)
 "$BUILD/bridges/web/hapticctrl-web" --instance "$INSTANCE" --listen "127.0.0.1:$WEB_PORT" \
   "${REMOTE[@]}" 2>"$RUN_DIR/web.log" &
 PIDS+=($!)
-"$BUILD/demo/hapticctrl-demo" --server "127.0.0.1:$PORT" --instance "$INSTANCE" --headless \
-  --json --log "$RUN_DIR/demo.csv" >"$RUN_DIR/demo.json" 2>"$RUN_DIR/demo.log" &
+if [[ -n $SCENE ]]; then
+  "$BUILD/mujoco/hapticctrl-mujoco" --model "mujoco/scenes/$SCENE.xml" --server "127.0.0.1:$PORT" \
+    --headless --json >"$RUN_DIR/mujoco.json" 2>"$RUN_DIR/mujoco.log" &
+else
+  "$BUILD/demo/hapticctrl-demo" --server "127.0.0.1:$PORT" --instance "$INSTANCE" --headless \
+    --json --log "$RUN_DIR/demo.csv" >"$RUN_DIR/demo.json" 2>"$RUN_DIR/demo.log" &
+fi
 DEMO_PID=$!
 PIDS+=("$DEMO_PID")
 for _ in $(seq 100); do
-  grep -q "ready:" "$RUN_DIR/demo.log" 2>/dev/null && break
+  grep -q "ready:" "$RUN_DIR/$CLIENT.log" 2>/dev/null && break
   sleep 0.05
 done
 
@@ -300,8 +322,8 @@ sleep 0.3
 for part in "udp:${PIDS[0]}" "lcm:${PIDS[1]}"; do
   kill -0 "${part#*:}" 2>/dev/null || did_not_start "hapticctrl-${part%%:*}" "$RUN_DIR/${part%%:*}.log"
 done
-if ! grep -q "ready:" "$RUN_DIR/demo.log"; then
-  kill -0 "$DEMO_PID" 2>/dev/null || did_not_start hapticctrl-demo "$RUN_DIR/demo.log"
+if ! grep -q "ready:" "$RUN_DIR/$CLIENT.log"; then
+  kill -0 "$DEMO_PID" 2>/dev/null || did_not_start "hapticctrl-$CLIENT" "$RUN_DIR/$CLIENT.log"
 fi
 if grep -q "listening on" "$RUN_DIR/web.log"; then
   echo "run: operator view on http://127.0.0.1:$WEB_PORT/ (from another machine: ssh -L $WEB_PORT:127.0.0.1:$WEB_PORT)"
@@ -333,6 +355,28 @@ fi
 if [[ $SUPERVISE -eq 1 ]]; then
   echo "run: supervising the controller (a fail-safe starts a new one); Ctrl-C stops everything"
   reap_core
+  exit 0
+fi
+
+if [[ -n $SCENE ]]; then
+  # No terminal, a scene: the tool pushed 3 N down for 3 s; where it went and what it met.
+  echo "== scripted scenario (no terminal): push the scene's tool 3 N down"
+  "${HMI[@]}" force 0 0 -3 0 0 0
+  sleep 3
+  kill -TERM "$DEMO_PID" && wait "$DEMO_PID" || true
+  "${HMI[@]}" zero-force >/dev/null
+  tail -n 2 "$RUN_DIR/mujoco.log"
+  OUTCOME=$(awk 'match($0, /"contact_force":\[[^]]*\]/) {
+      split(substr($0, RSTART + 17, RLENGTH - 18), f, ",")
+      match($0, /"steps_per_second":[0-9.]+/); rate = substr($0, RSTART + 19, RLENGTH - 19)
+      printf "outcome: contact force %.3f N up on the tool, %s engine steps/s\n", f[3], rate
+    }' "$RUN_DIR/mujoco.json")
+  echo "${OUTCOME:-run: no outcome: hapticctrl-mujoco printed no summary ($RUN_DIR/mujoco.log)}"
+  "${HMI[@]}" stop
+  reap_core
+  echo "core figures: $(cat "$RUN_DIR/core.json")"
+  echo "logs in $RUN_DIR/"
+  [[ -n $OUTCOME ]] || exit 1
   exit 0
 fi
 

@@ -90,8 +90,7 @@ class MujocoRun {
   }
 
   int run() {
-    std::fprintf(stderr,
-                 "hapticctrl-mujoco: %s; '%s', body '%s' (%.3f kg), time step %.3f ms%s\n",
+    std::fprintf(stderr, "hapticctrl-mujoco: %s; '%s', body '%s' (%.3f kg), time step %.3f ms%s\n",
                  mj::engine_version().c_str(), o_.model_path.c_str(), world_.body_name().c_str(),
                  world_.mass(), world_.timestep() * 1e3,
                  world_.has_grip() ? "; g: grip on/off" : "");
@@ -364,8 +363,8 @@ class MujocoRun {
         static_cast<unsigned long long>(steps_.catch_ups()), load_.mean_us(),
         static_cast<double>(load_.cpu_max_ns) / 1e3, static_cast<unsigned long long>(reported_),
         contacts_unsupported_ ? "false" : "true", world_.instabilities(),
-        static_cast<unsigned long long>(reconnects_),
-        s_.powered() ? "true" : "false", gripping_ ? "true" : "false");
+        static_cast<unsigned long long>(reconnects_), s_.powered() ? "true" : "false",
+        gripping_ ? "true" : "false");
     // The scene's other free bodies and its hinges and slides: what the hand moved.
     const char* separator = "";
     std::printf("\"bodies\":{");

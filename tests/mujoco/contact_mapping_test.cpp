@@ -62,8 +62,7 @@ TEST(ContactGains, ATimeConstantUnderTwoStepsIsTwoSteps) {
   fast.solref = {0.0005, 1.0};
   EngineContact two_steps = resting(0.5);
   two_steps.solref = {0.002, 1.0};
-  EXPECT_DOUBLE_EQ(contact_gains(fast, kStep).stiffness,
-                   contact_gains(two_steps, kStep).stiffness);
+  EXPECT_DOUBLE_EQ(contact_gains(fast, kStep).stiffness, contact_gains(two_steps, kStep).stiffness);
 }
 
 TEST(ContactGains, DegenerateParametersGiveNoSpring) {

@@ -22,10 +22,10 @@ TEST(MujocoOptions, DefaultsAreTheDemosHabits) {
 }
 
 TEST(MujocoOptions, EveryOptionIsRead) {
-  const MujocoOptions o = MujocoOptions::parse(
-      {"--model", "m.xml", "--body", "peg", "--timestep", "0.002", "--server", "10.0.0.2:6000",
-       "--headless", "--duration", "3.5", "--json", "--status-ms", "250", "--no-power",
-       "--no-reconnect", "--no-contacts"});
+  const MujocoOptions o =
+      MujocoOptions::parse({"--model", "m.xml", "--body", "peg", "--timestep", "0.002", "--server",
+                            "10.0.0.2:6000", "--headless", "--duration", "3.5", "--json",
+                            "--status-ms", "250", "--no-power", "--no-reconnect", "--no-contacts"});
   EXPECT_EQ(o.body, "peg");
   EXPECT_DOUBLE_EQ(o.timestep_s, 0.002);
   EXPECT_EQ(o.server, "10.0.0.2:6000");
@@ -44,16 +44,15 @@ TEST(MujocoOptions, AModelIsRequiredAndValuesAreChecked) {
                std::invalid_argument);
   EXPECT_THROW((void)MujocoOptions::parse({"--model", "m.xml", "--duration", "-1"}),
                std::invalid_argument);
-  EXPECT_THROW((void)MujocoOptions::parse({"--model", "m.xml", "--bogus"}),
-               std::invalid_argument);
+  EXPECT_THROW((void)MujocoOptions::parse({"--model", "m.xml", "--bogus"}), std::invalid_argument);
 }
 
 TEST(MujocoOptions, HelpNeedsNoModelAndNamesEveryOption) {
   EXPECT_TRUE(MujocoOptions::parse({"--help"}).help);
   const std::string usage = MujocoOptions::usage();
-  for (const char* name : {"--model", "--body", "--timestep", "--server", "--headless",
-                           "--duration", "--json", "--status-ms", "--no-power", "--no-reconnect",
-                           "--no-contacts"}) {
+  for (const char* name :
+       {"--model", "--body", "--timestep", "--server", "--headless", "--duration", "--json",
+        "--status-ms", "--no-power", "--no-reconnect", "--no-contacts"}) {
     EXPECT_NE(usage.find(name), std::string::npos) << name;
   }
 }

@@ -122,8 +122,7 @@ TEST(MujocoProgram, AModelMujocoRefusesExits64WithItsOwnWords) {
   {
     std::FILE* f = std::fopen(path.c_str(), "w");
     ASSERT_NE(f, nullptr);
-    std::fputs("<mujoco><worldbody><geom type=\"box\" size=\"0.1 0.1\"/></worldbody></mujoco>",
-               f);
+    std::fputs("<mujoco><worldbody><geom type=\"box\" size=\"0.1 0.1\"/></worldbody></mujoco>", f);
     std::fclose(f);
   }
   const auto [status, err] = run_alone({"--model", path, "--headless"});
@@ -136,8 +135,7 @@ TEST(MujocoProgram, AModelMujocoRefusesExits64WithItsOwnWords) {
 }
 
 TEST(MujocoProgram, ABodyThatIsNotFreeOrNoModelIsAUsageError) {
-  const auto [status, err] =
-      run_alone({"--model", kScenes + "/test_box.xml", "--body", "fixture"});
+  const auto [status, err] = run_alone({"--model", kScenes + "/test_box.xml", "--body", "fixture"});
   EXPECT_EQ(status, 64);
   EXPECT_NE(err.find("is not free"), std::string::npos) << err;
   EXPECT_EQ(run_alone({}).first, 64);

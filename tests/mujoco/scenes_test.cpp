@@ -18,8 +18,8 @@ const std::string kScenes = HAPTICCTRL_MUJOCO_SCENES;
 constexpr double kG = 9.81;
 
 /// An operator's hand on the body: 500 N/m and 20 N.s/m to an anchor, 0.2 N.m/rad and
-/// 0.004 N.m.s/rad (stable on the peg's 3e-5 kg.m^2 at 1 ms) to the body's first orientation, the body's weight carried (unless
-/// `feel_weight`), and a push of its own.
+/// 0.004 N.m.s/rad (stable on the peg's 3e-5 kg.m^2 at 1 ms) to the body's first orientation, the
+/// body's weight carried (unless `feel_weight`), and a push of its own.
 class Hand {
  public:
   explicit Hand(const World& w, bool feel_weight = false)
@@ -41,9 +41,9 @@ class Hand {
     // Orientation error: the turn from the body to the hold, q_hold * conj(q), small angle.
     const double x = p[3], y = p[4], z = p[5], s = p[6];
     const double hx = hold_[0], hy = hold_[1], hz = hold_[2], hs = hold_[3];
-    std::array<double, 4> e{hs * -x + hx * s + hy * -z - hz * -y,
-                            hs * -y - hx * -z + hy * s + hz * -x,
-                            hs * -z + hx * -y - hy * -x + hz * s, hs * s - hx * -x - hy * -y - hz * -z};
+    std::array<double, 4> e{
+        hs * -x + hx * s + hy * -z - hz * -y, hs * -y - hx * -z + hy * s + hz * -x,
+        hs * -z + hx * -y - hy * -x + hz * s, hs * s - hx * -x - hy * -y - hz * -z};
     const double sign = e[3] < 0 ? -1.0 : 1.0;
     for (std::size_t i = 0; i < 3; ++i) {
       f[3 + i] = 2.0 * 0.2 * sign * e[i] - 0.004 * v[3 + i];
@@ -107,8 +107,8 @@ TEST_P(EveryScene, LoadsNamesItsBodyAndStaysPutWhileHeld) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Shipped, EveryScene,
-                         ::testing::Values("test_box", "table_blocks", "peg_in_hole",
-                                           "door_latch", "heavy_lift"));
+                         ::testing::Values("test_box", "table_blocks", "peg_in_hole", "door_latch",
+                                           "heavy_lift"));
 
 TEST(PegInHole, PushedDownThePegSlidesAlongTheChamferAndGoesIn) {
   World w(kScenes + "/peg_in_hole.xml", "", 0.0);
@@ -144,14 +144,14 @@ TEST(TableBlocks, WithTheGripOnABlockIsLiftedAndStacked) {
   hand.run(w, 0.5, {0, 0, -0.05});    // down onto it (the anchor 5 mm into its top)
   w.set_grip(true);
   hand.run(w, 0.5);
-  hand.run(w, 0.5, {0, 0, 0.08});     // up 4 cm
+  hand.run(w, 0.5, {0, 0, 0.08});  // up 4 cm
   const auto lifted = body(w, "block_red");
   std::printf("block lifted to z %.4f m\n", lifted[2]);
   EXPECT_GT(lifted[2], 0.045);
-  hand.run(w, 1.0, {-0.14, 0, 0});    // over the tower base at x -0.08
-  hand.run(w, 0.5, {0, 0, -0.04});    // down onto it
+  hand.run(w, 1.0, {-0.14, 0, 0});  // over the tower base at x -0.08
+  hand.run(w, 0.5, {0, 0, -0.04});  // down onto it
   w.set_grip(false);
-  hand.run(w, 0.3, {0, 0, 0.1});      // away
+  hand.run(w, 0.3, {0, 0, 0.1});  // away
   hand.run(w, 0.5);
   const auto stacked = body(w, "block_red");
   std::printf("block let go at (%.4f, %.4f, %.4f) m\n", stacked[0], stacked[1], stacked[2]);

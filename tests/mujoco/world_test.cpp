@@ -4,12 +4,12 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <stdexcept>
 #include <string>
-#include <unistd.h>
 
 #include "hapticctrl/mujoco/contact_mapping.hpp"
 
@@ -103,7 +103,8 @@ TEST(World, TheBodySettlesOnTheTableAsDeepAsTheReportedSpringSays) {
   const std::size_t n = w.contacts(found);
   ASSERT_GE(n, 1U);
   std::array<client::Contact, 16> out{};
-  const std::size_t reported = to_client_contacts(std::span(found.data(), n), w.timestep(), 0.0, out);
+  const std::size_t reported =
+      to_client_contacts(std::span(found.data(), n), w.timestep(), 0.0, out);
   ASSERT_GE(reported, 1U);
   const double depth = 0.025 - w.pose()[2];  // the cube's half side over the table top at 0
   const double predicted = 0.5 * kG / out[0].stiffness;

@@ -44,6 +44,11 @@ std::string body_named_by(const mjModel* m) {
                      static_cast<std::size_t>(std::max(0, length - 1)));
 }
 
+/// Element `index` of a MuJoCo array with `width` numbers per object, as a pointer offset.
+std::ptrdiff_t at(int width, int index) {
+  return static_cast<std::ptrdiff_t>(width) * index;
+}
+
 bool is_free(const mjModel* m, int body) {
   return m->body_jntnum[body] == 1 && m->jnt_type[m->body_jntadr[body]] == mjJNT_FREE;
 }
@@ -68,7 +73,7 @@ std::string free_body_names(const mjModel* m) {
 std::vector<int> grips_of(const mjModel* m, int body) {
   std::vector<int> grips;
   for (int a = 0; a < m->nu; ++a) {
-    if (m->actuator_trntype[a] == mjTRN_BODY && m->actuator_trnid[2 * a] == body) {
+    if (m->actuator_trntype[a] == mjTRN_BODY && m->actuator_trnid[at(2, a)] == body) {
       grips.push_back(a);
     }
   }
@@ -166,7 +171,7 @@ double World::mass() const noexcept {
 }
 
 std::array<double, 3> World::inertia() const noexcept {
-  const double* i = engine_->model->body_inertia + 3 * engine_->body;
+  const double* i = engine_->model->body_inertia + at(3, engine_->body);
   return {i[0], i[1], i[2]};
 }
 
@@ -179,8 +184,8 @@ void World::step(const client::Vector6& wrench) noexcept {
   mjtNum rotation[9];
   mju_quat2Mat(rotation, e.data->qpos + e.qpos + 3);
   mjtNum to_com[3];
-  mju_rotVecMat(to_com, e.model->body_ipos + 3 * e.body, rotation);
-  mjtNum* out = e.data->xfrc_applied + 6 * e.body;
+  mju_rotVecMat(to_com, e.model->body_ipos + at(3, e.body), rotation);
+  mjtNum* out = e.data->xfrc_applied + at(6, e.body);
   for (int i = 0; i < 6; ++i) {
     out[i] = finite ? wrench[static_cast<std::size_t>(i)] : 0.0;
   }
@@ -239,8 +244,8 @@ std::size_t World::contacts(std::span<EngineContact> out) noexcept {
     found.condim = c.dim;
     found.pyramidal = m->opt.cone == mjCONE_PYRAMIDAL;
     std::copy_n(c.friction, found.friction.size(), found.friction.begin());
-    found.inverse_weight = m->body_invweight0[2 * m->geom_bodyid[c.geom1]] +
-                           m->body_invweight0[2 * m->geom_bodyid[c.geom2]];
+    found.inverse_weight = m->body_invweight0[at(2, m->geom_bodyid[c.geom1])] +
+                           m->body_invweight0[at(2, m->geom_bodyid[c.geom2])];
     for (std::size_t k = 0; k < 3; ++k) {
       found.midpoint[k] = c.pos[k];
       found.normal[k] = c.frame[k];

@@ -203,6 +203,9 @@ class MujocoRun {
     }
     std::int64_t last_answer = now_ns();
     steps_.start(last_answer);
+    if (!stepping_since_) {
+      stepping_since_ = Clock::now();
+    }
     ended_ = "duration";
     while (!quit_) {
       if (g_stop.load()) {
@@ -298,8 +301,13 @@ class MujocoRun {
     }
   }
 
+  /// Steps run per second of wall clock since the world first stepped (the connection's set-up
+  /// before it is not the engine's; a reconnection's gap after it is, as the world stood still).
   [[nodiscard]] double steps_per_second() const {
-    const double t = elapsed();
+    if (!stepping_since_) {
+      return 0.0;
+    }
+    const double t = std::chrono::duration<double>(Clock::now() - *stepping_since_).count();
     return t > 0.0 ? static_cast<double>(steps_.run()) / t : 0.0;
   }
 
@@ -388,6 +396,7 @@ class MujocoRun {
   const Clock::time_point start_;
   std::optional<hapticctrl::program::RawKeyboard> keyboard_;
   Clock::time_point next_status_;
+  std::optional<Clock::time_point> stepping_since_;
   EngineLoad load_;
   std::uint64_t reconnects_ = 0;
   std::uint64_t reported_ = 0;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -31,10 +32,14 @@ struct SceneCase {
   std::vector<std::string> push;  // hapticctrl-hmi force arguments; empty: no push
   double push_at = 1.5;
   double duration = 4.0;
+  int delay_ms = 0;  // one way, through hapticctrl-netem
+  [[nodiscard]] std::string name() const {
+    return std::string(scene) + (delay_ms > 0 ? "_" + std::to_string(delay_ms) + "ms" : "");
+  }
 };
 
 void PrintTo(const SceneCase& c, std::ostream* os) {  // NOLINT(readability-identifier-naming)
-  *os << c.scene;
+  *os << c.name();
 }
 
 int run_hmi(const ControllerStack& stack, std::vector<std::string> args) {
@@ -45,10 +50,15 @@ int run_hmi(const ControllerStack& stack, std::vector<std::string> args) {
 
 /// The scene run to its end with the case's push; its JSON summary ("" if it failed).
 std::string run_scene(const ControllerStack& stack, const SceneCase& c) {
-  SpawnedProcess mujoco(HAPTICCTRL_MUJOCO_BINARY,
-                        {"--model", kScenes + "/" + c.scene + ".xml", "--server",
-                         "127.0.0.1:" + std::to_string(stack.port()), "--headless", "--json",
-                         "--duration", std::to_string(c.duration)});
+  std::optional<Relay> relay;
+  if (c.delay_ms > 0) {
+    relay.emplace(stack.port(), std::vector<std::string>{"--delay-ms", std::to_string(c.delay_ms)});
+  }
+  const std::uint16_t port = relay ? relay->port() : stack.port();
+  SpawnedProcess mujoco(
+      HAPTICCTRL_MUJOCO_BINARY,
+      {"--model", kScenes + "/" + c.scene + ".xml", "--server", "127.0.0.1:" + std::to_string(port),
+       "--headless", "--json", "--duration", std::to_string(c.duration)});
   if (!c.push.empty()) {
     std::this_thread::sleep_for(std::chrono::duration<double>(c.push_at));
     std::vector<std::string> force{"force"};
@@ -58,7 +68,7 @@ std::string run_scene(const ControllerStack& stack, const SceneCase& c) {
   const int status = mujoco.wait(std::chrono::seconds(static_cast<int>(c.duration) + 20));
   EXPECT_EQ(status, 0) << mujoco.err();
   (void)run_hmi(stack, {"zero-force"});
-  std::printf("%s: %s", c.scene, mujoco.out().c_str());
+  std::printf("%s: %s", c.name().c_str(), mujoco.out().c_str());
   return status == 0 ? mujoco.out() : std::string{};
 }
 
@@ -66,8 +76,8 @@ class ShippedScene : public ::testing::TestWithParam<SceneCase> {};
 
 TEST_P(ShippedScene, KeepsRealTimeStaysStableAndReportsItsContacts) {
   const SceneCase& c = GetParam();
-  retry_what_the_machine_disturbed(c.scene, 3, [&](int attempt) {
-    ControllerStack stack(std::string("mj-") + c.scene + std::to_string(attempt), kPeriodUs, {},
+  retry_what_the_machine_disturbed(c.name(), 3, [&](int attempt) {
+    ControllerStack stack("mj-" + c.name() + std::to_string(attempt), kPeriodUs, {},
                           {"--benchmark-mode"});
     EXPECT_TRUE(stack.ready()) << stack.diagnostics();
     const std::string summary = run_scene(stack, c);
@@ -86,7 +96,7 @@ TEST_P(ShippedScene, KeepsRealTimeStaysStableAndReportsItsContacts) {
     const double model = json_number(summary, "model_steps_per_second");
     if (rate < 0.95 * model && json_number(summary, "steps_dropped") > 0) {
       std::printf("%s: %.0f of %.0f steps/s with steps dropped after a stall: tried again\n",
-                  c.scene, rate, model);
+                  c.name().c_str(), rate, model);
       return false;
     }
     EXPECT_GE(rate, 0.95 * model) << "the engine keeps real time";
@@ -109,9 +119,11 @@ INSTANTIATE_TEST_SUITE_P(
     J3, ShippedScene,
     ::testing::Values(SceneCase{"test_box", {"0", "0", "-2", "0", "0", "0"}},
                       SceneCase{"peg_in_hole", {"0", "0", "-3", "0", "0", "0"}, 1.5, 5.0},
+                      SceneCase{"peg_in_hole", {"0", "0", "-3", "0", "0", "0"}, 1.5, 5.0, 5},
+                      SceneCase{"peg_in_hole", {"0", "0", "-3", "0", "0", "0"}, 1.5, 5.0, 20},
                       SceneCase{"table_blocks", {}}, SceneCase{"door_latch", {}},
                       SceneCase{"heavy_lift", {}}),
-    [](const auto& p) { return std::string(p.param.scene); });
+    [](const auto& p) { return p.param.name(); });
 
 /// Column `name` of a hapticctrl-hmi play log, from row `from_s` to `to_s` (its t_s).
 std::vector<double> log_column(const std::string& path, const std::string& name, double from_s,

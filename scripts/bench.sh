@@ -24,11 +24,15 @@
 #     nobody touching, 10 minutes (gravity.md);
 #  7. the peers (H8): the seqlock regions against iceoryx, LCM and UDP, cross-process, in one
 #     run (hapticctrl-bench-peers: latency, read and publish costs, CPU per 1000 messages, a
-#     stopped and a killed reader), in report.md's section 5.
+#     stopped and a killed reader), in report.md's section 5;
+#  8. hapticctrl-mujoco on every shipped scene (bench/mujoco_scenes.sh, J3): steps per second
+#     against the model's own rate, steps dropped, CPU time per step, idle and under stress-ng
+#     (mujoco.md).
 #
 # usage: scripts/bench.sh [--out DIR] [--build DIR] [--seconds N] [--long] [--smoke]
-#   default about 125 minutes (8 s per latency run, 15 s per link run, 14 coupling cases of
-#   ~90 s, 48 contact cases of ~70 s, 16 local-model cases of ~110 s, 10 minutes at rest);
+#   default about 129 minutes (8 s per latency run, 15 s per link run, 14 coupling cases of
+#   ~90 s, 48 contact cases of ~70 s, 16 local-model cases of ~110 s, 10 minutes at rest, 10
+#   MuJoCo runs of 20 s);
 #   --long: 60 s and 120 s latency and link runs; --smoke: 1 s runs, 2 coupling, 2 contact and
 #   2 local-model cases with 8 s of hand motion, 20 s at rest (checks the pipeline, not the
 #   machine).
@@ -189,13 +193,18 @@ echo "bench: the seqlock regions against iceoryx, LCM and UDP (hapticctrl-bench-
 "$BUILD/bench/hapticctrl-bench-peers" $SMOKE >"$RAW/peers.json" 2>"$RAW/peers.err" ||
   echo "bench: hapticctrl-bench-peers failed (see $RAW/peers.err)" >&2
 
+# 8: the MuJoCo client's engine in real time.
+echo "bench: hapticctrl-mujoco on the shipped scenes" >&2
+bench/mujoco_scenes.sh "$OUT" "$BUILD" $SMOKE
+
 python3 bench/report.py "$OUT"
 python3 bench/coupling_report.py "$OUT" >/dev/null
 python3 bench/contact_report.py "$OUT" >/dev/null
 python3 bench/local_contact_report.py "$OUT" >/dev/null
 python3 bench/gravity_report.py "$OUT" >/dev/null
+python3 bench/mujoco_report.py "$OUT" >/dev/null
 {
   echo; cat "$OUT/coupling.md"; echo; cat "$OUT/contact.md"; echo; cat "$OUT/local.md"
-  echo; cat "$OUT/gravity.md"
+  echo; cat "$OUT/gravity.md"; echo; cat "$OUT/mujoco.md"
 } >>"$OUT/report.md"
 echo "bench: report in $OUT/report.md" >&2

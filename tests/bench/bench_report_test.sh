@@ -99,6 +99,10 @@ assert os.path.getsize(os.path.join(out, r["peers_plot"])) > 0
 rest = json.load(open(os.path.join(out, "gravity.json"), encoding="utf-8"))
 assert rest["judged"] and rest["seconds"] > 15 and rest["stalls_ridden"] is not None, rest
 assert rest["chatter"] is not None and rest["weight_n"] > 0, rest
+engine = json.load(open(os.path.join(out, "mujoco.json"), encoding="utf-8"))
+assert len(engine) >= 5 and all("error" not in e for e in engine), engine
+assert all(e["steps"] > 0 and e["cpu_us_mean"] > 0 for e in engine), engine
+assert "hapticctrl-mujoco: the shipped scenes" in report, "report.md lacks the MuJoCo section"
 assert len(r["plots"]) == 4
 for png in r["plots"]:
     with open(os.path.join(out, png), "rb") as f:

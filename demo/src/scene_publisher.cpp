@@ -2,12 +2,7 @@
 // views (the web bridge, lcm-spy) can draw the spheres the controller's handle is coupled to.
 #include "hapticctrl/demo/scene_publisher.hpp"
 
-#include <lcm/lcm-cpp.hpp>
-
 #include <algorithm>
-#include <stdexcept>
-
-#include "hapticctrl/lcmtypes/channels.hpp"
 
 namespace hapticctrl::demo {
 
@@ -37,30 +32,6 @@ hapticctrl_lcm::scene_t to_scene_message(const SphereScene& scene, const Applied
   m.answers_received = static_cast<std::int64_t>(link.answers_received);
   m.answers_lost = static_cast<std::int64_t>(link.answers_lost);
   return m;
-}
-
-ScenePublisher::ScenePublisher(const std::string& url, const std::string& instance, double rate_hz)
-    : lcm_(std::make_unique<lcm::LCM>(url)),
-      channel_(lcmtypes::Channels::of(instance).scene),
-      period_ns_(static_cast<std::int64_t>(1e9 / rate_hz)) {
-  if (!lcm_->good()) {
-    throw std::runtime_error("cannot open LCM on '" + url +
-                             "' to publish the scene (--no-lcm runs without it)");
-  }
-}
-
-ScenePublisher::~ScenePublisher() = default;
-
-bool ScenePublisher::due(std::int64_t now_ns) noexcept {
-  if (now_ns < next_ns_) {
-    return false;
-  }
-  next_ns_ = next_ns_ + period_ns_ > now_ns ? next_ns_ + period_ns_ : now_ns + period_ns_;
-  return true;
-}
-
-bool ScenePublisher::publish(const hapticctrl_lcm::scene_t& message) {
-  return lcm_->publish(channel_, &message) == 0;
 }
 
 }  // namespace hapticctrl::demo

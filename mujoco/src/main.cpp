@@ -19,11 +19,13 @@
 #include <vector>
 
 #include "hapticctrl/client/connection.hpp"
+#include "hapticctrl/lcmtypes/paced_publisher.hpp"
 #include "hapticctrl/mujoco/contact_mapping.hpp"
 #include "hapticctrl/mujoco/grasp.hpp"
 #include "hapticctrl/mujoco/mujoco_options.hpp"
 #include "hapticctrl/mujoco/real_time_steps.hpp"
 #include "hapticctrl/mujoco/world.hpp"
+#include "hapticctrl/mujoco/world_message.hpp"
 #include "hapticctrl/program/main_skeleton.hpp"
 #include "hapticctrl/program/raw_keyboard.hpp"
 
@@ -87,6 +89,10 @@ class MujocoRun {
       keyboard_.emplace();
     }
     next_status_ = start_;
+    if (o.publish_world) {
+      world_out_.emplace(o.lcm_url, hapticctrl::lcmtypes::Channels::of(o.instance).world,
+                         o.world_rate_hz, "the world");
+    }
   }
 
   int run() {
@@ -266,6 +272,18 @@ class MujocoRun {
     }
     report_contacts();
     (void)c_->send_object_state(grasp_.to_client(world_.pose()), world_.twist());
+    publish_world_when_due();
+  }
+
+  /// The scene for the web view, at --world-rate.
+  void publish_world_when_due() {
+    const std::int64_t now = now_ns();
+    if (!world_out_ || !world_out_->due(now)) {
+      return;
+    }
+    const mj::WorldRun run{steps_.run(), steps_per_second(), now / 1000};
+    (void)world_out_->publish(mj::to_world_message(
+        world_, grasp_, std::span(contacts_out_.data(), contacts_count_), run));
   }
 
   /// The body's contacts (and those it is near) in the client's frame, deepest first.
@@ -281,12 +299,13 @@ class MujocoRun {
                                kReachSpeed * 2e-6 * std::max(link.rtt_mean_us, link.loop_delay_us));
     std::array<mj::EngineContact, client::kMaxContacts> found{};
     const std::size_t n = world_.contacts(found);
-    std::array<client::Contact, client::kMaxContacts> out{};
+    std::array<client::Contact, client::kMaxContacts>& out = contacts_out_;
     const std::size_t count = mj::to_client_contacts(std::span(found.data(), n), world_.timestep(),
                                                      link.max_contact_stiffness, out);
     for (std::size_t i = 0; i < count; ++i) {
       out[i].point = grasp_.point_to_client(out[i].point);
     }
+    contacts_count_ = count;
     reported_ += count > 0 ? 1 : 0;
     const client::ContactResult r = c_->set_contacts(std::span(out.data(), count));
     if (r == client::ContactResult::kUnsupported) {
@@ -407,6 +426,9 @@ class MujocoRun {
   bool gripping_ = false;
   std::optional<client::Connection> c_;
   client::StateSnapshot s_;
+  std::array<client::Contact, client::kMaxContacts> contacts_out_{};  ///< as last reported
+  std::size_t contacts_count_ = 0;
+  std::optional<hapticctrl::lcmtypes::PacedPublisher<hapticctrl_lcm::world_t>> world_out_;
 };
 
 }  // namespace

@@ -16,7 +16,9 @@ constexpr const char* kDescription =
     "wrench on the body, and sends the body's pose and twist; the body's contacts go to the "
     "controller as its local contact model (protocol 1.3), so they feel hard at any delay. "
     "Keys (with a terminal): r puts the scene back to its start, g switches the grip (a model's "
-    "adhesion actuator on the body), q quits. A lost session or a "
+    "adhesion actuator on the body), q quits. The scene's geoms and the body's contacts go out "
+    "on LCM (hapticctrl.<instance>.world, 30 Hz, local-only) for the web view. A lost session or "
+    "a "
     "controller that failed safe is reconnected (the scene is held where the handle is) unless "
     "--no-reconnect. Exit: 0 done, 1 error, 2 (--no-reconnect) the controller ended the session "
     "abnormally, 64 usage or a model MuJoCo refuses (its own error text).";
@@ -39,6 +41,20 @@ void declare(program::Options& o, MujocoOptions& m) {
   o.flag(
       "--no-contacts", [&m] { m.report_contacts = false; },
       "do not report the body's contacts to the controller (the coupling alone renders them)");
+  o.custom(
+      "--instance", "NAME",
+      [&m](const std::string& v) {
+        if (v.empty() || v.find_first_of(". \t") != std::string::npos) {
+          throw std::invalid_argument("--instance must be a non-empty name without dots or spaces");
+        }
+        m.instance = v;
+      },
+      "controller instance, for the world's LCM channel (default: default)");
+  o.text("--lcm-url", m.lcm_url, "LCM provider for the world");
+  o.number("--world-rate", m.world_rate_hz, 1.0, 120.0, "world messages per second");
+  o.flag(
+      "--no-lcm", [&m] { m.publish_world = false; },
+      "publish no world on LCM (hapticctrl.<instance>.world, for the web view)");
 }
 
 }  // namespace

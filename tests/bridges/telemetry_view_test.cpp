@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <tuple>
 
 namespace hapticctrl::web_bridge {
 namespace {
@@ -156,6 +157,54 @@ TEST(EventStrings, LyingLengthsAndTruncationFail) {
   std::string unterminated = b;
   unterminated.replace(kKindLength + 4 + 4, 1, "x");  // the kind's NUL
   EXPECT_FALSE(event_strings_sound(unterminated.data(), unterminated.size()));
+}
+
+TEST(TelemetryView, AWorldGoesOutWithItsGeomsAndContactsUpToItsCounts) {
+  TelemetryView view;
+  hapticctrl_lcm::world_t w{};
+  w.steps = 12;
+  w.geom_count = 2;
+  w.geoms_total = 3;
+  w.geoms[1].type = 2;
+  w.geoms[1].size[0] = 0.03;
+  w.geoms[1].pose[0] = 0.4;
+  w.geoms[1].rgba[3] = 1.0F;
+  w.geoms[1].coupled = true;
+  w.geoms[2].type = 6;  // beyond the count: not sent
+  w.contact_count = 1;
+  w.contacts[0].normal[2] = 1.0;
+  w.contacts[0].distance = -0.002;
+  view.on_world(w, 10 * kMs);
+  const Json f = Json::parse(view.next_frame(25 * kMs));
+  EXPECT_DOUBLE_EQ(f["age_ms"]["world"].get<double>(), 15.0);
+  const Json& world = f["world"];
+  EXPECT_EQ(world["steps"], 12);
+  EXPECT_EQ(world["geoms_total"], 3);
+  ASSERT_EQ(world["geoms"].size(), 2U);
+  EXPECT_EQ(world["geoms"][1]["type"], 2);
+  EXPECT_DOUBLE_EQ(world["geoms"][1]["pose"][0].get<double>(), 0.4);
+  EXPECT_EQ(world["geoms"][1]["coupled"], true);
+  ASSERT_EQ(world["contacts"].size(), 1U);
+  EXPECT_DOUBLE_EQ(world["contacts"][0]["distance"].get<double>(), -0.002);
+}
+
+TEST(WorldCounts, CountsBeyondTheArraysAreRefusedAndNotShown) {
+  hapticctrl_lcm::world_t w{};
+  EXPECT_TRUE(world_counts_sound(w));
+  for (const auto& [geoms, total, contacts] :
+       {std::tuple{-1, 0, 0}, std::tuple{129, 129, 0}, std::tuple{2, 1, 0}, std::tuple{0, 0, 9},
+        std::tuple{0, 0, -3}}) {
+    w.geom_count = geoms;
+    w.geoms_total = total;
+    w.contact_count = contacts;
+    EXPECT_FALSE(world_counts_sound(w)) << geoms << " " << total << " " << contacts;
+    TelemetryView view;
+    view.on_world(w, 0);
+    EXPECT_TRUE(Json::parse(view.next_frame(0))["world"].is_null());
+  }
+  w.geom_count = w.geoms_total = 128;
+  w.contact_count = 8;
+  EXPECT_TRUE(world_counts_sound(w));
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
 // libFuzzer target: what reaches the web bridge from outside. The first byte chooses: page
-// messages (with remote commands on, then off) or an event_t from the LCM bus. A page request
-// must come back accepted with a finite, bounded wrench or refused with a reason; an event the
-// string check passes must decode and go into a frame that is valid JSON; nothing may throw.
+// messages (with remote commands on, then off), an event_t or a world_t from the LCM bus. A page
+// request must come back accepted with a finite, bounded wrench or refused with a reason; an
+// event the string check passes, and a world whose counts fit, must go into a frame that is
+// valid JSON; nothing may throw.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -49,6 +50,18 @@ void bus_event(const std::uint8_t* data, std::size_t size) {
   }
 }
 
+void bus_world(const std::uint8_t* data, std::size_t size) {
+  hapticctrl_lcm::world_t w{};
+  if (w.decode(data, 0, static_cast<int>(size)) < 0 || !wb::world_counts_sound(w)) {
+    return;  // counted as malformed by the bridge's LCM input
+  }
+  wb::TelemetryView view;
+  view.on_world(w, 0);
+  if (!nlohmann::json::accept(view.next_frame(0))) {
+    std::abort();
+  }
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -56,15 +69,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return 0;
   }
   const std::string_view text(reinterpret_cast<const char*>(data) + 1, size - 1);
-  switch (data[0] % 3) {
+  switch (data[0] % 4) {
     case 0:
       page_message(text, true);
       break;
     case 1:
       page_message(text, false);
       break;
-    default:
+    case 2:
       bus_event(data + 1, size - 1);
+      break;
+    default:
+      bus_world(data + 1, size - 1);
       break;
   }
   return 0;

@@ -94,15 +94,25 @@ class TelemetryInput {
           self->deliver<hapticctrl_lcm::scene_t>(b, &wb::TelemetryView::on_scene);
         },
         this);
+    lcm.subscribeFunction(
+        ch.world,
+        +[](const Buffer* b, const std::string& /*ch*/, TelemetryInput* self) {
+          self->deliver<hapticctrl_lcm::world_t>(b, &wb::TelemetryView::on_world,
+                                                 &wb::world_counts_sound);
+        },
+        this);
   }
 
   [[nodiscard]] std::uint64_t received() const noexcept { return received_.load(); }
   [[nodiscard]] std::uint64_t malformed() const noexcept { return malformed_.load(); }
 
  private:
+  /// Decodes one message and hands it to the view; what does not decode, or what `sound`
+  /// refuses, is counted as malformed and dropped.
   template <typename Message>
   void deliver(const lcm::ReceiveBuffer* rbuf,
-               void (wb::TelemetryView::*to_view)(const Message&, std::int64_t)) {
+               void (wb::TelemetryView::*to_view)(const Message&, std::int64_t),
+               bool (*sound)(const Message&) = nullptr) {
     Message m{};
     bool decoded = false;
     try {
@@ -110,7 +120,7 @@ class TelemetryInput {
     } catch (const std::exception&) {  // LCM's string decoding may throw bad_alloc
       decoded = false;
     }
-    if (!decoded) {
+    if (!decoded || (sound != nullptr && !sound(m))) {
       malformed_.fetch_add(1, std::memory_order_relaxed);
       return;
     }

@@ -12,7 +12,7 @@ namespace {
 
 using Json = nlohmann::json;
 
-enum Source : std::size_t { kArm, kCoupling, kStats, kEvents, kScene };
+enum Source : std::size_t { kArm, kCoupling, kStats, kEvents, kScene, kWorld };
 
 template <std::size_t N>
 Json array_of(const double (&values)[N]) {
@@ -98,6 +98,38 @@ Json scene_json(const hapticctrl_lcm::scene_t& m) {
           {"answers_lost", m.answers_lost}};
 }
 
+template <std::size_t N>
+Json array_of(const float (&values)[N]) {
+  return Json(std::vector<double>(values, values + N));
+}
+
+Json world_json(const hapticctrl_lcm::world_t& m) {
+  Json geoms = Json::array();
+  for (std::int32_t i = 0; i < m.geom_count; ++i) {
+    const hapticctrl_lcm::world_geom_t& g = m.geoms[i];
+    geoms.push_back({{"type", g.type},
+                     {"size", array_of(g.size)},
+                     {"pose", array_of(g.pose)},
+                     {"rgba", array_of(g.rgba)},
+                     {"coupled", g.coupled != 0}});
+  }
+  Json contacts = Json::array();
+  for (std::int32_t i = 0; i < m.contact_count; ++i) {
+    const hapticctrl_lcm::world_contact_t& c = m.contacts[i];
+    contacts.push_back({{"point", array_of(c.point)},
+                        {"normal", array_of(c.normal)},
+                        {"distance", c.distance},
+                        {"stiffness", c.stiffness}});
+  }
+  return {{"steps", m.steps},
+          {"steps_per_second", m.steps_per_second},
+          {"model_steps_per_second", m.model_steps_per_second},
+          {"geoms_total", m.geoms_total},
+          {"geoms", std::move(geoms)},
+          {"contacts", std::move(contacts)},
+          {"contact_force", array_of(m.contact_force)}};
+}
+
 Json event_json(const hapticctrl_lcm::event_t& m) {
   return {{"index", m.index},     {"cycle", m.cycle},
           {"time_ns", m.time_ns}, {"kind", m.kind},
@@ -133,6 +165,13 @@ bool skip_string(const std::uint8_t* p, std::size_t size, std::size_t& at) noexc
 }
 
 }  // namespace
+
+bool world_counts_sound(const hapticctrl_lcm::world_t& m) noexcept {
+  constexpr auto kGeoms = static_cast<std::int32_t>(sizeof(m.geoms) / sizeof(m.geoms[0]));
+  constexpr auto kContacts = static_cast<std::int32_t>(sizeof(m.contacts) / sizeof(m.contacts[0]));
+  return m.geom_count >= 0 && m.geom_count <= kGeoms && m.geoms_total >= m.geom_count &&
+         m.contact_count >= 0 && m.contact_count <= kContacts;
+}
 
 StatsInterval interval_between(const hapticctrl_lcm::cycle_stats_t& before,
                                const hapticctrl_lcm::cycle_stats_t& after) noexcept {
@@ -213,9 +252,18 @@ void TelemetryView::on_scene(const hapticctrl_lcm::scene_t& m, std::int64_t now_
   received_[kScene] = {now_ns, true};
 }
 
+void TelemetryView::on_world(const hapticctrl_lcm::world_t& m, std::int64_t now_ns) {
+  if (!world_counts_sound(m)) {
+    return;  // the LCM input counts it as malformed before it gets here
+  }
+  const std::lock_guard lock(mutex_);
+  world_ = m;
+  received_[kWorld] = {now_ns, true};
+}
+
 std::string TelemetryView::next_frame(std::int64_t now_ns) {
   const std::lock_guard lock(mutex_);
-  static constexpr const char* kNames[] = {"arm", "coupling", "stats", "events", "scene"};
+  static constexpr const char* kNames[] = {"arm", "coupling", "stats", "events", "scene", "world"};
   Json age = Json::object();
   for (std::size_t i = 0; i < received_.size(); ++i) {
     age[kNames[i]] = received_[i].any ? Json(static_cast<double>(now_ns - received_[i].at_ns) / 1e6)
@@ -227,6 +275,7 @@ std::string TelemetryView::next_frame(std::int64_t now_ns) {
   frame["arm"] = arm_ ? arm_json(*arm_) : Json(nullptr);
   frame["coupling"] = coupling_ ? coupling_json(*coupling_) : Json(nullptr);
   frame["scene"] = scene_ ? scene_json(*scene_) : Json(nullptr);
+  frame["world"] = world_ ? world_json(*world_) : Json(nullptr);
   if (stats_fresh_ && stats_) {
     frame["stats"] = stats_json(*stats_, interval_.value_or(StatsInterval{}));
     stats_fresh_ = false;

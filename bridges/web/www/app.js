@@ -17,7 +17,7 @@ const CORE_STOPPING = 3;
 const FORCE_SEND_MS = 50; // the LCM bridge lets an operator force decay after 200 ms of silence
 const MODEL_TOLERANCE_M = 0.002;
 const MAX_EVENTS = 200;
-const SCENE_GONE_MS = 1000; // the demo publishes its scene at 30 Hz
+const SCENE_GONE_MS = 1000; // the demo publishes its scene, hapticctrl-mujoco its world, at 30 Hz
 
 const $ = (id) => document.getElementById(id);
 const fmt = (v, digits = 3) => (v >= 0 ? '+' : '') + v.toFixed(digits);
@@ -171,7 +171,7 @@ function showAlarm(alarm) {
 }
 
 function showState(frame) {
-  const { arm, coupling, scene } = frame;
+  const { arm, coupling, scene, world } = frame;
   const stats = status.stats;
   showAlarm(describeAlarm(frame, stats));
   if (status.coreLost || frame.controller_silent) {
@@ -216,9 +216,15 @@ function showState(frame) {
       }
     }
   }
-  $('contact').textContent = scene
-    ? `${vec3(scene.contact_force, 2, ' N')} · ${(scene.penetration * 1000).toFixed(2)} mm`
-    : 'no scene (a running hapticctrl-demo publishes it)';
+  if (scene) {
+    $('contact').textContent = `${vec3(scene.contact_force, 2, ' N')} · ${(scene.penetration * 1000).toFixed(2)} mm`;
+  } else if (world) {
+    $('contact').textContent = `${vec3(world.contact_force, 2, ' N')} · ${world.contacts.length} contact(s) · ` +
+      `${world.steps_per_second.toFixed(0)} of ${world.model_steps_per_second.toFixed(0)} steps/s` +
+      (world.geoms_total > world.geoms.length ? ` · ${world.geoms.length} of ${world.geoms_total} geoms drawn` : '');
+  } else {
+    $('contact').textContent = 'no scene (a running hapticctrl-demo or hapticctrl-mujoco publishes it)';
+  }
   const surface = coupling && coupling.contact_age_ms >= 0;
   $('surface').textContent = surface
     ? `${coupling.surface_force.toFixed(2)} N · ${coupling.surface_depth_mm.toFixed(2)} mm deep` +
@@ -286,6 +292,7 @@ function onMessage(text) {
     case 'state':
       // A scene its client stopped publishing is gone, not frozen where it was.
       if (message.age_ms.scene === null || message.age_ms.scene > SCENE_GONE_MS) message.scene = null;
+      if (message.age_ms.world === null || message.age_ms.world > SCENE_GONE_MS) message.world = null;
       status.frame = message;
       status.framesReceived += 1;
       if (message.stats) status.stats = message.stats;

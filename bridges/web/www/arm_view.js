@@ -1,9 +1,10 @@
 // The 3D view: the arm drawn from the model's kinematics and the live joint angles, the handle
 // frame, the operator's and the rendered wrench (forces) as arrows, the demo's two spheres and
-// their contact force. Base frame, z up, metres.
+// their contact force, a physics engine client's world (world_view.js). Base frame, z up, metres.
 import * as THREE from 'three';
 import { OrbitControls } from './vendor/three/controls/OrbitControls.js';
 import { forwardKinematics } from './kinematics.js';
+import { WorldView } from './world_view.js';
 
 const NEWTONS_TO_METRES = 0.01; // arrow length per newton: 10 N draws 10 cm
 const SMALLEST_ARROW_N = 0.05;
@@ -94,6 +95,7 @@ export class ArmView {
       new THREE.LineBasicMaterial({ color: SURFACE_COLOUR })));
     this.surface.visible = false;
     this.scene.add(this.surface);
+    this.world = new WorldView(this.scene);
     this.framesRendered = 0;
     // Render on demand (new telemetry, camera moved, resize), not at the display's full rate:
     // software WebGL on the controller's own host would otherwise take CPU from the cycle
@@ -173,6 +175,7 @@ export class ArmView {
       setArrow(this.arrows.rendered, handle, arm.coupling_wrench);
     }
     this.updateScene(frame.scene);
+    this.world.update(frame.world);
     this.updateSurface(frame.coupling);
   }
 

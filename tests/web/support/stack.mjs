@@ -1,5 +1,5 @@
-// The real controller stack for browser tests: core, UDP bridge, LCM bridge, demo client and web
-// bridge on loopback, for one unique instance; stopped and cleaned up (processes, /dev/shm) by
+// The real controller stack for browser tests: core, UDP bridge, LCM bridge, a client (the demo,
+// or hapticctrl-mujoco with a scene) and web bridge on loopback, for one unique instance; stopped and cleaned up (processes, /dev/shm) by
 // stop(), which the tests call from after() so that a failure leaves nothing behind.
 import { spawn, execFileSync } from 'node:child_process';
 import { rmSync, existsSync, mkdtempSync } from 'node:fs';
@@ -20,6 +20,8 @@ export const binaries = {
   demo: () => env('HAPTICCTRL_DEMO'),
   web: () => env('HAPTICCTRL_WEB'),
   hmi: () => env('HAPTICCTRL_HMI'),
+  mujoco: () => env('HAPTICCTRL_MUJOCO'),
+  scenes: () => env('HAPTICCTRL_MUJOCO_SCENES'),
 };
 
 /** Polls `predicate` every `everyMs` until it is truthy or `timeoutMs` passes; returns its value. */
@@ -82,24 +84,31 @@ export class Stack {
     return JSON.parse(this.hmi('status', '--json'));
   }
 
-  async start() {
+  /**
+   * Starts everything; `scene`: hapticctrl-mujoco on that shipped scene (powering the arm, on a
+   * 1 ms core in benchmark mode: its coupling is the one a user runs) instead of the demo.
+   */
+  async start({ scene = null } = {}) {
     const i = ['--instance', this.instance];
-    await this.startCore();
+    await (scene ? this.startCore(['--benchmark-mode'], '1000') : this.startCore());
     const udp = this.run('udp', binaries.udp(), [...i, '--port', '0']);
     this.udpPort = Number((await udp.waitFor(/listening on 127\.0\.0\.1:(\d+)/))[1]);
     const lcm = this.run('lcm', binaries.lcm(), [...i, '--allow-remote-commands']);
     await lcm.waitFor(/remote commands enabled/);
-    const demo = this.run('demo', binaries.demo(), ['--server', `127.0.0.1:${this.udpPort}`, ...i, '--headless', '--no-power']);
-    await demo.waitFor(/ready:/);
+    const server = ['--server', `127.0.0.1:${this.udpPort}`];
+    const client = scene
+      ? this.run('client', binaries.mujoco(), ['--model', join(binaries.scenes(), `${scene}.xml`), ...server, ...i, '--headless'])
+      : this.run('client', binaries.demo(), [...server, ...i, '--headless', '--no-power']);
+    await client.waitFor(/ready:/);
     await this.startWeb();
   }
 
-  /** Starts a core (10 ms cycle) with `extra` options, after the last one ended. */
-  async startCore(extra = []) {
+  /** Starts a core (10 ms cycle unless `periodUs`) with `extra` options, after the last one ended. */
+  async startCore(extra = [], periodUs = '10000') {
     // Sanitizer builds integrate the arm in coarser sub-steps, as tests/support/controller_stack.hpp
     // explains: instrumented, the simulator alone takes most of the period.
     const substepUs = process.env.HAPTICCTRL_SANITIZED ? '250' : '125';
-    const core = this.run('core', binaries.core(), ['--instance', this.instance, '--period-us', '10000',
+    const core = this.run('core', binaries.core(), ['--instance', this.instance, '--period-us', periodUs,
       '--rt', 'warn', '--sim-substep-us', substepUs, '--state-dir', this.blackBoxes, ...extra]);
     await core.waitFor(/running, period/);
   }
@@ -130,7 +139,7 @@ export class Stack {
   /** Everything down, the core first (its fail-safe order), then the rest; no segment left. */
   async stop() {
     await this.stopProcess('core');
-    for (const name of ['demo', 'udp', 'lcm', 'web']) await this.stopProcess(name);
+    for (const name of ['client', 'udp', 'lcm', 'web']) await this.stopProcess(name);
     for (const suffix of ['', '.lock']) {
       const path = `/dev/shm/hapticctrl.${this.instance}${suffix}`;
       if (existsSync(path)) rmSync(path);

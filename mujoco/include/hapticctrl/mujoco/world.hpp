@@ -16,6 +16,16 @@
 
 namespace hapticctrl::mujoco {
 
+/// One geom as a view draws it (world_t's world_geom_t): MuJoCo's type and half-sizes, a mesh as
+/// its bounding box (type box, posed at the box's centre).
+struct GeomView {
+  int type = 0;  ///< mjtGeom: 0 plane, 2 sphere, 3 capsule, 4 ellipsoid, 5 cylinder, 6 box
+  std::array<double, 3> size{};
+  client::Pose7 pose{0, 0, 0, 0, 0, 0, 1};  ///< in the world
+  std::array<float, 4> rgba{};
+  bool coupled = false;  ///< part of the body the hand holds
+};
+
 class World {
  public:
   /// Loads an MJCF file and finds the coupled body: `body`, or (empty) the model's custom text
@@ -62,6 +72,13 @@ class World {
   [[nodiscard]] bool has_grip() const noexcept;
   /// The grip fully on (its control range's top) or off. Cycle-safe.
   void set_grip(bool on) noexcept;
+
+  /// The model's visible geoms (alpha above 0; height fields and signed distance fields are
+  /// left out) in the state after the last step, at most out.size(): the count written.
+  /// Allocates nothing. Cycle-safe.
+  std::size_t geoms(std::span<GeomView> out) const noexcept;
+  /// How many geoms geoms() would write given room for all.
+  [[nodiscard]] std::size_t visible_geoms() const noexcept;
 
   /// Where the scene's other free bodies are (name, position in the world; unnamed ones as
   /// "body N"), for the summary. Allocates: not for the stepping loop.

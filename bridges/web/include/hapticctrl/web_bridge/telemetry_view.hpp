@@ -19,6 +19,7 @@
 #include "hapticctrl_lcm/cycle_stats_t.hpp"
 #include "hapticctrl_lcm/event_t.hpp"
 #include "hapticctrl_lcm/scene_t.hpp"
+#include "hapticctrl_lcm/world_t.hpp"
 
 namespace hapticctrl::web_bridge {
 
@@ -48,6 +49,10 @@ struct StatsInterval {
 /// lcm-gen decoder trusts them (a negative one makes it copy gigabytes): check before decode().
 [[nodiscard]] bool event_strings_sound(const void* data, std::size_t size) noexcept;
 
+/// Whether a decoded world_t's counts fit its arrays (geom_count within geoms, contact_count
+/// within contacts, geoms_total not below geom_count): the page draws only what they say.
+[[nodiscard]] bool world_counts_sound(const hapticctrl_lcm::world_t& m) noexcept;
+
 class TelemetryView {
  public:
   explicit TelemetryView(std::size_t event_history = 20);
@@ -57,8 +62,11 @@ class TelemetryView {
   void on_cycle_stats(const hapticctrl_lcm::cycle_stats_t& m, std::int64_t now_ns);
   void on_event(const hapticctrl_lcm::event_t& m, std::int64_t now_ns);
   void on_scene(const hapticctrl_lcm::scene_t& m, std::int64_t now_ns);
+  /// A physics engine client's world (hapticctrl-mujoco); counts checked by world_counts_sound.
+  void on_world(const hapticctrl_lcm::world_t& m, std::int64_t now_ns);
 
-  /// The next state frame: the latest arm state, coupling and scene, each message's age, and
+  /// The next state frame: the latest arm state, coupling, scene and world, each message's age,
+  /// and
   /// the statistics and events that arrived since the previous frame (so plots get each sample
   /// once). {"type":"state",...}; docs/web.md lists the fields.
   [[nodiscard]] std::string next_frame(std::int64_t now_ns);
@@ -78,10 +86,11 @@ class TelemetryView {
   std::optional<hapticctrl_lcm::cycle_stats_t> stats_;
   std::optional<StatsInterval> interval_;  ///< since the previous frame, over all stats
   std::optional<hapticctrl_lcm::scene_t> scene_;
+  std::optional<hapticctrl_lcm::world_t> world_;
   bool stats_fresh_ = false;
   std::deque<hapticctrl_lcm::event_t> events_;  ///< the last event_history_
   std::size_t events_unsent_ = 0;
-  std::array<Received, 5> received_{};  ///< arm, coupling, stats, events, scene
+  std::array<Received, 6> received_{};  ///< arm, coupling, stats, events, scene, world
 };
 
 }  // namespace hapticctrl::web_bridge

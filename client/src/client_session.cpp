@@ -244,13 +244,10 @@ void ClientSession::close_locally() noexcept {
     return;
   }
   Vector6 w = controller_wrench_;
-  if (!s.coupled() || !have_object_) {
-    contact_lead_.reset();
-  } else {
-    contact_lead_.follow(terms_, channel_pose_, object_pose_);
-    const ContactDepth depth{contact_penetration(), contact_lead_.into(terms_.contact_normal)};
-    const Vector6 local = object_wrench(terms_, channel_pose_, channel_twist_, object_pose_,
-                                        object_twist_, depth, speed_factor_, force_factor_);
+  if (s.coupled() && have_object_) {
+    const Vector6 local =
+        object_wrench(terms_, channel_pose_, channel_twist_, object_pose_, object_twist_,
+                      contact_penetration(), speed_factor_, force_factor_);
     w = along_contact(terms_, controller_wrench_, local);
   }
   s.coupling_wrench = passivity_.render(w);

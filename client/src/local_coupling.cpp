@@ -44,9 +44,8 @@ CouplingTerms terms_of(const hcp_coupling_report& report,
 }
 
 Vector6 object_wrench(const CouplingTerms& t, const Pose7& handle_pose, const Vector6& handle_twist,
-                      const Pose7& object_pose, const Vector6& object_twist,
-                      const ContactDepth& contact, double speed_factor,
-                      double force_factor) noexcept {
+                      const Pose7& object_pose, const Vector6& object_twist, double penetration,
+                      double speed_factor, double force_factor) noexcept {
   // The controller's gains act on its base-frame metres (client metres / speed factor) and the
   // object gets the coupling without the force factor (docs/control.md).
   const double sf = speed_factor > 0.0 ? speed_factor : 1.0;
@@ -65,9 +64,9 @@ Vector6 object_wrench(const CouplingTerms& t, const Pose7& handle_pose, const Ve
     // pressed with the force the hand feels (J2).
     const Eigen::Vector3d n = normal.normalized();
     const double share = std::min(1.0, normal.norm());
-    const double depth = (-stretch.dot(n) - std::max(0.0, contact.lead)) / sf;
+    const double depth = -stretch.dot(n) / sf;
     const double engaged = std::clamp(depth / kDamperBand, 0.0, 1.0);
-    const double pen = std::max(0.0, contact.penetration) / sf;
+    const double pen = std::max(0.0, penetration) / sf;
     if (depth + pen > 0.0) {  // (k + stiffening) on the handle's depth, in the contact's share
       force -= (t.normal_gains[0] * (depth + pen) + share * t.gains[0] * pen) * n;
     }
@@ -76,38 +75,6 @@ Vector6 object_wrench(const CouplingTerms& t, const Pose7& handle_pose, const Ve
   force = clamped(force, t.limits[0] / ff);
   torque = clamped(torque, t.limits[1] / ff);
   return {force.x(), force.y(), force.z(), torque.x(), torque.y(), torque.z()};
-}
-
-void ContactLead::follow(const CouplingTerms& terms, const Pose7& handle_pose,
-                         const Pose7& object_pose) noexcept {
-  // Held from the stiffening's arrival, the event the controller holds its own lead from
-  // (servo_law_contact.cpp): both sides then take the same stretch, the handle where the
-  // controller saw it when the contact was reported. Held from the object's own touch, the lead
-  // took in what the hand pressed before the report went round: the block was pressed with
-  // 0.5 N while the hand felt 3.7 N (J3, 2026-12-06).
-  Eigen::Vector3d lead = head(handle_pose) - head(object_pose);
-  const Eigen::Vector3d in_force(terms.contact_normal[0], terms.contact_normal[1],
-                                 terms.contact_normal[2]);
-  if (in_force.squaredNorm() > 1e-12) {
-    const Eigen::Vector3d n = in_force.normalized();
-    const Eigen::Vector3d before(lead_[0], lead_[1], lead_[2]);
-    const Eigen::Vector3d held_normal(normal_[0], normal_[1], normal_[2]);
-    const bool same = held_normal.dot(n) > 0.9;  // within 25 degrees: the same contact
-    const double held = std::max(0.0, -(same ? before : lead).dot(n));
-    lead += (-lead.dot(n) - held) * n;
-    normal_ = {n.x(), n.y(), n.z()};
-  } else {
-    normal_ = {};
-  }
-  lead_ = {lead.x(), lead.y(), lead.z()};
-}
-
-double ContactLead::into(const std::array<double, 3>& normal) const noexcept {
-  const Eigen::Vector3d n(normal[0], normal[1], normal[2]);
-  if (n.squaredNorm() < 1e-12) {
-    return 0.0;
-  }
-  return std::max(0.0, -Eigen::Vector3d(lead_[0], lead_[1], lead_[2]).dot(n.normalized()));
 }
 
 Vector6 along_contact(const CouplingTerms& t, const Vector6& controller,

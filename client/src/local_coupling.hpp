@@ -28,43 +28,17 @@ struct CouplingTerms {
 [[nodiscard]] CouplingTerms terms_of(const hcp_coupling_report& report,
                                      const hcp_local_coupling& local) noexcept;
 
-/// Where the object is in its contact, along the answer's contact normal (client metres).
-struct ContactDepth {
-  double penetration = 0.0;  ///< the object's own into the surface (>= 0 counts)
-  /// How far the handle image led the object into the surface when the contact came into force
-  /// (ContactLead): the stretch a dragged object needed, which is no press.
-  double lead = 0.0;
-};
-
 /// The wrench on the object (client frame, the application's units): the coupling's spring and
 /// damper between the object (`object_pose`, `object_twist`) and the handle image
 /// (`handle_pose`, `handle_twist`), with the contact stiffening while the spring pushes the
-/// object into the contact (on the handle's depth in the surface: the stretch beyond the lead
-/// plus the object's own penetration), clamped to the limits. `speed_factor` and
+/// object into the contact (on the handle's depth in the surface: the stretch plus the object's
+/// own `penetration` into it, client metres), clamped to the limits. `speed_factor` and
 /// `force_factor` turn the controller's units into the application's. Safe in a loop: no
 /// allocation.
 [[nodiscard]] Vector6 object_wrench(const CouplingTerms& terms, const Pose7& handle_pose,
                                     const Vector6& handle_twist, const Pose7& object_pose,
-                                    const Vector6& object_twist, const ContactDepth& contact,
+                                    const Vector6& object_twist, double penetration,
                                     double speed_factor, double force_factor) noexcept;
-
-/// How far the handle image leads the object (ContactDepth::lead), kept as the controller keeps
-/// it (servo_law_contact.cpp, follow_lead): the handle image less the object; along the contact
-/// the answer stiffens, held as it was when the stiffening arrived (the hand pressing the object
-/// in is no lead).
-class ContactLead {
- public:
-  /// Follows one answer's terms with the handle image and the object now (client frame).
-  void follow(const CouplingTerms& terms, const Pose7& handle_pose,
-              const Pose7& object_pose) noexcept;
-  /// The lead into a surface pushing the object along `normal` (any length; >= 0).
-  [[nodiscard]] double into(const std::array<double, 3>& normal) const noexcept;
-  void reset() noexcept { *this = ContactLead{}; }
-
- private:
-  std::array<double, 3> lead_{};    ///< handle image minus object, client metres
-  std::array<double, 3> normal_{};  ///< the stiffened contact it is held along (zero: none)
-};
 
 /// The object's wrench to apply: the controller's (`controller`, computed on its view of the
 /// object a loop late), but while a contact is in force the library's own (`local`, on the

@@ -33,25 +33,6 @@ double return_speed(double speed, double leaving) noexcept {
   return std::max(0.0, speed - std::max(0.0, leaving - kCreepSpeed));
 }
 
-/// A contact's surface in the base frame: its normal, and the point its object's centre is at
-/// when the object touches it (`point - distance * normal`, the object's reported position
-/// less its gap: the contact's frame keeps the object's offset from its point).
-struct ObjectPlane {
-  Vector3d normal;
-  Vector3d point;
-};
-ObjectPlane object_plane(const ClientContact& contact, const Matrix3d& to_base,
-                         const ClientFrame& frame) noexcept {
-  const Vector3d normal =
-      (to_base * Vector3d(contact.normal[0], contact.normal[1], contact.normal[2])).normalized();
-  const Vector3d object =
-      to_base *
-      (Vector3d(contact.object_pose[0], contact.object_pose[1], contact.object_pose[2]) -
-       frame.origin) /
-      frame.speed_factor;
-  return {normal, object - contact.distance / frame.speed_factor * normal};
-}
-
 /// Share of the contact a slot still has after `silence` without a refresh: 1 while fresh,
 /// falling linearly to 0 over the fade (a contact that stops coming fades as the link does).
 double contact_weight(TimeNs silence, const LawConfig& config) noexcept {
@@ -65,22 +46,19 @@ double contact_weight(TimeNs silence, const LawConfig& config) noexcept {
 }  // namespace
 
 ServoLaw::Stiffening ServoLaw::contact_stiffening(const ServoInputs& in, const ClientFrame& frame,
-                                                  const Vector3d& reported, const Vector3d& handle,
+                                                  const Vector3d& reported,
                                                   const CouplingGains& g) const noexcept {
   // Held by a surface of stiffness K, the object moves little whatever the coupling does, so the
   // loop through it (the object's surface, the spring, the delay, the handle) keeps a gain below
   // 1 at any delay as long as the coupling along the surface's normal stays well below K: there
   // the coupling may be as stiff as contact_share * K and the device allow, whatever the delay
   // (small gain; the free-mass bound of derive_gains() is about the directions the object is
-  // free in). One normal: of the contacts most in force, the one the handle presses the object
-  // into most, then the stiffest (a client that closes its object's side mirrors it, protocol
-  // 1.3). The stiffest alone took the table the tool rests on, not the block the hand pushed it
-  // into: the block got the soft coupling only and never moved (J3, 2026-12-06).
+  // free in). One normal, the stiffest contact's: a client that closes its object's side mirrors
+  // it (protocol 1.3).
   const ArmLimits& lim = dynamics_->model().limits;
   const ClientSample& c = in.client;
   const Matrix3d to_base = frame.rotation.conjugate().toRotationMatrix();
   Stiffening best;
-  double best_press = -std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < std::min<std::size_t>(c.contact_count, c.contacts.size()); ++i) {
     const ClientContact& contact = c.contacts[i];
     if (!(contact.stiffness > 0.0)) {
@@ -109,11 +87,8 @@ ServoLaw::Stiffening ServoLaw::contact_stiffening(const ServoInputs& in, const C
         weight * touching *
         std::max(0.0,
                  std::min(lim.max_stiffness_linear, config_.contact_share * surface) - g.k_linear);
-    const double press = (reported - handle).dot(normal);  // > 0: the handle presses it in
-    const bool tied = weight * touching == best.share;
-    if (weight * touching > best.share || (tied && press > best_press + kTouchBand) ||
-        (tied && press >= best_press - kTouchBand && stiffness > best.stiffness)) {
-      best_press = press;
+    if (weight * touching > best.share ||
+        (weight * touching == best.share && stiffness > best.stiffness)) {
       best.normal = normal;
       best.share = weight * touching;
       best.weight = weight;
@@ -227,9 +202,8 @@ ServoLaw::Surface ServoLaw::reported_surface(const ServoInputs& in, const Client
   // way, 71 N/m at 20 ms, J2). An IMPEDANCE client's `point` is where its handle's point meets
   // the surface. A VIRTMECH client's is on its object: the surface passes through point -
   // distance * normal, and the handle, which the coupling holds at the object, meets it where
-  // the object's centre does, `distance` beyond the object's reported position, less how far
-  // the handle leads the object into it (RenderMemory::lead). One surface, the deepest;
-  // unilateral (it never pulls).
+  // the object's centre did, `distance` beyond the object's reported position. One surface, the
+  // deepest; unilateral (it never pulls).
   const ArmLimits& lim = dynamics_->model().limits;
   const ClientSample& c = in.client;
   const Matrix3d to_base = frame.rotation.conjugate().toRotationMatrix();
@@ -249,19 +223,19 @@ ServoLaw::Surface ServoLaw::reported_surface(const ServoInputs& in, const Client
     ++best.fresh;
     const TimeNs age = in.now - contact.received_ns;
     best.age = best.age < 0 ? age : std::min(best.age, age);
-    Vector3d normal;
-    Vector3d point;
-    if (on_object) {
-      const ObjectPlane plane = object_plane(contact, to_base, frame);
-      normal = plane.normal;
-      point = plane.point - std::max(0.0, -memory_.lead.dot(normal)) * normal;
-    } else {
-      normal = (to_base * Vector3d(contact.normal[0], contact.normal[1], contact.normal[2]))
-                   .normalized();
-      point = to_base *
-              (Vector3d(contact.point[0], contact.point[1], contact.point[2]) - frame.origin) /
-              frame.speed_factor;
-    }
+    const Vector3d normal =
+        (to_base * Vector3d(contact.normal[0], contact.normal[1], contact.normal[2])).normalized();
+    const Vector3d point =
+        on_object ? Vector3d(to_base *
+                                 (Vector3d(contact.object_pose[0], contact.object_pose[1],
+                                           contact.object_pose[2]) -
+                                  frame.origin) /
+                                 frame.speed_factor -
+                             contact.distance / frame.speed_factor * normal)
+                  : Vector3d(to_base *
+                             (Vector3d(contact.point[0], contact.point[1], contact.point[2]) -
+                              frame.origin) /
+                             frame.speed_factor);
     const double depth = (point - chain.handle_position).dot(normal);
     if (depth <= deepest) {
       continue;
@@ -278,31 +252,6 @@ ServoLaw::Surface ServoLaw::reported_surface(const ServoInputs& in, const Client
     best.friction_dynamic = std::min(contact.friction[1], contact.friction[0]);
   }
   return best;
-}
-
-void ServoLaw::follow_lead(const Vector3d& image, const ChainState& chain,
-                           const Stiffening& stiff) noexcept {
-  // A handle that drags its object against friction leads it by the coupling's stretch: 4 cm
-  // for the 0.1 kg tool on MuJoCo's table through a 20 ms link, where a surface placed at the
-  // object's centre held the handle 2.5 cm short of a block and the block never moved (J3,
-  // 2026-12-06). So the handle meets a surface as far ahead of the object's plane as it leads
-  // the object, and while the contact is stiffened (the object touches it as reported) the lead
-  // into it is held as it was when the stiffening came in: the hand pressing the object in is
-  // no lead. The client's side holds its lead from the same event, the stiffening's arrival, so
-  // both sides press the object alike (docs/control.md). Held from the object's own touch
-  // instead, the client's lead took in what the hand had pressed meanwhile: the block was
-  // pressed with 0.5 N while the hand felt 3.7 N, and crept at 1 mm/s.
-  Vector3d lead = chain.handle_position - image;
-  if (stiff.share > 0.0) {
-    const Vector3d& n = stiff.normal;
-    const bool same = memory_.lead_normal.dot(n) > 0.9;  // within 25 degrees: the same contact
-    const double held = same ? std::max(0.0, -memory_.lead.dot(n)) : std::max(0.0, -lead.dot(n));
-    lead += (-lead.dot(n) - held) * n;
-    memory_.lead_normal = n;
-  } else {
-    memory_.lead_normal.setZero();
-  }
-  memory_.lead = lead;
 }
 
 void ServoLaw::render_surface(Surface& surface, const ChainState& chain, const Vector6d& twist,

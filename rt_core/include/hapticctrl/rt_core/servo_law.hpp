@@ -235,13 +235,6 @@ struct RenderMemory {
     }
   };
   HeldContact held;
-  /// How far the handle leads the object image (handle minus image, base frame); along the
-  /// contact the coupling stiffens (`lead_normal`; zero: none), held as it was when the
-  /// stiffening came in (ServoLaw::follow_lead). A VIRTMECH object dragged against friction lags
-  /// its handle by the coupling's stretch, so the handle meets a surface that much before the
-  /// object does.
-  Vector3d lead = Vector3d::Zero();
-  Vector3d lead_normal = Vector3d::Zero();
   static constexpr std::size_t kLoopSamples = 15;
   std::array<TimeNs, kLoopSamples> loop_samples{};  ///< the newest measured loops (median)
   std::uint64_t loop_next = 0;
@@ -346,19 +339,14 @@ class ServoLaw {
   Coupling client_wrench(const ServoInputs& in, const ClientFrame& frame, const ChainState& chain,
                          const Vector6d& twist, ServoOutputs& out) noexcept;
   ObjectImage object_image(const ServoInputs& in, const ClientFrame& frame) const noexcept;
-  /// `reported`: the object's position as the client reported it (base frame, not extrapolated);
-  /// `handle`: the handle's position (of the touching contacts, the one it presses into most).
+  /// `reported`: the object's position as the client reported it (base frame, not extrapolated).
   [[nodiscard]] Stiffening contact_stiffening(const ServoInputs& in, const ClientFrame& frame,
-                                              const Vector3d& reported, const Vector3d& handle,
+                                              const Vector3d& reported,
                                               const CouplingGains& g) const noexcept;
-  /// Follows RenderMemory::lead: the handle's position less the object image `image` (base
-  /// frame), held along the normal `stiff` stiffens.
-  void follow_lead(const Vector3d& image, const ChainState& chain,
-                   const Stiffening& stiff) noexcept;
   /// The deepest fresh surface the client reports, for the handle's point: an IMPEDANCE
   /// client's contact is where its handle's point meets the surface; a VIRTMECH client's
-  /// (`on_object`) is on its object, which the coupling holds at the handle: the handle meets
-  /// it where the object's centre does, less the handle's lead (RenderMemory::lead).
+  /// (`on_object`) is on its object, which the coupling holds at the handle, so the handle's
+  /// point is the handle's position offset as the contact point was from the object.
   [[nodiscard]] Surface reported_surface(const ServoInputs& in, const ClientFrame& frame,
                                          const ChainState& chain, bool on_object) const noexcept;
   void render_surface(Surface& surface, const ChainState& chain, const Vector6d& twist,

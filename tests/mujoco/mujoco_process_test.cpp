@@ -1,6 +1,6 @@
 // hapticctrl-mujoco through the real processes: the core (1 ms, benchmark mode: a VM stall is
-// counted, not failed safe), the UDP bridge and the program on every shipped scene, the operator
-// pushing through the force region (hapticctrl-hmi force); and its error paths.
+// counted, not failed safe), the UDP bridge and the program on every shipped scene, a scripted
+// operator's hand on the handle (hapticctrl-hmi play --hand); and its error paths.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -25,11 +25,12 @@ using namespace std::chrono_literals;
 
 const std::string kScenes = HAPTICCTRL_MUJOCO_SCENES;
 
-/// What a scene's run does: the operator's push (N, base frame) from `push_at` s on, and the
-/// run's length.
+/// What a scene's run does: the scripted operator's push (N, base frame; a spring-damper hand,
+/// 100 N/m and 5 N.s/m, holding the handle: hapticctrl-hmi play --hand) ramped in over 0.5 s from
+/// `push_at` s on and held past the run's end, and the run's length.
 struct SceneCase {
   const char* scene;
-  std::vector<std::string> push;  // hapticctrl-hmi force arguments; empty: no push
+  std::vector<std::string> push;  // fx fy fz tx ty tz; empty: no push
   double push_at = 1.5;
   double duration = 4.0;
   int delay_ms = 0;  // one way, through hapticctrl-netem
@@ -61,13 +62,20 @@ std::string run_scene(const ControllerStack& stack, const SceneCase& c) {
        "--headless", "--json", "--duration", std::to_string(c.duration)});
   if (!c.push.empty()) {
     std::this_thread::sleep_for(std::chrono::duration<double>(c.push_at));
-    std::vector<std::string> force{"force"};
-    force.insert(force.end(), c.push.begin(), c.push.end());
-    EXPECT_EQ(run_hmi(stack, force), 0);
+    const std::string sequence = "/tmp/hapticctrl-scene-" + std::to_string(getpid()) + ".seq";
+    std::string wrench;
+    for (const std::string& v : c.push) {
+      wrench += " " + v;
+    }
+    std::ofstream(sequence) << "0 0 0 0 0 0 0\n0.5" << wrench << "\n"
+                            << c.duration - c.push_at + 0.5 << wrench << "\n";
+    const std::string log = "/tmp/hapticctrl-scene-" + std::to_string(getpid()) + ".csv";
+    EXPECT_EQ(run_hmi(stack, {"play", sequence, "--hand", "100,5", "--log", log}), 0);
+    std::remove(sequence.c_str());
+    std::remove(log.c_str());
   }
   const int status = mujoco.wait(std::chrono::seconds(static_cast<int>(c.duration) + 20));
   EXPECT_EQ(status, 0) << mujoco.err();
-  (void)run_hmi(stack, {"zero-force"});
   std::printf("%s: %s", c.name().c_str(), mujoco.out().c_str());
   return status == 0 ? mujoco.out() : std::string{};
 }
@@ -152,6 +160,15 @@ std::vector<double> log_column(const std::string& path, const std::string& name,
   return out;
 }
 
+/// The greatest speed over 50-cycle windows of a play log's column of positions (m/s).
+double fastest_along(const std::vector<double>& x) {
+  double fastest = 0.0;
+  for (std::size_t i = 0; i + 50 < x.size(); i += 50) {
+    fastest = std::max(fastest, std::abs(x[i + 50] - x[i]) / (50.0 * kPeriodUs * 1e-6));
+  }
+  return fastest;
+}
+
 class HeavyLift : public ::testing::TestWithParam<int> {};
 
 TEST_P(HeavyLift, TheLiftedWeightIsFeltAsMgAndTheHandleRests) {
@@ -191,10 +208,7 @@ TEST_P(HeavyLift, TheLiftedWeightIsFeltAsMgAndTheHandleRests) {
     for (const double f : felt) {
       mean += f / static_cast<double>(felt.size());
     }
-    double fastest = 0.0;  // 50-cycle windows
-    for (std::size_t i = 0; i + 50 < z.size(); i += 50) {
-      fastest = std::max(fastest, std::abs(z[i + 50] - z[i]) / (50.0 * kPeriodUs * 1e-6));
-    }
+    const double fastest = fastest_along(z);  // 50-cycle windows
     const double mg = 0.8 * 9.81;
     std::printf("%s: felt %.3f N for m g %.3f N, handle at most %.2f mm/s\n", name.c_str(), -mean,
                 mg, fastest * 1e3);
@@ -206,6 +220,64 @@ TEST_P(HeavyLift, TheLiftedWeightIsFeltAsMgAndTheHandleRests) {
 }
 
 INSTANTIATE_TEST_SUITE_P(J3, HeavyLift, ::testing::Values(0, 5, 20),
+                         [](const auto& p) { return std::to_string(p.param) + "ms_one_way"; });
+
+class BlockPush : public ::testing::TestWithParam<int> {};
+
+TEST_P(BlockPush, TheHandPushesTheToolIntoTheBlockAndTheBlockSlidesAlongTheTable) {
+  // The operator's hand (30 N/m, 3 N.s/m: an arm that follows the push) pushes 6 N along +x from
+  // 0 to 1 s and holds it to 7 s; the tool drags over the table, meets the red block 2.5 cm
+  // ahead and pushes it (81 mm directly, 2026-12-06). Through a delay the tool lags its handle
+  // by the coupling's stretch against the table's friction (1.6 cm at 20 ms one way), and the
+  // block's surface, rendered for the handle where the tool's centre would touch it, holds the
+  // handle short of the block: 0 mm at 20 ms, 1.3 or 65 mm at 5 ms (docs/mujoco.md, Not yet).
+  const int delay_ms = GetParam();
+  const std::string name = "block_push_" + std::to_string(delay_ms) + "ms";
+  with_retries(name, [&](int attempt) {
+    ControllerStack stack("mj-push" + std::to_string(attempt), kPeriodUs, {}, {"--benchmark-mode"});
+    Relay relay(stack.port(), {"--delay-ms", std::to_string(delay_ms)});
+    EXPECT_TRUE(stack.ready()) << stack.diagnostics();
+    SpawnedProcess mujoco(HAPTICCTRL_MUJOCO_BINARY,
+                          {"--model", kScenes + "/table_blocks.xml", "--server",
+                           "127.0.0.1:" + std::to_string(relay.port()), "--headless", "--json",
+                           "--no-lcm", "--duration", "10"});
+    EXPECT_TRUE(ControllerStack::eventually(
+        [&] { return mujoco.err().find("ready:") != std::string::npos; }, 10s));
+    std::this_thread::sleep_for(1s);
+    const std::string sequence = "/tmp/hapticctrl-push-" + std::to_string(getpid()) + ".seq";
+    const std::string log = "/tmp/hapticctrl-push-" + std::to_string(getpid()) + ".csv";
+    std::ofstream(sequence) << "0 0 0 0 0 0 0\n1 6 0 0 0 0 0\n7 6 0 0 0 0 0\n7.5 0 0 0 0 0 0\n";
+    EXPECT_EQ(run_hmi(stack, {"play", sequence, "--hand", "30,3", "--log", log}), 0);
+    const std::vector<double> resting = log_column(log, "x", 5.0, 7.0);
+    std::remove(sequence.c_str());
+    std::remove(log.c_str());
+    EXPECT_EQ(mujoco.wait(30s), 0) << mujoco.err();
+    const std::string summary = mujoco.out();
+    if (stack.telemetry().would_fail_safe > 0 || resting.size() < 1000) {
+      std::printf("%s: the machine stalled the core (%zu cycles logged): tried again\n",
+                  name.c_str(), resting.size());
+      return false;
+    }
+    const std::vector<double> block = json_numbers(summary, "block_red");
+    EXPECT_EQ(block.size(), 3U) << summary;
+    if (block.size() != 3) {
+      return true;  // judged: no summary
+    }
+    const double slid = block[0] - 0.06;
+    std::printf(
+        "%s: the red block slid %.1f mm (%.2f mm aside), the handle at most %.2f mm/s "
+        "at the end\n",
+        name.c_str(), slid * 1e3, block[1] * 1e3, fastest_along(resting) * 1e3);
+    EXPECT_GT(slid, 0.02) << "the block is pushed along the table";
+    EXPECT_LT(std::abs(block[1]), 0.01) << "straight ahead";
+    EXPECT_NEAR(block[2], 0.02, 1e-3) << "on the table";
+    EXPECT_LT(fastest_along(resting), 0.005) << "the handle rests at the end (50 ms windows)";
+    EXPECT_EQ(json_number(summary, "instabilities"), 0.0);
+    return true;
+  });
+}
+
+INSTANTIATE_TEST_SUITE_P(J3, BlockPush, ::testing::Values(0),
                          [](const auto& p) { return std::to_string(p.param) + "ms_one_way"; });
 
 /// The program's exit status and its words, run with `args` (no controller needed).

@@ -222,6 +222,69 @@ TEST_P(HeavyLift, TheLiftedWeightIsFeltAsMgAndTheHandleRests) {
 INSTANTIATE_TEST_SUITE_P(J3, HeavyLift, ::testing::Values(0, 5, 20),
                          [](const auto& p) { return std::to_string(p.param) + "ms_one_way"; });
 
+class ContactStiffness : public ::testing::TestWithParam<int> {};
+
+TEST_P(ContactStiffness, TheTableIsFeltAtTheScenesStiffnessClampedToTheDevice) {
+  // The test box (0.5 kg) rests on its table; a scripted hand (100 N/m, 5 N.s/m) presses it down
+  // with 2 N, then 8 N. The table's contact, 160 000 N/m in MuJoCo over the box's four corners
+  // (docs/mujoco.md), is clamped to the shipped arm's 2000 N/m (arm_model/models/
+  // virtuose6d_class.arm, max_stiffness): the felt stiffness, the rendered force's change over
+  // the handle's between the two rests, is at least 0.9 of it at any delay (J2: 1988, 1988 and
+  // 1987 N/m at 0, 5 and 20 ms one way, 2026-12-06).
+  const int delay_ms = GetParam();
+  const std::string name = "contact_stiffness_" + std::to_string(delay_ms) + "ms";
+  with_retries(name, [&](int attempt) {
+    ControllerStack stack("mj-press" + std::to_string(attempt), kPeriodUs, {},
+                          {"--benchmark-mode"});
+    Relay relay(stack.port(), {"--delay-ms", std::to_string(delay_ms)});
+    EXPECT_TRUE(stack.ready()) << stack.diagnostics();
+    SpawnedProcess mujoco(
+        HAPTICCTRL_MUJOCO_BINARY,
+        {"--model", kScenes + "/test_box.xml", "--server",
+         "127.0.0.1:" + std::to_string(relay.port()), "--headless", "--json", "--no-lcm",
+         "--duration", "9"});
+    EXPECT_TRUE(ControllerStack::eventually(
+        [&] { return mujoco.err().find("ready:") != std::string::npos; }, 10s));
+    std::this_thread::sleep_for(1s);
+    const std::string sequence = "/tmp/hapticctrl-press-" + std::to_string(getpid()) + ".seq";
+    const std::string log = "/tmp/hapticctrl-press-" + std::to_string(getpid()) + ".csv";
+    std::ofstream(sequence) << "0 0 0 0 0 0 0\n1 0 0 -2 0 0 0\n3 0 0 -2 0 0 0\n4 0 0 -8 0 0 0\n"
+                               "6 0 0 -8 0 0 0\n6.5 0 0 0 0 0 0\n";
+    EXPECT_EQ(run_hmi(stack, {"play", sequence, "--hand", "100,5", "--log", log}), 0);
+    const auto mean = [](const std::vector<double>& v) {
+      double m = 0.0;
+      for (const double x : v) {
+        m += x / static_cast<double>(v.size());
+      }
+      return m;
+    };
+    const std::vector<double> z_light = log_column(log, "z", 2.0, 3.0);
+    const std::vector<double> z_firm = log_column(log, "z", 5.0, 6.0);
+    const std::vector<double> f_light = log_column(log, "ren_fz", 2.0, 3.0);
+    const std::vector<double> f_firm = log_column(log, "ren_fz", 5.0, 6.0);
+    std::remove(sequence.c_str());
+    std::remove(log.c_str());
+    EXPECT_EQ(mujoco.wait(30s), 0) << mujoco.err();
+    if (stack.telemetry().would_fail_safe > 0 || z_light.size() < 500 || z_firm.size() < 500) {
+      std::printf("%s: the machine stalled the core: tried again\n", name.c_str());
+      return false;
+    }
+#ifdef HAPTICCTRL_SANITIZED
+    return true;  // instrumented: for memory and races, not the contact physics (ShippedScene)
+#endif
+    const double pressed = mean(z_light) - mean(z_firm);
+    const double felt = (mean(f_firm) - mean(f_light)) / pressed;
+    std::printf("%s: %.3f mm deeper for %.3f N more: %.0f N/m felt\n", name.c_str(),
+                pressed * 1e3, mean(f_firm) - mean(f_light), felt);
+    EXPECT_GE(felt, 0.9 * 2000.0) << "the table is felt hard";
+    EXPECT_EQ(json_number(mujoco.out(), "instabilities"), 0.0);
+    return true;
+  });
+}
+
+INSTANTIATE_TEST_SUITE_P(J3, ContactStiffness, ::testing::Values(0, 5, 20),
+                         [](const auto& p) { return std::to_string(p.param) + "ms_one_way"; });
+
 class BlockPush : public ::testing::TestWithParam<int> {};
 
 TEST_P(BlockPush, TheHandPushesTheToolIntoTheBlockAndTheBlockSlidesAlongTheTable) {
@@ -258,6 +321,9 @@ TEST_P(BlockPush, TheHandPushesTheToolIntoTheBlockAndTheBlockSlidesAlongTheTable
                   name.c_str(), resting.size());
       return false;
     }
+#ifdef HAPTICCTRL_SANITIZED
+    return true;  // instrumented: for memory and races, not the contact physics (ShippedScene)
+#endif
     const std::vector<double> block = json_numbers(summary, "block_red");
     EXPECT_EQ(block.size(), 3U) << summary;
     if (block.size() != 3) {

@@ -72,7 +72,11 @@ test('the page draws every geom of the scene where the engine has it', async () 
   await shot('mujoco-01-scene');
 });
 
-test('pushed by the operator, the tool pushes the red block and its drawn box moves', async () => {
+// Instrumented (ASan, TSan), the 1 ms core and the engine are slowed past the physics this judges;
+// the drawing is judged above in every build.
+const physics = process.env.HAPTICCTRL_SANITIZED ? { skip: 'sanitized build: drawing only' } : {};
+
+test('pushed by the operator, the tool pushes the red block and its drawn box moves', physics, async () => {
   // Which geom is the red block: the one in front of the tool along +x (the scene's 0.06 m).
   await until(() => stack.status().powered, { timeoutMs: 10000 });
   const start = await pageWorld();

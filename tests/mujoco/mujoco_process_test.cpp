@@ -238,11 +238,10 @@ TEST_P(ContactStiffness, TheTableIsFeltAtTheScenesStiffnessClampedToTheDevice) {
                           {"--benchmark-mode"});
     Relay relay(stack.port(), {"--delay-ms", std::to_string(delay_ms)});
     EXPECT_TRUE(stack.ready()) << stack.diagnostics();
-    SpawnedProcess mujoco(
-        HAPTICCTRL_MUJOCO_BINARY,
-        {"--model", kScenes + "/test_box.xml", "--server",
-         "127.0.0.1:" + std::to_string(relay.port()), "--headless", "--json", "--no-lcm",
-         "--duration", "9"});
+    SpawnedProcess mujoco(HAPTICCTRL_MUJOCO_BINARY,
+                          {"--model", kScenes + "/test_box.xml", "--server",
+                           "127.0.0.1:" + std::to_string(relay.port()), "--headless", "--json",
+                           "--no-lcm", "--duration", "9"});
     EXPECT_TRUE(ControllerStack::eventually(
         [&] { return mujoco.err().find("ready:") != std::string::npos; }, 10s));
     std::this_thread::sleep_for(1s);
@@ -274,8 +273,8 @@ TEST_P(ContactStiffness, TheTableIsFeltAtTheScenesStiffnessClampedToTheDevice) {
 #endif
     const double pressed = mean(z_light) - mean(z_firm);
     const double felt = (mean(f_firm) - mean(f_light)) / pressed;
-    std::printf("%s: %.3f mm deeper for %.3f N more: %.0f N/m felt\n", name.c_str(),
-                pressed * 1e3, mean(f_firm) - mean(f_light), felt);
+    std::printf("%s: %.3f mm deeper for %.3f N more: %.0f N/m felt\n", name.c_str(), pressed * 1e3,
+                mean(f_firm) - mean(f_light), felt);
     EXPECT_GE(felt, 0.9 * 2000.0) << "the table is felt hard";
     EXPECT_EQ(json_number(mujoco.out(), "instabilities"), 0.0);
     return true;

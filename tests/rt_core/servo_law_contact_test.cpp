@@ -111,33 +111,6 @@ TEST(ServoLawContact, TheHandFeelsTheContactAtItsStiffnessAndTheObjectAStifferCo
   EXPECT_LE(out.contact_age, kNsPerMs);
 }
 
-TEST(ServoLawContact, ADraggedObjectsLeadIsNoPressAndTheSurfaceComesWithItsTouch) {
-  // J3: an object dragged against friction lags its handle by the coupling's stretch (1.6 cm at
-  // 20 ms one way). Reported 2 cm short of a wall, the wall is not rendered for the handle (it
-  // held the handle short of the object's surface, which the object never reached); touching,
-  // the handle 1.6 cm beyond the plane the object's centre touches is no press (no kick of the
-  // object nor of the hand), and what the handle goes deeper is pressed on both sides alike.
-  ServoLaw law(default_dynamics());
-  ServoInputs in = slow_link_coupling(-0.016);  // the object 1.6 cm behind the handle along x
-  in.client.contact_count = 1;
-  in.client.contacts[0] = wall_at(in.client.object_pose, 1600.0, in.now);
-  in.client.contacts[0].distance = 0.02;
-  ServoOutputs out = run_on_contacts(law, in, 300);
-  EXPECT_EQ(out.surface_force, 0.0) << "the object is clear of it: nothing for the handle";
-  EXPECT_EQ(out.contact_normal.norm(), 0.0);
-  in.client.contacts[0].distance = 0.0;  // the object reaches the wall, the handle 1.6 cm past
-  out = run_on_contacts(law, in, 300);
-  EXPECT_NEAR(out.contact_normal.x(), -1.0, 1e-9) << "stiffened";
-  EXPECT_NEAR(out.surface_force, 0.0, 1e-6) << "the surface from where the handle is";
-  EXPECT_NEAR(out.coupling_wrench(0), 0.0, 1e-6) << "the lead is no press on the object";
-  const double depth = press_along_x(law, in, 0.005);
-  out = run_on_contacts(law, in, 300);
-  EXPECT_NEAR(out.surface_force, 1600.0 * depth, 1e-6);
-  EXPECT_NEAR(out.handle_wrench(0), -1600.0 * depth, 0.02 * 8.0);
-  EXPECT_NEAR(out.coupling_wrench(0), 1600.0 * depth, 0.02 * 8.0)
-      << "pressed with what the hand feels beyond the lead";
-}
-
 TEST(ServoLawContact, TheWallsStiffnessIsFeltWhateverTheLoopAndBoundedByTheDevice) {
   // A 5000 N/m wall is rendered at the device's 2000 N/m, at any loop delay.
   for (const TimeNs loop : {TimeNs{2 * kNsPerMs}, TimeNs{200 * kNsPerMs}}) {

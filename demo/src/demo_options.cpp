@@ -49,15 +49,7 @@ void declare(program::Options& o, DemoOptions& d) {
   o.number("--friction", d.scene.friction, 0.0, 2.0, "sphere contact friction coefficient");
   o.flag("--gravity", d.scene.gravity, "the mobile sphere has weight");
   o.text("--lcm-url", d.lcm_url, "LCM provider for the scene");
-  o.custom(
-      "--instance", "NAME",
-      [&d](const std::string& v) {
-        if (v.empty() || v.find_first_of(". \t") != std::string::npos) {
-          throw std::invalid_argument("--instance must be a non-empty name without dots or spaces");
-        }
-        d.instance = v;
-      },
-      "controller instance, for the scene's LCM channel (default: default)");
+  o.instance(d.instance, "controller instance, for the scene's LCM channel (default: default)");
   o.number("--scene-rate", d.scene_rate_hz, 1.0, 1000.0, "scene messages per second");
   o.flag(
       "--no-reconnect", [&d] { d.reconnect = false; },

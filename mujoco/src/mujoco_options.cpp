@@ -41,15 +41,7 @@ void declare(program::Options& o, MujocoOptions& m) {
   o.flag(
       "--no-contacts", [&m] { m.report_contacts = false; },
       "do not report the body's contacts to the controller (the coupling alone renders them)");
-  o.custom(
-      "--instance", "NAME",
-      [&m](const std::string& v) {
-        if (v.empty() || v.find_first_of(". \t") != std::string::npos) {
-          throw std::invalid_argument("--instance must be a non-empty name without dots or spaces");
-        }
-        m.instance = v;
-      },
-      "controller instance, for the world's LCM channel (default: default)");
+  o.instance(m.instance, "controller instance, for the world's LCM channel (default: default)");
   o.text("--lcm-url", m.lcm_url, "LCM provider for the world");
   o.number("--world-rate", m.world_rate_hz, 1.0, 120.0, "world messages per second");
   o.flag(

@@ -90,6 +90,18 @@ Options& Options::text(const std::string& name, std::string& target, const std::
       name, "TEXT", [&target](const std::string& v) { target = v; }, help);
 }
 
+Options& Options::instance(std::string& target, const std::string& help) {
+  return custom(
+      "--instance", "NAME",
+      [&target](const std::string& v) {
+        if (v.empty() || v.find_first_of(". \t") != std::string::npos) {
+          throw std::invalid_argument("--instance must be a non-empty name without dots or spaces");
+        }
+        target = v;
+      },
+      help);
+}
+
 Options& Options::flag(const std::string& name, bool& target, const std::string& help) {
   return flag(
       name, [&target] { target = true; }, help);

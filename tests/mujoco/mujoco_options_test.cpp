@@ -47,12 +47,31 @@ TEST(MujocoOptions, AModelIsRequiredAndValuesAreChecked) {
   EXPECT_THROW((void)MujocoOptions::parse({"--model", "m.xml", "--bogus"}), std::invalid_argument);
 }
 
+TEST(MujocoOptions, TheWorldGoesOutOnTheInstancesChannelUnlessNoLcm) {
+  const MujocoOptions d = MujocoOptions::parse({"--model", "m.xml"});
+  EXPECT_TRUE(d.publish_world);
+  EXPECT_EQ(d.instance, "default");
+  EXPECT_DOUBLE_EQ(d.world_rate_hz, 30.0);
+  const MujocoOptions o =
+      MujocoOptions::parse({"--model", "m.xml", "--instance", "lab", "--world-rate", "60",
+                            "--lcm-url", "memq://", "--no-lcm"});
+  EXPECT_FALSE(o.publish_world);
+  EXPECT_EQ(o.instance, "lab");
+  EXPECT_DOUBLE_EQ(o.world_rate_hz, 60.0);
+  EXPECT_EQ(o.lcm_url, "memq://");
+  EXPECT_THROW((void)MujocoOptions::parse({"--model", "m.xml", "--instance", "a.b"}),
+               std::invalid_argument);
+  EXPECT_THROW((void)MujocoOptions::parse({"--model", "m.xml", "--world-rate", "0"}),
+               std::invalid_argument);
+}
+
 TEST(MujocoOptions, HelpNeedsNoModelAndNamesEveryOption) {
   EXPECT_TRUE(MujocoOptions::parse({"--help"}).help);
   const std::string usage = MujocoOptions::usage();
   for (const char* name :
        {"--model", "--body", "--timestep", "--server", "--headless", "--duration", "--json",
-        "--status-ms", "--no-power", "--no-reconnect", "--no-contacts"}) {
+        "--status-ms", "--no-power", "--no-reconnect", "--no-contacts", "--instance", "--lcm-url",
+        "--world-rate", "--no-lcm"}) {
     EXPECT_NE(usage.find(name), std::string::npos) << name;
   }
 }

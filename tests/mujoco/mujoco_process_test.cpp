@@ -182,6 +182,64 @@ double fastest_along(const std::vector<double>& x) {
   return fastest;
 }
 
+/// One run of a shipped scene through a `delay_ms` link (hapticctrl-netem) for `duration_s`, a
+/// scripted operator's hand (`hand`: K,B) playing `sequence` (hapticctrl-hmi play lines) from 1 s
+/// after the program is ready; the program's summary and the play log's columns after it.
+class HandRun {
+ public:
+  HandRun(const std::string& tag, int attempt, int delay_ms, const std::string& scene,
+          int duration_s, const std::string& sequence, const std::string& hand)
+      : sequence_("/tmp/hapticctrl-" + tag + "-" + std::to_string(getpid()) + ".seq"),
+        log_("/tmp/hapticctrl-" + tag + "-" + std::to_string(getpid()) + ".csv") {
+    ControllerStack stack("mj-" + tag + std::to_string(attempt), kPeriodUs, {},
+                          {"--benchmark-mode"});
+    Relay relay(stack.port(), {"--delay-ms", std::to_string(delay_ms)});
+    EXPECT_TRUE(stack.ready()) << stack.diagnostics();
+    SpawnedProcess mujoco(HAPTICCTRL_MUJOCO_BINARY,
+                          {"--model", kScenes + "/" + scene + ".xml", "--server",
+                           "127.0.0.1:" + std::to_string(relay.port()), "--headless", "--json",
+                           "--no-lcm", "--duration", std::to_string(duration_s)});
+    EXPECT_TRUE(ControllerStack::eventually(
+        [&] { return mujoco.err().find("ready:") != std::string::npos; }, 10s));
+    std::this_thread::sleep_for(1s);
+    std::ofstream(sequence_) << sequence;
+    EXPECT_EQ(run_hmi(stack, {"play", sequence_, "--hand", hand, "--log", log_}), 0);
+    EXPECT_EQ(mujoco.wait(30s), 0) << mujoco.err();
+    summary_ = mujoco.out();
+    stalled_ = stack.telemetry().would_fail_safe > 0;
+  }
+  ~HandRun() {
+    std::remove(sequence_.c_str());
+    std::remove(log_.c_str());
+  }
+  HandRun(const HandRun&) = delete;
+  HandRun& operator=(const HandRun&) = delete;
+
+  [[nodiscard]] const std::string& summary() const { return summary_; }
+  /// Column `name` of the play log over [from_s, to_s) of its time.
+  [[nodiscard]] std::vector<double> column(const std::string& name, double from_s,
+                                           double to_s) const {
+    return log_column(log_, name, from_s, to_s);
+  }
+  /// Whether the machine took the core's or the engine's time (said; the run is tried again),
+  /// or fewer than `least` cycles were logged over the judged window.
+  [[nodiscard]] bool disturbed(const std::string& name, std::size_t logged,
+                               std::size_t least) const {
+    if (stalled_ || logged < least) {
+      std::printf("%s: the machine stalled the core (%zu cycles logged): tried again\n",
+                  name.c_str(), logged);
+      return true;
+    }
+    return !engine_kept_real_time(name, summary_);
+  }
+
+ private:
+  std::string sequence_;
+  std::string log_;
+  std::string summary_;
+  bool stalled_ = false;
+};
+
 class HeavyLift : public ::testing::TestWithParam<int> {};
 
 TEST_P(HeavyLift, TheLiftedWeightIsFeltAsMgAndTheHandleRests) {
@@ -192,29 +250,11 @@ TEST_P(HeavyLift, TheLiftedWeightIsFeltAsMgAndTheHandleRests) {
   const int delay_ms = GetParam();
   const std::string name = "heavy_lift_" + std::to_string(delay_ms) + "ms";
   with_retries(name, [&](int attempt) {
-    ControllerStack stack("mj-lift" + std::to_string(attempt), kPeriodUs, {}, {"--benchmark-mode"});
-    Relay relay(stack.port(), {"--delay-ms", std::to_string(delay_ms)});
-    EXPECT_TRUE(stack.ready()) << stack.diagnostics();
-    SpawnedProcess mujoco(
-        HAPTICCTRL_MUJOCO_BINARY,
-        {"--model", kScenes + "/heavy_lift.xml", "--server",
-         "127.0.0.1:" + std::to_string(relay.port()), "--headless", "--json", "--duration", "11"});
-    EXPECT_TRUE(ControllerStack::eventually(
-        [&] { return mujoco.err().find("ready:") != std::string::npos; }, 10s));
-    std::this_thread::sleep_for(1s);
-    const std::string sequence = "/tmp/hapticctrl-lift-" + std::to_string(getpid()) + ".seq";
-    const std::string log = "/tmp/hapticctrl-lift-" + std::to_string(getpid()) + ".csv";
-    std::ofstream(sequence) << "0 0 0 0 0 0 0\n1 0 0 15 0 0 0\n8 0 0 15 0 0 0\n";
-    EXPECT_EQ(run_hmi(stack, {"play", sequence, "--hand", "50,5", "--log", log}), 0);
-    const std::vector<double> felt = log_column(log, "ren_fz", 5.0, 7.0);
-    const std::vector<double> z = log_column(log, "z", 5.0, 7.0);
-    std::remove(sequence.c_str());
-    std::remove(log.c_str());
-    EXPECT_EQ(mujoco.wait(30s), 0) << mujoco.err();
-    const std::string summary = mujoco.out();
-    if (stack.telemetry().would_fail_safe > 0 || felt.size() < 1000) {
-      std::printf("%s: the machine stalled the core (%zu cycles logged): tried again\n",
-                  name.c_str(), felt.size());
+    const HandRun run("lift", attempt, delay_ms, "heavy_lift", 11,
+                      "0 0 0 0 0 0 0\n1 0 0 15 0 0 0\n8 0 0 15 0 0 0\n", "50,5");
+    const std::vector<double> felt = run.column("ren_fz", 5.0, 7.0);
+    const std::vector<double> z = run.column("z", 5.0, 7.0);
+    if (run.disturbed(name, felt.size(), 1000)) {
       return false;
     }
     double mean = 0.0;
@@ -227,7 +267,7 @@ TEST_P(HeavyLift, TheLiftedWeightIsFeltAsMgAndTheHandleRests) {
                 mg, fastest * 1e3);
     EXPECT_NEAR(-mean, mg, 0.05 * mg) << "the weight is felt";
     EXPECT_LT(fastest, 0.005) << "the handle rests (50 ms windows)";
-    EXPECT_EQ(json_number(summary, "instabilities"), 0.0);
+    EXPECT_EQ(json_number(run.summary(), "instabilities"), 0.0);
     return true;
   });
 }
@@ -246,38 +286,19 @@ TEST_P(PegPath, AScriptedOperatorGuidesThePegOntoTheAxisAndIntoTheHole) {
   const int delay_ms = GetParam();
   const std::string name = "peg_path_" + std::to_string(delay_ms) + "ms";
   with_retries(name, [&](int attempt) {
-    ControllerStack stack("mj-peg" + std::to_string(attempt), kPeriodUs, {}, {"--benchmark-mode"});
-    Relay relay(stack.port(), {"--delay-ms", std::to_string(delay_ms)});
-    EXPECT_TRUE(stack.ready()) << stack.diagnostics();
-    SpawnedProcess mujoco(HAPTICCTRL_MUJOCO_BINARY,
-                          {"--model", kScenes + "/peg_in_hole.xml", "--server",
-                           "127.0.0.1:" + std::to_string(relay.port()), "--headless", "--json",
-                           "--no-lcm", "--duration", "8"});
-    EXPECT_TRUE(ControllerStack::eventually(
-        [&] { return mujoco.err().find("ready:") != std::string::npos; }, 10s));
-    std::this_thread::sleep_for(1s);
-    const std::string sequence = "/tmp/hapticctrl-peg-" + std::to_string(getpid()) + ".seq";
-    const std::string log = "/tmp/hapticctrl-peg-" + std::to_string(getpid()) + ".csv";
-    std::ofstream(sequence) << "0 0 0 0 0 0 0\n0.5 -0.5 0 -1 0 0 0\n2 -0.5 0 -1 0 0 0\n"
-                               "2.5 0 0 -3 0 0 0\n7 0 0 -3 0 0 0\n";
-    EXPECT_EQ(run_hmi(stack, {"play", sequence, "--hand", "100,5", "--log", log}), 0);
-    const std::vector<double> resting = log_column(log, "z", 5.0, 6.5);
-    std::remove(sequence.c_str());
-    std::remove(log.c_str());
-    EXPECT_EQ(mujoco.wait(30s), 0) << mujoco.err();
-    const std::string summary = mujoco.out();
-    if (stack.telemetry().would_fail_safe > 0 || resting.size() < 1000) {
-      std::printf("%s: the machine stalled the core: tried again\n", name.c_str());
-      return false;
-    }
-    if (!engine_kept_real_time(name, summary)) {
+    const HandRun run("peg", attempt, delay_ms, "peg_in_hole", 8,
+                      "0 0 0 0 0 0 0\n0.5 -0.5 0 -1 0 0 0\n2 -0.5 0 -1 0 0 0\n"
+                      "2.5 0 0 -3 0 0 0\n7 0 0 -3 0 0 0\n",
+                      "100,5");
+    const std::vector<double> resting = run.column("z", 5.0, 6.5);
+    if (run.disturbed(name, resting.size(), 1000)) {
       return false;
     }
 #ifdef HAPTICCTRL_SANITIZED
     return true;  // instrumented: for memory and races, not the contact physics (ShippedScene)
 #endif
-    const std::vector<double> pose = json_numbers(summary, "body_pose");
-    EXPECT_EQ(pose.size(), 7U) << summary;
+    const std::vector<double> pose = json_numbers(run.summary(), "body_pose");
+    EXPECT_EQ(pose.size(), 7U) << run.summary();
     if (pose.size() != 7) {
       return true;
     }
@@ -287,7 +308,7 @@ TEST_P(PegPath, AScriptedOperatorGuidesThePegOntoTheAxisAndIntoTheHole) {
     EXPECT_LT(pose[2], 0.001) << "in the hole, on its floor";
     EXPECT_LT(std::hypot(pose[0], pose[1]), 0.001) << "on the axis";
     EXPECT_LT(fastest_along(resting), 0.005) << "the handle rests (50 ms windows)";
-    EXPECT_EQ(json_number(summary, "instabilities"), 0.0);
+    EXPECT_EQ(json_number(run.summary(), "instabilities"), 0.0);
     return true;
   });
 }
@@ -307,22 +328,10 @@ TEST_P(ContactStiffness, TheTableIsFeltAtTheScenesStiffnessClampedToTheDevice) {
   const int delay_ms = GetParam();
   const std::string name = "contact_stiffness_" + std::to_string(delay_ms) + "ms";
   with_retries(name, [&](int attempt) {
-    ControllerStack stack("mj-press" + std::to_string(attempt), kPeriodUs, {},
-                          {"--benchmark-mode"});
-    Relay relay(stack.port(), {"--delay-ms", std::to_string(delay_ms)});
-    EXPECT_TRUE(stack.ready()) << stack.diagnostics();
-    SpawnedProcess mujoco(HAPTICCTRL_MUJOCO_BINARY,
-                          {"--model", kScenes + "/test_box.xml", "--server",
-                           "127.0.0.1:" + std::to_string(relay.port()), "--headless", "--json",
-                           "--no-lcm", "--duration", "9"});
-    EXPECT_TRUE(ControllerStack::eventually(
-        [&] { return mujoco.err().find("ready:") != std::string::npos; }, 10s));
-    std::this_thread::sleep_for(1s);
-    const std::string sequence = "/tmp/hapticctrl-press-" + std::to_string(getpid()) + ".seq";
-    const std::string log = "/tmp/hapticctrl-press-" + std::to_string(getpid()) + ".csv";
-    std::ofstream(sequence) << "0 0 0 0 0 0 0\n1 0 0 -2 0 0 0\n3 0 0 -2 0 0 0\n4 0 0 -8 0 0 0\n"
-                               "6 0 0 -8 0 0 0\n6.5 0 0 0 0 0 0\n";
-    EXPECT_EQ(run_hmi(stack, {"play", sequence, "--hand", "100,5", "--log", log}), 0);
+    const HandRun run("press", attempt, delay_ms, "test_box", 9,
+                      "0 0 0 0 0 0 0\n1 0 0 -2 0 0 0\n3 0 0 -2 0 0 0\n4 0 0 -8 0 0 0\n"
+                      "6 0 0 -8 0 0 0\n6.5 0 0 0 0 0 0\n",
+                      "100,5");
     const auto mean = [](const std::vector<double>& v) {
       double m = 0.0;
       for (const double x : v) {
@@ -330,15 +339,11 @@ TEST_P(ContactStiffness, TheTableIsFeltAtTheScenesStiffnessClampedToTheDevice) {
       }
       return m;
     };
-    const std::vector<double> z_light = log_column(log, "z", 2.0, 3.0);
-    const std::vector<double> z_firm = log_column(log, "z", 5.0, 6.0);
-    const std::vector<double> f_light = log_column(log, "ren_fz", 2.0, 3.0);
-    const std::vector<double> f_firm = log_column(log, "ren_fz", 5.0, 6.0);
-    std::remove(sequence.c_str());
-    std::remove(log.c_str());
-    EXPECT_EQ(mujoco.wait(30s), 0) << mujoco.err();
-    if (stack.telemetry().would_fail_safe > 0 || z_light.size() < 500 || z_firm.size() < 500) {
-      std::printf("%s: the machine stalled the core: tried again\n", name.c_str());
+    const std::vector<double> z_light = run.column("z", 2.0, 3.0);
+    const std::vector<double> z_firm = run.column("z", 5.0, 6.0);
+    const std::vector<double> f_light = run.column("ren_fz", 2.0, 3.0);
+    const std::vector<double> f_firm = run.column("ren_fz", 5.0, 6.0);
+    if (run.disturbed(name, std::min(z_light.size(), z_firm.size()), 500)) {
       return false;
     }
 #ifdef HAPTICCTRL_SANITIZED
@@ -349,7 +354,7 @@ TEST_P(ContactStiffness, TheTableIsFeltAtTheScenesStiffnessClampedToTheDevice) {
     std::printf("%s: %.3f mm deeper for %.3f N more: %.0f N/m felt\n", name.c_str(), pressed * 1e3,
                 mean(f_firm) - mean(f_light), felt);
     EXPECT_GE(felt, 0.9 * 2000.0) << "the table is felt hard";
-    EXPECT_EQ(json_number(mujoco.out(), "instabilities"), 0.0);
+    EXPECT_EQ(json_number(run.summary(), "instabilities"), 0.0);
     return true;
   });
 }
@@ -370,38 +375,17 @@ TEST_P(BlockPush, TheHandPushesTheToolIntoTheBlockAndTheBlockSlidesAlongTheTable
   const int delay_ms = GetParam();
   const std::string name = "block_push_" + std::to_string(delay_ms) + "ms";
   with_retries(name, [&](int attempt) {
-    ControllerStack stack("mj-push" + std::to_string(attempt), kPeriodUs, {}, {"--benchmark-mode"});
-    Relay relay(stack.port(), {"--delay-ms", std::to_string(delay_ms)});
-    EXPECT_TRUE(stack.ready()) << stack.diagnostics();
-    SpawnedProcess mujoco(HAPTICCTRL_MUJOCO_BINARY,
-                          {"--model", kScenes + "/table_blocks.xml", "--server",
-                           "127.0.0.1:" + std::to_string(relay.port()), "--headless", "--json",
-                           "--no-lcm", "--duration", "12"});
-    EXPECT_TRUE(ControllerStack::eventually(
-        [&] { return mujoco.err().find("ready:") != std::string::npos; }, 10s));
-    std::this_thread::sleep_for(1s);
-    const std::string sequence = "/tmp/hapticctrl-push-" + std::to_string(getpid()) + ".seq";
-    const std::string log = "/tmp/hapticctrl-push-" + std::to_string(getpid()) + ".csv";
-    std::ofstream(sequence) << "0 0 0 0 0 0 0\n1 6 0 0 0 0 0\n9 6 0 0 0 0 0\n9.5 0 0 0 0 0 0\n";
-    EXPECT_EQ(run_hmi(stack, {"play", sequence, "--hand", "30,3", "--log", log}), 0);
-    const std::vector<double> resting = log_column(log, "x", 7.0, 9.0);
-    std::remove(sequence.c_str());
-    std::remove(log.c_str());
-    EXPECT_EQ(mujoco.wait(30s), 0) << mujoco.err();
-    const std::string summary = mujoco.out();
-    if (stack.telemetry().would_fail_safe > 0 || resting.size() < 1000) {
-      std::printf("%s: the machine stalled the core (%zu cycles logged): tried again\n",
-                  name.c_str(), resting.size());
-      return false;
-    }
-    if (!engine_kept_real_time(name, summary)) {
+    const HandRun run("push", attempt, delay_ms, "table_blocks", 12,
+                      "0 0 0 0 0 0 0\n1 6 0 0 0 0 0\n9 6 0 0 0 0 0\n9.5 0 0 0 0 0 0\n", "30,3");
+    const std::vector<double> resting = run.column("x", 7.0, 9.0);
+    if (run.disturbed(name, resting.size(), 1000)) {
       return false;
     }
 #ifdef HAPTICCTRL_SANITIZED
     return true;  // instrumented: for memory and races, not the contact physics (ShippedScene)
 #endif
-    const std::vector<double> block = json_numbers(summary, "block_red");
-    EXPECT_EQ(block.size(), 3U) << summary;
+    const std::vector<double> block = json_numbers(run.summary(), "block_red");
+    EXPECT_EQ(block.size(), 3U) << run.summary();
     if (block.size() != 3) {
       return true;  // judged: no summary
     }
@@ -414,7 +398,7 @@ TEST_P(BlockPush, TheHandPushesTheToolIntoTheBlockAndTheBlockSlidesAlongTheTable
     EXPECT_LT(std::abs(block[1]), 0.01) << "straight ahead";
     EXPECT_NEAR(block[2], 0.02, 1e-3) << "on the table";
     EXPECT_LT(fastest_along(resting), 0.005) << "the handle rests at the end (50 ms windows)";
-    EXPECT_EQ(json_number(summary, "instabilities"), 0.0);
+    EXPECT_EQ(json_number(run.summary(), "instabilities"), 0.0);
     return true;
   });
 }

@@ -109,5 +109,20 @@ TEST(Options, UsageErrorsNameTheOptionAndHelpIsGenerated) {
   EXPECT_NE(text.find("--client NET"), std::string::npos) << text;
 }
 
+TEST(Options, AnInstanceIsANameWithoutDotsOrSpaces) {
+  std::string instance = "default";
+  Options o("prog", "A program.");
+  o.instance(instance, "controller instance");
+  EXPECT_TRUE(o.parse({"--instance", "lab2"}));
+  EXPECT_EQ(instance, "lab2");
+  for (const char* bad : {"", "a.b", "a b"}) {
+    Options again("prog", "A program.");
+    again.instance(instance, "controller instance");
+    EXPECT_EQ(error_of(again, {"--instance", bad}),
+              "--instance must be a non-empty name without dots or spaces")
+        << bad;
+  }
+}
+
 }  // namespace
 }  // namespace hapticctrl::program

@@ -8,16 +8,16 @@ import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { mkdirSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
+import { openPage } from './support/browser.mjs';
 import { Stack, until } from './support/stack.mjs';
 
-const { chromium } = await import(process.env.PLAYWRIGHT_CORE ?? 'playwright-core');
 const artifacts = process.env.HAPTICCTRL_ARTIFACTS ?? 'test-artifacts/web';
 mkdirSync(artifacts, { recursive: true });
 
 const stack = new Stack('view');
 let browser;
 let page;
-const pageErrors = [];
+let pageErrors = [];
 
 /** window.hapticctrl, the page's own status object, as plain JSON. */
 const pageStatus = () => page.evaluate(() => {
@@ -41,15 +41,7 @@ const shot = (name) => page.screenshot({ path: join(artifacts, `${name}.png`) })
 
 before(async () => {
   await stack.start();
-  browser = await chromium.launch({
-    executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
-    headless: true,
-    // Software WebGL: Chromium no longer falls back to SwiftShader on its own.
-    args: ['--no-sandbox', '--disable-gpu', '--disable-background-networking',
-      '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
-  });
-  page = await browser.newPage({ viewport: { width: 1280, height: 960 } });
-  page.on('pageerror', (error) => pageErrors.push(error.message));
+  ({ browser, page, pageErrors } = await openPage());
 });
 
 after(async () => {

@@ -42,6 +42,9 @@ class Options {
   }
   /// --name TEXT into `target`.
   Options& text(const std::string& name, std::string& target, const std::string& help);
+  /// --instance NAME into `target`: a controller instance as LCM channel names carry it (not
+  /// empty, no dots or spaces).
+  Options& instance(std::string& target, const std::string& help);
   /// --name: sets `target`.
   Options& flag(const std::string& name, bool& target, const std::string& help);
   /// --name: calls `on` (a flag that clears a setting, or sets several).

@@ -304,7 +304,7 @@ PIDS+=($!)
 PIDS+=($!)
 if [[ -n $SCENE ]]; then
   "$BUILD/mujoco/hapticctrl-mujoco" --model "mujoco/scenes/$SCENE.xml" --server "127.0.0.1:$PORT" \
-    --headless --json >"$RUN_DIR/mujoco.json" 2>"$RUN_DIR/mujoco.log" &
+    --instance "$INSTANCE" --headless --json >"$RUN_DIR/mujoco.json" 2>"$RUN_DIR/mujoco.log" &
 else
   "$BUILD/demo/hapticctrl-demo" --server "127.0.0.1:$PORT" --instance "$INSTANCE" --headless \
     --json --log "$RUN_DIR/demo.csv" >"$RUN_DIR/demo.json" 2>"$RUN_DIR/demo.log" &

@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <optional>
 #include <utility>
 
 #include "hapticctrl/protocol/timing.hpp"
@@ -245,25 +244,22 @@ void ClientSession::close_locally() noexcept {
     return;
   }
   Vector6 w = controller_wrench_;
-  if (!s.coupled() || !have_object_) {
-    contact_lead_.reset();
-  } else {
-    const double gap = contact_gap();
-    contact_lead_.follow(terms_, channel_pose_, object_pose_, gap);
-    const ContactDepth depth{std::max(0.0, -gap), contact_lead_.lead()};
-    const Vector6 local = object_wrench(terms_, channel_pose_, channel_twist_, object_pose_,
-                                        object_twist_, depth, speed_factor_, force_factor_);
+  if (s.coupled() && have_object_) {
+    const Vector6 local =
+        object_wrench(terms_, channel_pose_, channel_twist_, object_pose_, object_twist_,
+                      contact_penetration(), speed_factor_, force_factor_);
     w = along_contact(terms_, controller_wrench_, local);
   }
   s.coupling_wrench = passivity_.render(w);
 }
 
-double ClientSession::contact_gap() const noexcept {
+double ClientSession::contact_penetration() const noexcept {
+  // The deepest of the contacts set along the controller's contact normal (within 25 degrees).
   const double nx = terms_.contact_normal[0];
   const double ny = terms_.contact_normal[1];
   const double nz = terms_.contact_normal[2];
   const double length = std::sqrt(nx * nx + ny * ny + nz * nz);
-  std::optional<double> nearest;
+  double deepest = 0.0;
   for (std::uint32_t i = 0; i < contact_count_ && length > 1e-6; ++i) {
     const hcp_contact& c = contacts_[i];
     const double along =
@@ -271,10 +267,10 @@ double ClientSession::contact_gap() const noexcept {
          static_cast<double>(c.normal[2]) * nz) /
         length;
     if (along > 0.9) {
-      nearest = std::min(nearest.value_or(HUGE_VAL), static_cast<double>(c.distance));
+      deepest = std::max(deepest, -static_cast<double>(c.distance));
     }
   }
-  return nearest.value_or(0.0);
+  return deepest;
 }
 
 std::optional<hcp_frame> ClientSession::keepalive_due(std::int64_t now) noexcept {

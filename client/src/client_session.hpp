@@ -123,7 +123,7 @@ class ClientSession {
   /// Protocol 1.3: the object's wrench (or an IMPEDANCE client's handle image) in latest_.
   void close_locally() noexcept;
   /// The object's penetration into the contacts set along the controller's contact normal (m).
-  [[nodiscard]] double contact_gap() const noexcept;
+  [[nodiscard]] double contact_penetration() const noexcept;
   [[nodiscard]] bool local() const noexcept {
     return (features_ & HCP_FEATURE_LOCAL_COUPLING) != 0;
   }
@@ -168,7 +168,6 @@ class ClientSession {
   // Protocol 1.3: the object's side of the coupling, closed here (local_coupling.hpp).
   hcp_local_coupling local_{};  ///< from the newest ANSWER_COUPLED
   CouplingTerms terms_;
-  ContactLead contact_lead_;                 ///< the handle image's lead into the contact in force
   Vector6 controller_wrench_{};              ///< the object's wrench as the newest answer gave it
   Pose7 channel_pose_{0, 0, 0, 0, 0, 0, 1};  ///< the handle as the newest answer gave it
   Vector6 channel_twist_{};

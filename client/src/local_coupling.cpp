@@ -44,9 +44,8 @@ CouplingTerms terms_of(const hcp_coupling_report& report,
 }
 
 Vector6 object_wrench(const CouplingTerms& t, const Pose7& handle_pose, const Vector6& handle_twist,
-                      const Pose7& object_pose, const Vector6& object_twist,
-                      const ContactDepth& contact, double speed_factor,
-                      double force_factor) noexcept {
+                      const Pose7& object_pose, const Vector6& object_twist, double penetration,
+                      double speed_factor, double force_factor) noexcept {
   // The controller's gains act on its base-frame metres (client metres / speed factor) and the
   // object gets the coupling without the force factor (docs/control.md).
   const double sf = speed_factor > 0.0 ? speed_factor : 1.0;
@@ -65,44 +64,17 @@ Vector6 object_wrench(const CouplingTerms& t, const Pose7& handle_pose, const Ve
     // pressed with the force the hand feels (J2).
     const Eigen::Vector3d n = normal.normalized();
     const double share = std::min(1.0, normal.norm());
-    const double depth = (-stretch.dot(n) - std::max(0.0, contact.lead)) / sf;
+    const double depth = -stretch.dot(n) / sf;
     const double engaged = std::clamp(depth / kDamperBand, 0.0, 1.0);
-    const double pen = std::max(0.0, contact.penetration) / sf;
+    const double pen = std::max(0.0, penetration) / sf;
     if (depth + pen > 0.0) {  // (k + stiffening) on the handle's depth, in the contact's share
       force -= (t.normal_gains[0] * (depth + pen) + share * t.gains[0] * pen) * n;
     }
     force += engaged * t.normal_gains[1] * relative.dot(n) / sf * n;
-    // The lead is no press for the coupling's own spring either: k x lead was the object's drag,
-    // which the hand, on the surface now, no longer feels (at a 4 ms cycle k is 1730 N/m: kept,
-    // the demo's sphere pushed at 5 N pressed on its wall with 6.7 N).
-    const double led = std::min(std::max(0.0, contact.lead), std::max(0.0, -stretch.dot(n)));
-    force += share * t.gains[0] * led / sf * n;
   }
   force = clamped(force, t.limits[0] / ff);
   torque = clamped(torque, t.limits[1] / ff);
   return {force.x(), force.y(), force.z(), torque.x(), torque.y(), torque.z()};
-}
-
-void ContactLead::follow(const CouplingTerms& terms, const Pose7& handle_pose,
-                         const Pose7& object_pose, double gap) noexcept {
-  // Taken when the stiffening arrives, the event the controller takes its own lead at
-  // (servo_law_contact.cpp), as the handle image's depth beyond the plane the object's centre
-  // touches: both sides take the same depth, the handle where the controller had it, against
-  // the same plane. Taken at the object's own touch, the lead took in what the hand pressed
-  // before the report went round (the block got 0.5 N while the hand felt 3.7 N); as the stretch
-  // to each side's own view of the object, the two differed by the object's travel over the
-  // loop (J3, 2026-12-06).
-  const Eigen::Vector3d in_force(terms.contact_normal[0], terms.contact_normal[1],
-                                 terms.contact_normal[2]);
-  if (in_force.squaredNorm() < 1e-12) {
-    *this = ContactLead{};
-    return;
-  }
-  const Eigen::Vector3d n = in_force.normalized();
-  if (Eigen::Vector3d(normal_[0], normal_[1], normal_[2]).dot(n) <= 0.9) {  // a new contact
-    lead_ = std::max(0.0, (head(object_pose) - head(handle_pose)).dot(n) - gap);
-  }
-  normal_ = {n.x(), n.y(), n.z()};
 }
 
 Vector6 along_contact(const CouplingTerms& t, const Vector6& controller,

@@ -28,44 +28,17 @@ struct CouplingTerms {
 [[nodiscard]] CouplingTerms terms_of(const hcp_coupling_report& report,
                                      const hcp_local_coupling& local) noexcept;
 
-/// Where the object is in its contact, along the answer's contact normal (client metres).
-struct ContactDepth {
-  double penetration = 0.0;  ///< the object's own into the surface (>= 0 counts)
-  /// How far the handle image led the object into the surface when the contact came into force
-  /// (ContactLead): the stretch a dragged object needed, which is no press.
-  double lead = 0.0;
-};
-
 /// The wrench on the object (client frame, the application's units): the coupling's spring and
 /// damper between the object (`object_pose`, `object_twist`) and the handle image
 /// (`handle_pose`, `handle_twist`), with the contact stiffening while the spring pushes the
-/// object into the contact (on the handle's depth in the surface: the stretch beyond the lead
-/// plus the object's own penetration), clamped to the limits. `speed_factor` and
+/// object into the contact (on the handle's depth in the surface: the stretch plus the object's
+/// own `penetration` into it, client metres), clamped to the limits. `speed_factor` and
 /// `force_factor` turn the controller's units into the application's. Safe in a loop: no
 /// allocation.
 [[nodiscard]] Vector6 object_wrench(const CouplingTerms& terms, const Pose7& handle_pose,
                                     const Vector6& handle_twist, const Pose7& object_pose,
-                                    const Vector6& object_twist, const ContactDepth& contact,
+                                    const Vector6& object_twist, double penetration,
                                     double speed_factor, double force_factor) noexcept;
-
-/// The handle image's lead into the contact the answer stiffens (ContactDepth::lead), as the
-/// controller keeps it (servo_law_contact.cpp, follow_lead): when the stiffening arrives, the
-/// handle image's depth beyond the plane the object's centre touches, held while it lasts (the
-/// hand pressing the object in is no lead); none without a contact in force.
-class ContactLead {
- public:
-  /// Follows one answer's terms with the handle image and the object now (client frame);
-  /// `gap`: the object's gap to the stiffened contact now (client metres).
-  void follow(const CouplingTerms& terms, const Pose7& handle_pose, const Pose7& object_pose,
-              double gap) noexcept;
-  /// The lead along the stiffened contact's normal (client metres, >= 0).
-  [[nodiscard]] double lead() const noexcept { return lead_; }
-  void reset() noexcept { *this = ContactLead{}; }
-
- private:
-  std::array<double, 3> normal_{};  ///< the stiffened contact's unit normal (zero: none)
-  double lead_ = 0.0;
-};
 
 /// The object's wrench to apply: the controller's (`controller`, computed on its view of the
 /// object a loop late), but while a contact is in force the library's own (`local`, on the

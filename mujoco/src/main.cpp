@@ -100,6 +100,10 @@ class MujocoRun {
                  mj::engine_version().c_str(), o_.model_path.c_str(), world_.body_name().c_str(),
                  world_.mass(), world_.timestep() * 1e3,
                  world_.has_grip() ? "; g: grip on/off" : "");
+    if (world_out_) {
+      std::fprintf(stderr, "hapticctrl-mujoco: the scene goes out on LCM, %s (%.0f Hz)\n",
+                   world_out_->channel().c_str(), o_.world_rate_hz);
+    }
     while (!quit_ && time_left()) {
       std::optional<client::Connection> next = open_session();
       if (!next) {

@@ -161,11 +161,10 @@ ServoLaw::Coupling ServoLaw::client_wrench(const ServoInputs& in, const ClientFr
   // device allows there (unilateral: only while it pushes the object into the surface), and the
   // object is not extrapolated along it: held, its velocity there is the jitter of its contact
   // (+-3 cm/s on a 5000 N/m wall), which 100 ms of extrapolation turned into 3 N of chatter.
-  const Stiffening stiff = contact_stiffening(
-      in, frame, image.position - image.ahead - memory_.drift.head<3>(), chain.handle_position, g);
+  const Stiffening stiff =
+      contact_stiffening(in, frame, image.position - image.ahead - memory_.drift.head<3>(), g);
   out.contacts = stiff.fresh;
   image.position -= stiff.share * image.ahead.dot(stiff.normal) * stiff.normal;
-  follow_lead(stiff);
   Vector6d stretch;
   stretch << image.position - chain.handle_position,
       rotation_vector(image.rotation * chain.handle_rotation.transpose());
@@ -177,9 +176,7 @@ ServoLaw::Coupling ServoLaw::client_wrench(const ServoInputs& in, const ClientFr
   Vector3d object_pressed = Vector3d::Zero();  // what the object's side adds along its contact
   if (stiff.share > 0.0) {
     const Vector3d& n = stiff.normal;
-    // > 0: the handle presses into the surface beyond how far it led the object to it (a
-    // dragged object's stretch, RenderMemory::lead, which the client's side leaves out alike).
-    const double depth = used.head<3>().dot(n) - memory_.lead;
+    const double depth = used.head<3>().dot(n);  // > 0: the handle presses into the surface
     // The damper comes in over the first 0.5 mm, so that touching is not a step.
     const double engaged = std::clamp(depth / 5e-4, 0.0, 1.0);
     coupling.damper.head<3>() += engaged * stiff.damping * relative.head<3>().dot(n) * n;
@@ -191,10 +188,6 @@ ServoLaw::Coupling ServoLaw::client_wrench(const ServoInputs& in, const ClientFr
       object_pressed +=
           (stiff.object_stiffness * held + stiff.share * g.k_linear * stiff.penetration) * n;
     }
-    // ... and not on the lead: k x lead was the object's drag, which the hand no longer feels
-    // on the surface (as the client's side, local_coupling.cpp).
-    const double led = std::min(memory_.lead, std::max(0.0, used.head<3>().dot(n)));
-    object_pressed -= stiff.share * g.k_linear * led * n;
     coupling.spring.head<3>() += stiff.stiffness * std::max(0.0, depth) * n;
     out.contact_normal = n * stiff.share;
     out.normal_stiffness = stiff.object_stiffness;
@@ -271,8 +264,6 @@ void ServoLaw::follow_session(const ServoInputs& in) noexcept {
     m.gains = CouplingGains{};  // its gains start at their design
     m.held = RenderMemory::HeldContact{};
     m.surface_withheld = 0.0;
-    m.lead = 0.0;
-    m.lead_normal.setZero();
   }
 }
 

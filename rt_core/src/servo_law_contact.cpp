@@ -33,25 +33,6 @@ double return_speed(double speed, double leaving) noexcept {
   return std::max(0.0, speed - std::max(0.0, leaving - kCreepSpeed));
 }
 
-/// A contact's surface in the base frame: its normal, and the point its object's centre is at
-/// when the object touches it (`point - distance * normal`, the object's reported position
-/// less its gap: the contact's frame keeps the object's offset from its point).
-struct ObjectPlane {
-  Vector3d normal;
-  Vector3d point;
-};
-ObjectPlane object_plane(const ClientContact& contact, const Matrix3d& to_base,
-                         const ClientFrame& frame) noexcept {
-  const Vector3d normal =
-      (to_base * Vector3d(contact.normal[0], contact.normal[1], contact.normal[2])).normalized();
-  const Vector3d object =
-      to_base *
-      (Vector3d(contact.object_pose[0], contact.object_pose[1], contact.object_pose[2]) -
-       frame.origin) /
-      frame.speed_factor;
-  return {normal, object - contact.distance / frame.speed_factor * normal};
-}
-
 /// Share of the contact a slot still has after `silence` without a refresh: 1 while fresh,
 /// falling linearly to 0 over the fade (a contact that stops coming fades as the link does).
 double contact_weight(TimeNs silence, const LawConfig& config) noexcept {
@@ -65,23 +46,19 @@ double contact_weight(TimeNs silence, const LawConfig& config) noexcept {
 }  // namespace
 
 ServoLaw::Stiffening ServoLaw::contact_stiffening(const ServoInputs& in, const ClientFrame& frame,
-                                                  const Vector3d& reported, const Vector3d& handle,
+                                                  const Vector3d& reported,
                                                   const CouplingGains& g) const noexcept {
   // Held by a surface of stiffness K, the object moves little whatever the coupling does, so the
   // loop through it (the object's surface, the spring, the delay, the handle) keeps a gain below
   // 1 at any delay as long as the coupling along the surface's normal stays well below K: there
   // the coupling may be as stiff as contact_share * K and the device allow, whatever the delay
   // (small gain; the free-mass bound of derive_gains() is about the directions the object is
-  // free in). One normal: of the contacts most in force, the one the handle presses the object
-  // into most, then the stiffest (a client that closes its object's side mirrors it, protocol
-  // 1.3). The stiffest alone took the table the tool rests on, not the block the hand pushed it
-  // into: the block got the soft coupling only and never moved (J3, 2026-12-06).
+  // free in). One normal, the stiffest contact's: a client that closes its object's side mirrors
+  // it (protocol 1.3).
   const ArmLimits& lim = dynamics_->model().limits;
   const ClientSample& c = in.client;
   const Matrix3d to_base = frame.rotation.conjugate().toRotationMatrix();
   Stiffening best;
-  double best_press = -std::numeric_limits<double>::infinity();
-  bool best_kept = false;
   for (std::size_t i = 0; i < std::min<std::size_t>(c.contact_count, c.contacts.size()); ++i) {
     const ClientContact& contact = c.contacts[i];
     if (!(contact.stiffness > 0.0)) {
@@ -110,17 +87,8 @@ ServoLaw::Stiffening ServoLaw::contact_stiffening(const ServoInputs& in, const C
         weight * touching *
         std::max(0.0,
                  std::min(lim.max_stiffness_linear, config_.contact_share * surface) - g.k_linear);
-    const double press = (reported - handle).dot(normal);  // > 0: the handle presses it in
-    // The contact stiffened last cycle stays while it touches at all: switched to the table
-    // whenever the block's share dipped within its touch band, the stiffening came back to the
-    // block with its lead taken anew, and the push went slack in 5 runs of 20 (2026-12-06).
-    const bool kept = weight * touching > 0.0 && memory_.lead_normal.dot(normal) > 0.9;
-    const bool tied = weight * touching == best.share;
-    if (kept || (!best_kept &&
-                 (weight * touching > best.share || (tied && press > best_press + kTouchBand) ||
-                  (tied && press >= best_press - kTouchBand && stiffness > best.stiffness)))) {
-      best_kept = best_kept || kept;
-      best_press = press;
+    if (weight * touching > best.share ||
+        (weight * touching == best.share && stiffness > best.stiffness)) {
       best.normal = normal;
       best.share = weight * touching;
       best.weight = weight;
@@ -129,7 +97,6 @@ ServoLaw::Stiffening ServoLaw::contact_stiffening(const ServoInputs& in, const C
           weight * touching *
           std::max(0.0, std::min(lim.max_stiffness_linear, surface) - g.k_linear);
       best.penetration = std::max(0.0, -gap);
-      best.beyond = (object_plane(contact, to_base, frame).point - handle).dot(normal);
       best.damping = weight * touching * std::max(0.0, lim.max_damping_linear - g.b_linear);
     }
   }
@@ -235,9 +202,8 @@ ServoLaw::Surface ServoLaw::reported_surface(const ServoInputs& in, const Client
   // way, 71 N/m at 20 ms, J2). An IMPEDANCE client's `point` is where its handle's point meets
   // the surface. A VIRTMECH client's is on its object: the surface passes through point -
   // distance * normal, and the handle, which the coupling holds at the object, meets it where
-  // the object's centre does, `distance` beyond the object's reported position, less how far
-  // the handle leads the object into it (RenderMemory::lead). One surface, the deepest;
-  // unilateral (it never pulls).
+  // the object's centre did, `distance` beyond the object's reported position. One surface, the
+  // deepest; unilateral (it never pulls).
   const ArmLimits& lim = dynamics_->model().limits;
   const ClientSample& c = in.client;
   const Matrix3d to_base = frame.rotation.conjugate().toRotationMatrix();
@@ -257,22 +223,19 @@ ServoLaw::Surface ServoLaw::reported_surface(const ServoInputs& in, const Client
     ++best.fresh;
     const TimeNs age = in.now - contact.received_ns;
     best.age = best.age < 0 ? age : std::min(best.age, age);
-    Vector3d normal;
-    Vector3d point;
-    if (on_object) {
-      const ObjectPlane plane = object_plane(contact, to_base, frame);
-      normal = plane.normal;
-      if (memory_.lead_normal.dot(normal) <= 0.9) {
-        continue;  // not the contact the coupling stiffens: the object does not touch it yet
-      }
-      point = plane.point - memory_.lead * normal;
-    } else {
-      normal = (to_base * Vector3d(contact.normal[0], contact.normal[1], contact.normal[2]))
-                   .normalized();
-      point = to_base *
-              (Vector3d(contact.point[0], contact.point[1], contact.point[2]) - frame.origin) /
-              frame.speed_factor;
-    }
+    const Vector3d normal =
+        (to_base * Vector3d(contact.normal[0], contact.normal[1], contact.normal[2])).normalized();
+    const Vector3d point =
+        on_object ? Vector3d(to_base *
+                                 (Vector3d(contact.object_pose[0], contact.object_pose[1],
+                                           contact.object_pose[2]) -
+                                  frame.origin) /
+                                 frame.speed_factor -
+                             contact.distance / frame.speed_factor * normal)
+                  : Vector3d(to_base *
+                             (Vector3d(contact.point[0], contact.point[1], contact.point[2]) -
+                              frame.origin) /
+                             frame.speed_factor);
     const double depth = (point - chain.handle_position).dot(normal);
     if (depth <= deepest) {
       continue;
@@ -289,30 +252,6 @@ ServoLaw::Surface ServoLaw::reported_surface(const ServoInputs& in, const Client
     best.friction_dynamic = std::min(contact.friction[1], contact.friction[0]);
   }
   return best;
-}
-
-void ServoLaw::follow_lead(const Stiffening& stiff) noexcept {
-  // A handle that drags its object against friction leads it by the coupling's stretch (1.6 cm
-  // for the 0.1 kg pusher on MuJoCo's table through a 20 ms link): rendered where the object's
-  // centre would meet it, a surface held the handle 2.5 cm short of a block, which never moved
-  // (J3, 2026-12-06). So a VIRTMECH surface is rendered from the moment the object touches it as
-  // reported (the stiffening comes in), and the handle's depth beyond the plane the object's
-  // centre touches then is held as the lead while the stiffening lasts: the plane is that much
-  // deeper for the handle, and the hand pressing the object in is no lead. The client holds the
-  // same depth from the same event (the stiffening's arrival, with the handle where the
-  // controller had it, against its own view of the same plane), so both sides press the object
-  // alike (docs/control.md). Held from the object's own touch, the client's lead took in what
-  // the hand pressed meanwhile (the block got 0.5 N while the hand felt 3.7 N).
-  RenderMemory& m = memory_;
-  if (!(stiff.share > 0.0)) {
-    m.lead_normal.setZero();
-    m.lead = 0.0;
-    return;
-  }
-  if (m.lead_normal.dot(stiff.normal) <= 0.9) {  // a new contact (more than 25 degrees off)
-    m.lead = std::max(0.0, stiff.beyond);
-  }
-  m.lead_normal = stiff.normal;
 }
 
 void ServoLaw::render_surface(Surface& surface, const ChainState& chain, const Vector6d& twist,

@@ -21,6 +21,8 @@ done
 [[ $status -eq 0 ]] || fail "expected exit 0, got $status"
 grep -q "^outcome: contact force [0-9.]* N up on the tool, [0-9.]* engine steps/s" "$OUT/log" ||
   fail "no outcome line"
+grep -q "the scene goes out on LCM, hapticctrl\.$HAPTICCTRL_INSTANCE\.world" "$BUILD/run/mujoco.log" ||
+  fail "the scene does not go out on the instance's world channel (the web view would not draw it)"
 json=$(cat "$BUILD/run/mujoco.json")
 z=$(sed -n 's/.*"body_pose":\[[^,]*,[^,]*,\([^,]*\),.*/\1/p' <<<"$json")
 awk -v z="$z" 'BEGIN { exit !(z < 0.005) }' ||

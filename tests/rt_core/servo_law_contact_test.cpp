@@ -111,54 +111,6 @@ TEST(ServoLawContact, TheHandFeelsTheContactAtItsStiffnessAndTheObjectAStifferCo
   EXPECT_LE(out.contact_age, kNsPerMs);
 }
 
-TEST(ServoLawContact, ADraggedObjectsLeadIsNoPressAndTheSurfaceComesWithItsTouch) {
-  // J3: an object dragged against friction lags its handle by the coupling's stretch (1.6 cm at
-  // 20 ms one way). Reported 2 cm short of a wall, the wall is not rendered for the handle (it
-  // held the handle short of the object's surface, which the object never reached); touching,
-  // the handle 1.6 cm beyond the plane the object's centre touches is no press (no kick of the
-  // object nor of the hand), and what the handle goes deeper is pressed on both sides alike.
-  ServoLaw law(default_dynamics());
-  ServoInputs in = slow_link_coupling(-0.016);  // the object 1.6 cm behind the handle along x
-  in.client.contact_count = 1;
-  in.client.contacts[0] = wall_at(in.client.object_pose, 1600.0, in.now);
-  in.client.contacts[0].distance = 0.02;
-  ServoOutputs out = run_on_contacts(law, in, 300);
-  EXPECT_EQ(out.surface_force, 0.0) << "the object is clear of it: nothing for the handle";
-  EXPECT_EQ(out.contact_normal.norm(), 0.0);
-  in.client.contacts[0].distance = 0.0;  // the object reaches the wall, the handle 1.6 cm past
-  out = run_on_contacts(law, in, 300);
-  EXPECT_NEAR(out.contact_normal.x(), -1.0, 1e-9) << "stiffened";
-  EXPECT_NEAR(out.surface_force, 0.0, 1e-6) << "the surface from where the handle is";
-  EXPECT_NEAR(out.coupling_wrench(0), 0.0, 1e-6) << "the lead is no press on the object";
-  const double depth = press_along_x(law, in, 0.005);
-  out = run_on_contacts(law, in, 300);
-  EXPECT_NEAR(out.surface_force, 1600.0 * depth, 1e-6);
-  EXPECT_NEAR(out.handle_wrench(0), -1600.0 * depth, 0.02 * 8.0);
-  EXPECT_NEAR(out.coupling_wrench(0), 1600.0 * depth, 0.02 * 8.0)
-      << "pressed with what the hand feels beyond the lead";
-}
-
-TEST(ServoLawContact, TheStiffenedContactStaysWhileItTouchesAtAll) {
-  // J3: the pusher rests on the table (fully in force) and is pressed into a block whose gap
-  // jitters within the touch band: the stiffening stays on the block. Switched to the table when
-  // the block's share dipped, it came back with its lead taken anew and the push went slack.
-  ServoLaw law(default_dynamics());
-  ServoInputs in = slow_link_coupling(-0.004);  // the handle 4 mm ahead of the object along x
-  in.client.contact_count = 2;
-  in.client.contacts[0] = wall_at(in.client.object_pose, 1600.0, in.now);  // the block, ahead
-  in.client.contacts[1] = wall_at(in.client.object_pose, 1600.0, in.now);  // the table, below
-  in.client.contacts[1].normal = {0.0, 0.0, 1.0};
-  ServoOutputs out = run_on_contacts(law, in, 100);
-  EXPECT_NEAR(out.contact_normal.x(), -1.0, 1e-9) << "the one the handle presses into";
-  in.client.contacts[0].distance = 5e-4;  // the block's gap within the band: half in force
-  out = run_on_contacts(law, in, 10);
-  EXPECT_NEAR(out.contact_normal.x(), -0.5, 1e-9) << "kept, in its share";
-  EXPECT_NEAR(out.contact_normal.z(), 0.0, 1e-9) << "not the table, though fully in force";
-  in.client.contacts[0].distance = 2e-3;  // clear of the block
-  out = run_on_contacts(law, in, 10);
-  EXPECT_NEAR(out.contact_normal.z(), 1.0, 1e-9) << "then the table";
-}
-
 TEST(ServoLawContact, TheWallsStiffnessIsFeltWhateverTheLoopAndBoundedByTheDevice) {
   // A 5000 N/m wall is rendered at the device's 2000 N/m, at any loop delay.
   for (const TimeNs loop : {TimeNs{2 * kNsPerMs}, TimeNs{200 * kNsPerMs}}) {

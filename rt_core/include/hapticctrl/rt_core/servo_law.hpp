@@ -235,12 +235,6 @@ struct RenderMemory {
     }
   };
   HeldContact held;
-  /// The contact the coupling stiffens (unit normal, base frame; zero: none) and the handle's
-  /// lead into it (m): its depth beyond the plane the object's centre touches, as it was when
-  /// the stiffening came in (ServoLaw::follow_lead). A VIRTMECH object dragged against friction
-  /// lags its handle by the coupling's stretch: that much of the handle's depth is no press.
-  Vector3d lead_normal = Vector3d::Zero();
-  double lead = 0.0;
   static constexpr std::size_t kLoopSamples = 15;
   std::array<TimeNs, kLoopSamples> loop_samples{};  ///< the newest measured loops (median)
   std::uint64_t loop_next = 0;
@@ -340,25 +334,19 @@ class ServoLaw {
     /// the object is pressed into its surface with the force the hand feels (J2).
     double object_stiffness = 0.0;
     double penetration = 0.0;  ///< the object's into its surface now (m, base)
-    /// The handle's depth beyond the plane the object's centre touches (m; < 0 short of it).
-    double beyond = 0.0;
     std::uint32_t fresh = 0;
   };
   Coupling client_wrench(const ServoInputs& in, const ClientFrame& frame, const ChainState& chain,
                          const Vector6d& twist, ServoOutputs& out) noexcept;
   ObjectImage object_image(const ServoInputs& in, const ClientFrame& frame) const noexcept;
-  /// `reported`: the object's position as the client reported it (base frame, not extrapolated);
-  /// `handle`: the handle's position (of the touching contacts, the one it presses into most).
+  /// `reported`: the object's position as the client reported it (base frame, not extrapolated).
   [[nodiscard]] Stiffening contact_stiffening(const ServoInputs& in, const ClientFrame& frame,
-                                              const Vector3d& reported, const Vector3d& handle,
+                                              const Vector3d& reported,
                                               const CouplingGains& g) const noexcept;
-  /// Follows RenderMemory::lead and lead_normal with the stiffening `stiff`.
-  void follow_lead(const Stiffening& stiff) noexcept;
   /// The deepest fresh surface the client reports, for the handle's point: an IMPEDANCE
   /// client's contact is where its handle's point meets the surface; a VIRTMECH client's
-  /// (`on_object`) is on its object, which the coupling holds at the handle: rendered from the
-  /// object's reported touch (the stiffened contact only), where the object's centre meets it
-  /// less the handle's lead (RenderMemory::lead).
+  /// (`on_object`) is on its object, which the coupling holds at the handle, so the handle's
+  /// point is the handle's position offset as the contact point was from the object.
   [[nodiscard]] Surface reported_surface(const ServoInputs& in, const ClientFrame& frame,
                                          const ChainState& chain, bool on_object) const noexcept;
   void render_surface(Surface& surface, const ChainState& chain, const Vector6d& twist,

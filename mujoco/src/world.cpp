@@ -92,12 +92,25 @@ std::vector<std::array<double, 6>> mesh_boxes_of(const mjModel* m) {
   return boxes;
 }
 
+/// Geom `g`'s colour: its material's when it has one (MuJoCo draws that), else its own.
+const float* rgba_of(const mjModel* m, int g) {
+  const int material = m->geom_matid[g];
+  return material >= 0 ? m->mat_rgba + at(4, material) : m->geom_rgba + at(4, g);
+}
+
 /// Whether a view draws geom `g`: visible, and a shape world_t carries.
 bool drawn(const mjModel* m, int g) {
   const int type = m->geom_type[g];
-  const int material = m->geom_matid[g];
-  const float alpha = material >= 0 ? m->mat_rgba[at(4, material) + 3] : m->geom_rgba[at(4, g) + 3];
-  return alpha > 0.0F && type != mjGEOM_HFIELD && type <= mjGEOM_MESH;
+  return rgba_of(m, g)[3] > 0.0F && type != mjGEOM_HFIELD && type <= mjGEOM_MESH;
+}
+
+/// How many geoms a view draws (fixed by the model).
+std::size_t drawn_geoms_of(const mjModel* m) {
+  std::size_t n = 0;
+  for (int g = 0; g < m->ngeom; ++g) {
+    n += drawn(m, g) ? 1U : 0U;
+  }
+  return n;
 }
 
 /// The adhesion actuators on `body` (a body transmission).
@@ -129,6 +142,7 @@ struct World::Engine {
   std::vector<int> grips;      ///< adhesion actuators on the body
   /// Each mesh's bounding box in its geom's frame (centre, half-sizes), found once at load.
   std::vector<std::array<double, 6>> mesh_boxes;
+  std::size_t drawn_geoms = 0;  ///< the geoms a view draws, counted once at load
 
   Engine() = default;
   Engine(const Engine&) = delete;
@@ -179,6 +193,7 @@ World::World(const std::string& path, const std::string& body, double timestep)
   }
   e.grips = grips_of(e.model, e.body);
   e.mesh_boxes = mesh_boxes_of(e.model);
+  e.drawn_geoms = drawn_geoms_of(e.model);
   e.data = mj_makeData(e.model);
   e.report_model = mj_copyModel(nullptr, e.model);
   e.report_data = e.report_model != nullptr ? mj_makeData(e.report_model) : nullptr;
@@ -379,12 +394,7 @@ std::string engine_version() {
 }
 
 std::size_t World::visible_geoms() const noexcept {
-  const mjModel* m = engine_->model;
-  std::size_t n = 0;
-  for (int g = 0; g < m->ngeom; ++g) {
-    n += drawn(m, g) ? 1U : 0U;
-  }
-  return n;
+  return engine_->drawn_geoms;
 }
 
 std::size_t World::geoms(std::span<GeomView> out) const noexcept {
@@ -413,8 +423,7 @@ std::size_t World::geoms(std::span<GeomView> out) const noexcept {
     mjtNum quat[4];  // w x y z
     mju_mat2Quat(quat, rotation);
     v.pose = {position[0], position[1], position[2], quat[1], quat[2], quat[3], quat[0]};
-    const int material = m->geom_matid[g];
-    const float* rgba = material >= 0 ? m->mat_rgba + at(4, material) : m->geom_rgba + at(4, g);
+    const float* rgba = rgba_of(m, g);
     std::copy(rgba, rgba + 4, v.rgba.begin());
     v.coupled = m->geom_bodyid[g] == e.body;
   }

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <array>
+#include <iterator>
 
 namespace hapticctrl::mujoco {
 
@@ -14,7 +15,7 @@ hapticctrl_lcm::world_t to_world_message(const World& world, const Grasp& grasp,
   m.steps = static_cast<std::int64_t>(run.steps);
   m.steps_per_second = run.steps_per_second;
   m.model_steps_per_second = 1.0 / world.timestep();
-  constexpr std::size_t kRoom = sizeof(m.geoms) / sizeof(m.geoms[0]);
+  constexpr std::size_t kRoom = std::size(m.geoms);
   std::array<GeomView, kRoom> geoms{};
   const std::size_t n = world.geoms(geoms);
   m.geom_count = static_cast<std::int32_t>(n);
@@ -31,7 +32,7 @@ hapticctrl_lcm::world_t to_world_message(const World& world, const Grasp& grasp,
     std::copy(g.rgba.begin(), g.rgba.end(), out.rgba);
     out.coupled = g.coupled;
   }
-  constexpr std::size_t kContactRoom = sizeof(m.contacts) / sizeof(m.contacts[0]);
+  constexpr std::size_t kContactRoom = std::size(m.contacts);
   m.contact_count = static_cast<std::int32_t>(std::min(contacts.size(), kContactRoom));
   for (std::size_t i = 0; i < static_cast<std::size_t>(m.contact_count); ++i) {
     const client::Contact& c = contacts[i];

@@ -14,8 +14,9 @@ using Json = nlohmann::json;
 
 enum Source : std::size_t { kArm, kCoupling, kStats, kEvents, kScene, kWorld };
 
-template <std::size_t N>
-Json array_of(const double (&values)[N]) {
+/// A message's fixed array (double or float) as a JSON array of numbers.
+template <typename T, std::size_t N>
+Json array_of(const T (&values)[N]) {
   return Json(std::vector<double>(values, values + N));
 }
 
@@ -96,11 +97,6 @@ Json scene_json(const hapticctrl_lcm::scene_t& m) {
           {"rtt_max_us", m.rtt_max_us},
           {"answers_received", m.answers_received},
           {"answers_lost", m.answers_lost}};
-}
-
-template <std::size_t N>
-Json array_of(const float (&values)[N]) {
-  return Json(std::vector<double>(values, values + N));
 }
 
 Json world_json(const hapticctrl_lcm::world_t& m) {

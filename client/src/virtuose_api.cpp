@@ -10,6 +10,7 @@
 #include "hapticctrl/client/connection.hpp"
 #include "hapticctrl/protocol/codec.hpp"
 #include "virtuose_context.hpp"
+#include "virtuose_reconnect.hpp"
 
 using hapticctrl::client::ClientError;
 using hapticctrl::client::Connection;
@@ -20,6 +21,7 @@ using hapticctrl::client::virtuose::Context;
 using hapticctrl::client::virtuose::context_of;
 using hapticctrl::client::virtuose::error_of;
 using hapticctrl::client::virtuose::fail;
+using hapticctrl::client::virtuose::Reconnector;
 
 namespace {
 
@@ -43,15 +45,17 @@ VirtContext virtOpen(const char* nom) {
   }
   try {
     auto vc = std::make_unique<Context>();
-    vc->connection = std::make_unique<Connection>(hapticctrl::client::Address::parse(nom));
+    vc->address = hapticctrl::client::Address::parse(nom);
+    vc->connection = std::make_shared<Connection>(vc->address);
     // As Haption's: returns once the controller's first answer is here, so that the getters
     // report the arm, never a default pose (they did, in 9 opens of 10).
     StateSnapshot first;
-    if (!vc->connection->wait_for_answer(0, kFirstAnswerTimeout, first)) {
+    if (!vc->link()->wait_for_answer(0, kFirstAnswerTimeout, first)) {
       fail(nullptr, VIRT_E_TIME_OUT,
            "virtOpen: the session opened, but no answer from the controller came within 2 s");
       return nullptr;
     }
+    vc->reconnector = std::make_unique<Reconnector>(*vc);
     Context* handle = vc.get();
     hapticctrl::client::virtuose::register_context(std::move(vc));
     return handle;
@@ -71,8 +75,9 @@ int virtClose(VirtContext VC) {
   if (vc == nullptr) {
     return -1;
   }
+  vc->reconnector.reset();  // no next session from here on
   virtStopLoop(VC);
-  const int rc = vc->guarded([&] { vc->connection->close(); });
+  const int rc = vc->guarded([&] { vc->link()->close(); });
   const std::unique_ptr<Context> closed = hapticctrl::client::virtuose::unregister_context(VC);
   return rc;
 }
@@ -91,7 +96,7 @@ int virtGetControlerVersion(VirtContext VC, int* major, int* minor) {
   if (vc == nullptr || context_of(VC, minor, "virtGetControlerVersion: NULL output") == nullptr) {
     return -1;
   }
-  const std::uint32_t version = vc->connection->controller_version();
+  const std::uint32_t version = vc->link()->controller_version();
   *major = static_cast<int>(hapticctrl::protocol::version_major(version));
   *minor = static_cast<int>(hapticctrl::protocol::version_minor(version));
   return 0;
@@ -201,13 +206,14 @@ int virtDisplayHardwareStatus(VirtContext VC, FILE* fichier) {
   if (vc == nullptr) {
     return -1;
   }
-  const StateSnapshot s = vc->connection->snapshot();
-  const hapticctrl::client::LinkStatistics st = vc->connection->statistics();
+  const std::shared_ptr<Connection> link = vc->link();
+  const StateSnapshot s = link->snapshot();
+  const hapticctrl::client::LinkStatistics st = link->statistics();
   static constexpr const char* kCoreStates[] = {
       // NOLINT(*-avoid-c-arrays)
       "starting", "running", "fail-safe", "stopping", "stopped"};
   const char* core = s.core_state < 5 ? kCoreStates[s.core_state] : "unknown";
-  const std::uint32_t version = vc->connection->controller_version();
+  const std::uint32_t version = link->controller_version();
   const int written = std::fprintf(
       fichier,
       "hapticctrl controller (protocol %u.%u), cycle %llu, period %.0f us\n"
@@ -216,7 +222,7 @@ int virtDisplayHardwareStatus(VirtContext VC, FILE* fichier) {
       "  link: %llu answers, %llu lost, round trip %.0f us (max %.0f), jitter %.0f us\n",
       hapticctrl::protocol::version_major(version), hapticctrl::protocol::version_minor(version),
       static_cast<unsigned long long>(s.cycle),
-      static_cast<double>(vc->connection->controller_period_ns()) / 1e3, core, s.stop_reason,
+      static_cast<double>(link->controller_period_ns()) / 1e3, core, s.stop_reason,
       s.powered() ? "on" : "off", s.emergency_stop() ? "latched" : "clear",
       s.fail_safe() ? "yes" : "no", s.handle_pose[0], s.handle_pose[1], s.handle_pose[2],
       s.state_word, static_cast<unsigned long long>(st.answers_received),

@@ -29,11 +29,8 @@ int virtSetPosition(VirtContext VC, float* pos) {
   }
   vc->object_pose = to_doubles<7>(pos);
   vc->pose_pending = true;
-  if (!vc->loop_running.load() && !vc->flush_locked()) {
-    return fail(VC, VIRT_E_INCORRECT_VALUE,
-                "virtSetPosition: pose or speed out of range, or the session is closed");
-  }
-  return 0;
+  return vc->loop_running.load() ? 0
+                                 : vc->flush_locked("virtSetPosition: pose or speed out of range");
 }
 
 int virtSetSpeed(VirtContext VC, float* speed) {
@@ -57,11 +54,7 @@ int virtSetForce(VirtContext VC, float* force) {
   }
   vc->wrench = to_doubles<6>(force);
   vc->wrench_pending = true;
-  if (!vc->loop_running.load() && !vc->flush_locked()) {
-    return fail(VC, VIRT_E_INCORRECT_VALUE,
-                "virtSetForce: force out of range, or the session is closed");
-  }
-  return 0;
+  return vc->loop_running.load() ? 0 : vc->flush_locked("virtSetForce: force out of range");
 }
 
 int virtAddForce(VirtContext VC, float* force) {
@@ -98,7 +91,8 @@ int virtSetContacts(VirtContext VC, int count, float* contacts) {
   }
   // Points as the application's object poses go (through indexing's offset: linear quantities
   // do not rotate with it, so the normals stay as given).
-  const hapticctrl::client::Pose7 handle = vc->connection->snapshot().handle_pose;
+  const std::shared_ptr<hapticctrl::client::Connection> link = vc->link();
+  const hapticctrl::client::Pose7 handle = link->snapshot().handle_pose;
   std::array<Contact, VIRT_MAX_CONTACTS> taken{};
   const auto n = static_cast<std::size_t>(count);
   for (std::size_t i = 0; i < n; ++i) {
@@ -115,8 +109,10 @@ int virtSetContacts(VirtContext VC, int count, float* contacts) {
     c.friction_static = f[9];
     c.friction_dynamic = f[10];
   }
-  switch (vc->connection->set_contacts(std::span<const Contact>(taken.data(), n))) {
+  switch (link->set_contacts(std::span<const Contact>(taken.data(), n))) {
     case ContactResult::kAccepted:
+      vc->settings.contacts = taken;  // for the next session, should the controller be lost
+      vc->settings.contact_count = n;
       return 0;
     case ContactResult::kUnsupported:
       return fail(VC, VIRT_E_INCOMPATIBLE_VERSION,
@@ -130,7 +126,8 @@ int virtSetContacts(VirtContext VC, int count, float* contacts) {
   }
   return fail(VC, VIRT_E_INCORRECT_VALUE,
               "virtSetContacts: a value out of range (non-finite, a normal that is not a unit "
-              "vector, a negative stiffness or damping, or dynamic friction above the static)");
+              "vector, a stiffness outside 1 to 1e6 N/m, a negative damping, or dynamic friction "
+              "above the static)");
 }
 
 // NOLINTEND(readability-identifier-naming)

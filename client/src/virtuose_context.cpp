@@ -6,6 +6,7 @@
 #include <unordered_map>
 
 #include "hapticctrl/protocol/monotonic_clock.hpp"
+#include "virtuose_reconnect.hpp"
 
 namespace hapticctrl::client::virtuose {
 namespace {
@@ -113,28 +114,41 @@ Context::~Context() {
   }
 }
 
-bool Context::flush_locked() noexcept {
-  const StateSnapshot s = connection->snapshot();
+int Context::flush_locked(const char* what) noexcept {
+  const std::shared_ptr<Connection> c = link();
+  const StateSnapshot s = c->snapshot();
   // Forces off (virtEnableForceFeedback(0), or a shift in an inhibiting mode): no wrench, and an
   // object that goes with the handle, so that the coupling pulls neither.
   const bool forces_off = !force_feedback || indexing.forces_inhibited();
   bool ok = true;
   if (command_type == CommandType::kVirtmech && pose_pending) {
-    ok = forces_off
-             ? connection->send_object_state(s.handle_pose, s.handle_twist)
-             : connection->send_object_state(indexing.to_physical(s.handle_pose, object_pose),
-                                             indexing.to_physical(s.handle_pose, object_speed));
+    ok = forces_off ? c->send_object_state(s.handle_pose, s.handle_twist)
+                    : c->send_object_state(indexing.to_physical(s.handle_pose, object_pose),
+                                           indexing.to_physical(s.handle_pose, object_speed));
   } else if (command_type == CommandType::kImpedance && wrench_pending) {
     Vector6 total{};
     for (std::size_t i = 0; i < 6 && !forces_off; ++i) {
       total[i] = wrench[i] + added_wrench[i];
     }
-    ok = connection->send_wrench(indexing.to_physical(s.handle_pose, total));
+    ok = c->send_wrench(indexing.to_physical(s.handle_pose, total));
     added_wrench = {};
   }
   pose_pending = false;
   wrench_pending = false;
-  return ok;
+  if (ok) {
+    return 0;
+  }
+  return c->is_open() ? error.set(VIRT_E_INCORRECT_VALUE, what) : fail_without_session(s);
+}
+
+int Context::fail_without_session(const StateSnapshot& last) noexcept {
+  std::array<char, ErrorState::kDetailBytes> text{};
+  std::snprintf(text.data(), text.size(),
+                last.stopped_in_order()
+                    ? "no session: the %s in order (virtClose, then virtOpen for a new one)"
+                    : "no session: %s; the library connects to the next controller",
+                last.ending());
+  return error.set(VIRT_E_COMMUNICATION_FAILURE, text.data());
 }
 
 void Context::on_answer(const StateSnapshot& s) noexcept {
@@ -154,9 +168,9 @@ void Context::on_answer(const StateSnapshot& s) noexcept {
   const std::int64_t start = protocol::monotonic_ns();
   periodic(this, periodic_arg);
   const std::int64_t took = protocol::monotonic_ns() - start;
-  const std::int64_t period = connection->controller_period_ns() * decimation;
+  const std::int64_t period = link()->controller_period_ns() * decimation;
   const std::lock_guard lock(mutex);
-  flush_locked();
+  flush_locked("the periodic function's command");
   if (period > 0 && took > period) {
     alarms |= VIRT_ALARM_CALLBACK_OVERRUN;
   }

@@ -4,9 +4,12 @@
 /// the client library (the virtuose_*.cpp files implement the C API over it).
 #include <array>
 #include <atomic>
+#include <chrono>
 #include <cstdio>
+#include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <utility>
 
 #include "hapticctrl/client/connection.hpp"
@@ -28,7 +31,14 @@ struct ErrorState {
 /// The VirtuoseAPI code of a client library error.
 int code_of(ErrorCode code) noexcept;
 
-/// The parameters as the controller acknowledged them, for the getters.
+/// The virtual object virtAttachVO attached (virtAttachQSVO: no mass).
+struct AttachedObject {
+  double mass = 0.0;
+  std::array<double, 3> inertia{};
+};
+
+/// The parameters as the controller acknowledged them: for the getters, and replayed in this
+/// order on the next session when the library reconnects (virtuose_reconnect.hpp).
 struct Settings {
   float time_step = 0.0F;  ///< 0 until set: the controller's answers pace the application
   float force_factor = 1.0F;
@@ -37,11 +47,25 @@ struct Settings {
   std::array<float, 7> base_frame{0, 0, 0, 0, 0, 0, 1};
   std::array<float, 7> observation_frame{0, 0, 0, 0, 0, 0, 1};
   VirtCommandType command_type = COMMAND_TYPE_NONE;
+  std::optional<std::array<double, 4>> gains;         ///< virtAttachQSVO's, as set_gains takes
+  std::optional<AttachedObject> object;               ///< until virtDetachVO
+  std::optional<std::array<double, 2>> force_limits;  ///< virtSaturateTorque's
+  std::optional<std::chrono::milliseconds> watchdog;  ///< virtSetTimeoutValue's
+  std::array<Contact, kMaxContacts> contacts{};       ///< virtSetContacts', as the session took
+  std::size_t contact_count = 0;
+  bool power = false;  ///< the application's last virtSetPowerOn
 };
+
+class Reconnector;
 
 /// One session of the C API.
 struct Context {
-  std::unique_ptr<Connection> connection;
+  /// The session in force. A call loads it once and keeps it for its duration: the reconnector
+  /// replaces it when the controller is lost, and the old one lives on until its last user is
+  /// done with it.
+  [[nodiscard]] std::shared_ptr<Connection> link() const noexcept { return connection.load(); }
+  std::atomic<std::shared_ptr<Connection>> connection;
+  Address address;  ///< virtOpen's, where the next session is opened
   ErrorState error;
 
   /// Guards everything below: the application's threads and the loop's callback use it.
@@ -66,6 +90,12 @@ struct Context {
   unsigned decimation = 1;
   unsigned answers_since_call = 0;
   std::atomic<bool> loop_running{false};
+  /// Serialises starting and stopping the loop with the reconnector's hand-over, so that the
+  /// loop runs on the session in force exactly when the application started it.
+  std::mutex loop_control;
+  /// Opens the next session when the controller is lost (virtOpen starts it, virtClose stops it
+  /// first); declared last, so that it stops before anything it uses goes.
+  std::unique_ptr<Reconnector> reconnector;
 
   Context() = default;
   Context(const Context&) = delete;
@@ -90,8 +120,12 @@ struct Context {
   }
 
   /// Sends the pending control frame (at most one per call), through the indexing and with the
-  /// forces off while inhibited. Caller holds `mutex`.
-  bool flush_locked() noexcept;
+  /// forces off while inhibited. Caller holds `mutex`. Returns 0, or -1 with the error set
+  /// (VIRT_E_COMMUNICATION_FAILURE without a session, else VIRT_E_INCORRECT_VALUE naming `what`).
+  int flush_locked(const char* what) noexcept;
+  /// Records VIRT_E_COMMUNICATION_FAILURE for a call while no session is open (`last`: the
+  /// session's last answer, saying how it ended); returns -1.
+  int fail_without_session(const StateSnapshot& last) noexcept;
   /// The loop's callback, after each controller answer.
   void on_answer(const StateSnapshot& s) noexcept;
   /// Where debug lines go. Caller holds `mutex`.
@@ -99,6 +133,11 @@ struct Context {
     return output != nullptr ? output : stderr;
   }
 };
+
+/// The loop's callback on any of `context`'s sessions: the periodic function (Context::on_answer).
+inline std::function<void(const StateSnapshot&)> periodic_callback(Context* context) {
+  return [context](const StateSnapshot& s) { context->on_answer(s); };
+}
 
 /// Adds a context virtOpen created to the registry (it owns it from then on).
 void register_context(std::unique_ptr<Context> context);

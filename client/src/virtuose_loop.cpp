@@ -5,10 +5,10 @@
 
 #include "virtuose_context.hpp"
 
-using hapticctrl::client::StateSnapshot;
 using hapticctrl::client::virtuose::Context;
 using hapticctrl::client::virtuose::context_of;
 using hapticctrl::client::virtuose::fail;
+using hapticctrl::client::virtuose::periodic_callback;
 
 extern "C" {
 // NOLINTBEGIN(readability-identifier-naming): VirtuoseAPI's names
@@ -25,7 +25,7 @@ int virtSetPeriodicFunction(VirtContext VC, void (*fn)(VirtContext, void*), floa
   if (vc->loop_running.load()) {
     return fail(VC, VIRT_E_WRONG_MODE, "virtSetPeriodicFunction: stop the loop first");
   }
-  const double cycle_s = static_cast<double>(vc->connection->controller_period_ns()) / 1e9;
+  const double cycle_s = static_cast<double>(vc->link()->controller_period_ns()) / 1e9;
   vc->decimation =
       cycle_s > 0.0
           ? static_cast<unsigned>(std::max(1L, std::lround(static_cast<double>(*period) / cycle_s)))
@@ -44,9 +44,9 @@ int virtStartLoop(VirtContext VC) {
   if (vc->periodic == nullptr) {
     return fail(VC, VIRT_E_WRONG_MODE, "virtStartLoop: call virtSetPeriodicFunction first");
   }
+  const std::lock_guard control(vc->loop_control);
   vc->loop_running.store(true);
-  return vc->guarded(
-      [&] { vc->connection->start_loop([vc](const StateSnapshot& s) { vc->on_answer(s); }); });
+  return vc->guarded([&] { vc->link()->start_loop(periodic_callback(vc)); });
 }
 
 int virtStopLoop(VirtContext VC) {
@@ -54,7 +54,8 @@ int virtStopLoop(VirtContext VC) {
   if (vc == nullptr) {
     return -1;
   }
-  vc->connection->stop_loop();
+  const std::lock_guard control(vc->loop_control);
+  vc->link()->stop_loop();
   vc->loop_running.store(false);
   return 0;
 }

@@ -8,7 +8,9 @@
 #include "virtuose_context.hpp"
 
 using hapticctrl::client::CommandType;
+using hapticctrl::client::Connection;
 using hapticctrl::client::StateSnapshot;
+using hapticctrl::client::virtuose::AttachedObject;
 using hapticctrl::client::virtuose::Context;
 using hapticctrl::client::virtuose::context_of;
 using hapticctrl::client::virtuose::fail;
@@ -62,7 +64,7 @@ int write_gains(VirtContext vc, float* out, const char* what, bool damping) noex
   if (c == nullptr) {
     return -1;
   }
-  const auto g = c->connection->statistics().coupling_gains;  // k_lin b_lin k_ang b_ang
+  const auto g = c->link()->statistics().coupling_gains;  // k_lin b_lin k_ang b_ang
   const auto rotation = static_cast<float>(damping ? g[3] : g[2]);
   const auto translation = static_cast<float>(damping ? g[1] : g[0]);
   std::fill_n(out, 3, rotation);
@@ -77,7 +79,7 @@ extern "C" {
 
 int virtSetTimeStep(VirtContext VC, float step) {
   return set_and_record(
-      VC, [&] { live(VC).connection->set_time_step(static_cast<double>(step)); },
+      VC, [&] { live(VC).link()->set_time_step(static_cast<double>(step)); },
       [&](Settings& s) { s.time_step = step; });
 }
 
@@ -94,8 +96,7 @@ int virtSetIndexingMode(VirtContext VC, VirtIndexingType indexing_mode) {
   return set_and_record(
       VC,
       [&] {
-        vc->connection->set_indexing_mode(
-            static_cast<hapticctrl::client::IndexingMode>(indexing_mode));
+        vc->link()->set_indexing_mode(static_cast<hapticctrl::client::IndexingMode>(indexing_mode));
       },
       [&](Settings& s) {
         s.indexing = indexing_mode;
@@ -110,7 +111,7 @@ int virtGetIndexingMode(VirtContext VC, VirtIndexingType* indexing_mode) {
 
 int virtSetForceFactor(VirtContext VC, float force_factor) {
   return set_and_record(
-      VC, [&] { live(VC).connection->set_force_factor(static_cast<double>(force_factor)); },
+      VC, [&] { live(VC).link()->set_force_factor(static_cast<double>(force_factor)); },
       [&](Settings& s) { s.force_factor = force_factor; });
 }
 
@@ -121,7 +122,7 @@ int virtGetForceFactor(VirtContext VC, float* force_factor) {
 
 int virtSetSpeedFactor(VirtContext VC, float speed_factor) {
   return set_and_record(
-      VC, [&] { live(VC).connection->set_speed_factor(static_cast<double>(speed_factor)); },
+      VC, [&] { live(VC).link()->set_speed_factor(static_cast<double>(speed_factor)); },
       [&](Settings& s) { s.speed_factor = speed_factor; });
 }
 
@@ -135,7 +136,7 @@ int virtSetBaseFrame(VirtContext VC, float* base) {
     return -1;
   }
   return set_and_record(
-      VC, [&] { live(VC).connection->set_base_frame(to_doubles<7>(base)); },
+      VC, [&] { live(VC).link()->set_base_frame(to_doubles<7>(base)); },
       [&](Settings& s) { std::copy_n(base, 7, s.base_frame.begin()); });
 }
 
@@ -150,7 +151,7 @@ int virtSetObservationFrame(VirtContext VC, float* obs) {
     return -1;
   }
   return set_and_record(
-      VC, [&] { live(VC).connection->set_observation_frame(to_doubles<7>(obs)); },
+      VC, [&] { live(VC).link()->set_observation_frame(to_doubles<7>(obs)); },
       [&](Settings& s) { std::copy_n(obs, 7, s.observation_frame.begin()); });
 }
 
@@ -181,7 +182,7 @@ int virtSetCommandType(VirtContext VC, VirtCommandType type) {
                   "COMMAND_TYPE_IMPEDANCE and COMMAND_TYPE_VIRTMECH only");
   }
   return set_and_record(
-      VC, [&] { vc->connection->set_command_type(t); },
+      VC, [&] { vc->link()->set_command_type(t); },
       [&](Settings& s) {
         s.command_type = type;
         vc->command_type = t;
@@ -202,7 +203,8 @@ int virtSetTimeoutValue(VirtContext VC, float time_value) {
     return fail(VC, VIRT_E_INCORRECT_VALUE, "virtSetTimeoutValue: not a finite number");
   }
   const auto ms = std::chrono::milliseconds(std::lround(static_cast<double>(time_value) * 1000.0));
-  return vc->guarded([&] { vc->connection->set_watchdog(ms); });
+  return set_and_record(
+      VC, [&] { vc->link()->set_watchdog(ms); }, [&](Settings& s) { s.watchdog = ms; });
 }
 
 int virtGetTimeoutValue(VirtContext VC, float* time_value) {
@@ -211,23 +213,26 @@ int virtGetTimeoutValue(VirtContext VC, float* time_value) {
     return -1;
   }
   // The watchdog in force: the bridge may have capped what was asked (--max-watchdog-ms).
-  *time_value = static_cast<float>(vc->connection->watchdog_ms()) / 1000.0F;
+  *time_value = static_cast<float>(vc->link()->watchdog_ms()) / 1000.0F;
   return 0;
 }
 
 int virtSaturateTorque(VirtContext VC, float forceThreshold, float momentThreshold) {
-  Context* vc = context_of(VC);
-  return vc == nullptr ? -1 : vc->guarded([&] {
-    vc->connection->set_force_limits(static_cast<double>(forceThreshold),
-                                     static_cast<double>(momentThreshold));
-  });
+  const std::array<double, 2> limits{static_cast<double>(forceThreshold),
+                                     static_cast<double>(momentThreshold)};
+  return set_and_record(
+      VC, [&] { live(VC).link()->set_force_limits(limits[0], limits[1]); },
+      [&](Settings& s) { s.force_limits = limits; });
 }
 
 int virtAttachVO(VirtContext VC, float mass, float* mxmymz) {
-  Context* vc = context_of(VC, mxmymz, "virtAttachVO: NULL inertia");
-  return vc == nullptr ? -1 : vc->guarded([&] {
-    vc->connection->attach_object(static_cast<double>(mass), to_doubles<3>(mxmymz));
-  });
+  if (context_of(VC, mxmymz, "virtAttachVO: NULL inertia") == nullptr) {
+    return -1;
+  }
+  const AttachedObject object{static_cast<double>(mass), to_doubles<3>(mxmymz)};
+  return set_and_record(
+      VC, [&] { live(VC).link()->attach_object(object.mass, object.inertia); },
+      [&](Settings& s) { s.object = object; });
 }
 
 int virtAttachVOAvatar(VirtContext VC, float mass, float* mxmymz) {
@@ -236,20 +241,28 @@ int virtAttachVOAvatar(VirtContext VC, float mass, float* mxmymz) {
 }
 
 int virtAttachQSVO(VirtContext VC, float* Ks, float* Bs) {
-  Context* vc = context_of(VC, Ks, "virtAttachQSVO: NULL stiffness");
-  if (vc == nullptr || context_of(VC, Bs, "virtAttachQSVO: NULL damping") == nullptr) {
+  if (context_of(VC, Ks, "virtAttachQSVO: NULL stiffness") == nullptr ||
+      context_of(VC, Bs, "virtAttachQSVO: NULL damping") == nullptr) {
     return -1;
   }
-  return vc->guarded([&] {
-    vc->connection->set_gains(smallest_of_three(Ks, 3), smallest_of_three(Bs, 3),
-                              smallest_of_three(Ks, 0), smallest_of_three(Bs, 0));
-    vc->connection->attach_object(0.0, {0.0, 0.0, 0.0});  // quasi-static: no mass
-  });
+  const std::array<double, 4> gains{smallest_of_three(Ks, 3), smallest_of_three(Bs, 3),
+                                    smallest_of_three(Ks, 0), smallest_of_three(Bs, 0)};
+  return set_and_record(
+      VC,
+      [&] {
+        const std::shared_ptr<Connection> link = live(VC).link();
+        link->set_gains(gains[0], gains[1], gains[2], gains[3]);
+        link->attach_object(0.0, {0.0, 0.0, 0.0});  // quasi-static: no mass
+      },
+      [&](Settings& s) {
+        s.gains = gains;
+        s.object = AttachedObject{};
+      });
 }
 
 int virtDetachVO(VirtContext VC) {
-  Context* vc = context_of(VC);
-  return vc == nullptr ? -1 : vc->guarded([&] { vc->connection->detach_object(); });
+  return set_and_record(
+      VC, [&] { live(VC).link()->detach_object(); }, [&](Settings& s) { s.object.reset(); });
 }
 
 int virtDetachVOAvatar(VirtContext VC) {
@@ -270,7 +283,9 @@ int virtSetPowerOn(VirtContext VC, int power) {
     return -1;
   }
   const bool on = power != 0;
-  if (vc->guarded([&] { vc->connection->set_power(on); }) != 0) {
+  const std::shared_ptr<Connection> link = vc->link();
+  if (set_and_record(
+          VC, [&] { link->set_power(on); }, [&](Settings& s) { s.power = on; }) != 0) {
     return -1;
   }
   if (vc->loop_running.load()) {
@@ -279,7 +294,7 @@ int virtSetPowerOn(VirtContext VC, int power) {
   // The acknowledgement says the bridge passed it on; return once the controller did it (a getter
   // then reports it), or say why not.
   using hapticctrl::protocol::monotonic_ns;
-  StateSnapshot s = vc->connection->snapshot();
+  StateSnapshot s = link->snapshot();
   const std::int64_t deadline = monotonic_ns() + std::chrono::nanoseconds(kEffectTimeout).count();
   while (s.powered() != on) {
     if (on && s.emergency_stop()) {
@@ -287,7 +302,7 @@ int virtSetPowerOn(VirtContext VC, int power) {
                   "virtSetPowerOn: the emergency stop is latched (reset it first)");
     }
     const std::int64_t left = deadline - monotonic_ns();
-    if (left <= 0 || !vc->connection->wait_for_answer(s.cycle, std::chrono::nanoseconds(left), s)) {
+    if (left <= 0 || !link->wait_for_answer(s.cycle, std::chrono::nanoseconds(left), s)) {
       return fail(VC, VIRT_E_TIME_OUT, "virtSetPowerOn: the controller did not switch the power");
     }
   }
@@ -307,10 +322,7 @@ int virtEnableForceFeedback(VirtContext VC, int enable) {
   // Off at once: a silent application would keep the last frame's forces.
   vc->pose_pending = vc->command_type == CommandType::kVirtmech;
   vc->wrench_pending = vc->command_type == CommandType::kImpedance;
-  if (!vc->flush_locked()) {
-    return fail(VC, VIRT_E_COMMUNICATION_FAILURE, "virtEnableForceFeedback: the session is closed");
-  }
-  return 0;
+  return vc->flush_locked("virtEnableForceFeedback: the last command out of range");
 }
 
 // NOLINTEND(readability-identifier-naming)

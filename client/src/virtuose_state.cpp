@@ -25,17 +25,21 @@ constexpr std::uint32_t kBoundBits[] = {  // NOLINT(*-avoid-c-arrays)
     VIRT_BOUND_INF_AXE_5,   VIRT_BOUND_SUP_AXE_5,   VIRT_BOUND_LEFT_AXE_6, VIRT_BOUND_RIGHT_AXE_6,
     VIRT_BOUND_INF_AXE_2_3, VIRT_BOUND_SUP_AXE_2_3};
 
-/// Reads the latest answer and the indexing together, for one getter.
+/// Reads the latest answer and the indexing together, for one getter. Without a session (the
+/// controller lost, the library connecting to the next one) the last answer is read and the
+/// call fails with VIRT_E_COMMUNICATION_FAILURE: the arm is not where it was reported.
 template <typename Read>
 int read_state(VirtContext vc, const void* out, const char* what, Read&& read) noexcept {
   Context* c = context_of(vc, out, what);
   if (c == nullptr) {
     return -1;
   }
-  const StateSnapshot s = c->connection->snapshot();
+  const std::shared_ptr<hapticctrl::client::Connection> link = c->link();
+  const StateSnapshot s = link->snapshot();
+  const bool open = link->is_open();
   const std::lock_guard lock(c->mutex);
   read(*c, s);
-  return 0;
+  return open ? 0 : c->fail_without_session(s);
 }
 
 }  // namespace
@@ -102,7 +106,7 @@ int virtGetEmergencyStop(VirtContext VC, int* emergency_stop) {
   return read_state(VC, emergency_stop, "virtGetEmergencyStop: NULL output",
                     [&](const Context& c, const StateSnapshot& s) {
                       *emergency_stop =
-                          s.valid && !s.emergency_stop() && c.connection->is_open() ? 1 : 0;
+                          s.valid && !s.emergency_stop() && c.link()->is_open() ? 1 : 0;
                     });
 }
 
@@ -111,7 +115,7 @@ int virtGetTimeLastUpdate(VirtContext VC, unsigned int* time) {
   if (vc == nullptr) {
     return -1;
   }
-  const StateSnapshot s = vc->connection->snapshot();
+  const StateSnapshot s = vc->link()->snapshot();
   if (!s.valid) {
     return fail(VC, VIRT_E_TIME_OUT, "virtGetTimeLastUpdate: no answer from the controller yet");
   }
@@ -154,7 +158,7 @@ int virtForceShiftButton(VirtContext VC, int forceShiftButton) {
   if (vc == nullptr) {
     return -1;
   }
-  const Pose7 physical = vc->connection->snapshot().handle_pose;
+  const Pose7 physical = vc->link()->snapshot().handle_pose;
   const std::lock_guard lock(vc->mutex);
   if (forceShiftButton != 0) {
     vc->indexing.press(physical);

@@ -103,6 +103,9 @@ class Connection {
   [[nodiscard]] LinkStatistics statistics() const noexcept;
   /// False once the session is closed (BYE, or the bridge ended it: controller stopped or
   /// bridge shutting down; parameter calls then throw kClosed with the bridge's reason).
+  /// A Connection is one session: after a lost controller (snapshot().controller_lost(), or a
+  /// fail-safe) open a new Connection to the same address and set it up again, as
+  /// hapticctrl-demo and hapticctrl-mujoco do; the C API does it by itself (virtuose_api.md).
   [[nodiscard]] bool is_open() const noexcept;
 
   // --- callback style ---------------------------------------------------------------------------

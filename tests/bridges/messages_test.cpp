@@ -125,7 +125,8 @@ TEST(Messages, EventsAreDescribed) {
   e.kind = shm::EventKind::kCoreState;
   e.code = static_cast<std::uint32_t>(shm::CoreState::kFailSafe);
   e.value = static_cast<std::uint64_t>(shm::StopReason::kConsecutiveMisses);
-  const auto m = to_event(e, 2, 0);
+  const auto m = to_event(e, 2, e.time_ns + 3'000'000, 1'700'000'000'000'000);
+  EXPECT_EQ(m.utime, 1'700'000'000'000'000 - 3'000) << "when the core recorded it, wall clock";
   EXPECT_EQ(m.kind, "core_state");
   EXPECT_EQ(m.text, "fail-safe: 5 consecutive deadline misses");
   EXPECT_EQ(m.lost_before, 2);

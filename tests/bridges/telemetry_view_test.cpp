@@ -66,6 +66,7 @@ TEST(TelemetryView, StatisticsAndEventsGoOutOnceEach) {
   view.on_cycle_stats(stats_at(1000, 0), 0);
   view.on_cycle_stats(stats_at(1100, 2), 100 * kMs);
   hapticctrl_lcm::event_t e{};
+  e.utime = 1'700'000'000'123'456;  // when the core recorded it: the page's banner says so
   e.index = 3;
   e.kind = "power";
   e.text = "power on";
@@ -78,6 +79,7 @@ TEST(TelemetryView, StatisticsAndEventsGoOutOnceEach) {
   EXPECT_EQ(first["stats"]["interval"]["wake_max_us_at_most"], 20);
   ASSERT_EQ(first["events"].size(), 1U);
   EXPECT_EQ(first["events"][0]["text"], "power on");
+  EXPECT_EQ(first["events"][0]["utime"], 1'700'000'000'123'456);
   const Json second = Json::parse(view.next_frame(120 * kMs));
   EXPECT_FALSE(second.contains("stats"));
   EXPECT_TRUE(second["events"].empty());

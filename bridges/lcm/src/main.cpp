@@ -42,6 +42,12 @@ std::int64_t utime_of(std::int64_t ns) {
   return ns / 1000;
 }
 
+std::int64_t wall_now_us() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
 struct PublishCounters {
   std::atomic<std::uint64_t> arm_state{0};
   std::atomic<std::uint64_t> cycle_stats{0};
@@ -57,7 +63,7 @@ hapticctrl_lcm::event_t core_gone_event(const shm::CoreWatch& watch, std::int64_
                      shm::EventKind::kCoreState,
                      static_cast<std::uint32_t>(shm::CoreState::kStopped),
                      watch.stop_reason()};
-  auto m = lb::to_event(e, 0, utime_of(now));
+  auto m = lb::to_event(e, 0, now, wall_now_us());
   char noticed[96];  // NOLINT(*-avoid-c-arrays)
   std::snprintf(noticed, sizeof noticed,
                 " (noticed by the LCM bridge %.1f ms after its last heartbeat)",
@@ -118,7 +124,7 @@ void publish_loop(const shm::Segment& seg, lcm::LCM& lcm, const Channels& ch,
       }
     }
     events.poll([&](const shm::Event& e) {
-      auto m = lb::to_event(e, events.lost() - lost_reported, utime_of(now));
+      auto m = lb::to_event(e, events.lost() - lost_reported, monotonic_now_ns(), wall_now_us());
       lost_reported = events.lost();
       lcm.publish(ch.events, &m);
       counters.events.fetch_add(1, std::memory_order_relaxed);

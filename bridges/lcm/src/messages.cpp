@@ -150,9 +150,9 @@ hapticctrl_lcm::bridge_stats_t to_bridge_stats(const shm::LinkStatsPayload& s, s
 }
 
 hapticctrl_lcm::event_t to_event(const shm::Event& e, std::uint64_t lost_before,
-                                 std::int64_t utime) {
+                                 std::int64_t monotonic_now_ns, std::int64_t wall_now_us) {
   hapticctrl_lcm::event_t m{};
-  m.utime = utime;
+  m.utime = wall_now_us - (monotonic_now_ns - e.time_ns) / 1000;
   m.index = static_cast<std::int64_t>(e.index);
   m.cycle = static_cast<std::int64_t>(e.cycle);
   m.time_ns = e.time_ns;

@@ -127,10 +127,9 @@ Json world_json(const hapticctrl_lcm::world_t& m) {
 }
 
 Json event_json(const hapticctrl_lcm::event_t& m) {
-  return {{"index", m.index},     {"cycle", m.cycle},
-          {"time_ns", m.time_ns}, {"kind", m.kind},
-          {"code", m.code},       {"value", m.value},
-          {"text", m.text},       {"lost_before", m.lost_before}};
+  return {{"utime", m.utime},     {"index", m.index}, {"cycle", m.cycle},
+          {"time_ns", m.time_ns}, {"kind", m.kind},   {"code", m.code},
+          {"value", m.value},     {"text", m.text},   {"lost_before", m.lost_before}};
 }
 
 std::string dump(const Json& j) {

@@ -18,10 +18,17 @@ const FORCE_SEND_MS = 50; // the LCM bridge lets an operator force decay after 2
 const MODEL_TOLERANCE_M = 0.002;
 const MAX_EVENTS = 200;
 const SCENE_GONE_MS = 1000; // the demo publishes its scene, hapticctrl-mujoco its world, at 30 Hz
+const LINK_WINDOW_MS = 10000; // the client link's drop-outs are counted over this window
 
 const $ = (id) => document.getElementById(id);
 const fmt = (v, digits = 3) => (v >= 0 ? '+' : '') + v.toFixed(digits);
 const vec3 = (a, digits = 3, unit = '') => `${fmt(a[0], digits)} ${fmt(a[1], digits)} ${fmt(a[2], digits)}${unit}`;
+const two = (n) => String(n).padStart(2, '0');
+/** An event's time (its utime: when the core recorded it, µs since the epoch), 24-hour, local. */
+const clockOf = (utime) => {
+  const d = new Date(utime / 1000);
+  return `${two(d.getHours())}:${two(d.getMinutes())}:${two(d.getSeconds())}`;
+};
 
 /** What tests and curious operators can read (window.hapticctrl). */
 const status = {
@@ -34,6 +41,7 @@ const status = {
   replies: [],
   coreLost: null,
   failedSafe: null, // { reason, at }: the last fail-safe, until a core runs again
+  staleOnsets: [], // when the page heard of each client drop-out (performance.now()), last 10 s
   webgl: true,
   modelMismatchM: null,
   view: null,
@@ -197,6 +205,9 @@ function showState(frame) {
       setBadge($('coupling'),
         !client ? 'client: none' : w & CLIENT_STALE ? 'client: stale' : w & COUPLED ? 'client: coupled' : 'client: connected',
         !client ? '' : w & CLIENT_STALE ? 'warn' : 'good');
+      showClientLink(client, !!(w & CLIENT_STALE));
+    } else {
+      setBadge($('client-link'), 'link: unknown', '');
     }
     $('estop').classList.toggle('latched', !!(w & ESTOP));
     $('estop').textContent = w & ESTOP ? 'E-STOP LATCHED' : 'EMERGENCY STOP';
@@ -233,12 +244,31 @@ function showState(frame) {
     : 'none reported';
 }
 
-function addEvents(events) {
+/**
+ * The client link's quality from its drop-outs (the core's client_stale events): one badge
+ * instead of a list that an unsteady link fills (11 of the last 11 events after 25 s, J8).
+ */
+function showClientLink(client, staleNow) {
+  const now = performance.now();
+  status.staleOnsets = status.staleOnsets.filter((t) => now - t < LINK_WINDOW_MS);
+  const n = status.staleOnsets.length;
+  if (!client) setBadge($('client-link'), 'link: –', '');
+  else if (staleNow) setBadge($('client-link'), 'link: stale now', 'bad');
+  else if (n === 0) setBadge($('client-link'), 'link: steady', 'good');
+  else setBadge($('client-link'), `link: ${n} drop-out${n > 1 ? 's' : ''} in 10 s`, 'warn');
+}
+
+/** Events into the list, newest first; `live`: just happened (not the history of a new page). */
+function addEvents(events, live) {
   const list = $('events');
   for (const e of events) {
+    if (e.kind === 'client_stale') { // counted by the link badge, not listed
+      if (live && e.code === 1) status.staleOnsets.push(performance.now());
+      continue;
+    }
     if (e.index === 0 && e.kind === 'core_state') status.coreLost = e.text;
     else if (e.kind === 'core_state' && e.code === CORE_FAIL_SAFE) {
-      status.failedSafe = { reason: e.text.replace(/^fail-safe: /, ''), at: new Date().toLocaleTimeString() };
+      status.failedSafe = { reason: e.text.replace(/^fail-safe: /, ''), at: clockOf(e.utime) };
     } else if (e.kind === 'core_state' && e.code <= 1) { // a core is running again
       status.coreLost = null;
       status.failedSafe = null;
@@ -246,7 +276,7 @@ function addEvents(events) {
     const item = document.createElement('li');
     const fault = (e.kind === 'core_state' && e.code >= CORE_FAIL_SAFE) || (e.kind === 'emergency_stop' && e.code === 1);
     item.className = fault ? 'fault' : '';
-    item.textContent = `${e.index === 0 ? 'bridge' : `#${e.index}`} cycle ${e.cycle}: ${e.text}` +
+    item.textContent = `${clockOf(e.utime)} ${e.index === 0 ? 'bridge' : `#${e.index}`} cycle ${e.cycle}: ${e.text}` +
       (e.lost_before > 0 ? ` (${e.lost_before} lost before)` : '');
     list.prepend(item);
   }
@@ -287,7 +317,7 @@ function onMessage(text) {
     case 'history':
       $('events').replaceChildren();
       if (message.stats) status.stats = message.stats;
-      addEvents(message.events);
+      addEvents(message.events, false);
       break;
     case 'state':
       // A scene its client stopped publishing is gone, not frozen where it was.
@@ -296,7 +326,7 @@ function onMessage(text) {
       status.frame = message;
       status.framesReceived += 1;
       if (message.stats) status.stats = message.stats;
-      addEvents(message.events);
+      addEvents(message.events, true);
       showState(message);
       view?.update(message);
       plots.add(message);

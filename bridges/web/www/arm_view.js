@@ -6,7 +6,6 @@ import { OrbitControls } from './vendor/three/controls/OrbitControls.js';
 import { forwardKinematics } from './kinematics.js';
 import { WorldView } from './world_view.js';
 
-const NEWTONS_TO_METRES = 0.01; // arrow length per newton: 10 N draws 10 cm
 const SMALLEST_ARROW_N = 0.05;
 const MIN_RENDER_INTERVAL_MS = 40; // at most 25 frames a second
 const MOBILE_FREE = 0x2ecc71; // the demo's sphere coupled to the handle
@@ -30,15 +29,25 @@ function placeBetween(mesh, from, to) {
   mesh.scale.set(1, length, 1);
 }
 
+/**
+ * An arrow's length (m) for a force (N): 4 cm, and 4 cm more for each doubling of 1 N + the
+ * force, so that 0.5 N (6.3 cm) reaches out of the demo's 3 cm sphere and 35 N (24.5 cm) stays
+ * in the view. At 1 cm per newton 0.5 N drew 5 mm, inside the sphere, and 35 N ran off the
+ * view (J8's walk-through). The legend says the scale.
+ */
+export function arrowLength(newtons) {
+  return 0.04 + 0.04 * Math.log2(1 + newtons);
+}
+
 function setArrow(arrow, origin, force) {
   const f = vec(force);
   const magnitude = f.length();
   arrow.visible = magnitude >= SMALLEST_ARROW_N;
   if (!arrow.visible) return;
-  const length = magnitude * NEWTONS_TO_METRES;
+  const length = arrowLength(magnitude);
   arrow.position.copy(origin);
   arrow.setDirection(f.normalize());
-  arrow.setLength(length, Math.min(0.03, length * 0.3), Math.min(0.015, length * 0.15));
+  arrow.setLength(length, Math.min(0.04, length * 0.4), Math.min(0.024, length * 0.25));
 }
 
 export class ArmView {

@@ -28,7 +28,12 @@ using lcmtypes::Channels;
                                                            std::int64_t utime);
 [[nodiscard]] hapticctrl_lcm::bridge_stats_t to_bridge_stats(const shm::LinkStatsPayload& s,
                                                              std::int64_t utime);
+/// An event with its utime: when the core recorded it, in microseconds since the epoch (its
+/// time_ns on this host's CLOCK_MONOTONIC moved onto the wall clock, `monotonic_now_ns` and
+/// `wall_now_us` read together), so that a page or a log says when the controller did it, not
+/// when a bridge passed it on.
 [[nodiscard]] hapticctrl_lcm::event_t to_event(const shm::Event& e, std::uint64_t lost_before,
-                                               std::int64_t utime);
+                                               std::int64_t monotonic_now_ns,
+                                               std::int64_t wall_now_us);
 
 }  // namespace hapticctrl::lcm_bridge

@@ -69,7 +69,9 @@ _PNGCAIRO = None
 def has_pngcairo():
     global _PNGCAIRO
     if _PNGCAIRO is None:
-        r = subprocess.run(["gnuplot", "-e", "set terminal"], capture_output=True, text=True, check=False)
+        # Never the caller's terminal as its input: gnuplot pages the list there (J8).
+        r = subprocess.run(["gnuplot", "-e", "set terminal"], capture_output=True, text=True,
+                           stdin=subprocess.DEVNULL, check=False)
         _PNGCAIRO = "pngcairo" in (r.stdout + r.stderr)
     return _PNGCAIRO
 

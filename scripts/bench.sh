@@ -30,7 +30,7 @@
 #     (mujoco.md).
 #
 # usage: scripts/bench.sh [--out DIR] [--build DIR] [--seconds N] [--long] [--smoke]
-#   default about 129 minutes (8 s per latency run, 15 s per link run, 14 coupling cases of
+#   default about 130 minutes (8 s per latency run, 15 s per link run, 14 coupling cases of
 #   ~90 s, 48 contact cases of ~70 s, 16 local-model cases of ~110 s, 10 minutes at rest, 10
 #   MuJoCo runs of 20 s);
 #   --long: 60 s and 120 s latency and link runs; --smoke: 1 s runs, 2 coupling, 2 contact and
@@ -49,6 +49,10 @@ while [[ $# -gt 0 ]]; do
     *) echo "bench: unknown option $1 (see the header of $0)" >&2; exit 64 ;;
   esac
 done
+# Nothing here reads the terminal: a process that found one on its stdin (gnuplot pages what it
+# lists when its input is a terminal) would wait there for a key (J8 walk-through: --smoke in
+# a terminal waited 2 min or more).
+exec </dev/null
 PERIODS=(1000 250 100)
 CPU=$(( $(nproc) - 1 ))
 PRIO=80

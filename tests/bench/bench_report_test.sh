@@ -7,8 +7,11 @@ set -euo pipefail
 BUILD=$1 SOURCE=$2
 OUT=$(mktemp -d)
 trap 'rm -rf "$OUT"' EXIT
-"$SOURCE/scripts/bench.sh" --smoke --build "$BUILD" --out "$OUT" >"$OUT/bench.log" 2>&1 ||
-  { cat "$OUT/bench.log"; exit 1; }
+# In a terminal, as a user runs it (a pseudo-terminal of 24 rows from script(1)): nothing may
+# wait on it (J8: --smoke in a terminal once waited 2 min or more for gnuplot's pager).
+printf -v run '%q ' "$SOURCE/scripts/bench.sh" --smoke --build "$BUILD" --out "$OUT"
+timeout 540 script -qec "stty rows 24 cols 80; $run >$(printf %q "$OUT/bench.log") 2>&1" /dev/null </dev/null ||
+  { echo "bench.sh --smoke in a terminal failed or waited (status $?)"; cat "$OUT/bench.log"; exit 1; }
 python3 - "$OUT" <<'PY'
 import json, os, sys
 out = sys.argv[1]

@@ -14,9 +14,14 @@ cleanup() {
   rm -rf "$work"
 }
 trap cleanup EXIT
+# Say which step failed: a bare non-zero status told a user nothing (J8).
+trap 'echo "install_test.sh: line $LINENO failed (status $?): $BASH_COMMAND" >&2' ERR
 
 cmake --install "$build" --prefix "$work/prefix" >/dev/null
-test -f "$work/prefix/lib/cmake/hapticctrl/hapticctrlConfig.cmake"
+# The library directory is the build's CMAKE_INSTALL_LIBDIR: lib, or lib/x86_64-linux-gnu in a
+# build configured for /usr (docs/deployment.md's).
+libdir=$(sed -n 's/^CMAKE_INSTALL_LIBDIR:PATH=//p' "$build/CMakeCache.txt")
+test -f "$work/prefix/$libdir/cmake/hapticctrl/hapticctrlConfig.cmake"
 test -f "$work/prefix/include/hapticctrl/virtuose_api.h"
 test -f "$work/prefix/include/hapticctrl/virtuose/VirtuoseAPI.h"
 test -f "$work/prefix/include/hapticctrl/virtuose/virtuoseAPI.h"
@@ -40,7 +45,7 @@ if "$work/example/minimal_c" "127.0.0.1#9" 2>"$work/err"; then
 fi
 grep -q "time out" "$work/err"
 
-export PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig"
+export PKG_CONFIG_PATH="$work/prefix/$libdir/pkgconfig"
 # shellcheck disable=SC2046
 cc -o "$work/minimal_pc" "$source/client/examples/minimal/minimal.c" $(pkg-config --cflags --libs hapticctrl)
 # shellcheck disable=SC2046
@@ -88,5 +93,17 @@ for app in "$work/example/virtuose_app" "$work/virtuose_app_pc"; do
     exit 1
   }
 done
+# The wall of docs/virtuose_api.md, the hand pushing 3 N into it: it is felt and held (at rest
+# 3 N / 1000 N/m = 3 mm in; deeper on the way in).
+env -u LD_LIBRARY_PATH "$work/example/virtuose_wall" "127.0.0.1#$port" 3 >"$work/wall.log" 2>&1 &
+wall=$!
+sleep 0.8
+"$build/hmi/hapticctrl-hmi" --instance "$instance" force 3 0 0 0 0 0 >/dev/null
+wait "$wall" || { cat "$work/wall.log" "$work/core.log" >&2; exit 1; }
+"$build/hmi/hapticctrl-hmi" --instance "$instance" zero-force >/dev/null
+deepest=$(sed -n 's/.*deepest \([0-9.]*\) mm.*/\1/p' "$work/wall.log")
+awk -v d="$deepest" 'BEGIN { exit !(d >= 2 && d <= 20) }' ||
+  { echo "the wall example: deepest '$deepest' mm, not 2-20" >&2; cat "$work/wall.log" >&2; exit 1; }
 echo "install test: find_package (C, C++20, C++17 on the C API) and pkg-config builds run;" \
-  "the Virtuose application passes against the controller, built both ways"
+  "the Virtuose application passes against the controller, built both ways;" \
+  "the wall example held a 3 N push $deepest mm deep at most"

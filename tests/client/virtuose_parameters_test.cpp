@@ -36,6 +36,17 @@ TEST(VirtuoseParameters, ParametersStateAndModes) {
   EXPECT_EQ(virtSaturateTorque(vc, 20.0F, 2.0F), 0);
   EXPECT_EQ(virtSetTimeoutValue(vc, 0.2F), 0);
   EXPECT_EQ(stack.vpr().watchdog_timeout_us, 200'000U);
+  // J6: a Haption-style few milliseconds is taken, brought to the bridge's shortest, and said.
+  EXPECT_EQ(virtSetTimeoutValue(vc, 0.003F), 0) << virtGetErrorDetail(vc);
+  EXPECT_EQ(stack.vpr().watchdog_timeout_us, 10'000U);
+  EXPECT_EQ(virtGetErrorCode(vc), VIRT_E_NO_ERROR);
+  EXPECT_NE(std::string(virtGetErrorDetail(vc))
+                .find("3.0 ms is outside the controller's 10-60000 ms: 10 ms in force"),
+            std::string::npos)
+      << virtGetErrorDetail(vc);
+  EXPECT_EQ(virtSetTimeoutValue(vc, 0.0F), -1);
+  EXPECT_EQ(virtGetErrorCode(vc), VIRT_E_INCORRECT_VALUE);
+  EXPECT_EQ(virtSetTimeoutValue(vc, 0.2F), 0);
   EXPECT_DOUBLE_EQ(stack.vpr().force_limits[0], 20.0);
 
   // H2: a getter right after a successful setter returns the new value.

@@ -58,7 +58,27 @@ if env -u LD_LIBRARY_PATH "$work/minimal_pc" "127.0.0.1#9" 2>"$work/err_pc"; the
 fi
 grep -q "time out" "$work/err_pc" || { cat "$work/err_pc" >&2; exit 1; }
 
-# The Virtuose application, built both ways, against the real controller and bridge.
+# J6: built as for Haption's SDK, the paths alone changed: -lvirtuose, libvirtuose.a by its path,
+# a CMake project that links `virtuose`; and into the binary from the static library.
+virtuose_include="$work/prefix/include/hapticctrl/virtuose"
+app_source="$source/client/examples/virtuose_app/virtuose_app.c"
+cc -o "$work/haption_l" -I"$virtuose_include" "$app_source" -L"$work/prefix/$libdir" -lvirtuose \
+  -lpthread -lm
+cc -o "$work/haption_a" -I"$virtuose_include" "$app_source" "$work/prefix/$libdir/libvirtuose.a" \
+  -lpthread -lm
+cmake -S "$source/tests/client/haption_style" -B "$work/haption_cmake" -G Ninja \
+  -DVIRTUOSE_INCLUDE_DIR="$virtuose_include" -DVIRTUOSE_LIBRARY_DIR="$work/prefix/$libdir" \
+  -DAPP_SOURCE="$app_source" >/dev/null
+cmake --build "$work/haption_cmake" >/dev/null
+cc -c -o "$work/app.o" -I"$virtuose_include" "$app_source"
+c++ -o "$work/static_app" "$work/app.o" "$work/prefix/$libdir/libhapticctrl_client.a" -ltirpc -lz \
+  -lpthread -lm
+if ldd "$work/static_app" | grep -q hapticctrl; then
+  echo "the static build still needs the shared library" >&2
+  exit 1
+fi
+
+# The Virtuose application, built every way, against the real controller and bridge.
 instance="install$$"
 export HAPTICCTRL_RUNTIME_DIR="$work/run"  # where the core's socket appears once it serves
 mkdir -m 0700 "$HAPTICCTRL_RUNTIME_DIR"
@@ -87,8 +107,15 @@ for _ in $(seq 100); do
   sleep 0.05
 done
 [ -n "$port" ] || { cat "$work/core.log" "$work/udp.log" >&2; exit 1; }
-for app in "$work/example/virtuose_app" "$work/virtuose_app_pc"; do
+for app in "$work/example/virtuose_app" "$work/virtuose_app_pc" "$work/static_app"; do
   env -u LD_LIBRARY_PATH "$app" "127.0.0.1#$port" || {
+    cat "$work/core.log" "$work/udp.log" >&2
+    exit 1
+  }
+done
+# As Haption's own shared library, found through LD_LIBRARY_PATH (or ldconfig).
+for app in "$work/haption_l" "$work/haption_a" "$work/haption_cmake/virtuose_app"; do
+  LD_LIBRARY_PATH="$work/prefix/$libdir" "$app" "127.0.0.1#$port" || {
     cat "$work/core.log" "$work/udp.log" >&2
     exit 1
   }
@@ -105,5 +132,5 @@ deepest=$(sed -n 's/.*deepest \([0-9.]*\) mm.*/\1/p' "$work/wall.log")
 awk -v d="$deepest" 'BEGIN { exit !(d >= 2 && d <= 20) }' ||
   { echo "the wall example: deepest '$deepest' mm, not 2-20" >&2; cat "$work/wall.log" >&2; exit 1; }
 echo "install test: find_package (C, C++20, C++17 on the C API) and pkg-config builds run;" \
-  "the Virtuose application passes against the controller, built both ways;" \
+  "the Virtuose application passes against the controller, built six ways (Haption's included);" \
   "the wall example held a 3 N push $deepest mm deep at most"

@@ -42,8 +42,11 @@ const OPERATOR_ARROW = [0xf0, 0xc0, 0x40];
 const RENDERED_ARROW = [0xff, 0x4f, 0xd8];
 /** Pixels a force arrow needs to be seen at a glance (a 1024 x 768 page). */
 const MIN_ARROW_PIXELS = 40;
-/** The 3D canvas's pixels within a small distance of `rgb` (antialiased edges half counted). */
-const colourPixels = (rgb) => page.evaluate((colour) => {
+/**
+ * The 3D canvas as drawn: its distinct colours (every 97th pixel) and how many pixels are within
+ * a small distance of `rgb` (antialiased edges half counted; none asked: 0).
+ */
+const canvasPixels = (rgb = null) => page.evaluate((colour) => {
   const source = document.getElementById('scene');
   const copy = document.createElement('canvas');
   copy.width = source.width;
@@ -51,13 +54,17 @@ const colourPixels = (rgb) => page.evaluate((colour) => {
   const context = copy.getContext('2d');
   context.drawImage(source, 0, 0);
   const pixels = context.getImageData(0, 0, copy.width, copy.height).data;
-  let count = 0;
+  const seen = new Set();
+  let near = 0;
   for (let i = 0; i < pixels.length; i += 4) {
+    if (i % (4 * 97) === 0) seen.add((pixels[i] << 16) | (pixels[i + 1] << 8) | pixels[i + 2]);
+    if (!colour) continue;
     const d = Math.abs(pixels[i] - colour[0]) + Math.abs(pixels[i + 1] - colour[1]) + Math.abs(pixels[i + 2] - colour[2]);
-    if (d < 40) count += 1;
+    if (d < 40) near += 1;
   }
-  return count;
+  return { colours: seen.size, near };
 }, rgb);
+const colourPixels = async (rgb) => (await canvasPixels(rgb)).near;
 
 before(async () => {
   await stack.start();
@@ -82,18 +89,7 @@ test('the page loads, connects and draws the arm and the spheres', async () => {
   assert.equal(s.remote, true);
   assert.ok(s.modelMismatchM < 0.002, `the page's kinematics put the handle ${s.modelMismatchM} m off`);
   // The canvas holds a picture, not a blank clear colour: count distinct colours.
-  const colours = await page.evaluate(() => {
-    const source = document.getElementById('scene');
-    const copy = document.createElement('canvas');
-    copy.width = source.width;
-    copy.height = source.height;
-    const context = copy.getContext('2d');
-    context.drawImage(source, 0, 0);
-    const pixels = context.getImageData(0, 0, copy.width, copy.height).data;
-    const seen = new Set();
-    for (let i = 0; i < pixels.length; i += 4 * 97) seen.add((pixels[i] << 16) | (pixels[i + 1] << 8) | pixels[i + 2]);
-    return seen.size;
-  });
+  const { colours } = await canvasPixels();
   assert.ok(colours > 20, `the 3D canvas looks empty (${colours} colours)`);
   assert.deepEqual(pageErrors, []);
   await shot('01-loaded');

@@ -15,9 +15,9 @@
 #define WALL_DAMPING 5.0f      /* N.s/m, only while inside */
 
 struct wall {
-  float x;            /* the plane, environment frame (m) */
-  float deepest;      /* the deepest the handle went (m) */
-  float force_there;  /* the force rendered then (N, along x) */
+  float x;           /* the plane, environment frame (m) */
+  float deepest;     /* the deepest the handle went (m) */
+  float force_there; /* the force rendered then (N, along x) */
   int failures;
 };
 

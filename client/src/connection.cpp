@@ -46,9 +46,12 @@ bool Connection::send_object_state(const Pose7& pose, const Vector6& twist) noex
   return sent;
 }
 
-ContactResult Connection::set_contacts(std::span<const Contact> contacts) noexcept {
+ContactResult Connection::set_contacts(const Contact* contacts, std::size_t count) noexcept {
+  if (contacts == nullptr && count != 0) {
+    return ContactResult::kInvalid;
+  }
   const std::lock_guard lock(impl_->session_mutex);
-  return impl_->session.set_contacts(contacts);
+  return impl_->session.set_contacts(std::span<const Contact>(contacts, count));
 }
 
 bool Connection::send_wrench(const Vector6& wrench) noexcept {

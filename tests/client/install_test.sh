@@ -35,6 +35,7 @@ cmake -S "$source/client/examples" -B "$work/example" -G Ninja \
   -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
 cmake --build "$work/example" >/dev/null
 test -x "$work/example/minimal_cpp"
+test -x "$work/example/minimal_cpp17"
 test -x "$work/example/minimal_c"
 test -x "$work/example/virtuose_app"
 "$work/example/c_api_from_cpp17" >/dev/null  # built at C++17, and runs

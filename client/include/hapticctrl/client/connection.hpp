@@ -13,7 +13,9 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#if __cplusplus >= 202002L
 #include <span>
+#endif
 #include <string>
 #include <string_view>
 
@@ -93,8 +95,15 @@ class Connection {
   /// VIRTMECH: the contacts the object is in or near now (at most kMaxContacts; empty: none).
   /// They go out with the next object states (each changed contact at once, every one at least
   /// every 5 ms) and stay in force until replaced; the controller stiffens the coupling along
-  /// them (docs/control.md). Nothing is changed unless kAccepted.
-  ContactResult set_contacts(std::span<const Contact> contacts) noexcept;
+  /// them (docs/control.md). Nothing is changed unless kAccepted. `count` of them from
+  /// `contacts` (nullptr with 0: none).
+  ContactResult set_contacts(const Contact* contacts, std::size_t count) noexcept;
+#if __cplusplus >= 202002L
+  /// The same, from a span (C++20; the header needs no more than C++17 otherwise).
+  ContactResult set_contacts(std::span<const Contact> contacts) noexcept {
+    return set_contacts(contacts.data(), contacts.size());
+  }
+#endif
   /// The latest controller cycle received.
   [[nodiscard]] StateSnapshot snapshot() const noexcept;
   /// Blocks until an answer for a cycle after `after_cycle` arrives, or `timeout`.

@@ -110,6 +110,10 @@ int virtGetNbAxes(VirtContext VC, int* nbAxes) {
   return 0;
 }
 
+int virtGetNumberOfAxes(VirtContext VC, int* nbAxes) {
+  return virtGetNbAxes(VC, nbAxes);
+}
+
 int virtGetErrorCode(VirtContext VC) {
   return error_of(VC).code;
 }

@@ -30,6 +30,16 @@ constexpr const char* kNoVm = "virtual mechanisms are not implemented by hapticc
 constexpr const char* kNoCatchFrame = "the catch frame is the arm model's handle point";
 constexpr const char* kNoFrameSpeed = "the observation frame does not move";
 constexpr const char* kOneSession = "one session controls the arm: no observation-only session";
+constexpr const char* kNoFriction =
+    "articular friction compensation is not implemented by hapticctrl";
+constexpr const char* kNoAvatarFrame =
+    "the avatar is the handle through the indexing offset; no avatar frame";
+constexpr const char* kNoLimitTorque =
+    "torque limits are set with virtSaturateTorque (force and moment thresholds)";
+constexpr const char* kNoAbsolutePosition = "the arm is moved by its operator, not to a position";
+constexpr const char* kNoBeeper = "the simulated arm has no beeper";
+constexpr const char* kNoDebugFile =
+    "no debug file: virtSetOutputFile with DEBUG_SERVO or DEBUG_LOOP, or virtDisplayHardwareStatus";
 
 /// Zeroes the outputs, then fails with `code`: VIRT_E_INVALID_CONTEXT first if `vc` is not live.
 /// The detail is "<function>: <why>".
@@ -231,6 +241,38 @@ int virtSetObservationFrameSpeed(VirtContext VC, float*) {
 }
 int virtDisableControlConnexion(VirtContext VC, int) {
   return without(__func__, VC, kNi, kOneSession);
+}
+
+// Haption's library's exports beyond its header (J6).
+int virtSetFrictionForce(VirtContext VC, float, float, float) {
+  return without(__func__, VC, kNi, kNoFriction);
+}
+int virtVmSetMinArtiBounds(VirtContext VC, float*) {
+  return without(__func__, VC, kNi, kNoVm);
+}
+int virtVmSetMaxArtiBounds(VirtContext VC, float*) {
+  return without(__func__, VC, kNi, kNoVm);
+}
+int virtGetAvatarFrame(VirtContext VC, float* frame) {
+  return without_array(__func__, VC, kNi, kNoAvatarFrame, frame, 7);
+}
+int virtSetAvatarFrame(VirtContext VC, float*) {
+  return without(__func__, VC, kNi, kNoAvatarFrame);
+}
+int virtGetLimitTorque(VirtContext VC, float* torque) {
+  return without(__func__, VC, kNi, kNoLimitTorque, torque);
+}
+int virtSetLimitTorque(VirtContext VC, float) {
+  return without(__func__, VC, kNi, kNoLimitTorque);
+}
+int virtSetAbsolutePosition(VirtContext VC, float*) {
+  return without(__func__, VC, kNi, kNoAbsolutePosition);
+}
+int virtBeepOnLimit(VirtContext VC, int) {
+  return without(__func__, VC, kNa, kNoBeeper);
+}
+int virtGenerateDebugFile(VirtContext VC) {
+  return without(__func__, VC, kNi, kNoDebugFile);
 }
 
 // NOLINTEND(readability-identifier-naming,misc-unused-parameters)

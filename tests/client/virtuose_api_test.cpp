@@ -94,6 +94,9 @@ TEST(VirtuoseApi, VersionsAxesAndTheLastErrorOfASession) {
   int axes = 0;
   ASSERT_EQ(virtGetNbAxes(vc.get(), &axes), 0);
   EXPECT_EQ(axes, 6);
+  axes = 0;
+  ASSERT_EQ(virtGetNumberOfAxes(vc.get(), &axes), 0);  // exported by Haption's library (J6)
+  EXPECT_EQ(axes, 6);
   int error = -1;
   ASSERT_EQ(virtGetError(vc.get(), &error), 0);
   EXPECT_EQ(error, VIRT_E_NO_ERROR);

@@ -10,8 +10,9 @@
 /* Haption's values. */
 /* VirtContext is an opaque pointer, as Haption's. */
 _Static_assert(sizeof(VirtContext) == sizeof(void*), "VirtContext");
-_Static_assert(COMMAND_TYPE_NONE == 0 && COMMAND_TYPE_IMPEDANCE == 3 && COMMAND_TYPE_VIRTMECH == 5 &&
-                   COMMAND_TYPE_ARTICULAR == 6 && COMMAND_TYPE_ARTICULAR_IMPEDANCE == 7,
+_Static_assert(COMMAND_TYPE_NONE == 0 && COMMAND_TYPE_IMPEDANCE == 3 &&
+                   COMMAND_TYPE_VIRTMECH == 5 && COMMAND_TYPE_ARTICULAR == 6 &&
+                   COMMAND_TYPE_ARTICULAR_IMPEDANCE == 7,
                "VirtCommandType");
 _Static_assert(GRIPPER_COMMAND_TYPE_NONE == 0 && GRIPPER_COMMAND_TYPE_POSITION == 1 &&
                    GRIPPER_COMMAND_TYPE_IMPEDANCE == 2,
@@ -21,9 +22,9 @@ _Static_assert(INDEXING_ALL == 0 && INDEXING_TRANS == 1 && INDEXING_NONE == 2 &&
                    INDEXING_TRANS_FORCE_FEEDBACK_INHIBITION == 4 &&
                    INDEXING_ROT_FORCE_FEEDBACK_INHIBITION == 6 && INDEXING_ROT == 7,
                "VirtIndexingType");
-_Static_assert(VM_TYPE_CartMotion == 0 && VM_TYPE_Spline == 1 && VM_TYPE_Rx == 2 && VM_TYPE_Tx == 3 &&
-                   VM_TYPE_TxRx == 4 && VM_TYPE_TxTyTz == 5 && VM_TYPE_RxRyRz == 6 &&
-                   VM_TYPE_TxTy == 7 && VM_TYPE_Crank == 8,
+_Static_assert(VM_TYPE_CartMotion == 0 && VM_TYPE_Spline == 1 && VM_TYPE_Rx == 2 &&
+                   VM_TYPE_Tx == 3 && VM_TYPE_TxRx == 4 && VM_TYPE_TxTyTz == 5 &&
+                   VM_TYPE_RxRyRz == 6 && VM_TYPE_TxTy == 7 && VM_TYPE_Crank == 8,
                "VirtVmType");
 _Static_assert(DEBUG_SERVO == 1 && DEBUG_LOOP == 2, "DEBUG_*");
 _Static_assert(VIRT_E_NO_ERROR == 0 && VIRT_E_OUT_OF_MEMORY == 1 &&
@@ -177,6 +178,17 @@ int virtGetNbAxes(VC, int*);
 int virtSetFingerTipSpeed(VC, float*);
 int virtGetSimulationStiffness(VC, float*);
 int virtGetSimulationDamping(VC, float*);
+int virtGetNumberOfAxes(VC, int*);
+int virtSetFrictionForce(VC, float, float, float);
+int virtVmSetMinArtiBounds(VC, float*);
+int virtVmSetMaxArtiBounds(VC, float*);
+int virtGetAvatarFrame(VC, float*);
+int virtSetAvatarFrame(VC, float*);
+int virtGetLimitTorque(VC, float*);
+int virtSetLimitTorque(VC, float);
+int virtSetAbsolutePosition(VC, float*);
+int virtBeepOnLimit(VC, int);
+int virtGenerateDebugFile(VC);
 #undef VC
 
 typedef void (*any_function)(void);
@@ -185,23 +197,22 @@ static const any_function functions[] = {
     F(virtActiveRotationSpeedControl), F(virtActiveSpeedControl), F(virtAddForce),
     F(virtAPIVersion), F(virtAttachQSVO), F(virtAttachVO), F(virtAttachVOAvatar), F(virtClose),
     F(virtConvertDeplToHomogeneMatrix), F(virtConvertHomogeneMatrixToDepl),
-    F(virtConvertRGBToGrayscale), F(virtDeactiveRotationSpeedControl),
-    F(virtDeactiveSpeedControl), F(virtDetachVO), F(virtDetachVOAvatar),
-    F(virtDisableControlConnexion), F(virtDisplayHardwareStatus), F(virtEnableForceFeedback),
-    F(virtForceShiftButton), F(virtGetADC), F(virtGetAlarm), F(virtGetAnalogicInputs),
-    F(virtGetArticularPosition), F(virtGetArticularPositionOfAdditionalAxe),
-    F(virtGetArticularSpeed), F(virtGetArticularSpeedOfAdditionalAxe), F(virtGetAvatarPosition),
-    F(virtGetAxisOfRotation), F(virtGetBaseFrame), F(virtGetButton), F(virtGetCatchFrame),
-    F(virtGetCenterSphere), F(virtGetCommandType), F(virtGetControlerVersion),
-    F(virtGetDeadMan), F(virtGetDeviceID), F(virtGetEmergencyStop), F(virtGetError),
-    F(virtGetErrorCode), F(virtGetErrorMessage), F(virtGetFailure), F(virtGetForce),
-    F(virtGetForceFactor), F(virtGetIndexingMode), F(virtGetMouseState),
-    F(virtGetObservationFrame), F(virtGetPhysicalPosition), F(virtGetPhysicalSpeed),
-    F(virtGetPosition), F(virtGetPowerOn), F(virtGetSpeed), F(virtGetSpeedFactor),
-    F(virtGetTimeLastUpdate), F(virtGetTimeoutValue), F(virtGetTimeStep), F(virtGetTorInputs),
-    F(virtGetTrackball), F(virtGetTrackballButton), F(virtIsInBounds), F(virtIsInShiftPosition),
-    F(virtIsInSpeedControl), F(virtOpen), F(virtOutputsSetting), F(virtSaturateTorque),
-    F(virtSetArticularForce), F(virtSetArticularForceOfAdditionalAxe),
+    F(virtConvertRGBToGrayscale), F(virtDeactiveRotationSpeedControl), F(virtDeactiveSpeedControl),
+    F(virtDetachVO), F(virtDetachVOAvatar), F(virtDisableControlConnexion),
+    F(virtDisplayHardwareStatus), F(virtEnableForceFeedback), F(virtForceShiftButton),
+    F(virtGetADC), F(virtGetAlarm), F(virtGetAnalogicInputs), F(virtGetArticularPosition),
+    F(virtGetArticularPositionOfAdditionalAxe), F(virtGetArticularSpeed),
+    F(virtGetArticularSpeedOfAdditionalAxe), F(virtGetAvatarPosition), F(virtGetAxisOfRotation),
+    F(virtGetBaseFrame), F(virtGetButton), F(virtGetCatchFrame), F(virtGetCenterSphere),
+    F(virtGetCommandType), F(virtGetControlerVersion), F(virtGetDeadMan), F(virtGetDeviceID),
+    F(virtGetEmergencyStop), F(virtGetError), F(virtGetErrorCode), F(virtGetErrorMessage),
+    F(virtGetFailure), F(virtGetForce), F(virtGetForceFactor), F(virtGetIndexingMode),
+    F(virtGetMouseState), F(virtGetObservationFrame), F(virtGetPhysicalPosition),
+    F(virtGetPhysicalSpeed), F(virtGetPosition), F(virtGetPowerOn), F(virtGetSpeed),
+    F(virtGetSpeedFactor), F(virtGetTimeLastUpdate), F(virtGetTimeoutValue), F(virtGetTimeStep),
+    F(virtGetTorInputs), F(virtGetTrackball), F(virtGetTrackballButton), F(virtIsInBounds),
+    F(virtIsInShiftPosition), F(virtIsInSpeedControl), F(virtOpen), F(virtOutputsSetting),
+    F(virtSaturateTorque), F(virtSetArticularForce), F(virtSetArticularForceOfAdditionalAxe),
     F(virtSetArticularPosition), F(virtSetArticularPositionOfAdditionalAxe),
     F(virtSetArticularSpeed), F(virtSetArticularSpeedOfAdditionalAxe), F(virtSetBaseFrame),
     F(virtSetCatchFrame), F(virtSetCommandType), F(virtSetDebugFlags), F(virtSetForce),
@@ -211,20 +222,24 @@ static const any_function functions[] = {
     F(virtSetPwmOutput), F(virtSetSpeed), F(virtSetSpeedFactor), F(virtSetTexture),
     F(virtSetTextureForce), F(virtSetTimeoutValue), F(virtSetTimeStep),
     F(virtSetTorqueInSpeedControl), F(virtStartLoop), F(virtStopLoop), F(virtTrajRecordStart),
-    F(virtTrajRecordStop), F(virtTrajSetSamplingTimeStep), F(virtVmActivate),
-    F(virtVmDeactivate), F(virtVmDeleteSpline), F(virtVmGetBaseFrame), F(virtVmGetTrajSamples),
-    F(virtVmLoadSpline), F(virtVmSaveCurrentSpline), F(virtVmSetBaseFrame),
-    F(virtVmSetBaseFrameToCurrentFrame), F(virtVmSetDefaultToCartesianPosition),
-    F(virtVmSetDefaultToTransparentMode), F(virtVmSetRobotMode), F(virtVmSetType),
-    F(virtVmStartTrajSampling), F(virtVmWaitUpperBound), F(virtWaitPressButton),
-    F(virtGetNbAxes), F(virtSetFingerTipSpeed), F(virtGetSimulationStiffness),
-    F(virtGetSimulationDamping),
+    F(virtTrajRecordStop), F(virtTrajSetSamplingTimeStep), F(virtVmActivate), F(virtVmDeactivate),
+    F(virtVmDeleteSpline), F(virtVmGetBaseFrame), F(virtVmGetTrajSamples), F(virtVmLoadSpline),
+    F(virtVmSaveCurrentSpline), F(virtVmSetBaseFrame), F(virtVmSetBaseFrameToCurrentFrame),
+    F(virtVmSetDefaultToCartesianPosition), F(virtVmSetDefaultToTransparentMode),
+    F(virtVmSetRobotMode), F(virtVmSetType), F(virtVmStartTrajSampling), F(virtVmWaitUpperBound),
+    F(virtWaitPressButton), F(virtGetNbAxes), F(virtSetFingerTipSpeed),
+    F(virtGetSimulationStiffness), F(virtGetSimulationDamping),
     /* The header's other names. */
     F(virtConvertDisplToTransformationMatrix), F(virtConvertTransformationMatrixToDispl),
-    F(virtGetDigitalInputs)};
+    F(virtGetDigitalInputs),
+    /* Haption's library's exports beyond its header (J6). */
+    F(virtGetNumberOfAxes), F(virtSetFrictionForce), F(virtVmSetMinArtiBounds),
+    F(virtVmSetMaxArtiBounds), F(virtGetAvatarFrame), F(virtSetAvatarFrame), F(virtGetLimitTorque),
+    F(virtSetLimitTorque), F(virtSetAbsolutePosition), F(virtBeepOnLimit),
+    F(virtGenerateDebugFile)};
 #undef F
 
-enum { kHaptionFunctions = 118, kOtherNames = 3 };
+enum { kHaptionFunctions = 118, kOtherNames = 3, kUndocumentedExports = 11 };
 
 int main(void) {
   const size_t n = sizeof functions / sizeof functions[0];
@@ -238,12 +253,14 @@ int main(void) {
       return 1;
     }
   }
-  if (n != kHaptionFunctions + kOtherNames) {
-    fprintf(stderr, "%zu functions listed, VirtuoseAPI 4.04 has %d and %d other names\n", n,
-            kHaptionFunctions, kOtherNames);
+  if (n != kHaptionFunctions + kOtherNames + kUndocumentedExports) {
+    fprintf(stderr,
+            "%zu functions listed, VirtuoseAPI 4.04 has %d, %d other names and %d exports "
+            "beyond its header\n",
+            n, kHaptionFunctions, kOtherNames, kUndocumentedExports);
     return 1;
   }
-  printf("VirtuoseAPI 4.04: %d functions and %d other names declared\n", kHaptionFunctions,
-         kOtherNames);
+  printf("VirtuoseAPI 4.04: %d functions, %d other names and %d further exports declared\n",
+         kHaptionFunctions, kOtherNames, kUndocumentedExports);
   return 0;
 }

@@ -398,6 +398,22 @@ int virtVmLoadSpline(VirtContext VC, char* file_name);
 int virtVmSaveCurrentSpline(VirtContext VC, char* file_name);
 int virtVmDeleteSpline(VirtContext VC, char* file_name);
 
+/* Exported by Haption's library beyond what its header declares (J6), with the signatures
+ * public wrappers of it call them with (virtGetNumberOfAxes's as virtGetNbAxes's): declared
+ * here so that programs written against later headers link. virtGetNumberOfAxes is
+ * implemented; the others fail as their neighbours do (docs/virtuose_api.md). */
+int virtGetNumberOfAxes(VirtContext VC, int* nbAxes);
+int virtSetFrictionForce(VirtContext VC, float fx, float fy, float fz);
+int virtVmSetMinArtiBounds(VirtContext VC, float* bounds);
+int virtVmSetMaxArtiBounds(VirtContext VC, float* bounds);
+int virtGetAvatarFrame(VirtContext VC, float* frame);
+int virtSetAvatarFrame(VirtContext VC, float* frame);
+int virtGetLimitTorque(VirtContext VC, float* torque);
+int virtSetLimitTorque(VirtContext VC, float torque);
+int virtSetAbsolutePosition(VirtContext VC, float* pos);
+int virtBeepOnLimit(VirtContext VC, int enable);
+int virtGenerateDebugFile(VirtContext VC);
+
 /* NOLINTEND(readability-identifier-naming,modernize-use-using) */
 
 #ifdef __cplusplus

@@ -27,4 +27,10 @@ Qos command_qos() {
   return make_qos(DDS_RELIABILITY_RELIABLE, 10);
 }
 
+Qos discovery_qos() {
+  Qos qos = make_qos(DDS_RELIABILITY_RELIABLE, 1);
+  dds_qset_durability(qos.get(), DDS_DURABILITY_TRANSIENT_LOCAL);
+  return qos;
+}
+
 }  // namespace hapticctrl::ros2types

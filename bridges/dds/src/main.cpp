@@ -20,6 +20,7 @@
 #include "hapticctrl/dds_bridge/commands.hpp"
 #include "hapticctrl/dds_bridge/dds_bridge_config.hpp"
 #include "hapticctrl/dds_bridge/endpoints.hpp"
+#include "hapticctrl/dds_bridge/graph.hpp"
 #include "hapticctrl/dds_bridge/messages.hpp"
 #include "hapticctrl/program/main_skeleton.hpp"
 #include "hapticctrl/ros2types/names.hpp"
@@ -144,6 +145,7 @@ int run(const DdsBridgeConfig& config) {
   const std::uint32_t domain = config.domain();
   hapticctrl::ros2types::Participant participant(domain);
   const Endpoints ep(participant, config.ros_namespace);
+  const hapticctrl::dds_bridge::GraphAnnouncement node(participant, ep, config.ros_namespace);
   const dds_entity_t waitset = participant.waitset_for({ep.command, ep.operator_wrench_command});
   Publisher pub(config, hapticctrl::ros2types::base_frame(config.ros_namespace));
   PublishCounters counters;

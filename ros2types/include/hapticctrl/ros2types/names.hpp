@@ -22,6 +22,9 @@ inline constexpr std::string_view kDiagnostics = "diagnostics";         ///< Dia
 inline constexpr std::string_view kCommand = "command";
 /// In: the operator wrench to apply to the handle, base frame (WrenchStamped).
 inline constexpr std::string_view kOperatorWrenchCommand = "operator_wrench_command";
+/// ROS 2's graph topic, a DDS topic name as it is (no "rt/" prefix): rmw_dds_common's
+/// ParticipantEntitiesInfo.
+inline constexpr std::string_view kDiscoveryInfo = "ros_discovery_info";
 }  // namespace topic
 
 /// Whether `ns` is a valid absolute ROS 2 namespace: "/" followed by tokens of [A-Za-z0-9_]

@@ -18,5 +18,8 @@ using Qos = std::unique_ptr<dds_qos_t, QosDeleter>;
 [[nodiscard]] Qos sensor_data_qos();
 /// Default: reliable, volatile, keep last 10. Commands: an emergency stop is not to be dropped.
 [[nodiscard]] Qos command_qos();
+/// ROS 2's graph topic (ros_discovery_info): reliable, transient local, keep last 1, so that a
+/// tool started later gets each participant's last announcement.
+[[nodiscard]] Qos discovery_qos();
 
 }  // namespace hapticctrl::ros2types

@@ -21,12 +21,11 @@ using hapticctrl::client::virtuose::Context;
 using hapticctrl::client::virtuose::context_of;
 using hapticctrl::client::virtuose::error_of;
 using hapticctrl::client::virtuose::fail;
+using hapticctrl::client::virtuose::kFirstAnswerTimeout;
 using hapticctrl::client::virtuose::Reconnector;
 
 namespace {
 
-/// How long virtOpen waits for the controller's first answer.
-constexpr auto kFirstAnswerTimeout = std::chrono::seconds(2);
 /// The VirtuoseAPI level of virtuose_api.h.
 constexpr int kApiMajor = 4;
 constexpr int kApiMinor = 4;

@@ -18,6 +18,10 @@
 
 namespace hapticctrl::client::virtuose {
 
+/// How long virtOpen, and the reconnector for each next session, wait for the controller's first
+/// answer.
+inline constexpr auto kFirstAnswerTimeout = std::chrono::seconds(2);
+
 /// The last error of a context, or of a thread (virtOpen, calls with an invalid context).
 struct ErrorState {
   static constexpr std::size_t kDetailBytes = 256;

@@ -8,8 +8,6 @@
 namespace hapticctrl::client::virtuose {
 namespace {
 
-/// How long the next session may take to send its first answer (virtOpen's wait).
-constexpr auto kFirstAnswerTimeout = std::chrono::seconds(2);
 /// How long the hand-over waits for the calls still using the old session, so that the old
 /// one is destroyed here rather than by an application's thread.
 constexpr auto kOldSessionGrace = std::chrono::milliseconds(200);

@@ -5,6 +5,7 @@
 
 #include <memory>
 #include <optional>
+#include <thread>
 #include <utility>
 
 #include "connection_impl.hpp"
@@ -97,6 +98,10 @@ void Connection::start_loop(std::function<void(const StateSnapshot&)> on_cycle) 
 }
 
 void Connection::stop_loop() {
+  if (std::this_thread::get_id() == impl_->receiver.get_id()) {
+    impl_->loop_stop_requested.store(true);  // from the callback: ends when it returns
+    return;
+  }
   const std::lock_guard lock(impl_->loop_mutex);  // returns once a running callback finished
   impl_->on_cycle = nullptr;
 }

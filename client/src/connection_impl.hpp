@@ -32,6 +32,9 @@ struct Connection::Impl {
   std::mutex call_mutex;  // one reliable exchange at a time
   std::mutex loop_mutex;
   std::function<void(const StateSnapshot&)> on_cycle;
+  /// stop_loop() called from inside the callback: the loop ends once the callback returns (the
+  /// receive thread holds loop_mutex while it runs).
+  std::atomic<bool> loop_stop_requested{false};
   std::thread receiver;
 
   Impl(const Address& address, ConnectOptions opts)
@@ -165,6 +168,9 @@ struct Connection::Impl {
       const std::lock_guard lock(loop_mutex);
       if (on_cycle) {
         on_cycle(state);
+      }
+      if (loop_stop_requested.exchange(false)) {
+        on_cycle = nullptr;
       }
     }
     if (arrival == Arrival::kAck || closed) {

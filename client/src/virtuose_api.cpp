@@ -45,7 +45,7 @@ VirtContext virtOpen(const char* nom) {
   try {
     auto vc = std::make_unique<Context>();
     vc->address = hapticctrl::client::Address::parse(nom);
-    vc->connection = std::make_shared<Connection>(vc->address);
+    vc->set_link(std::make_shared<Connection>(vc->address));
     // As Haption's: returns once the controller's first answer is here, so that the getters
     // report the arm, never a default pose (they did, in 9 opens of 10).
     StateSnapshot first;

@@ -12,6 +12,7 @@ namespace hapticctrl::client::virtuose {
 namespace {
 
 thread_local ErrorState t_thread_error;  // virtOpen's, and calls with an invalid context
+thread_local const Context* t_in_periodic = nullptr;  // whose periodic function this thread runs
 
 /// Every context virtOpen returned and virtClose has not closed: a closed, foreign or NULL
 /// handle is recognised as such, never dereferenced.
@@ -114,6 +115,10 @@ Context::~Context() {
   }
 }
 
+bool Context::in_periodic_function() const noexcept {
+  return t_in_periodic == this;
+}
+
 int Context::flush_locked(const char* what) noexcept {
   const std::shared_ptr<Connection> c = link();
   const StateSnapshot s = c->snapshot();
@@ -166,7 +171,9 @@ void Context::on_answer(const StateSnapshot& s) noexcept {
   }
   answers_since_call = 0;
   const std::int64_t start = protocol::monotonic_ns();
+  t_in_periodic = this;
   periodic(this, periodic_arg);
+  t_in_periodic = nullptr;
   const std::int64_t took = protocol::monotonic_ns() - start;
   const std::int64_t period = link()->controller_period_ns() * decimation;
   const std::lock_guard lock(mutex);

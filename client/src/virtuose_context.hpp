@@ -64,12 +64,21 @@ class Reconnector;
 
 /// One session of the C API.
 struct Context {
-  /// The session in force. A call loads it once and keeps it for its duration: the reconnector
+  /// The session in force. A call takes it once and keeps it for its duration: the reconnector
   /// replaces it when the controller is lost, and the old one lives on until its last user is
-  /// done with it.
-  [[nodiscard]] std::shared_ptr<Connection> link() const noexcept { return connection.load(); }
-  std::atomic<std::shared_ptr<Connection>> connection;
-  Address address;  ///< virtOpen's, where the next session is opened
+  /// done with it. (A mutex, not std::atomic<std::shared_ptr>: libstdc++ 12's lock bit is
+  /// invisible to ThreadSanitizer, which reported the hand-over as a race.)
+  [[nodiscard]] std::shared_ptr<Connection> link() const noexcept {
+    const std::lock_guard lock(link_mutex);
+    return connection;
+  }
+  void set_link(std::shared_ptr<Connection> next) noexcept {
+    const std::lock_guard lock(link_mutex);
+    connection = std::move(next);
+  }
+  mutable std::mutex link_mutex;
+  std::shared_ptr<Connection> connection;  ///< under link_mutex
+  Address address;                         ///< virtOpen's, where the next session is opened
   ErrorState error;
 
   /// Guards everything below: the application's threads and the loop's callback use it.
@@ -132,6 +141,9 @@ struct Context {
   int fail_without_session(const StateSnapshot& last) noexcept;
   /// The loop's callback, after each controller answer.
   void on_answer(const StateSnapshot& s) noexcept;
+  /// Whether this thread is inside this context's periodic function (virtStopLoop from there
+  /// must not wait for the loop's locks, which the running function holds).
+  [[nodiscard]] bool in_periodic_function() const noexcept;
   /// Where debug lines go. Caller holds `mutex`.
   [[nodiscard]] std::FILE* debug_stream() const noexcept {
     return output != nullptr ? output : stderr;

@@ -54,6 +54,14 @@ int virtStopLoop(VirtContext VC) {
   if (vc == nullptr) {
     return -1;
   }
+  if (vc->in_periodic_function()) {
+    // From the function itself: the loop ends when it returns (Connection::stop_loop). Not
+    // under loop_control, which a virtStartLoop on another thread may hold while it waits for
+    // this function to return (a lock-order inversion ThreadSanitizer found, 2026-12-06).
+    vc->link()->stop_loop();
+    vc->loop_running.store(false);
+    return 0;
+  }
   const std::lock_guard control(vc->loop_control);
   vc->link()->stop_loop();
   vc->loop_running.store(false);

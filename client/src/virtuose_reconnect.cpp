@@ -122,7 +122,7 @@ void Reconnector::hand_over(const std::shared_ptr<Connection>& old,
   old->stop_loop();  // returns once a callback that was running on it finished
   {
     const std::lock_guard control(context_.loop_control);
-    context_.connection.store(next);
+    context_.set_link(next);
     if (context_.loop_running.load()) {
       next->start_loop(periodic_callback(&context_));
     }

@@ -103,5 +103,39 @@ TEST(VirtuoseLoop, APeriodicFunctionThatOutlastsItsPeriodRaisesTheOverrunAlarmOn
   ASSERT_EQ(virtStopLoop(vc.get()), 0);
 }
 
+struct StopsItself {
+  std::atomic<int> calls{0};
+  std::atomic<int> stop_result{1};
+};
+
+TEST(VirtuoseLoop, APeriodicFunctionMayStopTheLoopItRunsIn) {
+  // virtStopLoop from inside the periodic function waited for the function itself to return
+  // (the callback's own mutex; noticed 2026-12-06): now the loop ends when the function returns.
+  ControllerStack stack("capiselfstop");
+  ASSERT_TRUE(stack.ready()) << stack.diagnostics();
+  const VirtuoseSession vc(stack);
+  ASSERT_TRUE(vc.open()) << virtGetErrorDetail(nullptr);
+  StopsItself state;
+  float period = static_cast<float>(stack.period_us()) * 1e-6F;
+  ASSERT_EQ(virtSetPeriodicFunction(
+                vc.get(),
+                [](VirtContext v, void* arg) {
+                  auto* s = static_cast<StopsItself*>(arg);
+                  if (++s->calls == 5) {
+                    s->stop_result = virtStopLoop(v);
+                  }
+                },
+                &period, &state),
+            0);
+  ASSERT_EQ(virtStartLoop(vc.get()), 0);
+  ASSERT_TRUE(ControllerStack::eventually([&] { return state.stop_result.load() == 0; }))
+      << state.calls.load() << " calls, virtStopLoop not returned";
+  std::this_thread::sleep_for(300ms);  // 30 cycles: none calls the function any more
+  EXPECT_EQ(state.calls.load(), 5);
+  ASSERT_EQ(virtStartLoop(vc.get()), 0) << "and it starts again";
+  EXPECT_TRUE(ControllerStack::eventually([&] { return state.calls.load() > 6; }));
+  EXPECT_EQ(virtStopLoop(vc.get()), 0);
+}
+
 }  // namespace
 }  // namespace hapticctrl

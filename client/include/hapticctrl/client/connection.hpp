@@ -119,8 +119,11 @@ class Connection {
 
   // --- callback style ---------------------------------------------------------------------------
   /// Calls `on_cycle` on the receive thread right after each answer (paced by the controller).
-  /// The callback must not block; it may call the per-cycle functions.
+  /// The callback must not block; it may call the per-cycle functions and stop_loop() (not
+  /// start_loop()).
   void start_loop(std::function<void(const StateSnapshot&)> on_cycle);
+  /// Ends the callbacks: returns once a running one finished; called from the callback itself
+  /// (VirtuoseAPI's virtStopLoop inside the periodic function), the loop ends when it returns.
   void stop_loop();
 
   // --- session facts ---------------------------------------------------------------------------

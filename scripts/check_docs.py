@@ -118,7 +118,7 @@ def start_controller(build, scratch, env):
     return [lcm, core]
 
 
-def run(block, source, build, scratch):
+def run(block, build, scratch):
     text = block.text
     for old, new in block.replacements:
         if old not in text:
@@ -167,7 +167,7 @@ def main():
         scratch = workspace(source, build)
         start = time.monotonic()
         try:
-            failure = run(b, source, build, scratch)
+            failure = run(b, build, scratch)
         finally:
             shutil.rmtree(scratch, ignore_errors=True)
         took = time.monotonic() - start

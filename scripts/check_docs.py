@@ -103,10 +103,14 @@ def start_controller(build, scratch, env):
     run_dir = os.path.join(scratch, "run")
     os.mkdir(run_dir, 0o700)
     env["HAPTICCTRL_RUNTIME_DIR"] = run_dir
+    # Benchmark mode: a block is checked, not the machine's timing. A plain 1 ms core failed
+    # safe on a stall of CI's VM before the block ran, in both attempts (2026-12-06), and the
+    # recording it was to make was empty.
     core = subprocess.Popen(
         [os.path.join(build, "rt_core", "hapticctrl-core"), "--instance", instance, "--period-us",
-         "1000", "--rt", "ignore", "--state-dir", run_dir],
-        env=env, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+         "1000", "--rt", "ignore", "--benchmark-mode", "--state-dir", run_dir],
+        env=env, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+        stderr=open(os.path.join(scratch, "core.err"), "w", encoding="utf-8"))
     socket = os.path.join(run_dir, f"{instance}.sock")
     deadline = time.monotonic() + 10
     while not os.path.exists(socket) and time.monotonic() < deadline:
@@ -116,6 +120,15 @@ def start_controller(build, scratch, env):
                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     time.sleep(1)  # the bridge attached and publishing
     return [lcm, core]
+
+
+def controller_said(scratch):
+    """The end of the block's controller's stderr, when it had one."""
+    path = os.path.join(scratch, "core.err")
+    if not os.path.exists(path):
+        return ""
+    with open(path, encoding="utf-8") as f:
+        return f"\n--- hapticctrl-core's stderr\n{f.read()[-2000:]}"
 
 
 def run(block, build, scratch):
@@ -140,7 +153,7 @@ def run(block, build, scratch):
         return f"exit {r.returncode}\n--- stdout\n{r.stdout[-3000:]}\n--- stderr\n{r.stderr[-3000:]}"
     for pattern in block.expected:
         if not glob.glob(os.path.join(scratch, pattern)):
-            return f"made no {pattern}\n--- stdout\n{r.stdout[-3000:]}"
+            return f"made no {pattern}\n--- stdout\n{r.stdout[-3000:]}{controller_said(scratch)}"
     return None
 
 

@@ -134,9 +134,11 @@ test('the surface the controller renders on the handle is drawn while the hand p
     assert.match(s.text, /N · [0-9.]+ mm deep/);
     // The force rendered on the hand is drawn too (J8: 0 of its pixels in 4 screenshots with
     // -5.97 N): pointing out of the sphere, over it.
-    await page.waitForTimeout(200);
+    // Counted on the frames drawn in the next 2 s (at most 25 a second; software WebGL on a
+    // loaded machine draws fewer), the push held all along.
+    let pixels = 0;
+    await until(async () => (pixels = await colourPixels(RENDERED_ARROW)) >= MIN_ARROW_PIXELS, { timeoutMs: 2000 });
     const rendered = await page.evaluate(() => Math.hypot(...window.hapticctrl.frame.arm.coupling_wrench.slice(0, 3)));
-    const pixels = await colourPixels(RENDERED_ARROW);
     console.log(`rendered arrow: ${pixels} pixels at ${rendered.toFixed(2)} N`);
     assert.ok(pixels >= MIN_ARROW_PIXELS, `${rendered} N rendered drew ${pixels} pixels`);
     await shot('03-surface');
@@ -177,8 +179,8 @@ test('forces from 0.5 to 35 N show as arrows drawn over the spheres, visible at 
   const drawn = () => page.evaluate(() => {
     const a = window.hapticctrl.view?.arrows.operator;
     if (!a?.visible) return null;
-    return { length: a.line.scale.y + a.cone.scale.y, overLine: !a.line.material.depthTest,
-      overCone: !a.cone.material.depthTest, order: a.renderOrder };
+    const last = (part) => !part.material.depthTest && part.material.transparent && part.renderOrder > 0;
+    return { length: a.line.scale.y + a.cone.scale.y, overLine: last(a.line), overCone: last(a.cone) };
   });
   const arrowFor = async (force, newtons) => {
     for (const [i, axis] of ['Fx', 'Fy', 'Fz'].entries()) {
@@ -193,7 +195,7 @@ test('forces from 0.5 to 35 N show as arrows drawn over the spheres, visible at 
       return arrow && Math.abs(arrow.length - expected) < 0.002;
     });
     assert.ok(arrow && Math.abs(arrow.length - expected) < 0.002, `arrow ${JSON.stringify(arrow)} for ${newtons} N, not ${expected} m`);
-    assert.ok(arrow.overLine && arrow.overCone && arrow.order > 0, JSON.stringify(arrow));
+    assert.ok(arrow.overLine && arrow.overCone, JSON.stringify(arrow));
     await page.waitForTimeout(200); // the frame that shows it drawn (at most 25 a second)
     return colourPixels(OPERATOR_ARROW);
   };
@@ -226,8 +228,14 @@ test('a client whose data comes late shows in the link badge, not as a list of e
   } finally {
     client.kill('SIGCONT');
   }
+  // At least two of the four (LCM may drop an event on a loaded machine). No upper bound: a
+  // machine busy beside the test makes its own (16 and 26 in 10 s in CI beside the sanitizer
+  // builds, 2026-12-05), and the badge counts what the core reported; one each is app.js's
+  // (onsets only, code 1), not a figure this test can hold on such a machine.
   const badge = () => page.locator('[data-testid=client-link]').innerText();
-  assert.ok(await until(async () => /^link: [2-9] drop-outs in 10 s$/.test(await badge())), `badge: '${await badge()}'`);
+  const counted = async () => Number((/^link: (\d+) drop-outs in 10 s$/.exec(await badge()) ?? [])[1] ?? 0);
+  assert.ok(await until(async () => (await counted()) >= 2), `badge: '${await badge()}'`);
+  console.log(`link badge: '${await badge()}' after 4 drop-outs`);
   const listed = await page.locator('[data-testid=events] li').allInnerTexts();
   assert.ok(!listed.some((t) => /client data (stale|fresh)/.test(t)), listed.join('\n'));
   await shot('04-link-drop-outs');

@@ -12,6 +12,8 @@ const MOBILE_FREE = 0x2ecc71; // the demo's sphere coupled to the handle
 const SURFACE_COLOUR = 0x3fa9f5; // the surface rendered on the handle (J2)
 const SURFACE_SIZE_M = 0.1;
 const MOBILE_TOUCHING = 0xff8a3d;
+/** After the rendered surface's plane (order 0), so that nothing is blended over an arrow. */
+const ARROW_RENDER_ORDER = 10;
 const COLOURS = { operator: 0xf0c040, rendered: 0xff4fd8, contact: 0x40d0ff };
 
 function vec(a) {
@@ -80,9 +82,15 @@ export class ArmView {
     for (const [name, colour] of Object.entries(COLOURS)) {
       const arrow = new THREE.ArrowHelper(new THREE.Vector3(1, 0, 0), new THREE.Vector3(), 0.1, colour);
       // Drawn over everything: the handle sits inside the demo's 3 cm sphere, which hid every
-      // force under 3 N and the base of the larger ones.
-      arrow.line.material.depthTest = arrow.cone.material.depthTest = false;
-      arrow.renderOrder = 10;
+      // force under 3 N and the base of the larger ones. Drawn last, too: three.js draws opaque
+      // objects before transparent ones whatever their renderOrder (which a parent does not pass
+      // to its children), so the rendered surface's translucent plane was blended over an arrow
+      // behind it (2 of 180 pixels at 6.75 N, CI, 2026-12-05): transparent at full opacity, the
+      // arrows sort after it.
+      for (const part of [arrow.line, arrow.cone]) {
+        Object.assign(part.material, { depthTest: false, transparent: true, opacity: 1 });
+        part.renderOrder = ARROW_RENDER_ORDER;
+      }
       arrow.visible = false;
       this.arrows[name] = arrow;
       this.scene.add(arrow);

@@ -30,6 +30,9 @@ std::int64_t ns_of(std::chrono::milliseconds ms) {
 /// testing asks only for its own).
 std::uint32_t features_of(std::uint32_t version) {
   std::uint32_t f = protocol::kAllFeatures;
+  if (version < protocol::make_version(1, 4)) {
+    f &= ~static_cast<std::uint32_t>(HCP_FEATURE_JOINT_CONTROL);
+  }
   if (version < protocol::make_version(1, 3)) {
     f &= ~static_cast<std::uint32_t>(HCP_FEATURE_LOCAL_COUPLING);
   }
@@ -307,6 +310,30 @@ std::optional<hcp_frame> ClientSession::checked_control(hcp_frame frame) const n
     return std::nullopt;
   }
   return frame;
+}
+
+std::optional<hcp_frame> ClientSession::joint_target_frame(const Joints6& position,
+                                                           const Joints6& speed,
+                                                           std::int64_t now) noexcept {
+  if ((features_ & HCP_FEATURE_JOINT_CONTROL) == 0) {
+    return std::nullopt;
+  }
+  hcp_frame f =
+      protocol::make_frame(HCP_CONTROL_JOINT_TARGET, token_, next_control_sequence(), now);
+  protocol::to_wire(position, f.body.hcp_body_u.joint_target.position);
+  protocol::to_wire(speed, f.body.hcp_body_u.joint_target.speed);
+  return checked_control(f);
+}
+
+std::optional<hcp_frame> ClientSession::joint_torque_frame(const Joints6& torque,
+                                                           std::int64_t now) noexcept {
+  if ((features_ & HCP_FEATURE_JOINT_CONTROL) == 0) {
+    return std::nullopt;
+  }
+  hcp_frame f =
+      protocol::make_frame(HCP_CONTROL_JOINT_TORQUE, token_, next_control_sequence(), now);
+  protocol::to_wire(torque, f.body.hcp_body_u.joint_torque.torque);
+  return checked_control(f);
 }
 
 std::optional<hcp_frame> ClientSession::object_frame(const Pose7& pose, const Vector6& twist,

@@ -82,6 +82,11 @@ class ClientSession {
   std::optional<hcp_frame> object_frame(const Pose7& pose, const Vector6& twist,
                                         std::int64_t now) noexcept;
   std::optional<hcp_frame> wrench_frame(const Vector6& wrench, std::int64_t now) noexcept;
+  /// Protocol 1.4 (JOINT_CONTROL): ARTICULAR's joint set points, ARTICULAR_IMPEDANCE's torques;
+  /// nothing when the session did not negotiate it, is closed, or a value is out of range.
+  std::optional<hcp_frame> joint_target_frame(const Joints6& position, const Joints6& speed,
+                                              std::int64_t now) noexcept;
+  std::optional<hcp_frame> joint_torque_frame(const Joints6& torque, std::int64_t now) noexcept;
   /// The object's contacts from now on (protocol 1.3), checked as the controller checks them.
   ContactResult set_contacts(std::span<const Contact> contacts) noexcept;
   /// The next CONTROL_CONTACT to send at `now` after an object state, if one is due (a changed

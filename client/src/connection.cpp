@@ -68,6 +68,24 @@ bool Connection::send_wrench(const Vector6& wrench) noexcept {
   return sent;
 }
 
+bool Connection::send_joint_target(const Joints6& position, const Joints6& speed) noexcept {
+  std::optional<hcp_frame> frame;
+  {
+    const std::lock_guard lock(impl_->session_mutex);
+    frame = impl_->session.joint_target_frame(position, speed, monotonic_ns());
+  }
+  return impl_->send_control(frame);
+}
+
+bool Connection::send_joint_torque(const Joints6& torque) noexcept {
+  std::optional<hcp_frame> frame;
+  {
+    const std::lock_guard lock(impl_->session_mutex);
+    frame = impl_->session.joint_torque_frame(torque, monotonic_ns());
+  }
+  return impl_->send_control(frame);
+}
+
 StateSnapshot Connection::snapshot() const noexcept {
   const std::lock_guard lock(impl_->session_mutex);
   return impl_->session.latest();

@@ -1,5 +1,6 @@
-// The C API's per-cycle commands: the virtual object's state (VIRTMECH) or the wrench
-// (IMPEDANCE), sent at once, or after the periodic function when a loop runs.
+// The C API's per-cycle commands: the virtual object's state (VIRTMECH), the wrench
+// (IMPEDANCE), the joint set points (ARTICULAR) or torques (ARTICULAR_IMPEDANCE), sent at once,
+// or after the periodic function when a loop runs.
 #include <algorithm>
 #include <array>
 #include <span>
@@ -74,6 +75,48 @@ int virtAddForce(VirtContext VC, float* force) {
   }
   vc->wrench_pending = true;
   return 0;
+}
+
+int virtSetArticularPosition(VirtContext VC, float* pos) {
+  Context* vc = context_of(VC, pos, "virtSetArticularPosition: NULL positions");
+  if (vc == nullptr) {
+    return -1;
+  }
+  const std::lock_guard lock(vc->mutex);
+  if (vc->command_type != CommandType::kArticular) {
+    return fail(VC, VIRT_E_WRONG_MODE, "virtSetArticularPosition: needs COMMAND_TYPE_ARTICULAR");
+  }
+  vc->joint_position = to_doubles<6>(pos);
+  vc->joints_pending = true;
+  return vc->loop_running.load()
+             ? 0
+             : vc->flush_locked("virtSetArticularPosition: a position or speed out of range");
+}
+
+int virtSetArticularSpeed(VirtContext VC, float* speed) {
+  Context* vc = context_of(VC, speed, "virtSetArticularSpeed: NULL speeds");
+  if (vc == nullptr) {
+    return -1;
+  }
+  const std::lock_guard lock(vc->mutex);
+  vc->joint_speed = to_doubles<6>(speed);  // goes with the next positions, as virtSetSpeed's
+  return 0;
+}
+
+int virtSetArticularForce(VirtContext VC, float* force) {
+  Context* vc = context_of(VC, force, "virtSetArticularForce: NULL torques");
+  if (vc == nullptr) {
+    return -1;
+  }
+  const std::lock_guard lock(vc->mutex);
+  if (vc->command_type != CommandType::kArticularImpedance) {
+    return fail(VC, VIRT_E_WRONG_MODE,
+                "virtSetArticularForce: needs COMMAND_TYPE_ARTICULAR_IMPEDANCE");
+  }
+  vc->joint_torque = to_doubles<6>(force);
+  vc->joints_pending = true;
+  return vc->loop_running.load() ? 0
+                                 : vc->flush_locked("virtSetArticularForce: a torque out of range");
 }
 
 int virtSetContacts(VirtContext VC, int count, float* contacts) {

@@ -137,9 +137,14 @@ int Context::flush_locked(const char* what) noexcept {
     }
     ok = c->send_wrench(indexing.to_physical(s.handle_pose, total));
     added_wrench = {};
+  } else if (command_type == CommandType::kArticular && joints_pending) {
+    ok = c->send_joint_target(joint_position, joint_speed);
+  } else if (command_type == CommandType::kArticularImpedance && joints_pending) {
+    ok = c->send_joint_torque(forces_off ? Joints6{} : joint_torque);
   }
   pose_pending = false;
   wrench_pending = false;
+  joints_pending = false;
   if (ok) {
     return 0;
   }

@@ -91,8 +91,12 @@ struct Context {
   Vector6 object_speed{};
   Vector6 wrench{};
   Vector6 added_wrench{};
+  Joints6 joint_position{};  ///< virtSetArticularPosition (ARTICULAR)
+  Joints6 joint_speed{};     ///< virtSetArticularSpeed (ARTICULAR)
+  Joints6 joint_torque{};    ///< virtSetArticularForce (ARTICULAR_IMPEDANCE)
   bool pose_pending = false;
   bool wrench_pending = false;
+  bool joints_pending = false;
   std::uint32_t alarms = 0;              ///< VIRT_ALARM_* raised since virtGetAlarm last read them
   std::atomic<unsigned> debug_flags{0};  ///< DEBUG_* (read outside `mutex` too)
   std::FILE* output = nullptr;  ///< virtSetOutputFile's, owned; nullptr: stderr; written to

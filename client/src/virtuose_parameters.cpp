@@ -179,10 +179,22 @@ int virtSetCommandType(VirtContext VC, VirtCommandType type) {
     case COMMAND_TYPE_VIRTMECH:
       t = CommandType::kVirtmech;
       break;
+    case COMMAND_TYPE_ARTICULAR:
+      t = CommandType::kArticular;
+      break;
+    case COMMAND_TYPE_ARTICULAR_IMPEDANCE:
+      t = CommandType::kArticularImpedance;
+      break;
     default:
       return fail(VC, VIRT_E_MODE_NOT_SUPPORTED,
                   "virtSetCommandType: hapticctrl's controller has COMMAND_TYPE_NONE, "
-                  "COMMAND_TYPE_IMPEDANCE and COMMAND_TYPE_VIRTMECH only");
+                  "IMPEDANCE, VIRTMECH, ARTICULAR and ARTICULAR_IMPEDANCE");
+  }
+  if ((t == CommandType::kArticular || t == CommandType::kArticularImpedance) &&
+      (vc->link()->features() & HCP_FEATURE_JOINT_CONTROL) == 0) {
+    return fail(VC, VIRT_E_MODE_NOT_SUPPORTED,
+                "virtSetCommandType: the controller's protocol is older than 1.4, which brought "
+                "the joint-space command types");
   }
   return set_and_record(
       VC, [&] { vc->link()->set_command_type(t); },
@@ -342,6 +354,7 @@ int virtEnableForceFeedback(VirtContext VC, int enable) {
   // Off at once: a silent application would keep the last frame's forces.
   vc->pose_pending = vc->command_type == CommandType::kVirtmech;
   vc->wrench_pending = vc->command_type == CommandType::kImpedance;
+  vc->joints_pending = vc->command_type == CommandType::kArticularImpedance;
   return vc->flush_locked("virtEnableForceFeedback: the last command out of range");
 }
 

@@ -22,8 +22,6 @@ constexpr const char* kNoIdentity = "the controller does not report a device typ
 constexpr const char* kNoFailures =
     "the controller reports arm faults as a fail-safe, not per motor";
 constexpr const char* kNoSpeedControl = "speed control is not implemented by hapticctrl";
-constexpr const char* kNoArticular =
-    "articular commands are not implemented (COMMAND_TYPE_ARTICULAR*: mode not supported)";
 constexpr const char* kNoTexture = "textures are not implemented by hapticctrl";
 constexpr const char* kNoTrajectory = "trajectory recording is not implemented by hapticctrl";
 constexpr const char* kNoVm = "virtual mechanisms are not implemented by hapticctrl";
@@ -160,15 +158,6 @@ int virtGetCenterSphere(VirtContext VC, float* pos) {
 }
 int virtGetAxisOfRotation(VirtContext VC, float* axe) {
   return without_array(__func__, VC, kNi, kNoSpeedControl, axe, 3);
-}
-int virtSetArticularPosition(VirtContext VC, float*) {
-  return without(__func__, VC, kNi, kNoArticular);
-}
-int virtSetArticularSpeed(VirtContext VC, float*) {
-  return without(__func__, VC, kNi, kNoArticular);
-}
-int virtSetArticularForce(VirtContext VC, float*) {
-  return without(__func__, VC, kNi, kNoArticular);
 }
 int virtSetTexture(VirtContext VC, float*, float*, int) {
   return without(__func__, VC, kNi, kNoTexture);

@@ -22,7 +22,8 @@ constexpr int kKeyPollMs = 2;                    // force ramp ticks at up to 50
 constexpr std::int64_t kRedrawNs = 100'000'000;  // 10 Hz: a human rate
 constexpr std::size_t kEventLines = 6;
 constexpr std::array<const char*, 6> kAxisNames{"fx", "fy", "fz", "tx", "ty", "tz"};
-constexpr std::array<const char*, 3> kCommandTypes{"none", "IMPEDANCE", "VIRTMECH"};
+constexpr std::array<const char*, 5> kCommandTypes{"none", "IMPEDANCE", "VIRTMECH", "ARTICULAR",
+                                                   "ARTICULAR_IMPEDANCE"};
 
 /// One screen row, printf-style with the compiler checking the format (mvprintw is unchecked).
 __attribute__((format(printf, 2, 3))) void line(int row, const char* format, ...) {
@@ -73,7 +74,7 @@ void draw(const ControllerStatus& s, const PanelForce& force, const Operator& op
     badge(row, 32, " RESTARTED: p powers on (clients may not until then) ", true);
   }
   line(++row, "state %s   command %s%s%s", shm::core_state_name(s.vp.core_state),
-       kCommandTypes[s.vp.command_type < 3 ? s.vp.command_type : 0],
+       kCommandTypes[s.vp.command_type < kCommandTypes.size() ? s.vp.command_type : 0],
        s.has_state_bit(shm::state_bits::kCoupled) ? "   coupled" : "",
        s.has_state_bit(shm::state_bits::kDegraded) ? "   DEGRADED" : "");
   move(++row, 0);

@@ -82,6 +82,16 @@ Problem check_control(const hcp_body& body) noexcept {
   if (body.type == HCP_CONTROL_CONTACT) {
     return check_contact(body.hcp_body_u.contact);
   }
+  if (body.type == HCP_CONTROL_JOINT_TARGET) {
+    const hcp_control_joint_target& t = body.hcp_body_u.joint_target;
+    if (!all_within(t.position, kMaxJointAngle) || !all_within(t.speed, kMaxJointSpeed)) {
+      return "joint target: finite, within 10 rad and 100 rad/s";
+    }
+  }
+  if (body.type == HCP_CONTROL_JOINT_TORQUE &&
+      !all_within(body.hcp_body_u.joint_torque.torque, kMaxJointTorque)) {
+    return "joint torque: finite, within 1000 N.m";
+  }
   return std::nullopt;
 }
 
@@ -156,7 +166,9 @@ Problem check_param(const hcp_param& param) noexcept {
     case HCP_P_COMMAND_TYPE:
       return u.command_type <= kMaxCommandType
                  ? Problem{}
-                 : Problem{"command type: NONE (0), IMPEDANCE (1) or VIRTMECH (2)"};
+                 : Problem{
+                       "command type: NONE (0), IMPEDANCE (1), VIRTMECH (2), ARTICULAR (3) "
+                       "or ARTICULAR_IMPEDANCE (4)"};
     case HCP_P_OBJECT:
       return within(u.object.mass, 0.0, kMaxMass) && all_within(u.object.inertia, kMaxInertia) &&
                      u.object.inertia[0] >= 0.0 && u.object.inertia[1] >= 0.0 &&
@@ -228,6 +240,8 @@ Problem check_body(const hcp_body& body) noexcept {
     case HCP_CONTROL_WRENCH:
     case HCP_CONTROL_WRENCH_TIMED:
     case HCP_CONTROL_CONTACT:
+    case HCP_CONTROL_JOINT_TARGET:
+    case HCP_CONTROL_JOINT_TORQUE:
       return check_control(body);
     case HCP_PARAM:
       return check_param(body.hcp_body_u.param);

@@ -41,8 +41,9 @@ bool contact_valid(const shm::ContactSlot& c, double max_stiffness) noexcept {
 
 /// A client sample is usable only if every number in it is finite and in a sane range.
 bool client_sample_valid(const shm::VprPayload& s) noexcept {
-  return s.command_type <= static_cast<std::uint32_t>(shm::CommandType::kVirtmech) &&
-         all_finite(s.object_pose) && all_finite(s.object_twist) &&
+  return s.command_type <= static_cast<std::uint32_t>(shm::CommandType::kArticularImpedance) &&
+         all_finite(s.object_pose) && all_finite(s.object_twist) && all_finite(s.joint_target) &&
+         all_finite(s.joint_speed) && all_finite(s.joint_torque) &&
          all_finite(s.impedance_wrench) && all_finite(s.object_inertia) &&
          std::isfinite(s.object_mass) && s.object_mass >= 0.0 &&
          std::isfinite(s.client_time_step) && s.client_time_step >= 0.0 &&
@@ -110,6 +111,12 @@ ClientSample client_sample_of(const shm::VprPayload& s) noexcept {
     case shm::CommandType::kVirtmech:
       c.command = ClientCommand::kVirtmech;
       break;
+    case shm::CommandType::kArticular:
+      c.command = ClientCommand::kArticular;
+      break;
+    case shm::CommandType::kArticularImpedance:
+      c.command = ClientCommand::kArticularImpedance;
+      break;
     case shm::CommandType::kNone:
       c.command = ClientCommand::kNone;
       break;
@@ -118,6 +125,9 @@ ClientSample client_sample_of(const shm::VprPayload& s) noexcept {
   c.object_pose = s.object_pose;
   c.object_twist = s.object_twist;
   c.impedance_wrench = s.impedance_wrench;
+  c.joint_target = s.joint_target;
+  c.joint_speed = s.joint_speed;
+  c.joint_torque = s.joint_torque;
   c.object_mass = s.object_mass;
   c.object_inertia = s.object_inertia;
   c.time_step = s.client_time_step;
@@ -128,6 +138,7 @@ ClientSample client_sample_of(const shm::VprPayload& s) noexcept {
   c.force_limits = s.force_limits;
   c.energy_in = s.client_energy_in;
   c.local_coupling = (s.flags & shm::vpr_flags::kLocalCoupling) != 0;
+  c.joint_command = (s.flags & shm::vpr_flags::kJointCommand) != 0;
   return c;
 }
 

@@ -76,8 +76,19 @@ ClientFrame client_frame_of(const ClientSample& c) noexcept {
   return frame;
 }
 
+namespace {
+
+JointLawConfig joint_config_of(const LawConfig& config) noexcept {
+  JointLawConfig c = config.joint_space;
+  c.wall_margin = config.wall_margin;  // set points stay out of the soft joint walls
+  c.passivity_guard = config.passivity_guard;
+  return c;
+}
+
+}  // namespace
+
 ServoLaw::ServoLaw(const ArmDynamics& dynamics, const LawConfig& config) noexcept
-    : dynamics_(&dynamics), config_(config) {}
+    : dynamics_(&dynamics), config_(config), joints_(dynamics.model(), joint_config_of(config)) {}
 
 ServoLaw::ObjectImage ServoLaw::object_image(const ServoInputs& in,
                                              const ClientFrame& frame) const noexcept {
@@ -267,7 +278,13 @@ void ServoLaw::follow_session(const ServoInputs& in) noexcept {
   }
 }
 
-double ServoLaw::fade_of(TimeNs silence, const Vector6d& wrench) const noexcept {
+double ServoLaw::peak_share(const Vector6d& wrench) const noexcept {
+  const ArmLimits& lim = dynamics_->model().limits;
+  return std::max(wrench.head<3>().norm() / lim.force_peak,
+                  wrench.tail<3>().norm() / lim.torque_peak);
+}
+
+double ServoLaw::fade_of(TimeNs silence, double share) const noexcept {
   // The force is zero by the end of the window and never falls faster than the full-scale slope
   // (the device's peaks over fade_duration: 1 N/ms): a peak force starts fading at fade_after,
   // a smaller one as late as that slope allows but over shortest_fade at least (5 N: from 30
@@ -280,9 +297,6 @@ double ServoLaw::fade_of(TimeNs silence, const Vector6d& wrench) const noexcept 
   if (silence >= end) {
     return 0.0;
   }
-  const ArmLimits& lim = dynamics_->model().limits;
-  const double share =
-      std::max(wrench.head<3>().norm() / lim.force_peak, wrench.tail<3>().norm() / lim.torque_peak);
   const double needed = std::max(share * static_cast<double>(config_.fade_duration),
                                  static_cast<double>(config_.shortest_fade));
   const auto left = static_cast<double>(end - silence);
@@ -391,6 +405,7 @@ void ServoLaw::compute(const ServoInputs& in, bool /*degraded*/, ServoOutputs& o
     memory_.wrench.setZero();  // power-on starts from zero force, never with a step ...
     memory_.engage = 0.0;      // ... and re-engages the coupling through the ramp
     memory_.held = RenderMemory::HeldContact{};  // and holds no contact from before
+    JointLaw::release(memory_.joints);
     return;
   }
 
@@ -402,8 +417,11 @@ void ServoLaw::compute(const ServoInputs& in, bool /*degraded*/, ServoOutputs& o
       saturate_parts(coupling.spring, coupling.damper, out.force_limit, out.torque_limit);
   const Vector6d saturated = parts.spring + parts.damper;
   out.saturated = (saturated - (coupling.spring + coupling.damper)).squaredNorm() > kClipped;
+  const bool joint_mode = in.client_valid && is_joint_command(in.client.command);
   if (out.fade > 0.0) {  // 0: no session, or its link lost
-    out.fade = fade_of(in.client_silence, saturated);
+    // A joint-space command fades as fast as its largest share of a joint's peak torque allows.
+    out.fade = fade_of(in.client_silence, joint_mode ? joints_.peak_share(memory_.joints.torque)
+                                                     : peak_share(saturated));
   }
   // The engagement follows the fade down (and ramps back up after it): the handle gets the fade
   // once. Multiplying a faded force by it made the fade quadratic, twice as steep at its start
@@ -471,6 +489,7 @@ void ServoLaw::compute(const ServoInputs& in, bool /*degraded*/, ServoOutputs& o
   // J1 2026-12-03).
   const bool fresh =
       out.fade >= 1.0 && !out.braking && out.coupled && engage >= 1.0 && !memory_.anchored;
+  const bool fresh_joints = out.fade >= 1.0 && !out.braking && engage >= 1.0;
   Vector6d wrench = rate_limit(
       target, fresh ? lim.force_rate : std::min(lim.force_rate, config_.release_rate), dt);
   wrench.head<3>() = clamp_norm(wrench.head<3>(), lim.force_peak);
@@ -488,9 +507,22 @@ void ServoLaw::compute(const ServoInputs& in, bool /*degraded*/, ServoOutputs& o
         -(frame.rotation * object.tail<3>()) / frame.force_factor;
   }
   out.handle_wrench = wrench;
+  const Vector6d joint_command =
+      joint_mode ? joint_space(in, engage,
+                               (fresh_joints ? lim.force_rate
+                                             : std::min(lim.force_rate, config_.release_rate)) /
+                                   lim.force_peak,
+                               dt, out)
+                 : Vector6d::Zero();
+  if (!joint_mode) {
+    JointLaw::release(memory_.joints);
+  }
 
+  // In joint space the joints' ranges bound the arm, not the handle's workspace box: its wall
+  // held a joint the client drove toward its limit away from it.
+  const Vector6d box = joint_mode ? Vector6d::Zero() : workspace_wall(twist.head<3>());
   Vector6d tau = dynamics_->gravity_torque(chain_) - config_.joint_damping * qd + joint_walls(q) +
-                 jac.transpose() * (workspace_wall(twist.head<3>()) + wrench);
+                 jac.transpose() * (box + wrench) + joint_command;
   for (int i = 0; i < kJoints; ++i) {
     const double limit = dynamics_->model().joints[static_cast<std::size_t>(i)].torque_peak;
     tau(i) = std::clamp(tau(i), -limit, limit);

@@ -104,7 +104,7 @@ TEST_F(SessionTest, AnotherMajorVersionIsRefusedWithBothVersions) {
   EXPECT_EQ(client.reply.body.hcp_body_u.refuse.code, HCP_REFUSE_VERSION);
   EXPECT_EQ(client.reply.body.hcp_body_u.refuse.peer_version, protocol::make_version(2, 1));
   EXPECT_EQ(std::string(protocol::text_of(client.reply.body.hcp_body_u.refuse.reason)),
-            "protocol version mismatch: client 2.1 (oldest 2.1), controller 1.3");
+            "protocol version mismatch: client 2.1 (oldest 2.1), controller 1.4");
   EXPECT_EQ(session.counters().refused_version.load(), 1U);
 }
 
@@ -348,6 +348,56 @@ TEST_F(SessionTest, TimedWrenchesAndContactsFromASessionWithoutLocalCouplingAreD
   client.feed(client.bytes(c));
   EXPECT_EQ(session.counters().dropped_for(LinkDrop::kToken), 2U);
   EXPECT_EQ(controller.vpr_now().flags & shm::vpr_flags::kLocalCoupling, 0U);
+}
+
+TEST_F(SessionTest, JointFramesReachVprAndCountAsTheCommandOfTheirModeOnly) {
+  client.hello();
+  const auto command_type = [&](std::uint32_t type) {
+    hcp_frame f = client.param(HCP_P_COMMAND_TYPE);
+    f.body.hcp_body_u.param.hcp_param_u.command_type = type;
+    client.feed(client.bytes(f));
+    ASSERT_EQ(client.reply.body.hcp_body_u.ack.status, HCP_ACK_OK);
+  };
+  command_type(HCP_COMMAND_ARTICULAR);
+  hcp_frame torque =
+      protocol::make_frame(HCP_CONTROL_JOINT_TORQUE, client.token, ++client.control_seq, 1);
+  torque.body.hcp_body_u.joint_torque.torque[2] = 0.5F;
+  client.feed(client.bytes(torque));
+  shm::VprPayload v = controller.vpr_now();
+  EXPECT_DOUBLE_EQ(v.joint_torque[2], 0.5);
+  EXPECT_EQ(v.flags & shm::vpr_flags::kJointCommand, 0U) << "a torque is not ARTICULAR's command";
+  hcp_frame target =
+      protocol::make_frame(HCP_CONTROL_JOINT_TARGET, client.token, ++client.control_seq, 2);
+  target.body.hcp_body_u.joint_target.position[1] = -0.6F;
+  target.body.hcp_body_u.joint_target.speed[5] = 0.25F;
+  client.feed(client.bytes(target));
+  v = controller.vpr_now();
+  EXPECT_DOUBLE_EQ(v.joint_target[1], -0.6000000238418579);
+  EXPECT_DOUBLE_EQ(v.joint_speed[5], 0.25);
+  EXPECT_NE(v.flags & shm::vpr_flags::kJointCommand, 0U);
+  command_type(HCP_COMMAND_ARTICULAR_IMPEDANCE);  // a new mode: the fields are not its command
+  v = controller.vpr_now();
+  EXPECT_EQ(v.flags & shm::vpr_flags::kJointCommand, 0U);
+  EXPECT_DOUBLE_EQ(v.joint_target[1], 0.0);
+  EXPECT_DOUBLE_EQ(v.joint_torque[2], 0.0);
+  torque.body.hcp_body_u.joint_torque.torque[2] = std::nanf("");
+  torque.header.sequence = ++client.control_seq;
+  client.feed(client.bytes(torque));
+  EXPECT_EQ(dropped(LinkDrop::kRange), 1U) << "a NaN torque";
+}
+
+TEST_F(SessionTest, JointFramesAndModesFromASessionWithoutJointControlAreRefused) {
+  client.hello(protocol::kVersion, HCP_FEATURE_TIMING);
+  hcp_frame f = client.param(HCP_P_COMMAND_TYPE);
+  f.body.hcp_body_u.param.hcp_param_u.command_type = HCP_COMMAND_ARTICULAR_IMPEDANCE;
+  client.feed(client.bytes(f));
+  EXPECT_EQ(client.reply.body.hcp_body_u.ack.status, HCP_ACK_REJECTED);
+  EXPECT_NE(std::string(protocol::text_of(client.reply.body.hcp_body_u.ack.reason)).find("1.4"),
+            std::string::npos);
+  client.feed(client.bytes(
+      protocol::make_frame(HCP_CONTROL_JOINT_TORQUE, client.token, ++client.control_seq, 1)));
+  EXPECT_EQ(dropped(LinkDrop::kToken), 1U);
+  EXPECT_EQ(controller.vpr_now().command_type, 0U);
 }
 
 TEST_F(SessionTest, LocalCouplingWithoutTimingIsNotGranted) {

@@ -36,10 +36,11 @@ TEST(Connection, HandshakeNegotiatesAndTheAnswerStreamFlows) {
   ControllerStack stack("handshake");
   ASSERT_TRUE(stack.ready()) << stack.diagnostics();
   Connection c(address_of(stack));
-  EXPECT_EQ(c.features(), 15U) << "joint state, link statistics, timing, local coupling";
+  EXPECT_EQ(c.features(), 31U)
+      << "joint state, link statistics, timing, local coupling, joint control";
   EXPECT_EQ(c.controller_period_ns(), stack.period_us() * 1000);
   EXPECT_EQ(c.watchdog_ms(), 3000U);
-  EXPECT_EQ(c.controller_version(), 0x00010003U);
+  EXPECT_EQ(c.controller_version(), 0x00010004U);
   StateSnapshot s;
   ASSERT_TRUE(c.wait_for_answer(0, 2s, s));
   EXPECT_TRUE(s.valid);
@@ -143,7 +144,7 @@ TEST(Connection, VersionMismatchIsExplainedWithBothVersions) {
     EXPECT_EQ(e.code(), ErrorCode::kVersion);
     const std::string what = e.what();
     EXPECT_NE(what.find("client 2.3"), std::string::npos) << what;
-    EXPECT_NE(what.find("controller 1.3"), std::string::npos) << what;
+    EXPECT_NE(what.find("controller 1.4"), std::string::npos) << what;
   }
   EXPECT_TRUE(
       ControllerStack::eventually([&] { return stack.link_stats().refused_version == 1U; }, 1s));

@@ -90,7 +90,7 @@ TEST(VirtuoseApi, VersionsAxesAndTheLastErrorOfASession) {
   ASSERT_TRUE(vc.open()) << virtGetErrorDetail(nullptr);
   ASSERT_EQ(virtGetControlerVersion(vc.get(), &major, &minor), 0);
   EXPECT_EQ(major, 1);
-  EXPECT_EQ(minor, 3) << "the bridge's protocol, from its WELCOME";
+  EXPECT_EQ(minor, 4) << "the bridge's protocol, from its WELCOME";
   int axes = 0;
   ASSERT_EQ(virtGetNbAxes(vc.get(), &axes), 0);
   EXPECT_EQ(axes, 6);
@@ -143,7 +143,7 @@ TEST(VirtuoseApi, DebugLinesGoToTheOutputFileAndTheHardwareStatusIsTheController
   std::fclose(status);
   const std::string shown(buffer, size);
   free(buffer);  // NOLINT(*-no-malloc,*-owning-memory): open_memstream's
-  EXPECT_NE(shown.find("protocol 1.3"), std::string::npos) << shown;
+  EXPECT_NE(shown.find("protocol 1.4"), std::string::npos) << shown;
   EXPECT_NE(shown.find("core running"), std::string::npos) << shown;
   EXPECT_NE(shown.find("power off"), std::string::npos) << shown;
   EXPECT_EQ(virtDisplayHardwareStatus(vc.get(), nullptr), -1);

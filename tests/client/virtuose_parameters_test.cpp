@@ -87,8 +87,10 @@ TEST(VirtuoseParameters, ParametersStateAndModes) {
   EXPECT_NE(std::string(virtGetErrorDetail(vc)).find("force factor"), std::string::npos);
 
   float force[6] = {1, 0, 0, 0, 0, 0};  // NOLINT(*-avoid-c-arrays)
-  EXPECT_EQ(virtSetCommandType(vc, COMMAND_TYPE_ARTICULAR), -1);
+  EXPECT_EQ(virtSetCommandType(vc, COMMAND_TYPE_CARTESIAN), -1);
   EXPECT_EQ(virtGetErrorCode(vc), VIRT_E_MODE_NOT_SUPPORTED);
+  EXPECT_EQ(virtSetCommandType(vc, COMMAND_TYPE_ARTICULAR), 0) << "protocol 1.4 (J6)";
+  EXPECT_EQ(stack.vpr().command_type, 3U) << "the protocol's ARTICULAR";
   EXPECT_EQ(virtSetCommandType(vc, COMMAND_TYPE_VIRTMECH), 0);
   EXPECT_EQ(stack.vpr().command_type, 2U) << "the protocol's VIRTMECH";
   VirtCommandType type = COMMAND_TYPE_NONE;

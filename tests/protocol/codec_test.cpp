@@ -48,7 +48,7 @@ hcp_frame object_frame() {
 
 TEST(Codec, KeepaliveGoldenBytes) {
   const auto bytes = encoded(make_frame(HCP_KEEPALIVE, kToken, 42, 1'000'000'000));
-  EXPECT_EQ(hex(bytes), "484354500001000301020304050607080000002a000000003b9aca00000000061489d1e9");
+  EXPECT_EQ(hex(bytes), "484354500001000401020304050607080000002a000000003b9aca0000000006dad92d41");
 }
 
 TEST(Codec, ControlObjectGoldenBytesAndSize) {
@@ -56,9 +56,9 @@ TEST(Codec, ControlObjectGoldenBytesAndSize) {
   EXPECT_EQ(bytes.size(), 88U);
   EXPECT_LE(bytes.size(), kControlMaxBytes);
   EXPECT_EQ(hex(bytes),
-            "484354500001000301020304050607080000002b0000000077359400000000043dcccccd3e4ccccd3e"
+            "484354500001000401020304050607080000002b0000000077359400000000043dcccccd3e4ccccd3e"
             "99999a0000000000000000000000003f8000003f000000000000000000000000000000000000003e80"
-            "000065381db6");
+            "00004d278a33");
 }
 
 TEST(Codec, ControlWrenchGoldenBytes) {
@@ -68,8 +68,8 @@ TEST(Codec, ControlWrenchGoldenBytes) {
   const auto bytes = encoded(f);
   EXPECT_EQ(bytes.size(), 60U);
   EXPECT_EQ(hex(bytes),
-            "484354500001000301020304050607080000002c0000000000000003000000053f800000c00000004040"
-            "000000000000000000003f000000e8ea8873");
+            "484354500001000401020304050607080000002c0000000000000003000000053f800000c00000004040"
+            "000000000000000000003f000000f2804988");
 }
 
 TEST(Codec, ParamGoldenBytes) {
@@ -77,8 +77,8 @@ TEST(Codec, ParamGoldenBytes) {
   f.body.hcp_body_u.param.id = HCP_P_TIME_STEP;
   f.body.hcp_body_u.param.hcp_param_u.time_step = 0.001;
   EXPECT_EQ(hex(encoded(f)),
-            "4843545000010003010203040506070800000007000000000000000400000008000000013f50624dd2f1a9"
-            "fc841d41c2");
+            "4843545000010004010203040506070800000007000000000000000400000008000000013f50624dd2f1a9"
+            "fcb02f281d");
 }
 
 TEST(Codec, EveryParameterA12ClientSendsFitsInNinetyBytes) {
@@ -187,6 +187,13 @@ std::vector<hcp_frame> one_of_each() {
   k.friction[0] = 0.5F;
   k.friction[1] = 0.4F;
   frames.push_back(contact);
+  hcp_frame joint_target = make_frame(HCP_CONTROL_JOINT_TARGET, kToken, 11, 15);
+  joint_target.body.hcp_body_u.joint_target.position[1] = -0.6F;
+  joint_target.body.hcp_body_u.joint_target.speed[5] = 0.25F;
+  frames.push_back(joint_target);
+  hcp_frame joint_torque = make_frame(HCP_CONTROL_JOINT_TORQUE, kToken, 12, 15);
+  joint_torque.body.hcp_body_u.joint_torque.torque[0] = -1.5F;
+  frames.push_back(joint_torque);
   for (int id = HCP_P_TIME_STEP; id <= HCP_P_EMERGENCY_RESET; ++id) {
     hcp_frame p = make_frame(HCP_PARAM, kToken, static_cast<std::uint32_t>(10 + id), 16);
     hcp_param& q = p.body.hcp_body_u.param;
@@ -244,6 +251,9 @@ TEST(Codec, FrameSizesAreAsDocumented) {  // docs/protocol.md, "Frames"
   EXPECT_EQ(largest[HCP_CONTROL_CONTACT], 88U);
   EXPECT_LE(largest[HCP_CONTROL_CONTACT], kControlMaxBytes);
   EXPECT_EQ(largest[HCP_CONTROL_WRENCH], 60U);
+  EXPECT_EQ(largest[HCP_CONTROL_JOINT_TARGET], 84U);
+  EXPECT_LE(largest[HCP_CONTROL_JOINT_TARGET], kControlMaxBytes);
+  EXPECT_EQ(largest[HCP_CONTROL_JOINT_TORQUE], 60U);
   EXPECT_EQ(largest[HCP_KEEPALIVE], 36U);
   EXPECT_EQ(largest[HCP_ANSWER], 324U);
   EXPECT_EQ(largest[HCP_PARAM], 96U);

@@ -53,7 +53,9 @@ TEST(Values, EachParameterHasItsRange) {
   p.hcp_param_u.base_frame_sp[6] = 2.0F;
   EXPECT_TRUE(check_param(p)) << "not a unit quaternion";
   p = param(HCP_P_COMMAND_TYPE);
-  p.hcp_param_u.command_type = 3;
+  p.hcp_param_u.command_type = HCP_COMMAND_ARTICULAR_IMPEDANCE;  // 1.4's joint space
+  EXPECT_FALSE(check_param(p));
+  p.hcp_param_u.command_type = 5;
   EXPECT_TRUE(check_param(p));
   p = param(HCP_P_OBJECT);
   p.hcp_param_u.object = {1, 0.2, {0.001, 0.001, -0.001}};

@@ -102,6 +102,8 @@ std::size_t Session::on_datagram(std::span<const std::uint8_t> bytes,
     case HCP_CONTROL_WRENCH:
     case HCP_CONTROL_WRENCH_TIMED:
     case HCP_CONTROL_CONTACT:
+    case HCP_CONTROL_JOINT_TARGET:
+    case HCP_CONTROL_JOINT_TORQUE:
     case HCP_KEEPALIVE:
       if (!from_session(in, from) || !negotiated(in.body.type)) {
         counters_.drop(LinkDrop::kToken);
@@ -146,6 +148,9 @@ bool Session::negotiated(hcp_frame_type type) const noexcept {
     case HCP_CONTROL_WRENCH_TIMED:
     case HCP_CONTROL_CONTACT:
       return (session_.features & HCP_FEATURE_LOCAL_COUPLING) != 0;
+    case HCP_CONTROL_JOINT_TARGET:
+    case HCP_CONTROL_JOINT_TORQUE:
+      return (session_.features & HCP_FEATURE_JOINT_CONTROL) != 0;
     default:
       return true;
   }
@@ -305,6 +310,15 @@ void Session::take_sample(const hcp_frame& in, TimeNs now) noexcept {
       protocol::from_wire(b.hcp_body_u.wrench_timed.wrench, vpr_.impedance_wrench);
       take_timing(b.hcp_body_u.wrench_timed.answer_echo, b.hcp_body_u.wrench_timed.energy_in, now);
       break;
+    case HCP_CONTROL_JOINT_TARGET:
+      protocol::from_wire(b.hcp_body_u.joint_target.position, vpr_.joint_target);
+      protocol::from_wire(b.hcp_body_u.joint_target.speed, vpr_.joint_speed);
+      mark_joint_command(shm::CommandType::kArticular);
+      break;
+    case HCP_CONTROL_JOINT_TORQUE:
+      protocol::from_wire(b.hcp_body_u.joint_torque.torque, vpr_.joint_torque);
+      mark_joint_command(shm::CommandType::kArticularImpedance);
+      break;
     default:  // CONTROL_WRENCH
       protocol::from_wire(b.hcp_body_u.wrench.wrench, vpr_.impedance_wrench);
       break;
@@ -314,6 +328,12 @@ void Session::take_sample(const hcp_frame& in, TimeNs now) noexcept {
   vpr_.link_loss_ppm = link_.loss_ppm();
   vpr_.client_sequence = control_seq_high_;
   vpr_.client_time_ns = in.header.sender_time_ns;
+}
+
+void Session::mark_joint_command(shm::CommandType frame_mode) noexcept {
+  if (vpr_.command_type == static_cast<std::uint32_t>(frame_mode)) {
+    vpr_.flags |= shm::vpr_flags::kJointCommand;
+  }
 }
 
 void Session::take_contact(const hcp_control_contact& c, TimeNs now) noexcept {

@@ -9,6 +9,17 @@ namespace hapticctrl::udp_bridge {
 
 using shm::LinkDrop;
 
+namespace {
+
+/// The joint-space command types need protocol 1.4's JOINT_CONTROL.
+bool needs_joint_control(const hcp_param& p) noexcept {
+  return p.id == HCP_P_COMMAND_TYPE &&
+         (p.hcp_param_u.command_type == HCP_COMMAND_ARTICULAR ||
+          p.hcp_param_u.command_type == HCP_COMMAND_ARTICULAR_IMPEDANCE);
+}
+
+}  // namespace
+
 std::size_t Session::on_param(const hcp_frame& in, bool values_ok, TimeNs now,
                               std::span<std::uint8_t> reply) noexcept {
   const std::uint32_t seq = in.header.sequence;
@@ -29,6 +40,13 @@ std::size_t Session::on_param(const hcp_frame& in, bool values_ok, TimeNs now,
     result.status = HCP_ACK_REJECTED;
     const auto problem = protocol::check_param(in.body.hcp_body_u.param);
     protocol::set_text(result.reason, problem.value_or("value out of range"));
+  } else if (needs_joint_control(in.body.hcp_body_u.param) &&
+             (session_.features & HCP_FEATURE_JOINT_CONTROL) == 0) {
+    counters_.params_rejected.fetch_add(1, std::memory_order_relaxed);
+    result.status = HCP_ACK_REJECTED;
+    protocol::set_text(result.reason,
+                       "command type ARTICULAR and ARTICULAR_IMPEDANCE need protocol 1.4 (the "
+                       "session did not negotiate JOINT_CONTROL)");
   } else {
     result.status = apply(in.body.hcp_body_u.param, now);
     if (result.status == HCP_ACK_RETRY) {
@@ -71,6 +89,13 @@ hcp_ack_status Session::apply(const hcp_param& param, TimeNs now) noexcept {
       vpr_.indexing_mode = u.indexing_mode;
       break;
     case HCP_P_COMMAND_TYPE:
+      if (vpr_.command_type != u.command_type) {
+        // The joint fields of the mode before are not a command of this one (vpr_flags).
+        vpr_.flags &= ~shm::vpr_flags::kJointCommand;
+        vpr_.joint_target = {};
+        vpr_.joint_speed = {};
+        vpr_.joint_torque = {};
+      }
       vpr_.command_type = u.command_type;
       break;
     case HCP_P_OBJECT:

@@ -92,6 +92,13 @@ class Connection {
   bool send_object_state(const Pose7& pose, const Vector6& twist) noexcept;
   /// IMPEDANCE: the wrench to render at the handle (client frame). False if not sent.
   bool send_wrench(const Vector6& wrench) noexcept;
+  /// ARTICULAR: where each joint is to be [rad] and how fast its target moves [rad/s]; the
+  /// controller's set points follow within the joints' ranges and its joint speed limit.
+  /// False if not sent (a session without protocol 1.4's JOINT_CONTROL, a value out of range).
+  bool send_joint_target(const Joints6& position, const Joints6& speed) noexcept;
+  /// ARTICULAR_IMPEDANCE: a torque per joint [N.m], on top of the controller's gravity
+  /// compensation. False if not sent (as send_joint_target).
+  bool send_joint_torque(const Joints6& torque) noexcept;
   /// VIRTMECH: the contacts the object is in or near now (at most kMaxContacts; empty: none).
   /// They go out with the next object states (each changed contact at once, every one at least
   /// every 5 ms) and stay in force until replaced; the controller stiffens the coupling along

@@ -14,7 +14,15 @@ using Vector6 = std::array<double, 6>;
 using Joints6 = std::array<double, 6>;
 
 /// What the client commands (VirtuoseAPI's COMMAND_TYPE subset).
-enum class CommandType : std::uint32_t { kNone = 0, kImpedance = 1, kVirtmech = 2 };
+/// What the controller renders for the session. The joint-space two need a protocol 1.4
+/// controller (Connection::features() has HCP_FEATURE_JOINT_CONTROL; docs/control.md).
+enum class CommandType : std::uint32_t {
+  kNone = 0,
+  kImpedance = 1,           ///< send_wrench: a wrench at the handle
+  kVirtmech = 2,            ///< send_object_state: the handle coupled to an object
+  kArticular = 3,           ///< send_joint_target: the joints held at set points
+  kArticularImpedance = 4,  ///< send_joint_torque: a torque per joint
+};
 
 /// VirtuoseAPI indexing modes (values as on the wire).
 enum class IndexingMode : std::uint32_t {

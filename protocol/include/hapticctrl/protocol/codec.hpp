@@ -35,7 +35,8 @@ using FrameBuffer = std::array<std::uint8_t, kMaxFrameBytes>;
 inline constexpr std::uint32_t kVersion = make_version(HCP_VERSION_MAJOR, HCP_VERSION_MINOR);
 /// Every optional feature this build knows.
 inline constexpr std::uint32_t kAllFeatures = HCP_FEATURE_JOINT_STATE | HCP_FEATURE_LINK_STATS |
-                                              HCP_FEATURE_TIMING | HCP_FEATURE_LOCAL_COUPLING;
+                                              HCP_FEATURE_TIMING | HCP_FEATURE_LOCAL_COUPLING |
+                                              HCP_FEATURE_JOINT_CONTROL;
 
 /// Why a datagram is not a usable frame; each value is a separate drop counter in the bridge.
 enum class DecodeStatus : std::uint8_t {

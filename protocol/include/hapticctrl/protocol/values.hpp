@@ -28,13 +28,18 @@ inline constexpr double kMaxFactor = 1e3;
 /// VirtuoseAPI's seven indexing modes are 0-4, 6 and 7 (5 is not one of them).
 inline constexpr unsigned kMaxIndexingMode = 7;
 inline constexpr unsigned kNotAnIndexingMode = 5;
-inline constexpr unsigned kMaxCommandType = 2;  ///< NONE, IMPEDANCE, VIRTMECH
-inline constexpr double kMaxMass = 1000.0;      ///< kg
-inline constexpr double kMaxInertia = 1000.0;   ///< kg.m^2
+/// NONE, IMPEDANCE, VIRTMECH, and with protocol 1.4's JOINT_CONTROL ARTICULAR and
+/// ARTICULAR_IMPEDANCE (the bridge refuses those two in a session without the feature).
+inline constexpr unsigned kMaxCommandType = HCP_COMMAND_ARTICULAR_IMPEDANCE;
+inline constexpr double kMaxMass = 1000.0;     ///< kg
+inline constexpr double kMaxInertia = 1000.0;  ///< kg.m^2
 inline constexpr double kMaxGain = 1e6;
 inline constexpr double kMaxForceLimit = 1e4;
 inline constexpr double kMaxEnergy = 1e12;           ///< J, a coupling channel's cumulative energy
 inline constexpr double kMaxContactDistance = 1.0;   ///< m, |gap| of a contact
+inline constexpr double kMaxJointAngle = 10.0;       ///< rad, a joint set point (any joint's range)
+inline constexpr double kMaxJointSpeed = 100.0;      ///< rad/s, a joint speed
+inline constexpr double kMaxJointTorque = 1000.0;    ///< N.m, a joint torque
 inline constexpr double kMinContactStiffness = 1.0;  ///< N/m
 inline constexpr double kMaxFriction = 10.0;         ///< Coulomb coefficient
 inline constexpr unsigned kMinWatchdogMs = 10;
@@ -46,8 +51,8 @@ template <typename T>
 
 /// A twist: finite, within kMaxLinearSpeed and kMaxAngularSpeed per component.
 [[nodiscard]] Problem check_twist(const float (&twist)[6]) noexcept;  // NOLINT(*-avoid-c-arrays)
-/// CONTROL_OBJECT, CONTROL_OBJECT_TIMED (position, packed rotation, twist), CONTROL_WRENCH(_TIMED)
-/// or CONTROL_CONTACT.
+/// CONTROL_OBJECT, CONTROL_OBJECT_TIMED (position, packed rotation, twist), CONTROL_WRENCH(_TIMED),
+/// CONTROL_CONTACT, CONTROL_JOINT_TARGET or CONTROL_JOINT_TORQUE.
 [[nodiscard]] Problem check_control(const hcp_body& body) noexcept;
 
 /// A CONTROL_CONTACT's slot word: this contact's slot and how many slots are in use.

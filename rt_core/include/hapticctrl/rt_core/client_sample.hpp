@@ -11,9 +11,11 @@ namespace hapticctrl::rt_core {
 
 /// What the client asks the controller to render.
 enum class ClientCommand : std::uint8_t {
-  kNone,       ///< nothing: the coupling is released
-  kImpedance,  ///< render impedance_wrench at the handle
-  kVirtmech,   ///< couple the handle to the client's object (spring-damper)
+  kNone,                ///< nothing: the coupling is released
+  kImpedance,           ///< render impedance_wrench at the handle
+  kVirtmech,            ///< couple the handle to the client's object (spring-damper)
+  kArticular,           ///< hold the joints at set points that follow joint_target (J6)
+  kArticularImpedance,  ///< render joint_torque at the joints (J6)
 };
 
 /// Contact slots a client may use (protocol 1.3).
@@ -40,9 +42,14 @@ struct ClientSample {
   std::array<double, 7> object_pose{0, 0, 0, 0, 0, 0, 1};  ///< client's environment frame
   std::array<double, 6> object_twist{};
   std::array<double, 6> impedance_wrench{};  ///< IMPEDANCE, environment frame [N, N·m]
-  double object_mass = 0.0;                  ///< kg, 0: not declared
-  std::array<double, 3> object_inertia{};    ///< principal inertia, kg·m², 0: not declared
-  double time_step = 0.0;                    ///< the client's simulation step, s (0: unknown)
+  std::array<double, 6> joint_target{};      ///< ARTICULAR: joint positions [rad]
+  std::array<double, 6> joint_speed{};       ///< ARTICULAR: joint speeds [rad/s]
+  std::array<double, 6> joint_torque{};      ///< ARTICULAR_IMPEDANCE: joint torques [N·m]
+  /// The joint command of the command type in force has come (until then: nothing rendered).
+  bool joint_command = false;
+  double object_mass = 0.0;                ///< kg, 0: not declared
+  std::array<double, 3> object_inertia{};  ///< principal inertia, kg·m², 0: not declared
+  double time_step = 0.0;                  ///< the client's simulation step, s (0: unknown)
   double force_factor = 1.0;
   double speed_factor = 1.0;
   std::array<double, 7> base_frame{0, 0, 0, 0, 0, 0, 1};  ///< our base in its environment

@@ -19,6 +19,7 @@
 #include "hapticctrl/rt_core/arm_dynamics.hpp"
 #include "hapticctrl/rt_core/arm_io.hpp"
 #include "hapticctrl/rt_core/client_sample.hpp"
+#include "hapticctrl/rt_core/joint_law.hpp"
 #include "hapticctrl/rt_core/logical_state.hpp"
 
 namespace hapticctrl::rt_core {
@@ -159,6 +160,8 @@ struct LawConfig {
   double wall_margin = 0.05;     ///< rad before a joint limit where the soft wall starts
   double wall_stiffness = 20.0;  ///< N·m/rad
   bool passivity_guard = true;
+  /// The joint-space commands (J6); their set points keep wall_margin from each joint's limit.
+  JointLawConfig joint_space{};
   double default_object_mass = 0.5;  ///< kg, when the client declares none
   double default_time_step = 1e-3;   ///< s, when the client declares none
 };
@@ -238,6 +241,7 @@ struct RenderMemory {
   static constexpr std::size_t kLoopSamples = 15;
   std::array<TimeNs, kLoopSamples> loop_samples{};  ///< the newest measured loops (median)
   std::uint64_t loop_next = 0;
+  JointMemory joints;  ///< the joint-space commands' (joint_law.hpp)
 };
 
 /// Counters of the law (cycle-safe reads).
@@ -253,6 +257,8 @@ struct LawCounters {
   /// Cycles in which a surface's report came toward the handle and the rendered plane stayed
   /// (a passive model update, ServoLaw::render_surface).
   std::uint64_t surface_updates_held = 0;
+  /// Cycles in which the joint-space passivity guard damped a joint (ARTICULAR_IMPEDANCE).
+  std::uint64_t joint_passivity_active = 0;
 };
 
 class ServoLaw {
@@ -365,7 +371,10 @@ class ServoLaw {
   [[nodiscard]] Vector6d restretch_damping(const Vector6d& twist) const noexcept;
   void track_loop_delay(const ServoInputs& in) noexcept;
   CouplingGains slew_gains(const CouplingGains& target, TimeNs dt) noexcept;
-  [[nodiscard]] double fade_of(TimeNs silence, const Vector6d& wrench) const noexcept;
+  [[nodiscard]] double fade_of(TimeNs silence, double peak_share) const noexcept;
+  [[nodiscard]] double peak_share(const Vector6d& wrench) const noexcept;
+  [[nodiscard]] Vector6d joint_space(const ServoInputs& in, double engage, double rate, double dt,
+                                     ServoOutputs& out) noexcept;
   void follow_session(const ServoInputs& in) noexcept;
   Vector6d guard_channel(const ServoInputs& in, const ClientFrame& frame, const Vector6d& coupling,
                          const Vector6d& to_object, const Vector6d& stretch, double dt) noexcept;
@@ -390,6 +399,7 @@ class ServoLaw {
 
   const ArmDynamics* dynamics_;
   LawConfig config_;
+  JointLaw joints_;
   ChainState chain_;
   RenderMemory memory_;
   LawCounters counters_;

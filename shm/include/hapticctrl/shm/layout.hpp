@@ -43,8 +43,9 @@ namespace hapticctrl::shm {
 // channel energy; VP the coupling loop figures, gains and channel energies (H1); 6: force
 // carries a spring-damper hand (H1's operator model); telemetry would-be fail-safes (benchmark
 // mode); 7: VPr the object's contacts, VP the coupling's contact stiffening and limits (J1,
-// protocol 1.3); 8: the blackbox region (J4); 9: VP the surface rendered on the handle (J2)
-inline constexpr std::uint32_t kAbiVersion = 9;
+// protocol 1.3); 8: the blackbox region (J4); 9: VP the surface rendered on the handle (J2);
+// 10: VPr the joint-space commands (J6, protocol 1.4)
+inline constexpr std::uint32_t kAbiVersion = 10;
 /// "HAPTICC1" as a little-endian word; stored last when the segment is ready, cleared at exit.
 inline constexpr std::uint64_t kSegmentMagic = 0x3143434954504148ULL;
 inline constexpr std::size_t kPageSize = 4096;

@@ -17,8 +17,15 @@ using Pose7 = std::array<double, 7>;    ///< x, y, z [m], qx, qy, qz, qw
 using Vector6 = std::array<double, 6>;  ///< linear xyz, angular xyz
 using Joints6 = std::array<double, 6>;  ///< one value per joint, base to wrist
 
-/// Command type of the client session (VirtuoseAPI's COMMAND_TYPE subset).
-enum class CommandType : std::uint32_t { kNone = 0, kImpedance = 1, kVirtmech = 2 };
+/// Command type of the client session (VirtuoseAPI's COMMAND_TYPE subset; protocol 1.4 adds the
+/// joint-space two, J6).
+enum class CommandType : std::uint32_t {
+  kNone = 0,
+  kImpedance = 1,
+  kVirtmech = 2,
+  kArticular = 3,           ///< the joints held at set points (joint_target, joint_speed)
+  kArticularImpedance = 4,  ///< a torque per joint (joint_torque)
+};
 
 /// Lifecycle of the core process, in VP and the segment header.
 enum class CoreState : std::uint32_t {
@@ -73,6 +80,10 @@ inline constexpr std::uint32_t kObjectAttached = 1U << 0;  ///< VIRTMECH couples
 /// The session negotiated protocol 1.3's local coupling: the client closes its object's side of
 /// the coupling, reports its IMPEDANCE energy and may send contacts.
 inline constexpr std::uint32_t kLocalCoupling = 1U << 1;
+/// Protocol 1.4: the joint command of the command type in force (a CONTROL_JOINT_TARGET in
+/// ARTICULAR, a CONTROL_JOINT_TORQUE in ARTICULAR_IMPEDANCE) has come since it was set: until
+/// then the joint fields are not the client's and the core renders nothing from them.
+inline constexpr std::uint32_t kJointCommand = 1U << 2;
 }  // namespace vpr_flags
 
 /// Contact slots a client may use (protocol 1.3, HCP_MAX_CONTACTS).
@@ -133,6 +144,9 @@ struct VprPayload {
   Pose7 observation_frame{0, 0, 0, 0, 0, 0, 1};
   std::array<double, 4> gain_override{};  ///< k_lin, b_lin, k_ang, b_ang; 0 = derived
   std::array<double, 2> force_limits{};   ///< max force [N], max torque [N·m]; 0 = model's
+  Joints6 joint_target{};                 ///< ARTICULAR: where each joint is to be [rad]
+  Joints6 joint_speed{};   ///< ARTICULAR: how fast each joint is to move there [rad/s]
+  Joints6 joint_torque{};  ///< ARTICULAR_IMPEDANCE: a torque per joint [N·m]
   /// Contacts of the object (protocol 1.3): slots below contact_count are in use.
   std::uint32_t contact_count = 0;
   std::uint32_t contact_frames = 0;  ///< CONTROL_CONTACT frames taken this session (wraps)
@@ -325,7 +339,7 @@ struct LinkStatsPayload {
 
 // Layout pins: a change here is an ABI change (bump kAbiVersion in layout.hpp).
 static_assert(sizeof(ContactSlot) == 160);
-static_assert(sizeof(VprPayload) == 1752);
+static_assert(sizeof(VprPayload) == 1896);
 static_assert(sizeof(VpPayload) == 536);
 static_assert(sizeof(ForcePayload) == 112);
 static_assert(sizeof(PositionPayload) == 360);

@@ -148,6 +148,8 @@ class Session {
   void take_timing(std::uint32_t answer_echo, std::uint32_t energy_in_uj, TimeNs now) noexcept;
   /// CONTROL_CONTACT: one contact slot (and the count in use) into vpr_.
   void take_contact(const hcp_control_contact& c, TimeNs now) noexcept;
+  /// A joint frame is the command of `frame_mode`: it counts once that mode is in force.
+  void mark_joint_command(shm::CommandType frame_mode) noexcept;
   /// Whether this session negotiated the feature a control frame type needs.
   [[nodiscard]] bool negotiated(hcp_frame_type type) const noexcept;
   [[nodiscard]] bool from_session(const hcp_frame& in,

@@ -235,8 +235,8 @@ TEST(DdsBridgeProcess, HostileInputIsRefusedAndCountedAndTheEmergencyStopStillAc
   ASSERT_TRUE(matched(command_w) && matched(wrench_w)) << s.bridge.err();
   const auto send_wrench = [&](std::array<double, 6> v) {
     geometry_msgs_msg_dds__WrenchStamped_ m{};
-    m.wrench.force = {v[0], v[1], v[2]};
-    m.wrench.torque = {v[3], v[4], v[5]};
+    m.wrench_.force_ = {v[0], v[1], v[2]};
+    m.wrench_.torque_ = {v[3], v[4], v[5]};
     return dds_write(wrench_w, &m) == 0;
   };
   const auto send_command = [&](std::string text) {

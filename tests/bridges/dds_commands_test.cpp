@@ -28,7 +28,7 @@ TEST(DdsCommands, EachCommandIsNamedExactly) {
 
 TEST(DdsCommands, TheWrenchIsForceThenTorque) {
   geometry_msgs_msg_dds__WrenchStamped_ m{};
-  m.wrench = {{1, 2, 3}, {4, 5, 6}};
+  m.wrench_ = {{1, 2, 3}, {4, 5, 6}};
   EXPECT_EQ(wrench_of(m), (shm::Vector6{1, 2, 3, 4, 5, 6}));
 }
 

@@ -27,7 +27,7 @@ using Gid = std::array<unsigned char, 24>;
 
 Gid copy(const rmw_dds_common_msg_dds__Gid_& g) {
   Gid out{};
-  std::memcpy(out.data(), g.data, out.size());
+  std::memcpy(out.data(), g.data_, out.size());
   return out;
 }
 
@@ -100,11 +100,11 @@ TEST(DdsGraph, TheNodeIsAnnouncedWithTheGidsOfItsWritersAndReaders) {
   while (!heard && std::chrono::steady_clock::now() < give_up) {
     ros2types::take_each<rmw_dds_common_msg_dds__ParticipantEntitiesInfo_>(
         info_reader, [&](const rmw_dds_common_msg_dds__ParticipantEntitiesInfo_& m) {
-          Announcement a{copy(m.gid), {}};
-          for (std::uint32_t i = 0; i < m.node_entities_info_seq._length; ++i) {
-            const auto& n = m.node_entities_info_seq._buffer[i];
-            a.nodes.push_back(
-                {n.node_namespace, n.node_name, gids(n.reader_gid_seq), gids(n.writer_gid_seq)});
+          Announcement a{copy(m.gid_), {}};
+          for (std::uint32_t i = 0; i < m.node_entities_info_seq_._length; ++i) {
+            const auto& n = m.node_entities_info_seq_._buffer[i];
+            a.nodes.push_back({n.node_namespace_, n.node_name_, gids(n.reader_gid_seq_),
+                               gids(n.writer_gid_seq_)});
           }
           heard = a;
         });

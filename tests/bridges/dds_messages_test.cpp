@@ -28,27 +28,27 @@ shm::PositionPayload sample_position() {
 TEST(DdsMessages, ArmMessagesCarryThePositionSampleAndTheControllersStamp) {
   ArmMessages m("hapticctrl/default/base");
   m.fill(sample_position(), 7'250'000'000);
-  EXPECT_EQ(m.pose.header.stamp.sec, 7);
-  EXPECT_EQ(m.pose.header.stamp.nanosec, 250'000'000U);
-  EXPECT_STREQ(m.pose.header.frame_id, "hapticctrl/default/base");
-  EXPECT_DOUBLE_EQ(m.pose.pose.position.x, 0.5);
-  EXPECT_DOUBLE_EQ(m.pose.pose.position.y, -0.1);
-  EXPECT_DOUBLE_EQ(m.pose.pose.orientation.z, 0.7071067811865476);  // x y z w, as ROS 2
-  EXPECT_DOUBLE_EQ(m.pose.pose.orientation.w, 0.7071067811865476);
-  EXPECT_DOUBLE_EQ(m.rendered_wrench.wrench.force.y, 2.0);
-  EXPECT_DOUBLE_EQ(m.rendered_wrench.wrench.torque.z, 0.3);
-  EXPECT_DOUBLE_EQ(m.operator_wrench.wrench.force.x, -4.0);
-  EXPECT_DOUBLE_EQ(m.operator_wrench.wrench.torque.y, -0.5);
-  ASSERT_EQ(m.joints.name._length, 6U);
-  ASSERT_EQ(m.joints.position._length, 6U);
-  ASSERT_EQ(m.joints.velocity._length, 6U);
-  ASSERT_EQ(m.joints.effort._length, 6U);
-  EXPECT_STREQ(m.joints.name._buffer[0], "joint1");
-  EXPECT_STREQ(m.joints.name._buffer[5], "joint6");
-  EXPECT_DOUBLE_EQ(m.joints.position._buffer[3], 0.3);
-  EXPECT_DOUBLE_EQ(m.joints.velocity._buffer[2], -0.4);
-  EXPECT_DOUBLE_EQ(m.joints.effort._buffer[4], 5.5);
-  EXPECT_FALSE(m.joints.position._release) << "DDS must not free the holder's storage";
+  EXPECT_EQ(m.pose.header_.stamp_.sec_, 7);
+  EXPECT_EQ(m.pose.header_.stamp_.nanosec_, 250'000'000U);
+  EXPECT_STREQ(m.pose.header_.frame_id_, "hapticctrl/default/base");
+  EXPECT_DOUBLE_EQ(m.pose.pose_.position_.x_, 0.5);
+  EXPECT_DOUBLE_EQ(m.pose.pose_.position_.y_, -0.1);
+  EXPECT_DOUBLE_EQ(m.pose.pose_.orientation_.z_, 0.7071067811865476);  // x y z w, as ROS 2
+  EXPECT_DOUBLE_EQ(m.pose.pose_.orientation_.w_, 0.7071067811865476);
+  EXPECT_DOUBLE_EQ(m.rendered_wrench.wrench_.force_.y_, 2.0);
+  EXPECT_DOUBLE_EQ(m.rendered_wrench.wrench_.torque_.z_, 0.3);
+  EXPECT_DOUBLE_EQ(m.operator_wrench.wrench_.force_.x_, -4.0);
+  EXPECT_DOUBLE_EQ(m.operator_wrench.wrench_.torque_.y_, -0.5);
+  ASSERT_EQ(m.joints.name_._length, 6U);
+  ASSERT_EQ(m.joints.position_._length, 6U);
+  ASSERT_EQ(m.joints.velocity_._length, 6U);
+  ASSERT_EQ(m.joints.effort_._length, 6U);
+  EXPECT_STREQ(m.joints.name_._buffer[0], "joint1");
+  EXPECT_STREQ(m.joints.name_._buffer[5], "joint6");
+  EXPECT_DOUBLE_EQ(m.joints.position_._buffer[3], 0.3);
+  EXPECT_DOUBLE_EQ(m.joints.velocity_._buffer[2], -0.4);
+  EXPECT_DOUBLE_EQ(m.joints.effort_._buffer[4], 5.5);
+  EXPECT_FALSE(m.joints.position_._release) << "DDS must not free the holder's storage";
 }
 
 TEST(DdsMessages, FillingAllocatesNothing) {
@@ -68,10 +68,10 @@ TEST(DdsMessages, FillingAllocatesNothing) {
 }
 
 std::string value_of(const DiagnosticsMessage& m, const std::string& key) {
-  const auto& s = m.array.status._buffer[0];
-  for (std::uint32_t i = 0; i < s.values._length; ++i) {
-    if (key == s.values._buffer[i].key) {
-      return s.values._buffer[i].value;
+  const auto& s = m.array.status_._buffer[0];
+  for (std::uint32_t i = 0; i < s.values_._length; ++i) {
+    if (key == s.values_._buffer[i].key_) {
+      return s.values_._buffer[i].value_;
     }
   }
   return "<absent>";
@@ -86,23 +86,23 @@ TEST(DdsMessages, DiagnosticsSayTheStateAndTheCycleStatistics) {
   t.wake_latency.p99_ns = 61'500;
   t.misses_total = 3;
   m.fill(t, true, 0);
-  ASSERT_EQ(m.array.status._length, 1U);
-  const auto& s = m.array.status._buffer[0];
-  EXPECT_EQ(s.level, static_cast<std::uint8_t>(DiagnosticLevel::kOk));
-  EXPECT_STREQ(s.name, "hapticctrl-core");
-  EXPECT_STREQ(s.hardware_id, "arm1");
-  EXPECT_STREQ(s.message, "running");
-  EXPECT_EQ(s.values._length, DiagnosticsMessage::kValues);
+  ASSERT_EQ(m.array.status_._length, 1U);
+  const auto& s = m.array.status_._buffer[0];
+  EXPECT_EQ(s.level_, static_cast<std::uint8_t>(DiagnosticLevel::kOk));
+  EXPECT_STREQ(s.name_, "hapticctrl-core");
+  EXPECT_STREQ(s.hardware_id_, "arm1");
+  EXPECT_STREQ(s.message_, "running");
+  EXPECT_EQ(s.values_._length, DiagnosticsMessage::kValues);
   EXPECT_EQ(value_of(m, "cycle"), "1234");
   EXPECT_EQ(value_of(m, "period_us"), "1000.0");
   EXPECT_EQ(value_of(m, "wake_latency_p99_us"), "61.5");
   EXPECT_EQ(value_of(m, "misses_total"), "3");
-  EXPECT_STREQ(m.array.header.frame_id, "hapticctrl/arm1/base");
+  EXPECT_STREQ(m.array.header_.frame_id_, "hapticctrl/arm1/base");
 }
 
 TEST(DdsMessages, DiagnosticLevelsFollowTheController) {
   DiagnosticsMessage m("hapticctrl-core", "arm1", "f");
-  const auto level = [&] { return m.array.status._buffer[0].level; };
+  const auto level = [&] { return m.array.status_._buffer[0].level_; };
   shm::TelemetryPayload t;
   t.core_state = static_cast<std::uint32_t>(shm::CoreState::kRunning);
   t.window_miss_ppm = 1000;
@@ -112,7 +112,7 @@ TEST(DdsMessages, DiagnosticLevelsFollowTheController) {
   t.stop_reason = static_cast<std::uint32_t>(shm::StopReason::kConsecutiveMisses);
   m.fill(t, true, 0);
   EXPECT_EQ(level(), static_cast<std::uint8_t>(DiagnosticLevel::kError));
-  EXPECT_EQ(std::string(m.array.status._buffer[0].message),
+  EXPECT_EQ(std::string(m.array.status_._buffer[0].message_),
             std::string("fail-safe: ") + shm::stop_reason_name(t.stop_reason));
   m.fill(t, false, 0);
   EXPECT_EQ(level(), static_cast<std::uint8_t>(DiagnosticLevel::kStale));

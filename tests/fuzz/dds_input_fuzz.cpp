@@ -43,14 +43,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     // A string as DDS delivers it: NUL-terminated, any bytes before (a NUL inside ends it).
     std::string text(reinterpret_cast<const char*>(data + 1), size - 1);
     std_msgs_msg_dds__String_ message{};
-    message.data = text.data();
+    message.data_ = text.data();
     h.remote.command(db::command_of(message), h.now);
   } else {
     geometry_msgs_msg_dds__WrenchStamped_ message{};
     double values[6] = {};  // NOLINT(*-avoid-c-arrays): as the bytes arrive
     std::memcpy(values, data + 1, std::min(sizeof(values), size - 1));
-    message.wrench.force = {values[0], values[1], values[2]};
-    message.wrench.torque = {values[3], values[4], values[5]};
+    message.wrench_.force_ = {values[0], values[1], values[2]};
+    message.wrench_.torque_ = {values[3], values[4], values[5]};
     h.remote.force(db::wrench_of(message), h.now);
   }
   h.remote.tick(h.now);

@@ -53,13 +53,13 @@ TEST(Ros2Names, FramesAreTheNamespaceWithoutItsLeadingSlash) {
 
 TEST(Ros2Names, StampsSplitNanosecondsAsRos2Does) {
   const auto t = stamp_of(12'345'678'901);
-  EXPECT_EQ(t.sec, 12);
-  EXPECT_EQ(t.nanosec, 345'678'901U);
+  EXPECT_EQ(t.sec_, 12);
+  EXPECT_EQ(t.nanosec_, 345'678'901U);
   const auto before = stamp_of(-1);  // nanosec is always in [0, 1e9)
-  EXPECT_EQ(before.sec, -1);
-  EXPECT_EQ(before.nanosec, 999'999'999U);
-  EXPECT_EQ(stamp_of(0).sec, 0);
-  EXPECT_EQ(stamp_of(0).nanosec, 0U);
+  EXPECT_EQ(before.sec_, -1);
+  EXPECT_EQ(before.nanosec_, 999'999'999U);
+  EXPECT_EQ(stamp_of(0).sec_, 0);
+  EXPECT_EQ(stamp_of(0).nanosec_, 0U);
 }
 
 }  // namespace

@@ -29,19 +29,19 @@ TEST(Ros2Participant, ASampleWrittenIsTakenWithItsRos2TypeName) {
 
   std::string frame = "f";
   geometry_msgs_msg_dds__PoseStamped_ sent{};
-  sent.header = {stamp_of(1'500'000'000), frame.data()};
-  sent.pose.position = {0.1, 0.2, 0.3};
-  sent.pose.orientation = {0, 0, 0, 1};
+  sent.header_ = {stamp_of(1'500'000'000), frame.data()};
+  sent.pose_.position_ = {0.1, 0.2, 0.3};
+  sent.pose_.orientation_ = {0, 0, 0, 1};
   ASSERT_EQ(dds_write(writer, &sent), 0);
   const dds_entity_t waitset = p.waitset_for({reader});
   ASSERT_GT(dds_waitset_wait(waitset, nullptr, 0, DDS_SECS(2)), 0) << "woken by the sample";
   int taken = 0;
   take_each<geometry_msgs_msg_dds__PoseStamped_>(reader, [&](const auto& got) {
     ++taken;
-    EXPECT_EQ(got.header.stamp.sec, 1);
-    EXPECT_EQ(got.header.stamp.nanosec, 500'000'000U);
-    EXPECT_STREQ(got.header.frame_id, "f");
-    EXPECT_DOUBLE_EQ(got.pose.position.z, 0.3);
+    EXPECT_EQ(got.header_.stamp_.sec_, 1);
+    EXPECT_EQ(got.header_.stamp_.nanosec_, 500'000'000U);
+    EXPECT_STREQ(got.header_.frame_id_, "f");
+    EXPECT_DOUBLE_EQ(got.pose_.position_.z_, 0.3);
   });
   EXPECT_EQ(taken, 1);
   take_each<geometry_msgs_msg_dds__PoseStamped_>(reader, [&](const auto&) { ++taken; });

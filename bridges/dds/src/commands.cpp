@@ -15,11 +15,11 @@ shm::CtrlCode command_of(const std_msgs_msg_dds__String_& message) noexcept {
       {"emergency_reset", shm::CtrlCode::kEmergencyReset},
       {"stop", shm::CtrlCode::kStop},
   }};
-  if (message.data == nullptr) {
+  if (message.data_ == nullptr) {
     return shm::CtrlCode::kNone;
   }
   for (const auto& [name, code] : kCommands) {
-    if (std::strcmp(message.data, name) == 0) {
+    if (std::strcmp(message.data_, name) == 0) {
       return code;
     }
   }
@@ -27,8 +27,8 @@ shm::CtrlCode command_of(const std_msgs_msg_dds__String_& message) noexcept {
 }
 
 shm::Vector6 wrench_of(const geometry_msgs_msg_dds__WrenchStamped_& message) noexcept {
-  const auto& w = message.wrench;
-  return {w.force.x, w.force.y, w.force.z, w.torque.x, w.torque.y, w.torque.z};
+  const auto& w = message.wrench_;
+  return {w.force_.x_, w.force_.y_, w.force_.z_, w.torque_.x_, w.torque_.y_, w.torque_.z_};
 }
 
 }  // namespace hapticctrl::dds_bridge

@@ -70,8 +70,8 @@ struct Arrivals {
   void saw(const std_msgs_msg_dds__Header_& h, std::int64_t now) {
     first_ns = count++ == 0 ? now : first_ns;
     last_ns = now;
-    frame = h.frame_id != nullptr ? h.frame_id : "";
-    const std::int64_t stamp = std::int64_t{h.stamp.sec} * 1'000'000'000 + h.stamp.nanosec;
+    frame = h.frame_id_ != nullptr ? h.frame_id_ : "";
+    const std::int64_t stamp = std::int64_t{h.stamp_.sec_} * 1'000'000'000 + h.stamp_.nanosec_;
     age_us.push_back(static_cast<double>(now - stamp) * 1e-3);
   }
   [[nodiscard]] double rate_hz() const {
@@ -98,8 +98,8 @@ void print_topic(const char* name, const char* type, const Arrivals& a) {
 }
 
 void print_wrench(const char* name, const geometry_msgs_msg_dds__Wrench_& w) {
-  std::printf("\"%s\":[%.6g,%.6g,%.6g,%.6g,%.6g,%.6g],", name, w.force.x, w.force.y, w.force.z,
-              w.torque.x, w.torque.y, w.torque.z);
+  std::printf("\"%s\":[%.6g,%.6g,%.6g,%.6g,%.6g,%.6g],", name, w.force_.x_, w.force_.y_,
+              w.force_.z_, w.torque_.x_, w.torque_.y_, w.torque_.z_);
 }
 
 /// Whether `writer` has a matched reader within `timeout_ns` (a reliable sample sent before
@@ -160,30 +160,31 @@ int listen(const ListenConfig& c) {
   while (monotonic_now_ns() < end) {
     const std::int64_t now = monotonic_now_ns();
     r2::take_each<geometry_msgs_msg_dds__PoseStamped_>(pose_r, [&](const auto& m) {
-      pose.saw(m.header, now);
+      pose.saw(m.header_, now);
       last_pose = m;
     });
     r2::take_each<geometry_msgs_msg_dds__WrenchStamped_>(rendered_r, [&](const auto& m) {
-      rendered.saw(m.header, now);
-      last_rendered = m.wrench;
+      rendered.saw(m.header_, now);
+      last_rendered = m.wrench_;
     });
     r2::take_each<geometry_msgs_msg_dds__WrenchStamped_>(operator_r, [&](const auto& m) {
-      operator_wrench.saw(m.header, now);
-      last_operator = m.wrench;
+      operator_wrench.saw(m.header_, now);
+      last_operator = m.wrench_;
     });
     r2::take_each<sensor_msgs_msg_dds__JointState_>(joints_r, [&](const auto& m) {
-      joints.saw(m.header, now);
-      joint_position.assign(m.position._buffer, m.position._buffer + m.position._length);
-      joint_names.assign(m.name._buffer, m.name._buffer + m.name._length);
+      joints.saw(m.header_, now);
+      joint_position.assign(m.position_._buffer, m.position_._buffer + m.position_._length);
+      joint_names.assign(m.name_._buffer, m.name_._buffer + m.name_._length);
     });
     r2::take_each<diagnostic_msgs_msg_dds__DiagnosticArray_>(diag_r, [&](const auto& m) {
-      diagnostics.saw(m.header, now);
-      if (m.status._length > 0) {
-        const auto& s = m.status._buffer[0];
-        diag_level = s.level;
-        diag_text = std::string(s.message) + " |";
-        for (std::uint32_t i = 0; i < s.values._length; ++i) {
-          diag_text += std::string(" ") + s.values._buffer[i].key + "=" + s.values._buffer[i].value;
+      diagnostics.saw(m.header_, now);
+      if (m.status_._length > 0) {
+        const auto& s = m.status_._buffer[0];
+        diag_level = s.level_;
+        diag_text = std::string(s.message_) + " |";
+        for (std::uint32_t i = 0; i < s.values_._length; ++i) {
+          diag_text +=
+              std::string(" ") + s.values_._buffer[i].key_ + "=" + s.values_._buffer[i].value_;
         }
       }
     });
@@ -191,8 +192,9 @@ int listen(const ListenConfig& c) {
       next_wrench = now + 10'000'000;
       geometry_msgs_msg_dds__WrenchStamped_ w{};
       std::string frame = r2::base_frame(ns);
-      w.header = {r2::stamp_of(now), frame.data()};
-      w.wrench = {{c.wrench[0], c.wrench[1], c.wrench[2]}, {c.wrench[3], c.wrench[4], c.wrench[5]}};
+      w.header_ = {r2::stamp_of(now), frame.data()};
+      w.wrench_ = {{c.wrench[0], c.wrench[1], c.wrench[2]},
+                   {c.wrench[3], c.wrench[4], c.wrench[5]}};
       dds_write(wrench_w, &w);
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
@@ -205,9 +207,10 @@ int listen(const ListenConfig& c) {
   print_topic("joint_states", sensor_msgs_msg_dds__JointState__desc.m_typename, joints);
   print_topic("diagnostics", diagnostic_msgs_msg_dds__DiagnosticArray__desc.m_typename,
               diagnostics);
-  const auto& q = last_pose.pose;
-  std::printf("\"pose\":[%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g],", q.position.x, q.position.y,
-              q.position.z, q.orientation.x, q.orientation.y, q.orientation.z, q.orientation.w);
+  const auto& q = last_pose.pose_;
+  std::printf("\"pose\":[%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g],", q.position_.x_, q.position_.y_,
+              q.position_.z_, q.orientation_.x_, q.orientation_.y_, q.orientation_.z_,
+              q.orientation_.w_);
   print_wrench("rendered", last_rendered);
   print_wrench("operator", last_operator);
   std::printf("\"joint_position\":[");

@@ -35,8 +35,8 @@ char* text(std::string& s) noexcept {
 }
 
 void set_header(std_msgs_msg_dds__Header_& h, std::string& frame, std::int64_t stamp_ns) noexcept {
-  h.stamp = ros2types::stamp_of(stamp_ns);
-  h.frame_id = text(frame);
+  h.stamp_ = ros2types::stamp_of(stamp_ns);
+  h.frame_id_ = text(frame);
 }
 
 template <std::size_t N>
@@ -45,8 +45,8 @@ dds_sequence_double view(std::array<double, N>& values) noexcept {
 }
 
 void set_wrench(geometry_msgs_msg_dds__Wrench_& w, const shm::Vector6& v) noexcept {
-  w.force = {v[0], v[1], v[2]};
-  w.torque = {v[3], v[4], v[5]};
+  w.force_ = {v[0], v[1], v[2]};
+  w.torque_ = {v[3], v[4], v[5]};
 }
 
 DiagnosticLevel level_of(const shm::TelemetryPayload& t, bool core_present) noexcept {
@@ -71,22 +71,22 @@ ArmMessages::ArmMessages(std::string frame) : frame_(std::move(frame)) {
   for (std::size_t i = 0; i < names_.size(); ++i) {
     names_[i] = const_cast<char*>(kJointNames[i]);  // NOLINT(*-const-cast): read by the write
   }
-  joints.name = {6, 6, names_.data(), false};
-  joints.position = view(position_);
-  joints.velocity = view(velocity_);
-  joints.effort = view(effort_);
+  joints.name_ = {6, 6, names_.data(), false};
+  joints.position_ = view(position_);
+  joints.velocity_ = view(velocity_);
+  joints.effort_ = view(effort_);
 }
 
 void ArmMessages::fill(const shm::PositionPayload& p, std::int64_t stamp_ns) noexcept {
-  set_header(pose.header, frame_, stamp_ns);
+  set_header(pose.header_, frame_, stamp_ns);
   const auto& h = p.handle_pose;  // x y z, then the quaternion x y z w
-  pose.pose.position = {h[0], h[1], h[2]};
-  pose.pose.orientation = {h[3], h[4], h[5], h[6]};
-  set_header(rendered_wrench.header, frame_, stamp_ns);
-  set_wrench(rendered_wrench.wrench, p.coupling_wrench);
-  set_header(operator_wrench.header, frame_, stamp_ns);
-  set_wrench(operator_wrench.wrench, p.operator_wrench);
-  set_header(joints.header, frame_, stamp_ns);
+  pose.pose_.position_ = {h[0], h[1], h[2]};
+  pose.pose_.orientation_ = {h[3], h[4], h[5], h[6]};
+  set_header(rendered_wrench.header_, frame_, stamp_ns);
+  set_wrench(rendered_wrench.wrench_, p.coupling_wrench);
+  set_header(operator_wrench.header_, frame_, stamp_ns);
+  set_wrench(operator_wrench.wrench_, p.operator_wrench);
+  set_header(joints.header_, frame_, stamp_ns);
   position_ = p.joint_position;
   velocity_ = p.joint_velocity;
   effort_ = p.joint_torque;
@@ -95,14 +95,14 @@ void ArmMessages::fill(const shm::PositionPayload& p, std::int64_t stamp_ns) noe
 DiagnosticsMessage::DiagnosticsMessage(std::string name, std::string hardware_id, std::string frame)
     : frame_(std::move(frame)), name_(std::move(name)), hardware_id_(std::move(hardware_id)) {
   for (std::size_t i = 0; i < kValues; ++i) {
-    values_[i].key = const_cast<char*>(kKeys[i]);  // NOLINT(*-const-cast): read by the write
-    values_[i].value = texts_[i].data();
+    values_[i].key_ = const_cast<char*>(kKeys[i]);  // NOLINT(*-const-cast): read by the write
+    values_[i].value_ = texts_[i].data();
   }
-  status_.name = text(name_);
-  status_.hardware_id = text(hardware_id_);
-  status_.message = message_.data();
-  status_.values = {kValues, kValues, values_.data(), false};
-  array.status = {1, 1, &status_, false};
+  status_.name_ = text(name_);
+  status_.hardware_id_ = text(hardware_id_);
+  status_.message_ = message_.data();
+  status_.values_ = {kValues, kValues, values_.data(), false};
+  array.status_ = {1, 1, &status_, false};
 }
 
 void DiagnosticsMessage::set(std::size_t i, double v, int decimals) noexcept {
@@ -111,9 +111,9 @@ void DiagnosticsMessage::set(std::size_t i, double v, int decimals) noexcept {
 
 void DiagnosticsMessage::fill(const shm::TelemetryPayload& t, bool core_present,
                               std::int64_t stamp_ns) noexcept {
-  set_header(array.header, frame_, stamp_ns);
+  set_header(array.header_, frame_, stamp_ns);
   const DiagnosticLevel level = level_of(t, core_present);
-  status_.level = static_cast<std::uint8_t>(level);
+  status_.level_ = static_cast<std::uint8_t>(level);
   const char* state = core_present ? shm::core_state_name(t.core_state) : "gone";
   if (t.stop_reason != 0) {
     std::snprintf(message_.data(), message_.size(), "%s: %s", state,

@@ -1,0 +1,69 @@
+// ros2types/idl/ros2_messages.idl against rosidl's form of the same messages
+// (rosidl_reference.idl, compiled apart): the XTypes type information Cyclone DDS sends with
+// every endpoint (type identifiers that hash each member's type and name, J6) is the same, so a
+// peer that compares member names finds rosidl's (`stamp_`, not `stamp`).
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "ros2_messages.h"
+#include "rosidl_reference_table.h"
+
+namespace {
+
+struct Ours {
+  const char* name;
+  const dds_topic_descriptor_t* descriptor;
+};
+
+const std::vector<Ours>& ours() {
+  static const std::vector<Ours> table{
+      {"builtin_interfaces_msg_dds__Time_", &builtin_interfaces_msg_dds__Time__desc},
+      {"std_msgs_msg_dds__Header_", &std_msgs_msg_dds__Header__desc},
+      {"std_msgs_msg_dds__String_", &std_msgs_msg_dds__String__desc},
+      {"geometry_msgs_msg_dds__Point_", &geometry_msgs_msg_dds__Point__desc},
+      {"geometry_msgs_msg_dds__Quaternion_", &geometry_msgs_msg_dds__Quaternion__desc},
+      {"geometry_msgs_msg_dds__Vector3_", &geometry_msgs_msg_dds__Vector3__desc},
+      {"geometry_msgs_msg_dds__Pose_", &geometry_msgs_msg_dds__Pose__desc},
+      {"geometry_msgs_msg_dds__PoseStamped_", &geometry_msgs_msg_dds__PoseStamped__desc},
+      {"geometry_msgs_msg_dds__Wrench_", &geometry_msgs_msg_dds__Wrench__desc},
+      {"geometry_msgs_msg_dds__WrenchStamped_", &geometry_msgs_msg_dds__WrenchStamped__desc},
+      {"sensor_msgs_msg_dds__JointState_", &sensor_msgs_msg_dds__JointState__desc},
+      {"diagnostic_msgs_msg_dds__KeyValue_", &diagnostic_msgs_msg_dds__KeyValue__desc},
+      {"diagnostic_msgs_msg_dds__DiagnosticStatus_",
+       &diagnostic_msgs_msg_dds__DiagnosticStatus__desc},
+      {"diagnostic_msgs_msg_dds__DiagnosticArray_",
+       &diagnostic_msgs_msg_dds__DiagnosticArray__desc},
+      {"rmw_dds_common_msg_dds__Gid_", &rmw_dds_common_msg_dds__Gid__desc},
+      {"rmw_dds_common_msg_dds__NodeEntitiesInfo_",
+       &rmw_dds_common_msg_dds__NodeEntitiesInfo__desc},
+      {"rmw_dds_common_msg_dds__ParticipantEntitiesInfo_",
+       &rmw_dds_common_msg_dds__ParticipantEntitiesInfo__desc},
+  };
+  return table;
+}
+
+bool same_bytes(const dds_type_meta_ser& a, const dds_type_meta_ser& b) {
+  return a.sz == b.sz && a.sz > 0 && std::memcmp(a.data, b.data, a.sz) == 0;
+}
+
+TEST(RosidlNames, EveryTypeCarriesRosidlsTypeInformation) {
+  for (const Ours& o : ours()) {
+    const dds_topic_descriptor_t* reference = rosidl_reference(o.name);
+    ASSERT_NE(reference, nullptr) << o.name;
+    EXPECT_STREQ(o.descriptor->m_typename, reference->m_typename);
+    EXPECT_TRUE(same_bytes(o.descriptor->type_information, reference->type_information))
+        << o.name << ": the type identifiers differ (member names, types or order)";
+    EXPECT_TRUE(same_bytes(o.descriptor->type_mapping, reference->type_mapping)) << o.name;
+  }
+}
+
+TEST(RosidlNames, TheComparisonSeesAMemberName) {
+  // The check can fail: Header_ and String_ differ in their members, so do their identifiers.
+  EXPECT_FALSE(same_bytes(std_msgs_msg_dds__String__desc.type_information,
+                          rosidl_reference("std_msgs_msg_dds__Header_")->type_information));
+}
+
+}  // namespace

@@ -2,6 +2,10 @@
 #include "hapticctrl/ros2types/participant.hpp"
 
 #include <stdexcept>
+#include <string>
+
+#include "hapticctrl/ros2types/qos.hpp"
+#include "hapticctrl/ros2types/type_hash.hpp"
 
 #ifdef HAPTICCTRL_TSAN
 // ThreadSanitizer builds: Debian's Cyclone DDS is not instrumented, so TSan sees its own threads
@@ -38,16 +42,38 @@ dds_entity_t Participant::topic(const dds_topic_descriptor_t& type, const std::s
                  "DDS topic " + name);
 }
 
+namespace {
+
+/// `qos` with the endpoint's user data "typehash=RIHS01_<hex>;" of `type` (REP-2016, as ROS 2
+/// Iron and later set it; J6), where the type has a hash.
+Qos with_type_hash(const dds_topic_descriptor_t& type, const dds_qos_t* qos) {
+  Qos endpoint(dds_create_qos());
+  if (qos != nullptr) {
+    dds_copy_qos(endpoint.get(), qos);
+  }
+  const std::string user_data = type_hash_user_data(type.m_typename);
+  if (!user_data.empty()) {
+    dds_qset_userdata(endpoint.get(), user_data.data(), user_data.size());
+  }
+  return endpoint;
+}
+
+}  // namespace
+
 dds_entity_t Participant::writer(const dds_topic_descriptor_t& type, const std::string& topic_name,
                                  const dds_qos_t* qos) {
-  return checked(dds_create_writer(participant_, topic(type, topic_name, qos), qos, nullptr),
-                 "DDS writer on " + topic_name);
+  const Qos endpoint = with_type_hash(type, qos);
+  return checked(
+      dds_create_writer(participant_, topic(type, topic_name, qos), endpoint.get(), nullptr),
+      "DDS writer on " + topic_name);
 }
 
 dds_entity_t Participant::reader(const dds_topic_descriptor_t& type, const std::string& topic_name,
                                  const dds_qos_t* qos) {
-  return checked(dds_create_reader(participant_, topic(type, topic_name, qos), qos, nullptr),
-                 "DDS reader on " + topic_name);
+  const Qos endpoint = with_type_hash(type, qos);
+  return checked(
+      dds_create_reader(participant_, topic(type, topic_name, qos), endpoint.get(), nullptr),
+      "DDS reader on " + topic_name);
 }
 
 dds_entity_t Participant::waitset_for(std::initializer_list<dds_entity_t> readers) {

@@ -4,8 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <chrono>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 #include "hapticctrl/ros2types/names.hpp"
 #include "hapticctrl/ros2types/qos.hpp"
@@ -46,6 +48,51 @@ TEST(Ros2Participant, ASampleWrittenIsTakenWithItsRos2TypeName) {
   EXPECT_EQ(taken, 1);
   take_each<geometry_msgs_msg_dds__PoseStamped_>(reader, [&](const auto&) { ++taken; });
   EXPECT_EQ(taken, 1) << "taken once";
+}
+
+TEST(Ros2Participant, EveryEndpointOfAHashedTypeCarriesItsTypeHashToItsPeers) {
+  // REP-2016's user data, as a peer discovers it (the built-in publication topic of another
+  // participant), and on a reader.
+  Participant p(test::use_loopback_dds());
+  Participant peer(test::use_loopback_dds());
+  const dds_entity_t discovered =
+      dds_create_reader(peer.handle(), DDS_BUILTIN_TOPIC_DCPSPUBLICATION, nullptr, nullptr);
+  ASSERT_GT(discovered, 0);
+  const Qos qos = sensor_data_qos();
+  const std::string topic = dds_topic("/participant_test_hash", topic::kJointStates);
+  const dds_entity_t writer = p.writer(sensor_msgs_msg_dds__JointState__desc, topic, qos.get());
+  const std::string expected =
+      "typehash=RIHS01_a13ee3a330e346c9d87b5aa18d24e11690752bd33a0350f11c5882bc9179260e;";
+  std::string seen;
+  for (int i = 0; i < 200 && seen.empty(); ++i) {
+    void* sample = nullptr;
+    dds_sample_info_t info;
+    while (dds_take(discovered, &sample, &info, 1, 1) == 1) {
+      const auto* pub = static_cast<const dds_builtintopic_endpoint_t*>(sample);
+      void* data = nullptr;
+      size_t size = 0;
+      if (info.valid_data && std::string(pub->topic_name) == topic &&
+          dds_qget_userdata(pub->qos, &data, &size)) {
+        seen.assign(static_cast<const char*>(data), size);
+        dds_free(data);
+      }
+      dds_return_loan(discovered, &sample, 1);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  EXPECT_EQ(seen, expected) << "what a peer discovered of the writer";
+  EXPECT_GT(writer, 0);
+  const dds_entity_t reader =
+      p.reader(std_msgs_msg_dds__String__desc, dds_topic("/participant_test_hash", topic::kCommand),
+               command_qos().get());
+  Qos own(dds_create_qos());
+  ASSERT_EQ(dds_get_qos(reader, own.get()), DDS_RETCODE_OK);
+  void* data = nullptr;
+  size_t size = 0;
+  ASSERT_TRUE(dds_qget_userdata(own.get(), &data, &size));
+  EXPECT_EQ(std::string(static_cast<const char*>(data), size),
+            "typehash=RIHS01_df668c740482bbd48fb39d76a70dfd4bd59db1288021743503259e948f6b1a18;");
+  dds_free(data);
 }
 
 TEST(Ros2Participant, FailuresThrowWithDdsReason) {

@@ -58,8 +58,35 @@ std::vector<Gid> gids(const auto& seq) {
   return out;
 }
 
-/// The topic name of every endpoint `builtin` (DCPSPublication or DCPSSubscription) discovered,
-/// by its GID; within 5 s, until `wanted` of them are known.
+/// What `ros2 node info` and `ros2 topic info --verbose` show of an endpoint: its topic, its
+/// type, its QoS (reliability, durability, history depth) and its type hash.
+std::string shown(const dds_builtintopic_endpoint_t& e) {
+  dds_reliability_kind_t reliability{};
+  dds_duration_t blocking = 0;
+  dds_durability_kind_t durability{};
+  dds_history_kind_t history{};
+  std::int32_t depth = 0;
+  void* user_data = nullptr;
+  std::size_t size = 0;
+  std::string text = std::string(e.topic_name) + " " + e.type_name;
+  if (dds_qget_reliability(e.qos, &reliability, &blocking)) {
+    text += reliability == DDS_RELIABILITY_RELIABLE ? " reliable" : " best_effort";
+  }
+  if (dds_qget_durability(e.qos, &durability)) {
+    text += durability == DDS_DURABILITY_TRANSIENT_LOCAL ? " transient_local" : " volatile";
+  }
+  if (dds_qget_history(e.qos, &history, &depth)) {
+    text += history == DDS_HISTORY_KEEP_LAST ? " keep_last " + std::to_string(depth) : " keep_all";
+  }
+  if (dds_qget_userdata(e.qos, &user_data, &size) && size > 0) {
+    text += " " + std::string(static_cast<const char*>(user_data), size).substr(0, 16);
+    dds_free(user_data);
+  }
+  return text;
+}
+
+/// shown() of every endpoint `builtin` (DCPSPublication or DCPSSubscription) discovered, by its
+/// GID; within 5 s, until `wanted` of them are known.
 std::map<Gid, std::string> endpoints(dds_entity_t tool, dds_entity_t builtin, std::size_t wanted) {
   const dds_entity_t reader = dds_create_reader(tool, builtin, nullptr, nullptr);
   std::map<Gid, std::string> found;
@@ -72,7 +99,7 @@ std::map<Gid, std::string> endpoints(dds_entity_t tool, dds_entity_t builtin, st
       if (infos[static_cast<std::size_t>(i)].valid_data) {
         const auto* e =
             static_cast<const dds_builtintopic_endpoint_t*>(samples[static_cast<std::size_t>(i)]);
-        found[padded(e->key)] = e->topic_name;
+        found[padded(e->key)] = shown(*e);
       }
     }
     if (n > 0) {
@@ -128,17 +155,28 @@ TEST(DdsGraph, TheNodeIsAnnouncedWithTheGidsOfItsWritersAndReaders) {
     ASSERT_EQ(publications.count(g), 1U) << "a writer GID no publication has";
     published.push_back(publications.at(g));
   }
-  EXPECT_EQ(published,
-            (std::vector<std::string>{"rt/test/graph/handle_pose", "rt/test/graph/rendered_wrench",
-                                      "rt/test/graph/operator_wrench", "rt/test/graph/joint_states",
-                                      "rt/test/graph/diagnostics"}));
+  // ROS 2's sensor-data profile on the five (best effort, volatile, keep last 5), its default on
+  // the two command topics (reliable, volatile, keep last 10), and each type's hash (J6).
+  const std::string sensor = " best_effort volatile keep_last 5 typehash=RIHS01_";
+  EXPECT_EQ(
+      published,
+      (std::vector<std::string>{
+          "rt/test/graph/handle_pose geometry_msgs::msg::dds_::PoseStamped_" + sensor,
+          "rt/test/graph/rendered_wrench geometry_msgs::msg::dds_::WrenchStamped_" + sensor,
+          "rt/test/graph/operator_wrench geometry_msgs::msg::dds_::WrenchStamped_" + sensor,
+          "rt/test/graph/joint_states sensor_msgs::msg::dds_::JointState_" + sensor,
+          "rt/test/graph/diagnostics diagnostic_msgs::msg::dds_::DiagnosticArray_" + sensor}));
   std::vector<std::string> subscribed;
   for (const Gid& g : n.readers) {
     ASSERT_EQ(subscriptions.count(g), 1U) << "a reader GID no subscription has";
     subscribed.push_back(subscriptions.at(g));
   }
-  EXPECT_EQ(subscribed, (std::vector<std::string>{"rt/test/graph/command",
-                                                  "rt/test/graph/operator_wrench_command"}));
+  const std::string command = " reliable volatile keep_last 10 typehash=RIHS01_";
+  EXPECT_EQ(subscribed,
+            (std::vector<std::string>{
+                "rt/test/graph/command std_msgs::msg::dds_::String_" + command,
+                "rt/test/graph/operator_wrench_command geometry_msgs::msg::dds_::WrenchStamped_" +
+                    command}));
 }
 
 }  // namespace

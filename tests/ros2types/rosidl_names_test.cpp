@@ -4,12 +4,17 @@
 // peer that compares member names finds rosidl's (`stamp_`, not `stamp`).
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cstring>
 #include <string>
+#include <thread>
 #include <vector>
 
+#include "hapticctrl/ros2types/participant.hpp"
+#include "hapticctrl/ros2types/qos.hpp"
 #include "ros2_messages.h"
 #include "rosidl_reference_table.h"
+#include "support/dds_loopback.hpp"
 
 namespace {
 
@@ -64,6 +69,28 @@ TEST(RosidlNames, TheComparisonSeesAMemberName) {
   // The check can fail: Header_ and String_ differ in their members, so do their identifiers.
   EXPECT_FALSE(same_bytes(std_msgs_msg_dds__String__desc.type_information,
                           rosidl_reference("std_msgs_msg_dds__Header_")->type_information));
+}
+
+TEST(RosidlNames, AReaderOfRosidlsTypeMatchesTheBridgesWriter) {
+  // A subscriber built from rosidl's form (Cyclone DDS checks that its type is assignable from
+  // the writer's: a long where the writer has a string is refused, measured 2026-12-06) matches
+  // a writer of ros2types' on the bridge's topic.
+  const std::uint32_t domain = hapticctrl::test::use_loopback_dds();
+  hapticctrl::ros2types::Participant bridge(domain);
+  hapticctrl::ros2types::Participant peer(domain);
+  const hapticctrl::ros2types::Qos qos = hapticctrl::ros2types::sensor_data_qos();
+  const std::string topic = "rt/rosidl_names_test/handle_pose";
+  const dds_entity_t writer =
+      bridge.writer(geometry_msgs_msg_dds__PoseStamped__desc, topic, qos.get());
+  const dds_entity_t reader =
+      peer.reader(*rosidl_reference("geometry_msgs_msg_dds__PoseStamped_"), topic, qos.get());
+  dds_subscription_matched_status_t matched{};
+  for (int i = 0; i < 500 && matched.current_count == 0; ++i) {
+    ASSERT_EQ(dds_get_subscription_matched_status(reader, &matched), DDS_RETCODE_OK);
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  EXPECT_EQ(matched.current_count, 1U);
+  EXPECT_GT(writer, 0);
 }
 
 }  // namespace

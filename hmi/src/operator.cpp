@@ -52,7 +52,7 @@ Operator::Operator(const std::string& instance, bool want_force) {
       segment_.emplace(attach_segment(instance, want_force));
     } catch (const shm::ShmError& e) {
       if (!want_force || e.code() != shm::ShmErrc::kWriterConflict ||
-          std::string(e.what()).find("region force") == std::string::npos) {
+          e.region() != shm::RegionId::kForce) {
         throw;
       }
       force_unavailable_ = e.what();

@@ -219,7 +219,8 @@ void Segment::claim_regions(const std::vector<RegionId>& ids) {
       throw ShmError(ShmErrc::kWriterConflict,
                      "region " + std::string(region_name(id)) + " of instance '" + instance_ +
                          "' is already written by live process " + std::to_string(who.pid) +
-                         " (one writer per region); stop that process first");
+                         " (one writer per region); stop that process first",
+                     id);
     }
     claimed_[index] = true;
   }

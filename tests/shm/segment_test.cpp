@@ -224,7 +224,8 @@ TEST(Segment, CoreRegionsCannotBeClaimedByOthers) {
     try {
       Segment::attach(name, {.write = {RegionId::kVp}});
     } catch (const ShmError& e) {
-      return e.code() == ShmErrc::kWriterConflict &&
+      // The region as a value (callers decide on it, hmi's operator), and in the text.
+      return e.code() == ShmErrc::kWriterConflict && e.region() == RegionId::kVp &&
                      std::string(e.what()).find("region VP") != std::string::npos
                  ? 0
                  : 2;

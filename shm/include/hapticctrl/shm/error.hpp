@@ -3,8 +3,11 @@
 /// The one exception of the shm layer's setup code (creating, finding and attaching segments).
 
 #include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <string>
+
+#include "hapticctrl/shm/layout.hpp"
 
 namespace hapticctrl::shm {
 
@@ -21,14 +24,20 @@ enum class ShmErrc : std::uint8_t {
   kSystem,            ///< any other OS error (message has errno text)
 };
 
-/// Exception for every setup failure of the shm layer.
+/// Exception for every setup failure of the shm layer: what happened (`code()`), about which
+/// region where it is about one (`region()`: a writer conflict names the region claimed), so that
+/// a caller decides on them and never on the text, which is for people.
 class ShmError : public std::runtime_error {
  public:
-  ShmError(ShmErrc code, const std::string& message) : std::runtime_error(message), code_(code) {}
+  ShmError(ShmErrc code, const std::string& message,
+           std::optional<RegionId> region = std::nullopt)
+      : std::runtime_error(message), code_(code), region_(region) {}
   [[nodiscard]] ShmErrc code() const noexcept { return code_; }
+  [[nodiscard]] std::optional<RegionId> region() const noexcept { return region_; }
 
  private:
   ShmErrc code_;
+  std::optional<RegionId> region_;
 };
 
 /// Throws ShmError for a failed system call: kPermissionDenied (with what to do) for EACCES and

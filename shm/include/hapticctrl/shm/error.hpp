@@ -29,8 +29,7 @@ enum class ShmErrc : std::uint8_t {
 /// a caller decides on them and never on the text, which is for people.
 class ShmError : public std::runtime_error {
  public:
-  ShmError(ShmErrc code, const std::string& message,
-           std::optional<RegionId> region = std::nullopt)
+  ShmError(ShmErrc code, const std::string& message, std::optional<RegionId> region = std::nullopt)
       : std::runtime_error(message), code_(code), region_(region) {}
   [[nodiscard]] ShmErrc code() const noexcept { return code_; }
   [[nodiscard]] std::optional<RegionId> region() const noexcept { return region_; }

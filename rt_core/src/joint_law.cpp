@@ -10,10 +10,6 @@ namespace {
 /// A joint slower than this has no motion for the guard to damp (rad/s).
 constexpr double kStillSpeed = 1e-6;
 
-double torque_continuous(const ArmModel& m, int i) noexcept {
-  return m.joints[static_cast<std::size_t>(i)].torque_continuous;
-}
-
 }  // namespace
 
 JointLaw::JointLaw(const ArmModel& model, const JointLawConfig& config) noexcept
@@ -121,7 +117,7 @@ JointLawResult JointLaw::torque(const JointLawInputs& in, JointMemory& memory) c
     }
   }
   for (int i = 0; i < kJoints; ++i) {
-    const double limit = torque_continuous(*model_, i);
+    const double limit = model_->joints[static_cast<std::size_t>(i)].torque_continuous;
     result.saturated = result.saturated || std::abs(target(i)) > limit;
     target(i) = std::clamp(target(i), -limit, limit) * in.share;
   }

@@ -489,7 +489,6 @@ void ServoLaw::compute(const ServoInputs& in, bool /*degraded*/, ServoOutputs& o
   // J1 2026-12-03).
   const bool fresh =
       out.fade >= 1.0 && !out.braking && out.coupled && engage >= 1.0 && !memory_.anchored;
-  const bool fresh_joints = out.fade >= 1.0 && !out.braking && engage >= 1.0;
   Vector6d wrench = rate_limit(
       target, fresh ? lim.force_rate : std::min(lim.force_rate, config_.release_rate), dt);
   wrench.head<3>() = clamp_norm(wrench.head<3>(), lim.force_peak);
@@ -507,14 +506,13 @@ void ServoLaw::compute(const ServoInputs& in, bool /*degraded*/, ServoOutputs& o
         -(frame.rotation * object.tail<3>()) / frame.force_factor;
   }
   out.handle_wrench = wrench;
-  const Vector6d joint_command =
-      joint_mode ? joint_space(in, engage,
-                               (fresh_joints ? lim.force_rate
-                                             : std::min(lim.force_rate, config_.release_rate)) /
-                                   lim.force_peak,
-                               dt, out)
-                 : Vector6d::Zero();
-  if (!joint_mode) {
+  Vector6d joint_command = Vector6d::Zero();
+  if (joint_mode) {  // the full rate on fresh data, wholly engaged, as the handle's coupling
+    const bool fresh_joints = out.fade >= 1.0 && !out.braking && engage >= 1.0;
+    const double rate =
+        fresh_joints ? lim.force_rate : std::min(lim.force_rate, config_.release_rate);
+    joint_command = joint_space(in, engage, rate / lim.force_peak, dt, out);
+  } else {
     JointLaw::release(memory_.joints);
   }
 

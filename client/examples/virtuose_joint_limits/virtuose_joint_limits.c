@@ -39,11 +39,12 @@ static const unsigned kUpper[JOINTS] = {VIRT_BOUND_RIGHT_AXE_1,
 /* Shared by main and the periodic function (the library's thread), under `lock`. */
 struct state {
   pthread_mutex_t lock;
-  int joint;       /* the joint driven, 0-5 */
-  float sign;      /* +1: toward its upper limit, -1: its lower, 0: none (ARTICULAR) */
-  unsigned bits;   /* virtIsInBounds at the last call */
-  float q[JOINTS]; /* the last joint positions (rad) */
-  float fastest;   /* the fastest joint speed seen in this phase (rad/s) */
+  int joint;         /* the joint driven, 0-5 */
+  float sign;        /* +1: toward its upper limit, -1: its lower, 0: none (ARTICULAR) */
+  unsigned bits;     /* virtIsInBounds at the last call */
+  float q[JOINTS];   /* the last joint positions (rad) */
+  float fastest;     /* the fastest joint speed seen in this phase (rad/s) */
+  int fastest_joint; /* and which joint, 0-5 */
   int failures;
 };
 
@@ -52,6 +53,7 @@ struct view {
   unsigned bits;
   float q[JOINTS];
   float fastest;
+  int fastest_joint;
   int failures;
 };
 
@@ -61,6 +63,7 @@ static struct view seen(struct state* s) {
   v.bits = s->bits;
   memcpy(v.q, s->q, sizeof v.q);
   v.fastest = s->fastest;
+  v.fastest_joint = s->fastest_joint;
   v.failures = s->failures;
   pthread_mutex_unlock(&s->lock);
   return v;
@@ -85,8 +88,10 @@ static void step(VirtContext vc, void* arg) {
     memcpy(s->q, q, sizeof q);
     s->bits = bits;
     for (int i = 0; i < JOINTS; ++i)
-      if (fabsf(qd[i]) > s->fastest)
+      if (fabsf(qd[i]) > s->fastest) {
         s->fastest = fabsf(qd[i]);
+        s->fastest_joint = i;
+      }
   } else {
     ++s->failures;
   }
@@ -166,13 +171,14 @@ int main(int argc, char** argv) {
   for (int j = 0; j < JOINTS && seen(&s).failures == 0; ++j) {
     const double up = drive(&s, j, 1.0f, kUpper[j]);
     struct view now = seen(&s);
-    printf("joint %d upper limit: %s after %.2f s at %.3f rad, fastest joint %.2f rad/s\n", j + 1,
-           up < 0 ? "NOT reached" : "reached", up < 0 ? PHASE_SECONDS : up, now.q[j], now.fastest);
+    printf("joint %d upper limit: %s after %.2f s at %.3f rad, fastest joint %d at %.2f rad/s\n",
+           j + 1, up < 0 ? "NOT reached" : "reached", up < 0 ? PHASE_SECONDS : up, now.q[j],
+           now.fastest_joint + 1, now.fastest);
     const double down = drive(&s, j, -1.0f, kLower[j]);
     now = seen(&s);
-    printf("joint %d lower limit: %s after %.2f s at %.3f rad, fastest joint %.2f rad/s\n", j + 1,
-           down < 0 ? "NOT reached" : "reached", down < 0 ? PHASE_SECONDS : down, now.q[j],
-           now.fastest);
+    printf("joint %d lower limit: %s after %.2f s at %.3f rad, fastest joint %d at %.2f rad/s\n",
+           j + 1, down < 0 ? "NOT reached" : "reached", down < 0 ? PHASE_SECONDS : down, now.q[j],
+           now.fastest_joint + 1, now.fastest);
     fflush(stdout);
     missed += (up < 0) + (down < 0);
     if (come_back(vc, &s, start) != 0) {

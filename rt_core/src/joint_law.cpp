@@ -121,13 +121,16 @@ JointLawResult JointLaw::torque(const JointLawInputs& in, JointMemory& memory) c
     result.saturated = result.saturated || std::abs(target(i)) > limit;
     target(i) = std::clamp(target(i), -limit, limit) * in.share;
   }
-  if (c.command == ClientCommand::kArticularImpedance && config_.passivity_guard) {
+  const bool guarded = c.command == ClientCommand::kArticularImpedance && config_.passivity_guard;
+  if (guarded) {
     target = guard(in, target, memory, result.guarded);
   }
   for (int i = 0; i < kJoints; ++i) {
     const double step = model_->joints[static_cast<std::size_t>(i)].torque_peak * in.rate * in.dt;
     memory.torque(i) += std::clamp(target(i) - memory.torque(i), -step, step);
-    memory.observed_energy(i) -= memory.torque(i) * in.qd(i) * in.dt;  // what the port gave
+  }
+  if (guarded) {
+    memory.observed_energy -= memory.torque.cwiseProduct(in.qd) * in.dt;  // what the port gave
   }
   result.torque = memory.torque;
   return result;

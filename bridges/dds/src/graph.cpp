@@ -15,8 +15,7 @@ namespace {
 
 /// rmw_dds_common's names are string<=256: a longer one is refused, never cut.
 template <std::size_t N>
-void copy_bounded(const std::string& from, char (&to)[N],
-                  const char* what) {  // NOLINT(*-avoid-c-arrays)
+void copy_bounded(const std::string& from, char (&to)[N], const char* what) {
   if (from.size() >= N) {
     throw std::invalid_argument(std::string(what) + " '" + from + "' is longer than " +
                                 std::to_string(N - 1) + " characters (ROS 2's graph limit)");

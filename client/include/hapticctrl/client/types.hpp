@@ -13,9 +13,9 @@ using Pose7 = std::array<double, 7>;
 using Vector6 = std::array<double, 6>;
 using Joints6 = std::array<double, 6>;
 
-/// What the client commands (VirtuoseAPI's COMMAND_TYPE subset).
-/// What the controller renders for the session. The joint-space two need a protocol 1.4
-/// controller (Connection::features() has HCP_FEATURE_JOINT_CONTROL; docs/control.md).
+/// What the client commands, so what the controller renders for the session (VirtuoseAPI's
+/// COMMAND_TYPE subset). The joint-space two need a protocol 1.4 controller
+/// (Connection::features() has HCP_FEATURE_JOINT_CONTROL; docs/control.md).
 enum class CommandType : std::uint32_t {
   kNone = 0,
   kImpedance = 1,           ///< send_wrench: a wrench at the handle

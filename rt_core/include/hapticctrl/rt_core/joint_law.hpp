@@ -34,7 +34,8 @@ struct JointMemory {
   bool tracking = false;                         ///< ARTICULAR: `setpoint` is in force
   Vector6d setpoint = Vector6d::Zero();          ///< rad
   Vector6d torque = Vector6d::Zero();            ///< rendered last cycle (rate limited), N·m
-  Vector6d observed_energy = Vector6d::Zero();   ///< J per joint: the hand's net input at it
+  /// J per joint: the hand's net input at it (ARTICULAR_IMPEDANCE with the guard on).
+  Vector6d observed_energy = Vector6d::Zero();
 };
 
 /// One cycle's inputs.
@@ -43,9 +44,11 @@ struct JointLawInputs {
   Vector6d q = Vector6d::Zero();        ///< measured joint positions, rad
   Vector6d qd = Vector6d::Zero();       ///< measured joint speeds, rad/s
   Vector6d inertia = Vector6d::Zero();  ///< the mass matrix's diagonal here, kg·m²
-  double share = 0.0;  ///< of the command the joints get: the link's fade times the engagement
-  double rate = 0.0;   ///< rate limit as a share of each joint's peak torque per second
-  double dt = 0.0;     ///< s
+  /// Of the command the joints get: the handle's engagement, which has the link's fade and the
+  /// speed brake in it (ServoLaw::update_engagement).
+  double share = 0.0;
+  double rate = 0.0;  ///< rate limit as a share of each joint's peak torque per second
+  double dt = 0.0;    ///< s
 };
 
 /// What the joint law did this cycle.

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# The dependency rules (docs/architecture.md), clang-format (check only) and clang-tidy over the
-# project's own sources.
+# The dependency rules (docs/architecture.md), the real-time contract (scripts/check_realtime.py,
+# which first proves on planted violations that it finds them), clang-format (check only) and
+# clang-tidy over the project's own sources.
 # Usage: scripts/lint.sh [build-dir-with-compile_commands.json]  (--fix to reformat in place)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -31,4 +32,6 @@ if command -v run-clang-tidy >/dev/null; then
 else
   clang-tidy -quiet -p "$BUILD" "${UNITS[@]}"
 fi
-echo "lint: clean (${#SOURCES[@]} files formatted, ${#UNITS[@]} units tidy)"
+scripts/check_realtime.py --self-test >/dev/null
+scripts/check_realtime.py --build "$BUILD" .
+echo "lint: clean (${#SOURCES[@]} files formatted, ${#UNITS[@]} units tidy, the real-time contract kept)"

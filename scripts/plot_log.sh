@@ -25,7 +25,7 @@ if [[ ! -x $BUILD/bridges/lcm/hapticctrl-log2csv ]]; then
   echo "plot_log: building hapticctrl-log2csv"
   cmake --build "$BUILD" --target hapticctrl-log2csv >/dev/null
 fi
-"$BUILD/bridges/lcm/hapticctrl-log2csv" "$LOG" "$OUT"
+"$BUILD/bridges/lcm/hapticctrl-log2csv" --log "$LOG" --out "$OUT"
 
 # Column number of a header name in a CSV file.
 col() { head -1 "$1" | tr ',' '\n' | grep -nx "$2" | cut -d: -f1; }

@@ -6,6 +6,8 @@ set -euo pipefail
 PACKAGES=(
   # toolchain
   g++ cmake ninja-build pkg-config clang clang-format clang-tidy libclang-rt-14-dev
+  # the real-time contract check (scripts/check_realtime.py) reads the AST through libclang
+  python3-clang-14
   # design-card libraries
   libeigen3-dev liblcm-dev liblcm-bin liblcm-java libglib2.0-dev libtirpc-dev rpcsvc-proto zlib1g-dev
   libbenchmark-dev libgtest-dev libgmock-dev libncurses-dev

@@ -257,23 +257,7 @@ void ClientSession::close_locally() noexcept {
 }
 
 double ClientSession::contact_penetration() const noexcept {
-  // The deepest of the contacts set along the controller's contact normal (within 25 degrees).
-  const double nx = terms_.contact_normal[0];
-  const double ny = terms_.contact_normal[1];
-  const double nz = terms_.contact_normal[2];
-  const double length = std::sqrt(nx * nx + ny * ny + nz * nz);
-  double deepest = 0.0;
-  for (std::uint32_t i = 0; i < contact_count_ && length > 1e-6; ++i) {
-    const hcp_contact& c = contacts_[i];
-    const double along =
-        (static_cast<double>(c.normal[0]) * nx + static_cast<double>(c.normal[1]) * ny +
-         static_cast<double>(c.normal[2]) * nz) /
-        length;
-    if (along > 0.9) {
-      deepest = std::max(deepest, -static_cast<double>(c.distance));
-    }
-  }
-  return deepest;
+  return contacts_.penetration_along(terms_.contact_normal);
 }
 
 std::optional<hcp_frame> ClientSession::keepalive_due(std::int64_t now) noexcept {
@@ -421,91 +405,27 @@ std::optional<hcp_frame> ClientSession::wrench_frame(const Vector6& wrench,
   return checked_control(f);
 }
 
-namespace {
-
-/// Contacts are refreshed at least this often: the controller fades one not refreshed in 30 ms.
-constexpr std::int64_t kContactRefreshNs = 5 * kNsPerMs;
-
-hcp_contact wire_contact(const Contact& c) noexcept {
-  hcp_contact w{};
-  protocol::to_wire(c.point, w.point);
-  protocol::to_wire(c.normal, w.normal);
-  w.distance = static_cast<float>(c.distance);
-  w.stiffness = static_cast<float>(c.stiffness);
-  w.damping = static_cast<float>(c.damping);
-  w.friction[0] = static_cast<float>(c.friction_static);
-  w.friction[1] = static_cast<float>(c.friction_dynamic);
-  return w;
-}
-
-bool same_contact(const hcp_contact& a, const hcp_contact& b) noexcept {
-  return std::equal(std::begin(a.point), std::end(a.point), std::begin(b.point)) &&
-         std::equal(std::begin(a.normal), std::end(a.normal), std::begin(b.normal)) &&
-         a.distance == b.distance && a.stiffness == b.stiffness && a.damping == b.damping &&
-         a.friction[0] == b.friction[0] && a.friction[1] == b.friction[1];
-}
-
-}  // namespace
-
 ContactResult ClientSession::set_contacts(std::span<const Contact> contacts) noexcept {
   if (!local()) {
     return ContactResult::kUnsupported;
   }
-  if (contacts.size() > kMaxContacts) {
-    return ContactResult::kTooMany;
-  }
-  const auto count = static_cast<std::uint32_t>(contacts.size());
-  std::array<hcp_contact, kMaxContacts> next{};
-  for (std::uint32_t i = 0; i < count; ++i) {
-    hcp_control_contact frame{};
-    frame.slots = protocol::pack_contact_slots(i, count);
-    frame.contact = wire_contact(contacts[i]);
-    if (protocol::check_contact(frame)) {
-      return ContactResult::kInvalid;
-    }
-    const double limit = local_.max_contact_stiffness;
-    if (limit > 0.0 && static_cast<double>(frame.contact.stiffness) > limit) {
-      return ContactResult::kTooStiff;
-    }
-    next[i] = frame.contact;
-  }
-  for (std::uint32_t i = 0; i < count; ++i) {
-    contact_changed_[i] = i >= contact_count_ || !same_contact(next[i], contacts_[i]);
-  }
-  contacts_clear_due_ = count == 0 && contact_count_ > 0;
-  if (count != contact_count_) {
-    contact_changed_.fill(true);  // every frame carries the count
-  }
-  contacts_ = next;
-  contact_count_ = count;
-  return ContactResult::kAccepted;
+  return contacts_.set(contacts, local_.max_contact_stiffness);
 }
 
 std::optional<hcp_frame> ClientSession::contact_frame_due(std::int64_t now) noexcept {
   if (!open_ || !local()) {
     return std::nullopt;
   }
-  if (contacts_clear_due_) {
-    contacts_clear_due_ = false;
-    hcp_frame f = protocol::make_frame(HCP_CONTROL_CONTACT, token_, next_control_sequence(), now);
-    f.body.hcp_body_u.contact.slots = protocol::pack_contact_slots(0, 0);
-    f.body.hcp_body_u.contact.answer_echo = answer_echo(now);
-    return checked_control(f);
+  const std::optional<ContactSend> send = contacts_.due(now);
+  if (!send) {
+    return std::nullopt;
   }
-  for (std::uint32_t i = 0; i < contact_count_; ++i) {
-    if (!contact_changed_[i] && now - contact_sent_ns_[i] < kContactRefreshNs) {
-      continue;
-    }
-    contact_changed_[i] = false;
-    contact_sent_ns_[i] = now;
-    hcp_frame f = protocol::make_frame(HCP_CONTROL_CONTACT, token_, next_control_sequence(), now);
-    hcp_control_contact& c = f.body.hcp_body_u.contact;
-    c.slots = protocol::pack_contact_slots(i, contact_count_);
-    c.answer_echo = answer_echo(now);
-    c.contact = contacts_[i];
-    return checked_control(f);
-  }
-  return std::nullopt;
+  hcp_frame f = protocol::make_frame(HCP_CONTROL_CONTACT, token_, next_control_sequence(), now);
+  hcp_control_contact& c = f.body.hcp_body_u.contact;
+  c.slots = send->slots;
+  c.answer_echo = answer_echo(now);
+  c.contact = send->contact;
+  return checked_control(f);
 }
 
 // --- reliable frames -----------------------------------------------------------------------

@@ -15,6 +15,7 @@
 #include <string>
 
 #include "channel_passivity.hpp"
+#include "contact_set.hpp"
 #include "hapticctrl/client/connection.hpp"
 #include "hapticctrl/protocol/codec.hpp"
 #include "link_monitor.hpp"
@@ -183,12 +184,7 @@ class ClientSession {
   std::int64_t last_wrench_send_ns_ = 0;
   double speed_factor_ = 1.0;
   double force_factor_ = 1.0;
-  // Protocol 1.3: the object's contacts and when each slot went out.
-  std::array<hcp_contact, kMaxContacts> contacts_{};
-  std::uint32_t contact_count_ = 0;
-  std::array<bool, kMaxContacts> contact_changed_{};
-  std::array<std::int64_t, kMaxContacts> contact_sent_ns_{};
-  bool contacts_clear_due_ = false;
+  ContactSet contacts_;  ///< protocol 1.3: the object's contacts, sent slot by slot
 };
 
 }  // namespace hapticctrl::client

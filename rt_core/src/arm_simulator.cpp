@@ -9,6 +9,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "hapticctrl/base/realtime.hpp"
 #include "hapticctrl/shm/force_slew.hpp"
 
 namespace hapticctrl::rt_core {
@@ -18,7 +19,7 @@ namespace {
 /// encoder finite difference, as ARM_REFERENCE proposes.
 constexpr double kVelocityFilterTau = 0.002;
 
-Vector3d to_vector(const std::array<double, 3>& a) noexcept {
+HAPTICCTRL_RT Vector3d to_vector(const std::array<double, 3>& a) noexcept {
   return {a[0], a[1], a[2]};
 }
 

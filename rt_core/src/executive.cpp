@@ -129,14 +129,14 @@ shm::StopReason Executive::run_slot(TimeNs scheduled, TimeNs woke) noexcept {
   times.checked = clock_->now();
   const MonitorVerdict verdict = tasks_.check_deadlines(times.checked);
   const TaskRelease& servo = tasks_.last_release(servo_);
-  times.degraded = servo.role == ServoRole::kDegraded;
-  times.servo_started = servo.started;
+  times.degraded = servo.role == TaskRole::kDegraded;
+  times.started = servo.started;
   times.finished = servo.finished;
   const bool miss = verdict != MonitorVerdict::kGood;
-  if (times.servo_started >= 0) {
-    servo_start_delay_.add(times.servo_started - times.released);
+  if (times.started >= 0) {
+    servo_start_delay_.add(times.started - times.released);
     if (times.finished >= 0) {
-      servo_execution_.add(times.finished - times.servo_started);
+      servo_execution_.add(times.finished - times.started);
     }
   }
   record(times, (miss ? kRecordMiss : 0U) | (times.degraded ? kRecordDegraded : 0U), 0);
@@ -172,9 +172,9 @@ void Executive::record(const CycleTimes& times, std::uint32_t flags,
   r.cycle = cycle_;
   r.scheduled = times.scheduled;
   r.wake_latency = times.woke - times.scheduled;
-  r.servo_start_delay = times.servo_started >= 0 ? times.servo_started - times.released : -1;
+  r.servo_start_delay = times.started >= 0 ? times.started - times.released : -1;
   r.servo_execution =
-      (times.finished >= 0 && times.servo_started >= 0) ? times.finished - times.servo_started : -1;
+      (times.finished >= 0 && times.started >= 0) ? times.finished - times.started : -1;
   r.flags = flags;
   r.consecutive_misses = monitor().consecutive_misses();
   r.skipped = skipped;

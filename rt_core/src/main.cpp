@@ -169,8 +169,8 @@ int run_core(const CoreConfig& config) {
                       ? "): this start is an operator's own (--fresh-start)\n"
                       : "): a client's power-on is refused until an operator powers the arm on\n");
   }
-  ServoTask main_task(shared, ServoRole::kMain, ServoLaw(dynamics));
-  ServoTask degraded_task(shared, ServoRole::kDegraded, ServoLaw(dynamics));
+  ServoTask main_task(shared, TaskRole::kMain, ServoLaw(dynamics));
+  ServoTask degraded_task(shared, TaskRole::kDegraded, ServoLaw(dynamics));
   BlackBox black_box(static_cast<std::size_t>(2 * kNsPerS / config.period),
                      &segment.writable<shm::RegionId::kBlackBox>());
   RealClock clock;
@@ -183,8 +183,8 @@ int run_core(const CoreConfig& config) {
                            ThreadPlacement{fifo ? config.priority - 1 : 0, cpu},
                            ThreadPlacement{fifo ? config.priority - 2 : 0, -1});
   const bool placed = place_current_thread(ThreadPlacement{fifo ? config.priority : 0, cpu}) &&
-                      tasks.placement_applied(ServoRole::kMain) &&
-                      tasks.placement_applied(ServoRole::kDegraded);
+                      tasks.placement_applied(TaskRole::kMain) &&
+                      tasks.placement_applied(TaskRole::kDegraded);
   if (!placed) {
     const std::string what = "the real-time threads could not all be placed (CPU " +
                              std::to_string(cpu) + ", SCHED_FIFO " +

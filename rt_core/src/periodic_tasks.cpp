@@ -1,3 +1,6 @@
+// Implements periodic_tasks.hpp: the periodic-task manager. Each task keeps its spec, its
+// state, its last release and its own DeadlineMonitor in a fixed array (kMaxTasks), so releasing
+// and judging allocate nothing; the functions themselves run in the task's TaskRunners.
 #include "hapticctrl/rt_core/periodic_tasks.hpp"
 
 #include <stdexcept>
@@ -67,11 +70,11 @@ void PeriodicTasks::release(Task& task, std::uint64_t tick, TimeNs scheduled, Ti
   r.scheduled = scheduled;
   r.released = now;
   // The normal function still busy with an older release: the degraded function takes this one.
-  r.role = runners.busy(ServoRole::kMain) ? ServoRole::kDegraded : ServoRole::kMain;
+  r.role = runners.busy(TaskRole::kMain) ? TaskRole::kDegraded : TaskRole::kMain;
   task.pending_check = true;
-  if (r.role == ServoRole::kDegraded) {
+  if (r.role == TaskRole::kDegraded) {
     ++task.degraded_releases;
-    if (!task.spec.has_degraded || runners.busy(ServoRole::kDegraded)) {
+    if (!task.spec.has_degraded || runners.busy(TaskRole::kDegraded)) {
       return;  // nothing can run this release: a miss
     }
   }
@@ -96,17 +99,17 @@ MonitorVerdict PeriodicTasks::check_deadlines(TimeNs now) noexcept {
 MonitorVerdict PeriodicTasks::judge(Task& task, TimeNs now) noexcept {
   TaskRunners& runners = *task.spec.runners;
   TaskRelease& r = task.last;
-  (void)runners.busy(ServoRole::kMain);  // lets a scripted runner catch up to `now`
+  (void)runners.busy(TaskRole::kMain);  // lets a scripted runner catch up to `now`
   r.checked = now;
-  const bool degraded = r.role == ServoRole::kDegraded;
+  const bool degraded = r.role == TaskRole::kDegraded;
   if (!degraded) {
-    r.started = runners.started_at(ServoRole::kMain);
-    r.finished = runners.finished_at(ServoRole::kMain, r.cycle);
+    r.started = runners.started_at(TaskRole::kMain);
+    r.finished = runners.finished_at(TaskRole::kMain, r.cycle);
   }
   CycleTimes times;
   times.scheduled = r.scheduled;
   times.released = r.released;
-  times.servo_started = r.started;
+  times.started = r.started;
   times.finished = r.finished;
   times.checked = now;
   times.degraded = degraded;

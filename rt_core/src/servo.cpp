@@ -1,7 +1,9 @@
-// Implements servo.hpp: the SERVO task's steps (DESIGN.md §4): read measures, build the logical
-// state from ctrl, exchange with the protocol regions, run the law, send commands, publish VP and
-// position.
+// Implements servo.hpp: the SERVO task's steps (docs/rt_core.md, *The cycle*): read measures, build
+// the logical state from ctrl, exchange with the protocol regions, run the law, send commands,
+// publish VP and position.
 #include "hapticctrl/rt_core/servo.hpp"
+
+#include "hapticctrl/base/realtime.hpp"
 
 #include <cmath>
 
@@ -9,7 +11,7 @@ namespace hapticctrl::rt_core {
 namespace {
 
 template <std::size_t N>
-bool all_finite(const std::array<double, N>& values) noexcept {
+HAPTICCTRL_RT bool all_finite(const std::array<double, N>& values) noexcept {
   for (const double v : values) {
     if (!std::isfinite(v)) {
       return false;
@@ -19,7 +21,7 @@ bool all_finite(const std::array<double, N>& values) noexcept {
 }
 
 /// A frame pose's rotation must be a unit quaternion (1 % tolerance for float clients).
-bool unit_quaternion(const shm::Pose7& pose) noexcept {
+HAPTICCTRL_RT bool unit_quaternion(const shm::Pose7& pose) noexcept {
   const double norm_sq =
       pose[3] * pose[3] + pose[4] * pose[4] + pose[5] * pose[5] + pose[6] * pose[6];
   return std::abs(norm_sq - 1.0) <= 0.02;
@@ -27,7 +29,7 @@ bool unit_quaternion(const shm::Pose7& pose) noexcept {
 
 /// A contact slot is usable if its numbers are finite, its normal a unit vector (2 %) and its
 /// stiffness positive and at most `max_stiffness`, the stiffest the device renders.
-bool contact_valid(const shm::ContactSlot& c, double max_stiffness) noexcept {
+HAPTICCTRL_RT bool contact_valid(const shm::ContactSlot& c, double max_stiffness) noexcept {
   double norm_sq = 0.0;
   for (const double n : c.normal) {
     norm_sq += n * n;
@@ -40,7 +42,7 @@ bool contact_valid(const shm::ContactSlot& c, double max_stiffness) noexcept {
 }
 
 /// A client sample is usable only if every number in it is finite and in a sane range.
-bool client_sample_valid(const shm::VprPayload& s) noexcept {
+HAPTICCTRL_RT bool client_sample_valid(const shm::VprPayload& s) noexcept {
   return s.command_type <= static_cast<std::uint32_t>(shm::CommandType::kArticularImpedance) &&
          all_finite(s.object_pose) && all_finite(s.object_twist) && all_finite(s.joint_target) &&
          all_finite(s.joint_speed) && all_finite(s.joint_torque) &&
@@ -57,7 +59,7 @@ bool client_sample_valid(const shm::VprPayload& s) noexcept {
 /// When the client computed the sample, on our clock: the bridge's estimate (protocol timing)
 /// when it is plausible (not in the future, not older than its arrival by more than 10 s),
 /// otherwise its arrival here.
-TimeNs sample_time_of(const shm::VprPayload& s, TimeNs arrival) noexcept {
+HAPTICCTRL_RT TimeNs sample_time_of(const shm::VprPayload& s, TimeNs arrival) noexcept {
   constexpr TimeNs kMaxAge = 10'000 * kNsPerMs;
   return s.sample_time_ns > 0 && s.sample_time_ns <= arrival &&
                  arrival - s.sample_time_ns <= kMaxAge
@@ -66,7 +68,8 @@ TimeNs sample_time_of(const shm::VprPayload& s, TimeNs arrival) noexcept {
 }
 
 /// The coupling loop's delay: cycles from the answer the client echoed to this one (0: none).
-TimeNs loop_delay_of(const shm::VprPayload& s, std::uint64_t cycle, TimeNs period) noexcept {
+HAPTICCTRL_RT TimeNs loop_delay_of(const shm::VprPayload& s, std::uint64_t cycle,
+                                   TimeNs period) noexcept {
   if (s.echo_cycle == 0 || s.echo_cycle > cycle) {
     return 0;
   }
@@ -75,8 +78,8 @@ TimeNs loop_delay_of(const shm::VprPayload& s, std::uint64_t cycle, TimeNs perio
 
 /// The law's view of the sample's contacts: the valid ones in their slots (an invalid one is
 /// left empty and counted in `rejected`, once per contact frame it came with).
-void take_contacts(const shm::VprPayload& s, double max_stiffness, ClientSample& c,
-                   std::uint64_t& rejected) noexcept {
+HAPTICCTRL_RT void take_contacts(const shm::VprPayload& s, double max_stiffness, ClientSample& c,
+                                 std::uint64_t& rejected) noexcept {
   c.contact_count = std::min<std::uint32_t>(s.contact_count, kMaxClientContacts);
   for (std::size_t i = 0; i < kMaxClientContacts; ++i) {
     const shm::ContactSlot& from = s.contacts[i];
@@ -101,7 +104,7 @@ void take_contacts(const shm::VprPayload& s, double max_stiffness, ClientSample&
 }
 
 /// The law's view of a valid sample (client_sample.hpp): the ABI stops here.
-ClientSample client_sample_of(const shm::VprPayload& s) noexcept {
+HAPTICCTRL_RT ClientSample client_sample_of(const shm::VprPayload& s) noexcept {
   ClientSample c;
   c.session_id = s.session_id;
   switch (static_cast<shm::CommandType>(s.command_type)) {
@@ -142,7 +145,7 @@ ClientSample client_sample_of(const shm::VprPayload& s) noexcept {
   return c;
 }
 
-void copy_to(const Vector6d& from, std::array<double, 6>& to) noexcept {
+HAPTICCTRL_RT void copy_to(const Vector6d& from, std::array<double, 6>& to) noexcept {
   for (std::size_t i = 0; i < 6; ++i) {
     to[i] = from(static_cast<Eigen::Index>(i));
   }
@@ -176,7 +179,7 @@ StepResult ServoTask::begin(std::uint64_t cycle, TimeNs now, TimeNs dt) noexcept
   }
   gather(cycle, now, dt);
   gate_->leave(cycle);
-  law_.compute(inputs_, role_ == ServoRole::kDegraded, outputs_);
+  law_.compute(inputs_, role_ == TaskRole::kDegraded, outputs_);
   return StepResult::kDone;
 }
 
@@ -218,11 +221,11 @@ void ServoTask::gather(std::uint64_t cycle, TimeNs now, TimeNs dt) noexcept {
     to_clock_->stop_requested.store(true, std::memory_order_release);
   }
   ScheduledOverrun& scheduled = s.scheduled_overrun;
-  if (scheduled.at_cycle != 0 && cycle >= scheduled.at_cycle && role_ == ServoRole::kMain) {
+  if (scheduled.at_cycle != 0 && cycle >= scheduled.at_cycle && role_ == TaskRole::kMain) {
     s.logical.pending_overrun_cycles = scheduled.cycles;
     scheduled.at_cycle = 0;
   }
-  if (s.logical.pending_overrun_cycles > 0 && role_ == ServoRole::kMain) {
+  if (s.logical.pending_overrun_cycles > 0 && role_ == TaskRole::kMain) {
     overrun_->request(s.logical.pending_overrun_cycles);
     s.logical.pending_overrun_cycles = 0;
   }
@@ -297,7 +300,7 @@ void ServoTask::commit(std::uint64_t cycle, TimeNs now) noexcept {
   s.rendered = commands.enable ? law_.memory() : RenderMemory{};
 
   std::uint32_t state_word = s.logical.state_word() | from_clock_->state_bits();
-  if (role_ == ServoRole::kDegraded) {
+  if (role_ == TaskRole::kDegraded) {
     state_word |= shm::state_bits::kDegraded;
   }
   if (outputs_.coupled && commands.enable) {

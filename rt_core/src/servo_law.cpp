@@ -4,6 +4,8 @@
 // servo_law_contact.cpp and servo_law_walls.cpp.
 #include "hapticctrl/rt_core/servo_law.hpp"
 
+#include "hapticctrl/base/realtime.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -25,8 +27,8 @@ constexpr double kClipped = 1e-12;
 /// The largest share s in [0, 1] of `spring` that keeps |spring * s + damper| within `limit`,
 /// with the damper clamped to `limit` first (its own share, returned in `damper_share`). The
 /// damper keeps its whole share of a saturated force.
-double spring_share_within(const Vector3d& spring, const Vector3d& damper, double limit,
-                           double& damper_share) noexcept {
+HAPTICCTRL_RT double spring_share_within(const Vector3d& spring, const Vector3d& damper,
+                                         double limit, double& damper_share) noexcept {
   const double d_norm = damper.norm();
   if (d_norm >= limit) {
     damper_share = d_norm > 0.0 ? limit / d_norm : 0.0;
@@ -49,8 +51,8 @@ struct SaturatedParts {
   Vector6d damper = Vector6d::Zero();
 };
 
-SaturatedParts saturate_parts(const Vector6d& spring, const Vector6d& damper, double force_limit,
-                              double torque_limit) noexcept {
+HAPTICCTRL_RT SaturatedParts saturate_parts(const Vector6d& spring, const Vector6d& damper,
+                                            double force_limit, double torque_limit) noexcept {
   SaturatedParts p;
   double d = 1.0;
   double s = spring_share_within(spring.head<3>(), damper.head<3>(), force_limit, d);

@@ -6,6 +6,8 @@
 #include <limits>
 
 #include "hapticctrl/rt_core/servo_law.hpp"
+
+#include "hapticctrl/base/realtime.hpp"
 #include "law_math.hpp"
 
 namespace hapticctrl::rt_core {
@@ -29,13 +31,13 @@ constexpr double kSurfaceBudgetBound = 2e-4;
 
 /// How fast a hidden stretch or depth comes back: `speed` less the handle's own speed away
 /// along it (`leaving`, m/s) beyond the creep, never below zero.
-double return_speed(double speed, double leaving) noexcept {
+HAPTICCTRL_RT double return_speed(double speed, double leaving) noexcept {
   return std::max(0.0, speed - std::max(0.0, leaving - kCreepSpeed));
 }
 
 /// Share of the contact a slot still has after `silence` without a refresh: 1 while fresh,
 /// falling linearly to 0 over the fade (a contact that stops coming fades as the link does).
-double contact_weight(TimeNs silence, const LawConfig& config) noexcept {
+HAPTICCTRL_RT double contact_weight(TimeNs silence, const LawConfig& config) noexcept {
   if (silence <= config.contact_fresh) {
     return 1.0;
   }

@@ -5,6 +5,8 @@
 
 #include "hapticctrl/rt_core/servo_law.hpp"
 
+#include "hapticctrl/base/realtime.hpp"
+
 namespace hapticctrl::rt_core {
 namespace {
 
@@ -32,7 +34,7 @@ constexpr double kDesignDelayBand = 0.1;
 constexpr TimeNs kDesignDelayBandMin = kNsPerMs / 2;
 constexpr TimeNs kGainSlewTime = 50 * kNsPerMs;
 
-double bounded(double value, double upper) noexcept {
+HAPTICCTRL_RT double bounded(double value, double upper) noexcept {
   return std::clamp(value, 0.0, upper);
 }
 

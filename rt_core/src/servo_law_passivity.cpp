@@ -5,6 +5,8 @@
 #include <cmath>
 
 #include "hapticctrl/rt_core/servo_law.hpp"
+
+#include "hapticctrl/base/realtime.hpp"
 #include "law_math.hpp"
 
 namespace hapticctrl::rt_core {
@@ -18,7 +20,7 @@ constexpr double kNegligible = 1e-9;
 
 /// Converts base-frame forces and twists into the client's units (force / force factor, speed *
 /// speed factor), as it counts its energy.
-Vector6d client_units(const ClientFrame& frame) noexcept {
+HAPTICCTRL_RT Vector6d client_units(const ClientFrame& frame) noexcept {
   Vector6d weight;
   weight << Vector3d::Constant(frame.speed_factor / frame.force_factor),
       Vector3d::Constant(1.0 / frame.force_factor);
@@ -28,8 +30,8 @@ Vector6d client_units(const ClientFrame& frame) noexcept {
 /// Removes from `force` the share that delivers power along `flow`, as much as dissipates
 /// `energy` in one period (power = (force . weight) . flow): the force, then the torque, each at
 /// most down to none along its own motion (never turned against it). Returns the energy taken.
-double cut_output(Vector6d& force, const Vector6d& weight, const Vector6d& flow, double energy,
-                  double dt) noexcept {
+HAPTICCTRL_RT double cut_output(Vector6d& force, const Vector6d& weight, const Vector6d& flow,
+                                double energy, double dt) noexcept {
   double left = energy / dt;
   for (int from = 0; from < 6 && left > 0.0; from += 3) {
     const Vector3d f = force.segment<3>(from) * weight(from);

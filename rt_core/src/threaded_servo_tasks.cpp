@@ -105,7 +105,7 @@ void ThreadedServoTasks::worker_loop(Worker& w) noexcept {
     const TimeNs start = clock_->now();
     w.started.store(start, std::memory_order_release);
     w.task->begin(cycle, start, period_);
-    if (w.task->role() == ServoRole::kMain) {
+    if (w.task->role() == TaskRole::kMain) {
       // Fault injection: this SERVO overruns for K cycles (stalls (K - 0.2) periods, so that
       // exactly K consecutive cycles miss their deadline).
       const std::uint32_t k = overrun_->take();
@@ -122,8 +122,7 @@ void ThreadedServoTasks::worker_loop(Worker& w) noexcept {
   }
 }
 
-void ThreadedServoTasks::release(ServoRole role, std::uint64_t cycle,
-                                 TimeNs release_time) noexcept {
+void ThreadedServoTasks::release(TaskRole role, std::uint64_t cycle, TimeNs release_time) noexcept {
   Worker& w = worker(role);
   w.started.store(-1, std::memory_order_relaxed);
   w.release_time.store(release_time, std::memory_order_relaxed);
@@ -132,17 +131,17 @@ void ThreadedServoTasks::release(ServoRole role, std::uint64_t cycle,
   shm::futex_wake_one(w.release_word);
 }
 
-bool ThreadedServoTasks::busy(ServoRole role) noexcept {
+bool ThreadedServoTasks::busy(TaskRole role) noexcept {
   Worker& w = worker(role);
   return w.finished_cycle.load(std::memory_order_acquire) !=
          w.released_cycle.load(std::memory_order_acquire);
 }
 
-TimeNs ThreadedServoTasks::started_at(ServoRole role) noexcept {
+TimeNs ThreadedServoTasks::started_at(TaskRole role) noexcept {
   return worker(role).started.load(std::memory_order_acquire);
 }
 
-TimeNs ThreadedServoTasks::finished_at(ServoRole role, std::uint64_t cycle) noexcept {
+TimeNs ThreadedServoTasks::finished_at(TaskRole role, std::uint64_t cycle) noexcept {
   const Worker& w = worker(role);
   if (w.finished_cycle.load(std::memory_order_acquire) != cycle) {
     return -1;
@@ -163,8 +162,8 @@ void ThreadedServoTasks::stop() noexcept {
   }
 }
 
-bool ThreadedServoTasks::placement_applied(ServoRole role) const noexcept {
-  const Worker& w = role == ServoRole::kMain ? main_ : degraded_;
+bool ThreadedServoTasks::placement_applied(TaskRole role) const noexcept {
+  const Worker& w = role == TaskRole::kMain ? main_ : degraded_;
   return w.placement_ok.load(std::memory_order_acquire);
 }
 

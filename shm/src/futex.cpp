@@ -2,6 +2,8 @@
 // memory.
 #include "hapticctrl/shm/futex.hpp"
 
+#include "hapticctrl/base/realtime.hpp"
+
 #include <linux/futex.h>
 #include <sys/syscall.h>
 #include <unistd.h>
@@ -18,13 +20,13 @@ namespace {
 static_assert(sizeof(std::atomic<std::uint32_t>) == sizeof(std::uint32_t));
 static_assert(std::atomic<std::uint32_t>::is_always_lock_free);
 
-std::uint32_t* futex_address(const std::atomic<std::uint32_t>& word) noexcept {
+HAPTICCTRL_RT std::uint32_t* futex_address(const std::atomic<std::uint32_t>& word) noexcept {
   // NOLINTNEXTLINE(cppcoreguidelines-pro-type-const-cast): the kernel only reads it for WAIT.
   return reinterpret_cast<std::uint32_t*>(const_cast<std::atomic<std::uint32_t>*>(&word));
 }
 
-long futex_call(std::uint32_t* address, int op, std::uint32_t value,
-                const timespec* timeout) noexcept {
+HAPTICCTRL_RT long futex_call(std::uint32_t* address, int op, std::uint32_t value,
+                              const timespec* timeout) noexcept {
   return syscall(SYS_futex, address, op, value, timeout, nullptr, 0);
 }
 

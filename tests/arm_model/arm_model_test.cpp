@@ -3,6 +3,7 @@
 // (docs/arm_model.md).
 #include "hapticctrl/arm_model/arm_model.hpp"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -32,7 +33,7 @@ void expect_error(const std::string& text, const std::string& message) {
     parse_arm_model(text, "test.arm");
     FAIL() << "expected: " << message;
   } catch (const ArmModelError& e) {
-    EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+    EXPECT_THAT(e.what(), testing::HasSubstr(message)) << e.what();
   }
 }
 

@@ -1,6 +1,7 @@
 // Tests of dds_bridge_config.hpp: command line of hapticctrl-dds.
 #include "hapticctrl/dds_bridge/dds_bridge_config.hpp"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -80,7 +81,7 @@ TEST(DdsBridgeConfig, BadValuesNameTheOption) {
       (void)DdsBridgeConfig::parse(args);
       ADD_FAILURE() << args.front() << " accepted";
     } catch (const std::invalid_argument& e) {
-      EXPECT_NE(std::string(e.what()).find(args.front()), std::string::npos) << e.what();
+      EXPECT_THAT(e.what(), testing::HasSubstr(args.front())) << e.what();
     }
   }
 }

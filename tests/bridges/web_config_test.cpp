@@ -1,6 +1,7 @@
 // Tests of web_config.hpp: command line of hapticctrl-web.
 #include "hapticctrl/web_bridge/web_config.hpp"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <stdexcept>
@@ -50,7 +51,7 @@ TEST(WebConfig, RefusesBadValuesNamingTheOption) {
       (void)WebConfig::parse(args);
       ADD_FAILURE() << args[0] << " accepted";
     } catch (const std::invalid_argument& e) {
-      EXPECT_NE(std::string(e.what()).find(args[0].substr(0, 8)), std::string::npos) << e.what();
+      EXPECT_THAT(e.what(), testing::HasSubstr(args[0].substr(0, 8))) << e.what();
     }
   }
 }
@@ -60,7 +61,7 @@ TEST(WebConfig, ServingBeyondLoopbackMustBeMeant) {
     (void)WebConfig::parse({"--listen", "0.0.0.0:8080"});
     FAIL() << "listened beyond loopback without --allow-remote";
   } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("--allow-remote"), std::string::npos) << e.what();
+    EXPECT_THAT(e.what(), testing::HasSubstr("--allow-remote")) << e.what();
   }
   EXPECT_EQ(WebConfig::parse({"--listen", "127.0.0.2:8080"}).listen, "127.0.0.2:8080");
 }

@@ -2,6 +2,7 @@
 // greeting and broadcasts, and everything a broken or hostile page can send.
 #include "hapticctrl/web_bridge/web_server.hpp"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -252,7 +253,7 @@ TEST(WebServer, SaysWhyItCannotStart) {
     WebServer second(s, handler);
     FAIL() << "a second server on the same port started";
   } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find(s.listen), std::string::npos) << e.what();
+    EXPECT_THAT(e.what(), testing::HasSubstr(s.listen)) << e.what();
   }
 }
 

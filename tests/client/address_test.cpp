@@ -1,4 +1,5 @@
 // The controller addresses a client accepts (address.cpp).
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "hapticctrl/client/connection.hpp"
@@ -21,8 +22,7 @@ TEST(Address, ABadPortOrNoHostIsRefusedWithTheText) {
       ADD_FAILURE() << "accepted '" << bad << "'";
     } catch (const ClientError& e) {
       EXPECT_EQ(e.code(), ErrorCode::kInvalidArgument);
-      EXPECT_NE(std::string(e.what()).find("bad controller address '" + std::string(bad) + "'"),
-                std::string::npos)
+      EXPECT_THAT(e.what(), testing::HasSubstr("bad controller address '" + std::string(bad) + "'"))
           << e.what();
     }
   }

@@ -2,6 +2,7 @@
 // their arrival time, frames out.
 #include "client_session.hpp"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -116,7 +117,7 @@ TEST(ClientSession, ABusyControllerIsAskedAgainAfterItsRetryTimeAndTheTimeoutSay
   EXPECT_TRUE(s.hello_due(101 * kMs).has_value());
   const ClientError e = s.handshake_timeout();
   EXPECT_EQ(e.code(), ErrorCode::kBusy);
-  EXPECT_NE(std::string(e.what()).find("another client holds the arm"), std::string::npos);
+  EXPECT_THAT(e.what(), testing::HasSubstr("another client holds the arm"));
 }
 
 TEST(ClientSession, AVersionRefusalFailsAtOnceNamingBothVersions) {
@@ -147,8 +148,7 @@ TEST(ClientSession, SilenceDuringTheHandshakeAsksWhetherTheBridgeRuns) {
   const ClientSession s(options(), "lab-pc:5125");
   const ClientError e = s.handshake_timeout();
   EXPECT_EQ(e.code(), ErrorCode::kTimeout);
-  EXPECT_NE(std::string(e.what()).find("lab-pc:5125 within 500 ms: is hapticctrl-udp running"),
-            std::string::npos)
+  EXPECT_THAT(e.what(), testing::HasSubstr("lab-pc:5125 within 500 ms: is hapticctrl-udp running"))
       << e.what();
 }
 

@@ -1,6 +1,7 @@
 // The client library against the real hapticctrl-core and hapticctrl-udp on loopback.
 #include "hapticctrl/client/connection.hpp"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -124,8 +125,7 @@ TEST(Connection, ASecondClientIsRefusedAsBusy) {
     FAIL() << "a second client must be refused";
   } catch (const ClientError& e) {
     EXPECT_EQ(e.code(), ErrorCode::kBusy);
-    EXPECT_NE(std::string(e.what()).find("another client session is active"), std::string::npos)
-        << e.what();
+    EXPECT_THAT(e.what(), testing::HasSubstr("another client session is active")) << e.what();
   }
   EXPECT_TRUE(first.is_open());
   EXPECT_TRUE(
@@ -203,7 +203,7 @@ TEST(Connection, AStoppingControllerClosesTheSessionAndTheClientIsTold) {
     FAIL() << "a closed session refuses calls";
   } catch (const ClientError& e) {
     EXPECT_EQ(e.code(), ErrorCode::kClosed);
-    EXPECT_NE(std::string(e.what()).find("the controller stopped"), std::string::npos) << e.what();
+    EXPECT_THAT(e.what(), testing::HasSubstr("the controller stopped")) << e.what();
   }
 }
 
@@ -245,8 +245,7 @@ TEST(Connection, ASessionWhoseBridgeFallsSilentIsClosedAfterTheAnswerTimeout) {
     FAIL() << "a closed session refuses calls";
   } catch (const ClientError& e) {
     EXPECT_EQ(e.code(), ErrorCode::kClosed);
-    EXPECT_NE(std::string(e.what()).find("no answer from the bridge for 300 ms"), std::string::npos)
-        << e.what();
+    EXPECT_THAT(e.what(), testing::HasSubstr("no answer from the bridge for 300 ms")) << e.what();
   }
 }
 
@@ -258,7 +257,7 @@ TEST(Connection, NoControllerAndNoBridgeGiveClearErrors) {
     FAIL();
   } catch (const ClientError& e) {
     EXPECT_EQ(e.code(), ErrorCode::kTimeout);
-    EXPECT_NE(std::string(e.what()).find("is hapticctrl-udp running there?"), std::string::npos);
+    EXPECT_THAT(e.what(), testing::HasSubstr("is hapticctrl-udp running there?"));
   }
 }
 

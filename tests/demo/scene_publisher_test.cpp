@@ -2,6 +2,7 @@
 // (the web bridge, lcm-spy) can draw the spheres the controller's handle is coupled to.
 #include "hapticctrl/demo/scene_publisher.hpp"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -92,8 +93,8 @@ TEST(ScenePublisher, SaysWhichUrlItCannotOpen) {
     ScenePublisher p("nonsense://x", "t", 30.0);
     FAIL() << "opened a nonsense URL";
   } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("nonsense://x"), std::string::npos);
-    EXPECT_NE(std::string(e.what()).find("--no-lcm"), std::string::npos);
+    EXPECT_THAT(e.what(), testing::HasSubstr("nonsense://x"));
+    EXPECT_THAT(e.what(), testing::HasSubstr("--no-lcm"));
   }
 }
 

@@ -124,10 +124,11 @@ sleep 0.5
 start "$CTL" "$OUT/lcm.log" "$BUILD/bridges/lcm/hapticctrl-lcm" --instance "$HAPTICCTRL_INSTANCE" \
   --lcm-url "$URL" --duration 2
 sleep 2.5
-"$BUILD/bridges/lcm/hapticctrl-log2csv" "$OUT/telemetry.lcm" "$OUT/csv" >"$OUT/log2csv.out" 2>&1 ||
+"$BUILD/bridges/lcm/hapticctrl-log2csv" --log "$OUT/telemetry.lcm" --out "$OUT/csv" >"$OUT/log2csv.out" 2>&1 ||
   fail "the lab host's LCM log could not be read: $(cat "$OUT/log2csv.out")"
 for channel in arm_state cycle_stats coupling bridge_stats; do
-  ls "$OUT/csv" | grep -q "$channel" || fail "the lab host's logger never got $channel: $(ls "$OUT/csv")"
+  compgen -G "$OUT/csv/*.$channel.csv" >/dev/null ||
+    fail "the lab host's logger never got $channel: $(ls "$OUT/csv")"
 done
 echo "two hosts: LCM at ttl=1 reached the lab host's lcm-logger: $(ls "$OUT/csv" | tr '\n' ' ')"
 

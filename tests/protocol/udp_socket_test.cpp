@@ -2,6 +2,7 @@
 // library, and its UDP/IPv4 implementation.
 #include "hapticctrl/protocol/udp_socket.hpp"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <array>
@@ -57,7 +58,7 @@ TEST(UdpSocket, SetupErrorsSayWhat) {
     UdpSocket clash(a.local_endpoint());
     FAIL() << "binding a used port must fail";
   } catch (const std::system_error& e) {
-    EXPECT_NE(std::string(e.what()).find(a.local_endpoint().to_string()), std::string::npos);
+    EXPECT_THAT(e.what(), testing::HasSubstr(a.local_endpoint().to_string()));
   }
   EXPECT_THROW((void)Endpoint::resolve("no-such-host.invalid", 1), std::invalid_argument);
   EXPECT_EQ(Endpoint::resolve("localhost", 5125).to_string(), "127.0.0.1:5125");

@@ -1,6 +1,7 @@
 // Tests of names.hpp: ROS 2 namespaces, DDS topic names, frames and stamps.
 #include "hapticctrl/ros2types/names.hpp"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <stdexcept>
@@ -24,8 +25,7 @@ TEST(Ros2Names, CheckedNamespacesSayWhatANamespaceIs) {
     (void)checked_namespace("lab");
     ADD_FAILURE() << "accepted";
   } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("'lab' is not a ROS 2 namespace"), std::string::npos)
-        << e.what();
+    EXPECT_THAT(e.what(), testing::HasSubstr("'lab' is not a ROS 2 namespace")) << e.what();
   }
 }
 

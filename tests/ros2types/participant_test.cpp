@@ -1,6 +1,7 @@
 // Tests of participant.hpp: a DDS participant, its writers and readers, on loopback.
 #include "hapticctrl/ros2types/participant.hpp"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <array>
@@ -100,7 +101,7 @@ TEST(Ros2Participant, FailuresThrowWithDdsReason) {
   try {
     (void)checked(DDS_RETCODE_BAD_PARAMETER, "thing");
   } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("thing: "), std::string::npos) << e.what();
+    EXPECT_THAT(e.what(), testing::HasSubstr("thing: ")) << e.what();
   }
   EXPECT_EQ(checked(7, "fine"), 7);
 }

@@ -1,6 +1,7 @@
 // Tests of core_config.hpp: command line of `hapticctrl-core`, validated.
 #include "hapticctrl/rt_core/core_config.hpp"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 namespace hapticctrl::rt_core {
@@ -15,7 +16,7 @@ void expect_error(const std::vector<std::string>& args, const std::string& text)
     parse_core_args(args);
     FAIL() << "expected an error containing " << text;
   } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find(text), std::string::npos) << e.what();
+    EXPECT_THAT(e.what(), testing::HasSubstr(text)) << e.what();
   }
 }
 

@@ -49,8 +49,8 @@ struct Rig {
   std::unique_ptr<shm::SeqlockCell<shm::PositionPayload>>& position = regions.position;
   std::unique_ptr<shm::SeqlockCell<shm::TelemetryPayload>>& telemetry = regions.telemetry;
   ServoShared shared{arm, regions.ctrl_reader(), regions.servo_regions(), true};
-  ServoTask main_task{shared, ServoRole::kMain, ServoLaw(test::default_dynamics())};
-  ServoTask degraded_task{shared, ServoRole::kDegraded, ServoLaw(test::default_dynamics())};
+  ServoTask main_task{shared, TaskRole::kMain, ServoLaw(test::default_dynamics())};
+  ServoTask degraded_task{shared, TaskRole::kDegraded, ServoLaw(test::default_dynamics())};
   std::unique_ptr<shm::EventRing> events = std::make_unique<shm::EventRing>();
   BlackBox box{4000};
   ScriptedServoTasks tasks;

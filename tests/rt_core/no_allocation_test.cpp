@@ -38,8 +38,8 @@ void expect_no_allocation(const shm::VprPayload& client) {
   const Vector6d ready = (Vector6d() << 0, -0.6, 1.2, 0, -0.6, 0).finished();
   SimulatedArm arm(test::default_dynamics(), SimulatorOptions{}, ready, regions.force.get());
   ServoShared shared(arm, regions.ctrl_reader(), regions.servo_regions(), true);
-  ServoTask main_task(shared, ServoRole::kMain, ServoLaw(test::default_dynamics()));
-  ServoTask degraded_task(shared, ServoRole::kDegraded, ServoLaw(test::default_dynamics()));
+  ServoTask main_task(shared, TaskRole::kMain, ServoLaw(test::default_dynamics()));
+  ServoTask degraded_task(shared, TaskRole::kDegraded, ServoLaw(test::default_dynamics()));
   test::ScriptedServoTasks tasks(
       clock, main_task, degraded_task, shared.overrun, kPeriod,
       [](std::uint64_t c) { return c % 50 == 0 ? kPeriod * 3 / 2 : 100 * kNsPerUs; });

@@ -20,28 +20,28 @@ constexpr TimeNs kTick = kNsPerMs;
 class ScriptedRunners final : public TaskRunners {
  public:
   struct Release {
-    ServoRole role;
+    TaskRole role;
     std::uint64_t cycle;
     TimeNs time;
   };
 
-  void release(ServoRole role, std::uint64_t cycle, TimeNs release_time) noexcept override {
+  void release(TaskRole role, std::uint64_t cycle, TimeNs release_time) noexcept override {
     releases.push_back({role, cycle, release_time});
     Function& f = function(role);
     f.cycle = cycle;
     f.busy = true;
     f.started = release_time + 10 * kNsPerUs;
   }
-  bool busy(ServoRole role) noexcept override { return function(role).busy; }
-  TimeNs started_at(ServoRole role) noexcept override { return function(role).started; }
-  TimeNs finished_at(ServoRole role, std::uint64_t cycle) noexcept override {
+  bool busy(TaskRole role) noexcept override { return function(role).busy; }
+  TimeNs started_at(TaskRole role) noexcept override { return function(role).started; }
+  TimeNs finished_at(TaskRole role, std::uint64_t cycle) noexcept override {
     const Function& f = function(role);
     return !f.busy && f.cycle == cycle ? f.finished : -1;
   }
   void stop() noexcept override { stopped = true; }
 
   /// The function `role` finishes its cycle at `at`.
-  void finish(ServoRole role, TimeNs at) {
+  void finish(TaskRole role, TimeNs at) {
     function(role).busy = false;
     function(role).finished = at;
   }
@@ -56,7 +56,7 @@ class ScriptedRunners final : public TaskRunners {
     TimeNs started = -1;
     TimeNs finished = -1;
   };
-  Function& function(ServoRole role) { return functions_[role == ServoRole::kMain ? 0 : 1]; }
+  Function& function(TaskRole role) { return functions_[role == TaskRole::kMain ? 0 : 1]; }
   std::array<Function, 2> functions_{};
 };
 
@@ -74,11 +74,11 @@ struct Rig {
   MonitorVerdict tick(std::uint64_t k) {
     const TimeNs scheduled = static_cast<TimeNs>(k) * kTick;
     tasks.release_due(k, scheduled, scheduled);
-    if (!hold_normal && runners.busy(ServoRole::kMain)) {
-      runners.finish(ServoRole::kMain, scheduled + 200 * kNsPerUs);
+    if (!hold_normal && runners.busy(TaskRole::kMain)) {
+      runners.finish(TaskRole::kMain, scheduled + 200 * kNsPerUs);
     }
-    if (runners.busy(ServoRole::kDegraded)) {
-      runners.finish(ServoRole::kDegraded, scheduled + 50 * kNsPerUs);
+    if (runners.busy(TaskRole::kDegraded)) {
+      runners.finish(TaskRole::kDegraded, scheduled + 50 * kNsPerUs);
     }
     return tasks.check_deadlines(scheduled + kTick * 3 / 4);
   }
@@ -131,7 +131,7 @@ TEST(PeriodicTasks, AStoppedTaskIsNotReleasedAndARestartedOneStartsAfresh) {
   EXPECT_EQ(rig.tasks.monitor(id).total_misses(), 2U);
   rig.tasks.stop(id);
   EXPECT_EQ(rig.tasks.state(id), TaskState::kStopped);
-  rig.runners.finish(ServoRole::kMain, 3 * kTick);
+  rig.runners.finish(TaskRole::kMain, 3 * kTick);
   rig.hold_normal = false;
   const std::size_t released = rig.runners.releases.size();
   rig.tick(3);
@@ -152,9 +152,9 @@ TEST(PeriodicTasks, ABusyNormalFunctionHandsTheReleaseToTheDegradedOneAndMisses)
   EXPECT_EQ(rig.tick(2), MonitorVerdict::kMiss) << "the normal function overran";
   EXPECT_EQ(rig.tick(3), MonitorVerdict::kMiss) << "the degraded function ran it: still a miss";
   const TaskRelease& last = rig.tasks.last_release(id);
-  EXPECT_EQ(last.role, ServoRole::kDegraded);
+  EXPECT_EQ(last.role, TaskRole::kDegraded);
   EXPECT_TRUE(last.ran);
-  EXPECT_EQ(rig.runners.releases.back().role, ServoRole::kDegraded);
+  EXPECT_EQ(rig.runners.releases.back().role, TaskRole::kDegraded);
   EXPECT_EQ(rig.tasks.degraded_releases(id), 1U);
 }
 
@@ -179,7 +179,7 @@ TEST(PeriodicTasks, FiveConsecutiveMissesTripTheFailSafeAndAGoodReleaseResetsThe
     EXPECT_EQ(rig.tick(k), MonitorVerdict::kMiss) << "tick " << k;
   }
   rig.hold_normal = false;
-  rig.runners.finish(ServoRole::kMain, 5 * kTick);
+  rig.runners.finish(TaskRole::kMain, 5 * kTick);
   EXPECT_EQ(rig.tick(6), MonitorVerdict::kGood);
   rig.hold_normal = true;
   for (std::uint64_t k = 7; k <= 10; ++k) {
@@ -196,7 +196,7 @@ TEST(PeriodicTasks, AFinishAfterTheCheckIsAMissAndAReleaseIsJudgedOnlyAtItsDeadl
   rig.tasks.release_due(1, kTick, kTick);
   EXPECT_EQ(rig.tasks.check_deadlines(kTick + kTick / 2), MonitorVerdict::kGood);
   EXPECT_EQ(rig.tasks.last_release(id).checked, -1) << "before its deadline: not judged";
-  rig.runners.finish(ServoRole::kMain, kTick + kTick * 9 / 10);  // after the 3/4 check
+  rig.runners.finish(TaskRole::kMain, kTick + kTick * 9 / 10);  // after the 3/4 check
   EXPECT_EQ(rig.tasks.check_deadlines(kTick + kTick * 3 / 4), MonitorVerdict::kMiss);
   EXPECT_EQ(rig.tasks.last_release(id).checked, kTick + kTick * 3 / 4);
   EXPECT_EQ(rig.tasks.check_deadlines(2 * kTick), MonitorVerdict::kGood) << "judged once";

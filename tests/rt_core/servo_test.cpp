@@ -1,6 +1,6 @@
-// Tests of servo.hpp: the SERVO task's steps (DESIGN.md §4): read measures, build the logical state
-// from ctrl, exchange with the protocol regions, run the law, send commands, publish VP and
-// position.
+// Tests of servo.hpp: the SERVO task's steps (docs/rt_core.md, *The cycle*): read measures, build
+// the logical state from ctrl, exchange with the protocol regions, run the law, send commands,
+// publish VP and position.
 #include "hapticctrl/rt_core/servo.hpp"
 
 #include <gtest/gtest.h>
@@ -24,8 +24,8 @@ struct ServoRig {
   std::unique_ptr<shm::SeqlockCell<shm::VprPayload>>& vpr = regions.vpr;
   std::unique_ptr<shm::SeqlockCell<shm::VpPayload>>& vp = regions.vp;
   ServoShared shared{arm, regions.ctrl_reader(), regions.servo_regions(), false};
-  ServoTask main_task{shared, ServoRole::kMain, ServoLaw(test::default_dynamics())};
-  ServoTask degraded_task{shared, ServoRole::kDegraded, ServoLaw(test::default_dynamics())};
+  ServoTask main_task{shared, TaskRole::kMain, ServoLaw(test::default_dynamics())};
+  ServoTask degraded_task{shared, TaskRole::kDegraded, ServoLaw(test::default_dynamics())};
   shm::CtrlWriter writer = regions.ctrl_writer();
 
   StepResult cycle(ServoTask& task, std::uint64_t k) {

@@ -17,12 +17,12 @@ struct ThreadRig {
   test::InMemoryRegions regions;
   ServoShared shared{arm, regions.ctrl_reader(), ServoRegions{nullptr, regions.vp.get(), nullptr},
                      true};
-  ServoTask main_task{shared, ServoRole::kMain, ServoLaw(test::default_dynamics())};
-  ServoTask degraded_task{shared, ServoRole::kDegraded, ServoLaw(test::default_dynamics())};
+  ServoTask main_task{shared, TaskRole::kMain, ServoLaw(test::default_dynamics())};
+  ServoTask degraded_task{shared, TaskRole::kDegraded, ServoLaw(test::default_dynamics())};
   RealClock clock;
 };
 
-bool wait_idle(ThreadedServoTasks& tasks, ServoRole role) {
+bool wait_idle(ThreadedServoTasks& tasks, TaskRole role) {
   for (int i = 0; i < 5000; ++i) {
     if (!tasks.busy(role)) {
       return true;
@@ -38,13 +38,13 @@ TEST(ThreadedServoTasks, ReleasedCyclesRunAndCommit) {
                            kNsPerMs, {}, {});
   for (std::uint64_t k = 1; k <= 20; ++k) {
     ASSERT_TRUE(rig.shared.gate.grant(k));
-    tasks.release(ServoRole::kMain, k, rig.clock.now());
-    ASSERT_TRUE(wait_idle(tasks, ServoRole::kMain)) << "cycle " << k;
-    EXPECT_GE(tasks.started_at(ServoRole::kMain), 0);
+    tasks.release(TaskRole::kMain, k, rig.clock.now());
+    ASSERT_TRUE(wait_idle(tasks, TaskRole::kMain)) << "cycle " << k;
+    EXPECT_GE(tasks.started_at(TaskRole::kMain), 0);
     EXPECT_EQ(rig.shared.to_clock.commit_cycle.load(), k);
-    EXPECT_GE(tasks.finished_at(ServoRole::kMain, k), tasks.started_at(ServoRole::kMain))
+    EXPECT_GE(tasks.finished_at(TaskRole::kMain, k), tasks.started_at(TaskRole::kMain))
         << "timed after the commit, arm commands included";
-    EXPECT_EQ(tasks.finished_at(ServoRole::kMain, k + 1), -1) << "not finished yet";
+    EXPECT_EQ(tasks.finished_at(TaskRole::kMain, k + 1), -1) << "not finished yet";
   }
   tasks.stop();
 }
@@ -55,14 +55,14 @@ TEST(ThreadedServoTasks, InjectedOverrunKeepsMainBusyWhileDegradedCommits) {
                            kNsPerMs, {}, {});
   rig.shared.overrun.request(20);  // ~20 ms stall
   ASSERT_TRUE(rig.shared.gate.grant(1));
-  tasks.release(ServoRole::kMain, 1, rig.clock.now());
+  tasks.release(TaskRole::kMain, 1, rig.clock.now());
   std::this_thread::sleep_for(std::chrono::milliseconds(2));
-  EXPECT_TRUE(tasks.busy(ServoRole::kMain));
+  EXPECT_TRUE(tasks.busy(TaskRole::kMain));
   ASSERT_TRUE(rig.shared.gate.grant(2));
-  tasks.release(ServoRole::kDegraded, 2, rig.clock.now());
-  ASSERT_TRUE(wait_idle(tasks, ServoRole::kDegraded));
+  tasks.release(TaskRole::kDegraded, 2, rig.clock.now());
+  ASSERT_TRUE(wait_idle(tasks, TaskRole::kDegraded));
   EXPECT_EQ(rig.shared.to_clock.commit_cycle.load(), 2U);
-  ASSERT_TRUE(wait_idle(tasks, ServoRole::kMain));
+  ASSERT_TRUE(wait_idle(tasks, TaskRole::kMain));
   EXPECT_EQ(rig.shared.to_clock.counters.late_discarded.load(), 1U);
   EXPECT_EQ(rig.shared.to_clock.commit_cycle.load(), 2U)
       << "the late main cycle 1 did not overwrite 2";

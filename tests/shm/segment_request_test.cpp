@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <string>
 
 #include "hapticctrl/shm/segment.hpp"
@@ -56,7 +57,7 @@ TEST(SegmentRequest, PermissionDeniedIsExplained) {
       Segment::attach(name);
     } catch (const ShmError& e) {
       return e.code() == ShmErrc::kPermissionDenied &&
-                     std::string(e.what()).find("permission denied") != std::string::npos
+                     std::strstr(e.what(), "permission denied") != nullptr
                  ? 0
                  : 2;
     }

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <csignal>
+#include <cstring>
 #include <filesystem>
 #include <string>
 
@@ -226,7 +227,7 @@ TEST(Segment, CoreRegionsCannotBeClaimedByOthers) {
     } catch (const ShmError& e) {
       // The region as a value (callers decide on it, hmi's operator), and in the text.
       return e.code() == ShmErrc::kWriterConflict && e.region() == RegionId::kVp &&
-                     std::string(e.what()).find("region VP") != std::string::npos
+                     std::strstr(e.what(), "region VP") != nullptr
                  ? 0
                  : 2;
     }

@@ -27,15 +27,15 @@ class ScriptedServoTasks final : public rt_core::TaskRunners {
         main_{&main_task},
         degraded_{&degraded_task} {}
 
-  void release(rt_core::ServoRole role, std::uint64_t cycle,
+  void release(rt_core::TaskRole role, std::uint64_t cycle,
                rt_core::TimeNs release_time) noexcept override {
     catch_up();
     Pending& p = pending(role);
     const rt_core::TimeNs start = release_time + start_delay;
     p.task->begin(cycle, start, period_);
     rt_core::TimeNs duration =
-        role == rt_core::ServoRole::kMain ? main_duration_(cycle) : degraded_duration;
-    if (role == rt_core::ServoRole::kMain) {
+        role == rt_core::TaskRole::kMain ? main_duration_(cycle) : degraded_duration;
+    if (role == rt_core::TaskRole::kMain) {
       const std::uint32_t k = overrun_->take();
       if (k > 0) {
         duration = static_cast<rt_core::TimeNs>(k) * period_ - period_ / 5;
@@ -46,15 +46,15 @@ class ScriptedServoTasks final : public rt_core::TaskRunners {
     p.finish_at = start + duration;
     catch_up();
   }
-  bool busy(rt_core::ServoRole role) noexcept override {
+  bool busy(rt_core::TaskRole role) noexcept override {
     catch_up();
     return pending(role).cycle.has_value();
   }
-  rt_core::TimeNs started_at(rt_core::ServoRole role) noexcept override {
+  rt_core::TimeNs started_at(rt_core::TaskRole role) noexcept override {
     catch_up();
     return pending(role).started;
   }
-  rt_core::TimeNs finished_at(rt_core::ServoRole role, std::uint64_t cycle) noexcept override {
+  rt_core::TimeNs finished_at(rt_core::TaskRole role, std::uint64_t cycle) noexcept override {
     catch_up();
     const Pending& p = pending(role);
     return p.last_finished_cycle == cycle ? p.last_finished_at : -1;
@@ -75,8 +75,8 @@ class ScriptedServoTasks final : public rt_core::TaskRunners {
     std::optional<std::uint64_t> last_finished_cycle;
     rt_core::TimeNs last_finished_at = -1;
   };
-  Pending& pending(rt_core::ServoRole role) {
-    return role == rt_core::ServoRole::kMain ? main_ : degraded_;
+  Pending& pending(rt_core::TaskRole role) {
+    return role == rt_core::TaskRole::kMain ? main_ : degraded_;
   }
   /// Commits every task whose scripted finish time has come, oldest first.
   void catch_up() {

@@ -9,6 +9,7 @@
 #include <sys/un.h>
 #include <unistd.h>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -98,7 +99,7 @@ void expect_shm_error(Fn&& fn, ShmErrc code, const std::string& text) {
     FAIL() << "expected ShmError containing '" << text << "'";
   } catch (const ShmError& e) {
     EXPECT_EQ(e.code(), code) << e.what();
-    EXPECT_NE(std::string(e.what()).find(text), std::string::npos) << e.what();
+    EXPECT_THAT(e.what(), testing::HasSubstr(text)) << e.what();
   }
 }
 

@@ -24,12 +24,15 @@
 #include <cstdio>
 #include <cstring>
 #include <ctime>
+#include <functional>
 #include <queue>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "hapticctrl/netem/impairment.hpp"
+#include "hapticctrl/program/main_skeleton.hpp"
+#include "hapticctrl/program/options.hpp"
 
 namespace {
 
@@ -64,82 +67,53 @@ struct Options {
   bool allow_remote = false;
 };
 
-const char* usage() {
-  return "usage: hapticctrl-netem --to HOST:PORT [options]\n"
-         "  --listen HOST:PORT  where clients send (default 127.0.0.1:0: a free port, printed)\n"
-         "  --to HOST:PORT      the bridge (hapticctrl-udp) to relay to\n"
-         "  --delay-ms D        one-way delay added in each direction (default 0)\n"
-         "  --jitter-ms J       each datagram's delay varies uniformly within +-J (default 0)\n"
-         "  --loss P            fraction of datagrams lost in each direction, 0..1 (default 0)\n"
-         "  --burst N           mean loss-burst length in datagrams, >= 1 (default 1)\n"
-         "  --reorder           let jitter reorder datagrams (default: keep their order)\n"
-         "  --blackout AT:DUR   drop everything from AT s for DUR s (repeatable)\n"
-         "  --seed N            random seed (default 1)\n"
-         "  --duration S        exit after S seconds\n"
-         "  --allow-remote      allow addresses outside 127.0.0.0/8\n"
-         "  --json              print the counters as one JSON line at exit\n"
-         "  SIGUSR1 switches a blackout on and off.\n";
+constexpr const char* kProgram = "hapticctrl-netem";
+constexpr const char* kDescription =
+    "A UDP relay that impairs the link between a client and hapticctrl-udp (each direction "
+    "alike). Clients send to --listen instead of the bridge. SIGUSR1 switches a blackout on and "
+    "off; SIGINT/SIGTERM end it.";
+
+/// A time in milliseconds within [0, 10 s], as nanoseconds.
+std::function<void(const std::string&)> milliseconds_into(const std::string& option,
+                                                          TimeNs& target) {
+  return [option, &target](const std::string& v) {
+    target = static_cast<TimeNs>(hapticctrl::program::number_in(option, v, 0.0, 10000.0) * 1e6);
+  };
 }
 
-double number(const std::string& option, const std::string& text, double lo, double hi) {
-  std::size_t used = 0;
-  double v = 0.0;
-  try {
-    v = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size() || !std::isfinite(v) || v < lo || v > hi) {
-    throw std::invalid_argument(option + ": expected a number from " + std::to_string(lo) + " to " +
-                                std::to_string(hi) + ", got '" + text + "'");
-  }
-  return v;
+/// Every option, once: parse and --help both read these declarations.
+void declare(hapticctrl::program::Options& o, Options& c) {
+  o.text("--listen", c.listen,
+         "HOST:PORT where clients send (default 127.0.0.1:0: a free port, printed)");
+  o.text("--to", c.to, "HOST:PORT of the bridge (hapticctrl-udp) to relay to (required)");
+  o.custom("--delay-ms", "MS", milliseconds_into("--delay-ms", c.link.delay),
+           "one-way delay added in each direction, ms (default 0) [0..10000]");
+  o.custom("--jitter-ms", "MS", milliseconds_into("--jitter-ms", c.link.jitter),
+           "each datagram's delay varies uniformly within +-MS (default 0) [0..10000]");
+  o.number("--loss", c.link.loss, 0.0, 1.0,
+           "fraction of datagrams lost in each direction (default 0)");
+  o.number("--burst", c.link.burst, 1.0, 1e6, "mean loss-burst length in datagrams (default 1)");
+  o.flag("--reorder", c.link.reorder, "let jitter reorder datagrams (default: keep their order)");
+  o.custom(
+      "--blackout", "AT:DUR",
+      [&c](const std::string& v) { c.link.blackouts.push_back(LinkModel::parse_blackout(v)); },
+      "drop everything from AT s for DUR s (repeatable)", /*repeat=*/true);
+  o.number<std::uint64_t>("--seed", c.seed, 0, 9'000'000'000'000'000ULL, "random seed (default 1)");
+  o.number("--duration", c.duration_s, 0.0, 1e6, "exit after S seconds (default: run on)");
+  o.flag("--allow-remote", c.allow_remote, "allow addresses outside 127.0.0.0/8");
+  o.flag("--json", c.json, "print the counters as one JSON line at exit");
 }
 
-Options parse(int argc, char** argv) {
-  Options o;
-  std::vector<std::string> args(argv + 1, argv + argc);
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    const auto value = [&]() -> const std::string& {
-      if (i + 1 >= args.size()) {
-        throw std::invalid_argument(a + ": missing value");
-      }
-      return args[++i];
-    };
-    if (a == "--listen") {
-      o.listen = value();
-    } else if (a == "--to") {
-      o.to = value();
-    } else if (a == "--delay-ms") {
-      o.link.delay = static_cast<TimeNs>(number(a, value(), 0, 10000) * 1e6);
-    } else if (a == "--jitter-ms") {
-      o.link.jitter = static_cast<TimeNs>(number(a, value(), 0, 10000) * 1e6);
-    } else if (a == "--loss") {
-      o.link.loss = number(a, value(), 0, 1);
-    } else if (a == "--burst") {
-      o.link.burst = number(a, value(), 1, 1e6);
-    } else if (a == "--reorder") {
-      o.link.reorder = true;
-    } else if (a == "--blackout") {
-      o.link.blackouts.push_back(LinkModel::parse_blackout(value()));
-    } else if (a == "--seed") {
-      o.seed = static_cast<std::uint64_t>(number(a, value(), 0, 9.0e15));
-    } else if (a == "--duration") {
-      o.duration_s = number(a, value(), 0, 1e6);
-    } else if (a == "--allow-remote") {
-      o.allow_remote = true;
-    } else if (a == "--json") {
-      o.json = true;
-    } else {
-      throw std::invalid_argument("unknown option '" + a + "'");
-    }
+/// The options; false when --help was given.
+bool parse(const std::vector<std::string>& args, Options& o) {
+  if (!hapticctrl::program::parse_into(o, args, kProgram, kDescription, declare)) {
+    return false;
   }
   if (o.to.empty()) {
     throw std::invalid_argument("--to HOST:PORT is required");
   }
   o.link.validate();
-  return o;
+  return true;
 }
 
 sockaddr_in endpoint(const std::string& text, bool allow_remote) {
@@ -154,7 +128,8 @@ sockaddr_in endpoint(const std::string& text, bool allow_remote) {
   if (inet_pton(AF_INET, host.c_str(), &a.sin_addr) != 1) {
     throw std::invalid_argument("'" + text + "': not an IPv4 address");
   }
-  a.sin_port = htons(static_cast<std::uint16_t>(number(text, text.substr(colon + 1), 0, 65535)));
+  a.sin_port =
+      htons(hapticctrl::program::number_in<std::uint16_t>(text, text.substr(colon + 1), 0, 65535));
   if (!allow_remote && (ntohl(a.sin_addr.s_addr) >> 24U) != 127U) {
     throw std::invalid_argument("'" + text + "' is not on loopback (--allow-remote to allow)");
   }
@@ -341,26 +316,20 @@ class Relay {
 }  // namespace
 
 int main(int argc, char** argv) {
-  Options options;
-  try {
-    if (argc > 1 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h")) {
-      std::printf("%s", usage());
-      return 0;
-    }
-    options = parse(argc, argv);
-    Relay relay(options);
-    std::signal(SIGINT, on_stop);
-    std::signal(SIGTERM, on_stop);
-    std::signal(SIGUSR1, on_toggle);
-    std::printf("hapticctrl-netem: listening on 127.0.0.1:%u\n", relay.port());
-    std::fflush(stdout);
-    relay.run();
-    if (options.json) {
-      relay.print_json();
-    }
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "hapticctrl-netem: %s\n%s", e.what(), usage());
-    return 64;
-  }
-  return 0;
+  return hapticctrl::program::main_skeleton<Options>(
+      kProgram, argc, argv, parse,
+      [] { return hapticctrl::program::help_of<Options>(kProgram, kDescription, declare); },
+      [](const Options& options) {
+        Relay relay(options);
+        std::signal(SIGINT, on_stop);
+        std::signal(SIGTERM, on_stop);
+        std::signal(SIGUSR1, on_toggle);
+        std::printf("hapticctrl-netem: listening on 127.0.0.1:%u\n", relay.port());
+        std::fflush(stdout);
+        relay.run();
+        if (options.json) {
+          relay.print_json();
+        }
+        return 0;
+      });
 }

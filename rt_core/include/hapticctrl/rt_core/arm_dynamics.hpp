@@ -11,6 +11,7 @@
 #include <array>
 
 #include "hapticctrl/arm_model/arm_model.hpp"
+#include "hapticctrl/base/realtime.hpp"
 #include "hapticctrl/rt_core/arm_io.hpp"
 
 namespace hapticctrl::rt_core {
@@ -41,23 +42,24 @@ class ArmDynamics {
  public:
   explicit ArmDynamics(const ArmModel& model) noexcept : model_(model) {}
 
-  [[nodiscard]] const ArmModel& model() const noexcept { return model_; }
+  [[nodiscard]] HAPTICCTRL_RT const ArmModel& model() const noexcept { return model_; }
 
   /// Forward kinematics of every joint and the handle.
-  void forward_kinematics(const Vector6d& q, ChainState& out) const noexcept;
+  HAPTICCTRL_RT void forward_kinematics(const Vector6d& q, ChainState& out) const noexcept;
   /// Geometric Jacobian at the handle point: twist = J * qd.
-  [[nodiscard]] Matrix6d jacobian(const ChainState& s) const noexcept;
+  [[nodiscard]] HAPTICCTRL_RT Matrix6d jacobian(const ChainState& s) const noexcept;
   /// Joint torques for (qd, qdd) under `gravity`, plus an external wrench applied *by* the handle
   /// on the environment (Newton-Euler). Rotor inertia is included.
-  [[nodiscard]] Vector6d inverse_dynamics(const ChainState& s, const Vector6d& qd,
-                                          const Vector6d& qdd,
-                                          const Vector3d& gravity) const noexcept;
+  [[nodiscard]] HAPTICCTRL_RT Vector6d inverse_dynamics(const ChainState& s, const Vector6d& qd,
+                                                        const Vector6d& qdd,
+                                                        const Vector3d& gravity) const noexcept;
   /// Joint-space inertia (with rotor inertias).
-  [[nodiscard]] Matrix6d mass_matrix(const ChainState& s) const noexcept;
+  [[nodiscard]] HAPTICCTRL_RT Matrix6d mass_matrix(const ChainState& s) const noexcept;
   /// Torque that holds the arm against gravity: G(q).
-  [[nodiscard]] Vector6d gravity_torque(const ChainState& s) const noexcept;
+  [[nodiscard]] HAPTICCTRL_RT Vector6d gravity_torque(const ChainState& s) const noexcept;
   /// Coriolis, centrifugal and gravity torques: C(q, qd) qd + G(q).
-  [[nodiscard]] Vector6d bias_torque(const ChainState& s, const Vector6d& qd) const noexcept;
+  [[nodiscard]] HAPTICCTRL_RT Vector6d bias_torque(const ChainState& s,
+                                                   const Vector6d& qd) const noexcept;
   /// Potential energy of the links in the model's gravity field (J).
   [[nodiscard]] double potential_energy(const ChainState& s) const noexcept;
 
@@ -76,8 +78,8 @@ struct GravityDemand {
 [[nodiscard]] GravityDemand gravity_demand(const ArmDynamics& dynamics) noexcept;
 
 /// Rotation about a unit `axis` by `angle`. Safe in the cycle.
-Matrix3d axis_rotation(const Vector3d& axis, double angle) noexcept;
+HAPTICCTRL_RT Matrix3d axis_rotation(const Vector3d& axis, double angle) noexcept;
 /// Handle pose as {x, y, z, qx, qy, qz, qw}.
-std::array<double, 7> pose_of(const ChainState& s) noexcept;
+HAPTICCTRL_RT std::array<double, 7> pose_of(const ChainState& s) noexcept;
 
 }  // namespace hapticctrl::rt_core

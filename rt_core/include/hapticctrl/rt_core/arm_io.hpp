@@ -7,6 +7,7 @@
 
 #include <cstdint>
 
+#include "hapticctrl/base/realtime.hpp"
 #include "hapticctrl/rt_core/clock.hpp"
 
 namespace hapticctrl::rt_core {
@@ -39,14 +40,15 @@ class ArmIo {
  public:
   virtual ~ArmIo() = default;
   /// Reads the sensors. Returns false on an I/O fault (the servo then latches a fault).
-  virtual bool get_measures(ArmMeasures& out) noexcept = 0;
+  HAPTICCTRL_RT virtual bool get_measures(ArmMeasures& out) noexcept = 0;
   /// Applies `commands` for the period `dt` that starts at `now`.
-  virtual void send_commands(const ArmCommands& commands, TimeNs now, TimeNs dt) noexcept = 0;
+  HAPTICCTRL_RT virtual void send_commands(const ArmCommands& commands, TimeNs now,
+                                           TimeNs dt) noexcept = 0;
   /// Switches the motor power supply (fail-safe and power requests). Safe to call while a cycle
   /// runs on another thread: the fail-safe cuts the supply even when it could not take the cycle
   /// from a SERVO that hangs in it, as a hardware supply relay is cut independently of the bus.
   /// Implementations make the switch atomic; the next send_commands sees it.
-  virtual void set_supply(bool on) noexcept = 0;
+  HAPTICCTRL_RT virtual void set_supply(bool on) noexcept = 0;
 };
 
 }  // namespace hapticctrl::rt_core

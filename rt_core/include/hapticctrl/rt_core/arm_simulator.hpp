@@ -12,6 +12,7 @@
 #include <atomic>
 #include <cstdint>
 
+#include "hapticctrl/base/realtime.hpp"
 #include "hapticctrl/rt_core/arm_dynamics.hpp"
 #include "hapticctrl/rt_core/arm_io.hpp"
 #include "hapticctrl/shm/force_slew.hpp"
@@ -44,13 +45,15 @@ struct HandModel {
   double stiffness = 0.0;  ///< N/m
   double damping = 0.0;    ///< N.s/m
 
-  [[nodiscard]] bool gripping() const noexcept { return stiffness > 0.0 || damping > 0.0; }
+  [[nodiscard]] HAPTICCTRL_RT bool gripping() const noexcept {
+    return stiffness > 0.0 || damping > 0.0;
+  }
   /// Force the hand's spring-damper puts on a handle point at `position` moving at `velocity`,
   /// `elapsed` seconds after the anchor was given (it moves on at anchor_velocity); the
   /// simulator bounds it with the rest of the operator's wrench (operator_limits). Real-time
   /// contract: noexcept, no allocation.
-  [[nodiscard]] Vector3d force(const Vector3d& position, const Vector3d& velocity,
-                               double elapsed) const noexcept;
+  [[nodiscard]] HAPTICCTRL_RT Vector3d force(const Vector3d& position, const Vector3d& velocity,
+                                             double elapsed) const noexcept;
 };
 
 /// The pure simulator. Real-time contract of every method: noexcept, no allocation.
@@ -62,12 +65,14 @@ class ArmSimulator {
   /// Advances by `dt` seconds. `motor_torque` is applied as given (saturate before); the
   /// operator wrench plus the force of `hand`, evaluated at every sub-step, act on the handle
   /// (base frame), within options' operator_limits. With `brakes` the arm does not move.
-  void step(const Vector6d& motor_torque, const Vector6d& operator_wrench, double dt, bool brakes,
-            const HandModel& hand = {}) noexcept;
+  HAPTICCTRL_RT void step(const Vector6d& motor_torque, const Vector6d& operator_wrench, double dt,
+                          bool brakes, const HandModel& hand = {}) noexcept;
   /// The operator's wrench on the handle at the end of the last step (hand included, limited).
-  [[nodiscard]] const Vector6d& operator_applied() const noexcept { return operator_applied_; }
+  [[nodiscard]] HAPTICCTRL_RT const Vector6d& operator_applied() const noexcept {
+    return operator_applied_;
+  }
 
-  [[nodiscard]] const Vector6d& position() const noexcept { return q_; }
+  [[nodiscard]] HAPTICCTRL_RT const Vector6d& position() const noexcept { return q_; }
   [[nodiscard]] const Vector6d& velocity() const noexcept { return qd_; }
   [[nodiscard]] const ChainState& chain() const noexcept { return chain_; }
   /// Kinetic + gravitational + joint-stop elastic energy (J).
@@ -75,9 +80,9 @@ class ArmSimulator {
   void set_state(const Vector6d& q, const Vector6d& qd) noexcept;
 
  private:
-  [[nodiscard]] Vector6d passive_torques() const noexcept;
+  [[nodiscard]] HAPTICCTRL_RT Vector6d passive_torques() const noexcept;
   /// Moves the applied operator wrench towards `target` over `h` within operator_limits.
-  void limit_operator(const Vector6d& target, double h) noexcept;
+  HAPTICCTRL_RT void limit_operator(const Vector6d& target, double h) noexcept;
 
   const ArmDynamics* dynamics_;
   SimulatorOptions options_;
@@ -93,20 +98,25 @@ class SimulatedArm final : public ArmIo {
   SimulatedArm(const ArmDynamics& dynamics, const SimulatorOptions& options, const Vector6d& start,
                const shm::SeqlockCell<shm::ForcePayload>* force) noexcept;
 
-  bool get_measures(ArmMeasures& out) noexcept override;
-  void send_commands(const ArmCommands& commands, TimeNs now, TimeNs dt) noexcept override;
-  void set_supply(bool on) noexcept override { supply_on_.store(on, std::memory_order_release); }
+  HAPTICCTRL_RT bool get_measures(ArmMeasures& out) noexcept override;
+  HAPTICCTRL_RT void send_commands(const ArmCommands& commands, TimeNs now,
+                                   TimeNs dt) noexcept override;
+  HAPTICCTRL_RT void set_supply(bool on) noexcept override {
+    supply_on_.store(on, std::memory_order_release);
+  }
 
   [[nodiscard]] const ArmSimulator& simulator() const noexcept { return sim_; }
   [[nodiscard]] ArmSimulator& simulator() noexcept { return sim_; }
   /// The operator's wrench on the handle last cycle: the `force` region's wrench plus the hand's,
   /// as limited.
-  [[nodiscard]] const Vector6d& operator_wrench() const noexcept { return sim_.operator_applied(); }
+  [[nodiscard]] HAPTICCTRL_RT const Vector6d& operator_wrench() const noexcept {
+    return sim_.operator_applied();
+  }
   [[nodiscard]] std::uint64_t rejected_force_samples() const noexcept { return rejected_; }
 
  private:
-  void read_operator_wrench() noexcept;
-  [[nodiscard]] Vector6d quantised(const Vector6d& q) const noexcept;
+  HAPTICCTRL_RT void read_operator_wrench() noexcept;
+  [[nodiscard]] HAPTICCTRL_RT Vector6d quantised(const Vector6d& q) const noexcept;
 
   const ArmDynamics* dynamics_;
   ArmSimulator sim_;

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "hapticctrl/base/realtime.hpp"
 #include "hapticctrl/program/private_directory.hpp"
 #include "hapticctrl/rt_core/clock.hpp"
 #include "hapticctrl/shm/black_box_ring.hpp"
@@ -29,7 +30,7 @@ class BlackBox {
   explicit BlackBox(std::size_t capacity, shm::BlackBoxRing* mirror = nullptr);
 
   /// Real-time contract: safe in the cycle (copies into the preallocated rings; no syscall).
-  void record(const CycleRecord& r) noexcept;
+  HAPTICCTRL_RT void record(const CycleRecord& r) noexcept;
 
   [[nodiscard]] std::size_t size() const noexcept {
     return count_ < ring_.size() ? count_ : ring_.size();

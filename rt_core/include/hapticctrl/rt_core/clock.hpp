@@ -7,6 +7,8 @@
 
 #include <cstdint>
 
+#include "hapticctrl/base/realtime.hpp"
+
 namespace hapticctrl::rt_core {
 
 /// Monotonic nanoseconds (CLOCK_MONOTONIC for the real clock).
@@ -21,17 +23,17 @@ class Clock {
  public:
   virtual ~Clock() = default;
   /// Current time. Real-time contract: safe in the cycle (vDSO, no syscall on x86-64).
-  [[nodiscard]] virtual TimeNs now() noexcept = 0;
+  [[nodiscard]] HAPTICCTRL_RT virtual TimeNs now() noexcept = 0;
   /// Sleeps until the absolute time `deadline` (returns at once if it has passed).
   /// Real-time contract: the cycle's one allowed blocking call (clock_nanosleep TIMER_ABSTIME).
-  virtual void sleep_until(TimeNs deadline) noexcept = 0;
+  HAPTICCTRL_RT virtual void sleep_until(TimeNs deadline) noexcept = 0;
 };
 
 /// CLOCK_MONOTONIC with clock_nanosleep(TIMER_ABSTIME), retried on EINTR.
 class RealClock final : public Clock {
  public:
-  [[nodiscard]] TimeNs now() noexcept override;
-  void sleep_until(TimeNs deadline) noexcept override;
+  [[nodiscard]] HAPTICCTRL_RT TimeNs now() noexcept override;
+  HAPTICCTRL_RT void sleep_until(TimeNs deadline) noexcept override;
 };
 
 /// A clock that only moves when told to. sleep_until() jumps to the deadline plus an optional
@@ -39,8 +41,8 @@ class RealClock final : public Clock {
 class FakeClock final : public Clock {
  public:
   explicit FakeClock(TimeNs start = 1'000 * kNsPerS) noexcept : now_(start) {}
-  [[nodiscard]] TimeNs now() noexcept override { return now_; }
-  void sleep_until(TimeNs deadline) noexcept override;
+  [[nodiscard]] HAPTICCTRL_RT TimeNs now() noexcept override { return now_; }
+  HAPTICCTRL_RT void sleep_until(TimeNs deadline) noexcept override;
   /// Moves time forward by `dt` (tests: work that takes time).
   void advance(TimeNs dt) noexcept { now_ += dt; }
   /// The next sleep_until() wakes `extra` late (tests: a preempted CLOCK).

@@ -13,6 +13,8 @@
 #include <atomic>
 #include <cstdint>
 
+#include "hapticctrl/base/realtime.hpp"
+
 namespace hapticctrl::rt_core {
 
 /// Real-time contract of every method: wait-free (one CAS or store), safe in the cycle.
@@ -20,7 +22,7 @@ class CycleGate {
  public:
   /// CLOCK: hand cycle `cycle` to the task about to be released. Fails (returns false) while the
   /// previous holder is inside; that cycle's task will then fail to enter.
-  bool grant(std::uint64_t cycle) noexcept {
+  HAPTICCTRL_RT bool grant(std::uint64_t cycle) noexcept {
     std::uint64_t current = state_.load(std::memory_order_acquire);
     while ((current & kBusy) == 0 && (current >> 1) != kClosedCycle) {
       if (state_.compare_exchange_weak(current, cycle << 1, std::memory_order_acq_rel)) {
@@ -31,14 +33,16 @@ class CycleGate {
   }
 
   /// Task: enter for `cycle`; true only if that cycle is the granted one and nobody is inside.
-  bool enter(std::uint64_t cycle) noexcept {
+  HAPTICCTRL_RT bool enter(std::uint64_t cycle) noexcept {
     std::uint64_t expected = cycle << 1;
     return state_.compare_exchange_strong(expected, (cycle << 1) | kBusy,
                                           std::memory_order_acq_rel);
   }
 
   /// Task: leave after enter(cycle) succeeded.
-  void leave(std::uint64_t cycle) noexcept { state_.store(cycle << 1, std::memory_order_release); }
+  HAPTICCTRL_RT void leave(std::uint64_t cycle) noexcept {
+    state_.store(cycle << 1, std::memory_order_release);
+  }
 
   /// Fail-safe: no task may enter again. Returns false while a task is inside (retry).
   bool close() noexcept { return grant(kClosedCycle); }

@@ -12,6 +12,7 @@
 #include <array>
 #include <cstdint>
 
+#include "hapticctrl/base/realtime.hpp"
 #include "hapticctrl/rt_core/clock.hpp"
 
 namespace hapticctrl::rt_core {
@@ -21,13 +22,13 @@ inline constexpr std::uint32_t kFailSafeConsecutiveMisses = 5;
 
 /// What CLOCK observed for one cycle.
 struct CycleTimes {
-  TimeNs scheduled = 0;       ///< the slot's deadline
-  TimeNs woke = 0;            ///< CLOCK's actual wake-up
-  TimeNs released = 0;        ///< when CLOCK released the SERVO task
-  TimeNs servo_started = -1;  ///< main SERVO start, -1 if it did not start this cycle
-  TimeNs finished = -1;       ///< main SERVO commit of this cycle, -1 if none by the check
-  TimeNs checked = 0;         ///< the 3/4-period check
-  bool degraded = false;      ///< the degraded SERVO ran this cycle
+  TimeNs scheduled = 0;   ///< the slot's deadline
+  TimeNs woke = 0;        ///< CLOCK's actual wake-up
+  TimeNs released = 0;    ///< when CLOCK released the SERVO task
+  TimeNs started = -1;    ///< main SERVO start, -1 if it did not start this cycle
+  TimeNs finished = -1;   ///< main SERVO commit of this cycle, -1 if none by the check
+  TimeNs checked = 0;     ///< the 3/4-period check
+  bool degraded = false;  ///< the degraded SERVO ran this cycle
 };
 
 /// Thresholds for the chronic-miss detectors (0 disables tripping; they are always reported).
@@ -55,19 +56,21 @@ class DeadlineMonitor {
   explicit DeadlineMonitor(const ChronicMissConfig& config = {}) noexcept;
 
   /// Judges one executed cycle.
-  MonitorVerdict on_cycle(const CycleTimes& times) noexcept;
+  HAPTICCTRL_RT MonitorVerdict on_cycle(const CycleTimes& times) noexcept;
   /// Judges `count` slots the CLOCK skipped after a late wake-up: each is a miss.
   MonitorVerdict on_skipped(std::uint32_t count) noexcept;
 
-  [[nodiscard]] std::uint32_t consecutive_misses() const noexcept { return consecutive_; }
-  [[nodiscard]] std::uint64_t total_misses() const noexcept { return total_misses_; }
+  [[nodiscard]] HAPTICCTRL_RT std::uint32_t consecutive_misses() const noexcept {
+    return consecutive_;
+  }
+  [[nodiscard]] HAPTICCTRL_RT std::uint64_t total_misses() const noexcept { return total_misses_; }
   [[nodiscard]] std::uint64_t cycles() const noexcept { return cycles_; }
   /// Misses per million over the last window_cycles cycles (or fewer, at start).
-  [[nodiscard]] std::uint32_t window_miss_ppm() const noexcept;
-  [[nodiscard]] std::uint32_t leaky_bucket_score() const noexcept { return bucket_; }
+  [[nodiscard]] HAPTICCTRL_RT std::uint32_t window_miss_ppm() const noexcept;
+  [[nodiscard]] HAPTICCTRL_RT std::uint32_t leaky_bucket_score() const noexcept { return bucket_; }
 
  private:
-  MonitorVerdict record(bool miss) noexcept;
+  HAPTICCTRL_RT MonitorVerdict record(bool miss) noexcept;
 
   ChronicMissConfig config_;
   std::uint32_t consecutive_ = 0;

@@ -7,6 +7,8 @@
 /// 2026-12-02). Real-time contract: every member is noexcept, allocation-free, O(1).
 #include <cstdint>
 
+#include "hapticctrl/base/realtime.hpp"
+
 namespace hapticctrl::rt_core {
 
 class DebouncedFlag {
@@ -18,10 +20,10 @@ class DebouncedFlag {
   /// Feeds the flag's value in `cycle` (cycles increase). Returns true when a change is to be
   /// reported now: reported() is then the new value and lapses() the shorter flips since the
   /// last report.
-  bool update(bool value, std::uint64_t cycle) noexcept;
+  HAPTICCTRL_RT bool update(bool value, std::uint64_t cycle) noexcept;
 
-  [[nodiscard]] bool reported() const noexcept { return reported_; }
-  [[nodiscard]] std::uint64_t lapses() const noexcept { return lapses_at_report_; }
+  [[nodiscard]] HAPTICCTRL_RT bool reported() const noexcept { return reported_; }
+  [[nodiscard]] HAPTICCTRL_RT std::uint64_t lapses() const noexcept { return lapses_at_report_; }
 
  private:
   std::uint64_t hold_;

@@ -19,6 +19,7 @@
 #include <atomic>
 #include <cstdint>
 
+#include "hapticctrl/base/realtime.hpp"
 #include "hapticctrl/rt_core/black_box.hpp"
 #include "hapticctrl/rt_core/clock.hpp"
 #include "hapticctrl/rt_core/deadline_monitor.hpp"
@@ -88,24 +89,28 @@ class Executive {
   ExecutiveResult run(const std::atomic<bool>* external_stop = nullptr) noexcept;
 
   /// Current figures (also what telemetry carries).
-  [[nodiscard]] shm::TelemetryPayload telemetry() const noexcept;
+  [[nodiscard]] HAPTICCTRL_RT shm::TelemetryPayload telemetry() const noexcept;
   [[nodiscard]] const LatencyHistogram& wake_latency() const noexcept { return wake_latency_; }
   /// The SERVO's deadline record.
-  [[nodiscard]] const DeadlineMonitor& monitor() const noexcept { return tasks_.monitor(servo_); }
+  [[nodiscard]] HAPTICCTRL_RT const DeadlineMonitor& monitor() const noexcept {
+    return tasks_.monitor(servo_);
+  }
   [[nodiscard]] std::uint64_t cycles() const noexcept { return cycle_; }
 
  private:
   /// Runs one slot; returns a stop reason when the cycle must end.
-  shm::StopReason run_slot(TimeNs scheduled, TimeNs woke) noexcept;
+  HAPTICCTRL_RT shm::StopReason run_slot(TimeNs scheduled, TimeNs woke) noexcept;
   /// One black-box record: a cycle, or a stall (kRecordStall) that skipped `skipped` slots.
-  void record(const CycleTimes& times, std::uint32_t flags, std::uint32_t skipped) noexcept;
-  void publish_telemetry(TimeNs now) noexcept;
-  void emit(shm::EventKind kind, std::uint32_t code, std::uint64_t value, TimeNs now) noexcept;
+  HAPTICCTRL_RT void record(const CycleTimes& times, std::uint32_t flags,
+                            std::uint32_t skipped) noexcept;
+  HAPTICCTRL_RT void publish_telemetry(TimeNs now) noexcept;
+  HAPTICCTRL_RT void emit(shm::EventKind kind, std::uint32_t code, std::uint64_t value,
+                          TimeNs now) noexcept;
   /// Turns changes of the committed state word and client session into events.
-  void report_state_changes(TimeNs now) noexcept;
+  HAPTICCTRL_RT void report_state_changes(TimeNs now) noexcept;
   ExecutiveResult stop_sequence(shm::StopReason reason, bool fail_safe) noexcept;
   /// Whether a monitor verdict stops the core; in benchmark mode a trip is only counted.
-  bool trips(MonitorVerdict verdict) noexcept;
+  HAPTICCTRL_RT bool trips(MonitorVerdict verdict) noexcept;
   static bool is_fault(shm::StopReason reason) noexcept;
 
   ExecutiveConfig config_;

@@ -17,13 +17,14 @@
 #include <cstdint>
 
 #include "hapticctrl/arm_model/arm_model.hpp"
+#include "hapticctrl/base/realtime.hpp"
 #include "hapticctrl/rt_core/arm_dynamics.hpp"
 #include "hapticctrl/rt_core/client_sample.hpp"
 
 namespace hapticctrl::rt_core {
 
 /// True for the two joint-space commands.
-[[nodiscard]] constexpr bool is_joint_command(ClientCommand c) noexcept {
+[[nodiscard]] HAPTICCTRL_RT constexpr bool is_joint_command(ClientCommand c) noexcept {
   return c == ClientCommand::kArticular || c == ClientCommand::kArticularImpedance;
 }
 
@@ -78,20 +79,22 @@ class JointLaw {
   JointLaw(const arm_model::ArmModel& model, const JointLawConfig& config = {}) noexcept;
 
   /// The joint-space command of one cycle for a client in a joint-space mode.
-  [[nodiscard]] JointLawResult torque(const JointLawInputs& in, JointMemory& memory) const noexcept;
+  [[nodiscard]] HAPTICCTRL_RT JointLawResult torque(const JointLawInputs& in,
+                                                    JointMemory& memory) const noexcept;
   /// No joint-space command this cycle: the next one starts from zero and from where the joints
   /// are.
-  static void release(JointMemory& memory) noexcept;
+  HAPTICCTRL_RT static void release(JointMemory& memory) noexcept;
   /// The largest share of a joint's peak torque in `torque` (the link's fade is timed by it).
-  [[nodiscard]] double peak_share(const Vector6d& torque) const noexcept;
+  [[nodiscard]] HAPTICCTRL_RT double peak_share(const Vector6d& torque) const noexcept;
   /// ARTICULAR's stiffness (N·m/rad) and damping (N·m·s/rad) per joint for inertias `inertia`.
-  void gains(const Vector6d& inertia, double dt, Vector6d& stiffness,
-             Vector6d& damping) const noexcept;
+  HAPTICCTRL_RT void gains(const Vector6d& inertia, double dt, Vector6d& stiffness,
+                           Vector6d& damping) const noexcept;
 
  private:
-  [[nodiscard]] Vector6d articular(const JointLawInputs& in, JointMemory& memory) const noexcept;
-  [[nodiscard]] Vector6d guard(const JointLawInputs& in, const Vector6d& target,
-                               JointMemory& memory, bool& guarded) const noexcept;
+  [[nodiscard]] HAPTICCTRL_RT Vector6d articular(const JointLawInputs& in,
+                                                 JointMemory& memory) const noexcept;
+  [[nodiscard]] HAPTICCTRL_RT Vector6d guard(const JointLawInputs& in, const Vector6d& target,
+                                             JointMemory& memory, bool& guarded) const noexcept;
 
   const arm_model::ArmModel* model_;
   JointLawConfig config_;

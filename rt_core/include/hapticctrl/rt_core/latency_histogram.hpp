@@ -8,6 +8,7 @@
 #include <ostream>
 #include <string>
 
+#include "hapticctrl/base/realtime.hpp"
 #include "hapticctrl/rt_core/clock.hpp"
 #include "hapticctrl/shm/payloads.hpp"
 
@@ -19,18 +20,18 @@ class LatencyHistogram {
   static constexpr std::size_t kBins = 10'000;
 
   /// Adds one sample. Negative samples count as 0. Real-time contract: safe in the cycle.
-  void add(TimeNs sample_ns) noexcept;
+  HAPTICCTRL_RT void add(TimeNs sample_ns) noexcept;
 
   /// min/avg/max/p50/p99/p99.9 (percentiles at 1 µs resolution, upper bin edge).
   /// Real-time contract: bounded (one pass over kBins); call at telemetry rate, not per cycle.
-  [[nodiscard]] shm::LatencySummary summary() const noexcept;
+  [[nodiscard]] HAPTICCTRL_RT shm::LatencySummary summary() const noexcept;
 
   /// Sums the 1 µs bins (and the overflows) into the coarse telemetry bins.
   /// Real-time contract: bounded (one pass over kBins); at telemetry rate.
-  void coarse(std::array<std::uint64_t, shm::kLatencyBuckets>& out) const noexcept;
+  HAPTICCTRL_RT void coarse(std::array<std::uint64_t, shm::kLatencyBuckets>& out) const noexcept;
 
   /// The value under which `fraction` of the samples lie (upper edge of its bin), ns.
-  [[nodiscard]] TimeNs percentile(double fraction) const noexcept;
+  [[nodiscard]] HAPTICCTRL_RT TimeNs percentile(double fraction) const noexcept;
 
   [[nodiscard]] std::uint64_t samples() const noexcept { return samples_; }
   [[nodiscard]] std::uint64_t overflows() const noexcept { return overflows_; }

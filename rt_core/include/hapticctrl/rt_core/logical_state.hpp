@@ -11,6 +11,7 @@
 
 #include <cstdint>
 
+#include "hapticctrl/base/realtime.hpp"
 #include "hapticctrl/shm/ctrl.hpp"
 #include "hapticctrl/shm/payloads.hpp"
 
@@ -24,7 +25,7 @@ struct LogicalState {
   std::uint32_t pending_overrun_cycles = 0;  ///< fault injection queued for the main SERVO
 
   /// state_bits for VP/position (kFailSafe/kDegraded/... are added by the caller).
-  [[nodiscard]] std::uint32_t state_word() const noexcept {
+  [[nodiscard]] HAPTICCTRL_RT std::uint32_t state_word() const noexcept {
     return (powered ? shm::state_bits::kPowered : 0U) |
            (estop ? shm::state_bits::kEmergencyStop : 0U) |
            (stop_requested ? shm::state_bits::kStopping : 0U) |
@@ -42,7 +43,7 @@ class CommandInterpreter {
   /// Returns false to reject (unknown code, power-on while stopped or, from a client, while
   /// awaiting an operator, disallowed injection).
   /// Real-time contract: safe in the cycle.
-  bool apply(const shm::CtrlCommand& command, LogicalState& state) const noexcept;
+  HAPTICCTRL_RT bool apply(const shm::CtrlCommand& command, LogicalState& state) const noexcept;
 
  private:
   bool allow_fault_injection_;

@@ -20,28 +20,31 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "hapticctrl/base/realtime.hpp"
 #include "hapticctrl/rt_core/clock.hpp"
 #include "hapticctrl/rt_core/cycle_gate.hpp"
 #include "hapticctrl/rt_core/deadline_monitor.hpp"
 
 namespace hapticctrl::rt_core {
 
-/// Which of a task's two functions: the normal one (the main SERVO) or the degraded one.
-enum class ServoRole : std::uint8_t { kMain, kDegraded };
+/// Which of a task's two functions: the normal one or the degraded one that takes a release
+/// the normal one is still busy with.
+enum class TaskRole : std::uint8_t { kMain, kDegraded };
 
 /// Runs a task's normal and degraded functions (threads in the process, a scripted fake in tests).
 class TaskRunners {
  public:
   virtual ~TaskRunners() = default;
   /// Releases `role` for `cycle` (its gate, if any, was granted just before). Safe in the cycle.
-  virtual void release(ServoRole role, std::uint64_t cycle, TimeNs release_time) noexcept = 0;
+  HAPTICCTRL_RT virtual void release(TaskRole role, std::uint64_t cycle,
+                                     TimeNs release_time) noexcept = 0;
   /// True while `role` has not finished the last cycle released to it.
-  virtual bool busy(ServoRole role) noexcept = 0;
+  HAPTICCTRL_RT virtual bool busy(TaskRole role) noexcept = 0;
   /// Start time of the last cycle released to `role`, -1 if it has not started.
-  virtual TimeNs started_at(ServoRole role) noexcept = 0;
+  HAPTICCTRL_RT virtual TimeNs started_at(TaskRole role) noexcept = 0;
   /// When `role` finished `cycle` (everything the function does, its outputs included), or -1
   /// if it has not finished that cycle.
-  virtual TimeNs finished_at(ServoRole role, std::uint64_t cycle) noexcept = 0;
+  HAPTICCTRL_RT virtual TimeNs finished_at(TaskRole role, std::uint64_t cycle) noexcept = 0;
   /// Stops and joins the runners. Not for the cycle.
   virtual void stop() noexcept = 0;
 };
@@ -62,7 +65,7 @@ enum class TaskState : std::uint8_t { kAdded, kActive, kStopped };
 /// One release and how it went.
 struct TaskRelease {
   std::uint64_t cycle = 0;  ///< the base tick it was released at (0: none yet)
-  ServoRole role = ServoRole::kMain;
+  TaskRole role = TaskRole::kMain;
   bool ran = false;      ///< a function was released (false: both busy, or gate held)
   TimeNs scheduled = 0;  ///< its tick's scheduled time
   TimeNs released = 0;   ///< when it was released
@@ -97,23 +100,23 @@ class PeriodicTasks {
 
   /// CLOCK, at base tick `tick` (scheduled at `scheduled`, now `now`): releases every task due
   /// (tick % multiple == 0, or forced).
-  void release_due(std::uint64_t tick, TimeNs scheduled, TimeNs now) noexcept;
+  HAPTICCTRL_RT void release_due(std::uint64_t tick, TimeNs scheduled, TimeNs now) noexcept;
   /// CLOCK, at `now`: judges every release whose deadline has passed. Returns the most severe
   /// verdict (fail-safe, chronic misses, miss, good).
-  MonitorVerdict check_deadlines(TimeNs now) noexcept;
+  HAPTICCTRL_RT MonitorVerdict check_deadlines(TimeNs now) noexcept;
   /// CLOCK: `count` ticks were skipped (a late wake-up). Each is a miss for every active task
   /// released at every tick; a task with a longer period is judged by its next release.
   MonitorVerdict skip(std::uint32_t count) noexcept;
 
   /// The task's last release (judged or not).
-  [[nodiscard]] const TaskRelease& last_release(TaskId id) const noexcept {
+  [[nodiscard]] HAPTICCTRL_RT const TaskRelease& last_release(TaskId id) const noexcept {
     return tasks_[id].last;
   }
-  [[nodiscard]] const DeadlineMonitor& monitor(TaskId id) const noexcept {
+  [[nodiscard]] HAPTICCTRL_RT const DeadlineMonitor& monitor(TaskId id) const noexcept {
     return tasks_[id].monitor;
   }
   /// Releases handed to the degraded function.
-  [[nodiscard]] std::uint64_t degraded_releases(TaskId id) const noexcept {
+  [[nodiscard]] HAPTICCTRL_RT std::uint64_t degraded_releases(TaskId id) const noexcept {
     return tasks_[id].degraded_releases;
   }
   /// Stops every task's runners (joins their threads). Not for the cycle.
@@ -130,9 +133,9 @@ class PeriodicTasks {
     std::uint64_t degraded_releases = 0;
   };
 
-  void release(Task& task, std::uint64_t tick, TimeNs scheduled, TimeNs now) noexcept;
-  static MonitorVerdict judge(Task& task, TimeNs now) noexcept;
-  static MonitorVerdict worse(MonitorVerdict a, MonitorVerdict b) noexcept;
+  HAPTICCTRL_RT void release(Task& task, std::uint64_t tick, TimeNs scheduled, TimeNs now) noexcept;
+  HAPTICCTRL_RT static MonitorVerdict judge(Task& task, TimeNs now) noexcept;
+  HAPTICCTRL_RT static MonitorVerdict worse(MonitorVerdict a, MonitorVerdict b) noexcept;
 
   TimeNs base_period_;
   std::array<Task, kMaxTasks> tasks_;

@@ -1,7 +1,8 @@
 #pragma once
 /// @file servo.hpp
-/// The SERVO task's steps (DESIGN.md §4): read measures, build the logical state from ctrl,
-/// exchange with the protocol regions, run the law, send commands, publish VP and position.
+/// The SERVO task's steps (docs/rt_core.md, *The cycle*): read measures, build the logical state
+/// from ctrl, exchange with the protocol regions, run the law, send commands, publish VP and
+/// position.
 ///
 /// A cycle runs in two gate sections around the computation:
 ///   begin():  [gate] measures, ctrl -> logical state, supply, VPr           [/gate]
@@ -16,10 +17,11 @@
 #include <atomic>
 #include <cstdint>
 
+#include "hapticctrl/base/realtime.hpp"
 #include "hapticctrl/rt_core/arm_io.hpp"
 #include "hapticctrl/rt_core/cycle_gate.hpp"
 #include "hapticctrl/rt_core/logical_state.hpp"
-#include "hapticctrl/rt_core/periodic_tasks.hpp"  // ServoRole
+#include "hapticctrl/rt_core/periodic_tasks.hpp"  // TaskRole
 #include "hapticctrl/rt_core/servo_law.hpp"
 #include "hapticctrl/shm/ctrl.hpp"
 #include "hapticctrl/shm/payloads.hpp"
@@ -64,16 +66,16 @@ class ClockToServo {
     core_state_.store(static_cast<std::uint32_t>(state), std::memory_order_relaxed);
   }
 
-  [[nodiscard]] bool commands_inhibited() const noexcept {
+  [[nodiscard]] HAPTICCTRL_RT bool commands_inhibited() const noexcept {
     return inhibit_.load(std::memory_order_acquire);
   }
-  [[nodiscard]] std::uint32_t state_bits() const noexcept {
+  [[nodiscard]] HAPTICCTRL_RT std::uint32_t state_bits() const noexcept {
     return state_bits_.load(std::memory_order_relaxed);
   }
-  [[nodiscard]] std::uint32_t core_state() const noexcept {
+  [[nodiscard]] HAPTICCTRL_RT std::uint32_t core_state() const noexcept {
     return core_state_.load(std::memory_order_relaxed);
   }
-  [[nodiscard]] std::uint32_t stop_reason() const noexcept {
+  [[nodiscard]] HAPTICCTRL_RT std::uint32_t stop_reason() const noexcept {
     return stop_reason_.load(std::memory_order_relaxed);
   }
 
@@ -106,7 +108,9 @@ struct ServoToClock {
 class OverrunInjection {
  public:
   /// SERVO (inside the gate): stall the main SERVO for `cycles` cycles.
-  void request(std::uint32_t cycles) noexcept { cycles_.store(cycles, std::memory_order_release); }
+  HAPTICCTRL_RT void request(std::uint32_t cycles) noexcept {
+    cycles_.store(cycles, std::memory_order_release);
+  }
   /// The main SERVO's runner: the pending request (0: none), cleared.
   std::uint32_t take() noexcept { return cycles_.exchange(0, std::memory_order_acq_rel); }
 
@@ -173,7 +177,7 @@ enum class StepResult : std::uint8_t {
 /// One SERVO (main or degraded), with its own law state.
 class ServoTask {
  public:
-  ServoTask(ServoShared& shared, ServoRole role, const ServoLaw& law) noexcept
+  ServoTask(ServoShared& shared, TaskRole role, const ServoLaw& law) noexcept
       : gate_(&shared.gate),
         state_(&shared.state),
         from_clock_(&shared.from_clock),
@@ -183,29 +187,29 @@ class ServoTask {
         law_(law) {}
 
   /// Gate section 1 and the computation. Real-time contract: safe in the cycle.
-  StepResult begin(std::uint64_t cycle, TimeNs now, TimeNs dt) noexcept;
+  HAPTICCTRL_RT StepResult begin(std::uint64_t cycle, TimeNs now, TimeNs dt) noexcept;
   /// Gate section 2: commit. Real-time contract: safe in the cycle.
-  StepResult finish(std::uint64_t cycle, TimeNs now) noexcept;
+  HAPTICCTRL_RT StepResult finish(std::uint64_t cycle, TimeNs now) noexcept;
   /// begin() then finish() with no stall in between.
-  StepResult run(std::uint64_t cycle, TimeNs now, TimeNs dt) noexcept;
+  HAPTICCTRL_RT StepResult run(std::uint64_t cycle, TimeNs now, TimeNs dt) noexcept;
 
-  [[nodiscard]] ServoRole role() const noexcept { return role_; }
+  [[nodiscard]] TaskRole role() const noexcept { return role_; }
 
  private:
-  void gather(std::uint64_t cycle, TimeNs now, TimeNs dt) noexcept;
-  void exchange_client(TimeNs now) noexcept;
+  HAPTICCTRL_RT void gather(std::uint64_t cycle, TimeNs now, TimeNs dt) noexcept;
+  HAPTICCTRL_RT void exchange_client(TimeNs now) noexcept;
   /// The stiffest contact the device renders, in the client's units (N per client metre).
-  [[nodiscard]] double max_contact_stiffness(double speed_factor) const noexcept;
-  void commit(std::uint64_t cycle, TimeNs now) noexcept;
+  [[nodiscard]] HAPTICCTRL_RT double max_contact_stiffness(double speed_factor) const noexcept;
+  HAPTICCTRL_RT void commit(std::uint64_t cycle, TimeNs now) noexcept;
   /// The surface rendered on the handle, into VP in the client's frame and units.
-  void publish_surface(const ClientFrame& frame, shm::VpPayload& vp) const noexcept;
+  HAPTICCTRL_RT void publish_surface(const ClientFrame& frame, shm::VpPayload& vp) const noexcept;
 
   CycleGate* gate_;
   GateOwnedState* state_;
   const ClockToServo* from_clock_;
   ServoToClock* to_clock_;
   OverrunInjection* overrun_;
-  ServoRole role_;
+  TaskRole role_;
   ServoLaw law_;
   ServoInputs inputs_;
   ServoOutputs outputs_;

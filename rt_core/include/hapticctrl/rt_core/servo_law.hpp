@@ -16,6 +16,7 @@
 
 #include <cstdint>
 
+#include "hapticctrl/base/realtime.hpp"
 #include "hapticctrl/rt_core/arm_dynamics.hpp"
 #include "hapticctrl/rt_core/arm_io.hpp"
 #include "hapticctrl/rt_core/client_sample.hpp"
@@ -109,7 +110,7 @@ struct ClientFrame {
 };
 
 /// Real-time contract: safe in the cycle.
-ClientFrame client_frame_of(const ClientSample& client) noexcept;
+HAPTICCTRL_RT ClientFrame client_frame_of(const ClientSample& client) noexcept;
 
 struct LawConfig {
   TimeNs stale_after = 5 * kNsPerMs;  ///< no new sample for this long: flagged stale
@@ -178,9 +179,9 @@ struct TravelHistory {
   std::int64_t newest = -1;  ///< the newest slot written (now / kSlot); -1: none
   std::int64_t first = -1;   ///< the first slot written
   /// Adds `twist` * `dt` to the travel and notes it at `now`. Safe in the cycle.
-  void advance(TimeNs now, const Vector6d& twist, double dt) noexcept;
+  HAPTICCTRL_RT void advance(TimeNs now, const Vector6d& twist, double dt) noexcept;
   /// The travel since `ago` before `now` (since the first note if that is older).
-  [[nodiscard]] Vector6d since(TimeNs now, TimeNs ago) const noexcept;
+  [[nodiscard]] HAPTICCTRL_RT Vector6d since(TimeNs now, TimeNs ago) const noexcept;
 };
 
 /// What the law carries from one cycle to the next about the wrench it rendered. The main and
@@ -233,7 +234,7 @@ struct RenderMemory {
     double coupling_stiffness = 0.0;     ///< N/m: the coupling's own (it fades with the link)
     double contact_stiffness = 0.0;      ///< N/m: the contact's (it fades with its reports)
     /// How deep `position` is behind the plane (> 0: pressing on it). Safe in the cycle.
-    [[nodiscard]] double depth_at(const Vector3d& position) const noexcept {
+    [[nodiscard]] HAPTICCTRL_RT double depth_at(const Vector3d& position) const noexcept {
       return (point - position).dot(normal);
     }
   };
@@ -266,25 +267,25 @@ class ServoLaw {
   ServoLaw(const ArmDynamics& dynamics, const LawConfig& config = {}) noexcept;
 
   /// Real-time contract: noexcept, no allocation; safe in the cycle.
-  void compute(const ServoInputs& in, bool degraded, ServoOutputs& out) noexcept;
+  HAPTICCTRL_RT void compute(const ServoInputs& in, bool degraded, ServoOutputs& out) noexcept;
 
   /// Gains the controller derives from the object's mass/inertia, the client's time step and
   /// the coupling loop's delay (s), bounded by the device (model limits), then overridden
   /// (within the same bounds) by the client's non-zero overrides. Real-time contract: safe in
   /// the cycle.
-  [[nodiscard]] CouplingGains derive_gains(const ClientSample& client,
-                                           double loop_delay) const noexcept;
+  [[nodiscard]] HAPTICCTRL_RT CouplingGains derive_gains(const ClientSample& client,
+                                                         double loop_delay) const noexcept;
 
   /// Net energy the user has given the rendering port at the handle (J): negative means the port
   /// delivered more energy to the hand than it received (the guard then adds damping).
   [[nodiscard]] double observed_energy() const noexcept { return memory_.observed_energy; }
   /// Continues from what was rendered last (the committed cycle's memory). Safe in the cycle.
-  void continue_from(const RenderMemory& memory) noexcept { memory_ = memory; }
+  HAPTICCTRL_RT void continue_from(const RenderMemory& memory) noexcept { memory_ = memory; }
   /// What this law rendered in its last compute(). Safe in the cycle.
-  [[nodiscard]] const RenderMemory& memory() const noexcept { return memory_; }
+  [[nodiscard]] HAPTICCTRL_RT const RenderMemory& memory() const noexcept { return memory_; }
   [[nodiscard]] const LawCounters& counters() const noexcept { return counters_; }
   [[nodiscard]] const LawConfig& config() const noexcept { return config_; }
-  [[nodiscard]] const ArmDynamics& dynamics() const noexcept { return *dynamics_; }
+  [[nodiscard]] HAPTICCTRL_RT const ArmDynamics& dynamics() const noexcept { return *dynamics_; }
 
  private:
   /// The coupling's spring and damper parts (base frame), before limits: on the handle, and
@@ -342,60 +343,73 @@ class ServoLaw {
     double penetration = 0.0;  ///< the object's into its surface now (m, base)
     std::uint32_t fresh = 0;
   };
-  Coupling client_wrench(const ServoInputs& in, const ClientFrame& frame, const ChainState& chain,
-                         const Vector6d& twist, ServoOutputs& out) noexcept;
-  ObjectImage object_image(const ServoInputs& in, const ClientFrame& frame) const noexcept;
+  HAPTICCTRL_RT Coupling client_wrench(const ServoInputs& in, const ClientFrame& frame,
+                                       const ChainState& chain, const Vector6d& twist,
+                                       ServoOutputs& out) noexcept;
+  HAPTICCTRL_RT ObjectImage object_image(const ServoInputs& in,
+                                         const ClientFrame& frame) const noexcept;
   /// `reported`: the object's position as the client reported it (base frame, not extrapolated).
-  [[nodiscard]] Stiffening contact_stiffening(const ServoInputs& in, const ClientFrame& frame,
-                                              const Vector3d& reported,
-                                              const CouplingGains& g) const noexcept;
+  [[nodiscard]] HAPTICCTRL_RT Stiffening contact_stiffening(const ServoInputs& in,
+                                                            const ClientFrame& frame,
+                                                            const Vector3d& reported,
+                                                            const CouplingGains& g) const noexcept;
   /// The deepest fresh surface the client reports, for the handle's point: an IMPEDANCE
   /// client's contact is where its handle's point meets the surface; a VIRTMECH client's
   /// (`on_object`) is on its object, which the coupling holds at the handle, so the handle's
   /// point is the handle's position offset as the contact point was from the object.
-  [[nodiscard]] Surface reported_surface(const ServoInputs& in, const ClientFrame& frame,
-                                         const ChainState& chain, bool on_object) const noexcept;
-  void render_surface(Surface& surface, const ChainState& chain, const Vector6d& twist,
-                      double dt) noexcept;
+  [[nodiscard]] HAPTICCTRL_RT Surface reported_surface(const ServoInputs& in,
+                                                       const ClientFrame& frame,
+                                                       const ChainState& chain,
+                                                       bool on_object) const noexcept;
+  HAPTICCTRL_RT void render_surface(Surface& surface, const ChainState& chain,
+                                    const Vector6d& twist, double dt) noexcept;
   /// The reported surface rendered for the handle, noted in `coupling` as its contact.
-  Surface local_surface(const ServoInputs& in, const ClientFrame& frame, const ChainState& chain,
-                        const Vector6d& twist, bool on_object, Coupling& coupling,
-                        ServoOutputs& out) noexcept;
+  HAPTICCTRL_RT Surface local_surface(const ServoInputs& in, const ClientFrame& frame,
+                                      const ChainState& chain, const Vector6d& twist,
+                                      bool on_object, Coupling& coupling,
+                                      ServoOutputs& out) noexcept;
   /// Notes the contact in force while the link is fresh and the coupling whole (or forgets it
   /// when none is), for held_contact_force.
-  void hold_contact(const ServoInputs& in, const Coupling& coupling, double engage) noexcept;
+  HAPTICCTRL_RT void hold_contact(const ServoInputs& in, const Coupling& coupling,
+                                  double engage) noexcept;
   /// The held contact's push on the handle: the share of it the link's coupling no longer
   /// renders (what faded with the link), on the handle's position now.
-  [[nodiscard]] Vector3d held_contact_force(const ServoInputs& in, double engage) const noexcept;
-  Vector6d stretch_in_use(const Vector6d& stretch, const Vector6d& twist, double dt) noexcept;
-  [[nodiscard]] Vector6d restretch_damping(const Vector6d& twist) const noexcept;
-  void track_loop_delay(const ServoInputs& in) noexcept;
-  CouplingGains slew_gains(const CouplingGains& target, TimeNs dt) noexcept;
-  [[nodiscard]] double fade_of(TimeNs silence, double peak_share) const noexcept;
-  [[nodiscard]] double peak_share(const Vector6d& wrench) const noexcept;
-  [[nodiscard]] Vector6d joint_space(const ServoInputs& in, double engage, double rate, double dt,
-                                     ServoOutputs& out) noexcept;
-  void follow_session(const ServoInputs& in) noexcept;
-  Vector6d guard_channel(const ServoInputs& in, const ClientFrame& frame, const Vector6d& coupling,
-                         const Vector6d& to_object, const Vector6d& stretch, double dt) noexcept;
-  Vector6d guard_impedance(const ServoInputs& in, const ClientFrame& frame,
-                           const Vector6d& handle_force, const Vector6d& twist, double dt) noexcept;
+  [[nodiscard]] HAPTICCTRL_RT Vector3d held_contact_force(const ServoInputs& in,
+                                                          double engage) const noexcept;
+  HAPTICCTRL_RT Vector6d stretch_in_use(const Vector6d& stretch, const Vector6d& twist,
+                                        double dt) noexcept;
+  [[nodiscard]] HAPTICCTRL_RT Vector6d restretch_damping(const Vector6d& twist) const noexcept;
+  HAPTICCTRL_RT void track_loop_delay(const ServoInputs& in) noexcept;
+  HAPTICCTRL_RT CouplingGains slew_gains(const CouplingGains& target, TimeNs dt) noexcept;
+  [[nodiscard]] HAPTICCTRL_RT double fade_of(TimeNs silence, double peak_share) const noexcept;
+  [[nodiscard]] HAPTICCTRL_RT double peak_share(const Vector6d& wrench) const noexcept;
+  [[nodiscard]] HAPTICCTRL_RT Vector6d joint_space(const ServoInputs& in, double engage,
+                                                   double rate, double dt,
+                                                   ServoOutputs& out) noexcept;
+  HAPTICCTRL_RT void follow_session(const ServoInputs& in) noexcept;
+  HAPTICCTRL_RT Vector6d guard_channel(const ServoInputs& in, const ClientFrame& frame,
+                                       const Vector6d& coupling, const Vector6d& to_object,
+                                       const Vector6d& stretch, double dt) noexcept;
+  HAPTICCTRL_RT Vector6d guard_impedance(const ServoInputs& in, const ClientFrame& frame,
+                                         const Vector6d& handle_force, const Vector6d& twist,
+                                         double dt) noexcept;
   /// Books one period's channel power at the core's end (>= 0: in) and returns the excess of
   /// the energy out over `budget`, the client's reported energy in.
-  double book_channel_power(double power, double budget, double dt) noexcept;
-  double update_engagement(const ServoInputs& in, const Vector6d& twist, double fade,
-                           ServoOutputs& out) noexcept;
-  void set_limits(const ClientSample& client, ServoOutputs& out) const noexcept;
-  Vector6d rate_limit(const Vector6d& target, double rate, double dt) noexcept;
-  Vector6d guard_passivity(const Vector6d& wrench, const Vector6d& twist, double dt) noexcept;
-  Vector6d joint_walls(const Vector6d& q) const noexcept;
-  [[nodiscard]] std::uint32_t joint_bounds(const Vector6d& q) const noexcept;
-  Vector6d workspace_wall(const Vector3d& velocity) noexcept;
-  void express_for_client(const ClientFrame& frame, const Vector6d& twist,
-                          ServoOutputs& out) const noexcept;
+  HAPTICCTRL_RT double book_channel_power(double power, double budget, double dt) noexcept;
+  HAPTICCTRL_RT double update_engagement(const ServoInputs& in, const Vector6d& twist, double fade,
+                                         ServoOutputs& out) noexcept;
+  HAPTICCTRL_RT void set_limits(const ClientSample& client, ServoOutputs& out) const noexcept;
+  HAPTICCTRL_RT Vector6d rate_limit(const Vector6d& target, double rate, double dt) noexcept;
+  HAPTICCTRL_RT Vector6d guard_passivity(const Vector6d& wrench, const Vector6d& twist,
+                                         double dt) noexcept;
+  HAPTICCTRL_RT Vector6d joint_walls(const Vector6d& q) const noexcept;
+  [[nodiscard]] HAPTICCTRL_RT std::uint32_t joint_bounds(const Vector6d& q) const noexcept;
+  HAPTICCTRL_RT Vector6d workspace_wall(const Vector3d& velocity) noexcept;
+  HAPTICCTRL_RT void express_for_client(const ClientFrame& frame, const Vector6d& twist,
+                                        ServoOutputs& out) const noexcept;
   /// Whether the client reports its channel energy with an IMPEDANCE wrench (protocol 1.3): the
   /// two-port covers it instead of the one-port guard.
-  [[nodiscard]] static bool two_port_impedance(const ServoInputs& in) noexcept;
+  [[nodiscard]] HAPTICCTRL_RT static bool two_port_impedance(const ServoInputs& in) noexcept;
 
   const ArmDynamics* dynamics_;
   LawConfig config_;

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <thread>
 
+#include "hapticctrl/base/realtime.hpp"
 #include "hapticctrl/rt_core/clock.hpp"
 #include "hapticctrl/rt_core/executive.hpp"
 #include "hapticctrl/rt_core/servo.hpp"
@@ -32,14 +33,15 @@ class ThreadedServoTasks final : public TaskRunners {
   ThreadedServoTasks& operator=(const ThreadedServoTasks&) = delete;
   ~ThreadedServoTasks() override;
 
-  void release(ServoRole role, std::uint64_t cycle, TimeNs release_time) noexcept override;
-  bool busy(ServoRole role) noexcept override;
-  TimeNs started_at(ServoRole role) noexcept override;
-  TimeNs finished_at(ServoRole role, std::uint64_t cycle) noexcept override;
+  HAPTICCTRL_RT void release(TaskRole role, std::uint64_t cycle,
+                             TimeNs release_time) noexcept override;
+  HAPTICCTRL_RT bool busy(TaskRole role) noexcept override;
+  HAPTICCTRL_RT TimeNs started_at(TaskRole role) noexcept override;
+  HAPTICCTRL_RT TimeNs finished_at(TaskRole role, std::uint64_t cycle) noexcept override;
   void stop() noexcept override;
 
   /// Whether each thread got the scheduling it asked for (reported by the preflight).
-  [[nodiscard]] bool placement_applied(ServoRole role) const noexcept;
+  [[nodiscard]] bool placement_applied(TaskRole role) const noexcept;
 
  private:
   struct Worker {
@@ -57,7 +59,9 @@ class ThreadedServoTasks final : public TaskRunners {
   };
 
   void worker_loop(Worker& worker) noexcept;
-  Worker& worker(ServoRole role) noexcept { return role == ServoRole::kMain ? main_ : degraded_; }
+  HAPTICCTRL_RT Worker& worker(TaskRole role) noexcept {
+    return role == TaskRole::kMain ? main_ : degraded_;
+  }
 
   Clock* clock_;
   OverrunInjection* overrun_;  ///< taken by the main SERVO after begin()

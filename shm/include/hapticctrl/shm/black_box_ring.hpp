@@ -16,6 +16,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "hapticctrl/base/realtime.hpp"
+
 namespace hapticctrl::shm {
 
 /// One cycle as the core's CLOCK saw it (and the state the SERVO committed).
@@ -56,7 +58,7 @@ struct BlackBoxRing {
 };
 
 /// Appends a record. Real-time contract: wait-free, no syscall; one writer only.
-void push_cycle_record(BlackBoxRing& ring, const CycleRecord& record) noexcept;
+HAPTICCTRL_RT void push_cycle_record(BlackBoxRing& ring, const CycleRecord& record) noexcept;
 
 /// The records still in the ring, oldest first. Not for the cycle (allocates).
 [[nodiscard]] std::vector<CycleRecord> read_cycle_records(const BlackBoxRing& ring);

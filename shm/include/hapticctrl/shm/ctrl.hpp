@@ -22,6 +22,8 @@
 #include <atomic>
 #include <cstdint>
 
+#include "hapticctrl/base/realtime.hpp"
+
 namespace hapticctrl::shm {
 
 /// Command codes carried by ctrl entries. Unknown codes are rejected (and counted) by the core.
@@ -134,7 +136,7 @@ class CtrlReader {
   /// delivered at their position in the sequence.
   /// Real-time contract: safe in the cycle if the handler is; no syscall, no allocation.
   template <typename Handler>
-  void drain(Handler&& handler) noexcept {
+  HAPTICCTRL_RT void drain(Handler&& handler) noexcept {
     for (std::size_t s = 0; s < kCtrlSlots; ++s) {
       drain_slot(s, handler);
     }

@@ -11,6 +11,8 @@
 #include <atomic>
 #include <cstdint>
 
+#include "hapticctrl/base/realtime.hpp"
+
 namespace hapticctrl::shm {
 
 /// What an event says. `code` and `value` depend on the kind.
@@ -57,8 +59,8 @@ struct Event {
 };
 
 /// Appends an event. Real-time contract: wait-free, no syscall; one writer only.
-void push_event(EventRing& ring, std::uint64_t cycle, std::int64_t time_ns, EventKind kind,
-                std::uint32_t code, std::uint64_t value) noexcept;
+HAPTICCTRL_RT void push_event(EventRing& ring, std::uint64_t cycle, std::int64_t time_ns,
+                              EventKind kind, std::uint32_t code, std::uint64_t value) noexcept;
 
 /// A reader's position in the ring.
 class EventReader {

@@ -3,6 +3,7 @@
 /// The operator wrench a writer of the `force` region applies, moved towards a requested wrench
 /// at a bounded rate: whatever a panel, a script or a remote HMI asks for, the simulated hand
 /// never jumps. Both writers of `force` (hapticctrl-hmi, hapticctrl-lcm) use it.
+#include "hapticctrl/base/realtime.hpp"
 #include "hapticctrl/shm/payloads.hpp"
 
 namespace hapticctrl::shm {
@@ -24,13 +25,14 @@ struct ForceLimits {
 /// Whether every component of an operator wrench is finite and within `limits`' magnitudes:
 /// the one acceptance test of the `force` region, applied by its writers and by the core.
 /// Real-time contract: noexcept, allocation-free; safe in the cycle.
-[[nodiscard]] bool wrench_acceptable(const Vector6& wrench,
-                                     const ForceLimits& limits = {}) noexcept;
+[[nodiscard]] HAPTICCTRL_RT bool wrench_acceptable(const Vector6& wrench,
+                                                   const ForceLimits& limits = {}) noexcept;
 
 /// Whether a hand grip is finite and within `limits` (stiffness, damping, anchor distance and
 /// speed); the acceptance test of the hand in the `force` region, applied by its writer and the
 /// core. Real-time contract: noexcept, allocation-free; safe in the cycle.
-[[nodiscard]] bool hand_acceptable(const HandGrip& hand, const ForceLimits& limits = {}) noexcept;
+[[nodiscard]] HAPTICCTRL_RT bool hand_acceptable(const HandGrip& hand,
+                                                 const ForceLimits& limits = {}) noexcept;
 
 /// Rate-limited operator wrench. Real-time contract: every member is noexcept, allocation-free
 /// and constant-time; safe anywhere.

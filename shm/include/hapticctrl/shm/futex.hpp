@@ -9,6 +9,8 @@
 #include <chrono>
 #include <cstdint>
 
+#include "hapticctrl/base/realtime.hpp"
+
 namespace hapticctrl::shm {
 
 /// Outcome of a futex wait.
@@ -26,9 +28,9 @@ FutexWaitResult futex_wait(const std::atomic<std::uint32_t>& word, std::uint32_t
 
 /// Wakes every waiter blocked on `word`. One syscall, never blocks.
 /// Real-time contract: safe to call from the cycle (it is the "notify" the cycle may do).
-void futex_wake_all(const std::atomic<std::uint32_t>& word) noexcept;
+HAPTICCTRL_RT void futex_wake_all(const std::atomic<std::uint32_t>& word) noexcept;
 
 /// Wakes at most one waiter blocked on `word`. Same contract as futex_wake_all().
-void futex_wake_one(const std::atomic<std::uint32_t>& word) noexcept;
+HAPTICCTRL_RT void futex_wake_one(const std::atomic<std::uint32_t>& word) noexcept;
 
 }  // namespace hapticctrl::shm

@@ -11,6 +11,8 @@
 #include <array>
 #include <cstdint>
 
+#include "hapticctrl/base/realtime.hpp"
+
 namespace hapticctrl::shm {
 
 using Pose7 = std::array<double, 7>;    ///< x, y, z [m], qx, qy, qz, qw
@@ -69,7 +71,7 @@ inline constexpr std::uint32_t kJointBoundsMask = 0x3FFFU << kJointBoundsShift;
 /// its own after a fault).
 inline constexpr std::uint32_t kAwaitingOperator = 1U << 22;
 /// The bound bit of joint `j` (0-5; 6 for the J2 + J3 sum), lower or upper.
-[[nodiscard]] constexpr std::uint32_t joint_bound(unsigned j, bool upper) noexcept {
+[[nodiscard]] HAPTICCTRL_RT constexpr std::uint32_t joint_bound(unsigned j, bool upper) noexcept {
   return 1U << (kJointBoundsShift + 2U * j + (upper ? 1U : 0U));
 }
 }  // namespace state_bits

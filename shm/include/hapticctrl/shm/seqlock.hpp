@@ -30,12 +30,13 @@
 #include <cstring>
 #include <type_traits>
 
+#include "hapticctrl/base/realtime.hpp"
 #include "hapticctrl/shm/futex.hpp"
 
 namespace hapticctrl::shm {
 
 /// Spin-wait hint (x86 PAUSE); a no-op elsewhere.
-inline void cpu_relax() noexcept {
+HAPTICCTRL_RT inline void cpu_relax() noexcept {
 #if defined(__x86_64__) || defined(__i386__)
   __builtin_ia32_pause();
 #endif
@@ -57,7 +58,7 @@ struct ReadResult {
   /// The writer's timestamp for this sample (CLOCK_MONOTONIC ns, as passed to publish()).
   std::int64_t publish_time_ns = 0;
 
-  [[nodiscard]] bool ok() const noexcept { return status == ReadStatus::kOk; }
+  [[nodiscard]] HAPTICCTRL_RT bool ok() const noexcept { return status == ReadStatus::kOk; }
 };
 
 /// Default number of read attempts before a read reports kTorn. A write of a VP-sized payload
@@ -89,14 +90,14 @@ class alignas(64) SeqlockCell {
   /// Publishes `value` stamped with `publish_time_ns` and wakes blocked readers.
   /// Only the one writer of this cell may call it (enforced by the region's writer claim).
   /// Real-time contract: safe in the cycle; wait-free; one futex-wake syscall.
-  void publish(const T& value, std::int64_t publish_time_ns) noexcept {
+  HAPTICCTRL_RT void publish(const T& value, std::int64_t publish_time_ns) noexcept {
     publish_quietly(value, publish_time_ns);
     futex_wake_all(seq_);
   }
 
   /// publish() without the wake-up syscall, for cells nobody blocks on.
   /// Real-time contract: safe in the cycle; wait-free; no syscall.
-  void publish_quietly(const T& value, std::int64_t publish_time_ns) noexcept {
+  HAPTICCTRL_RT void publish_quietly(const T& value, std::int64_t publish_time_ns) noexcept {
     const std::uint32_t start = seq_.load(std::memory_order_relaxed);
     seq_.store(start + 1, std::memory_order_relaxed);
     count_.store(count_.load(std::memory_order_relaxed) + 1, std::memory_order_release);
@@ -113,7 +114,8 @@ class alignas(64) SeqlockCell {
   /// Copies a consistent snapshot into `out`, trying at most `max_attempts` times.
   /// `out` is only modified when the result is kOk.
   /// Real-time contract: safe in the cycle; bounded; never blocks the writer or waits for it.
-  ReadResult read(T& out, unsigned max_attempts = kDefaultReadAttempts) const noexcept {
+  HAPTICCTRL_RT ReadResult read(T& out,
+                                unsigned max_attempts = kDefaultReadAttempts) const noexcept {
     std::array<std::uint64_t, kWords> scratch;  // NOLINT(cppcoreguidelines-pro-type-member-init)
     for (unsigned attempt = 0; attempt < max_attempts; ++attempt) {
       const std::uint32_t before = seq_.load(std::memory_order_acquire);

@@ -22,8 +22,8 @@
 #include <thread>
 #include <vector>
 
+#include "hapticctrl/base/time.hpp"
 #include "hapticctrl/client/connection.hpp"
-#include "hapticctrl/protocol/monotonic_clock.hpp"
 #include "hapticctrl/protocol/udp_socket.hpp"
 
 namespace {
@@ -75,11 +75,11 @@ std::vector<double> raw_udp_pingpong(int pings) {
   std::array<std::uint8_t, 90> ping{};
   std::array<std::uint8_t, 512> pong{};
   for (int i = 0; i < pings; ++i) {
-    const std::int64_t t0 = proto::monotonic_ns();
+    const std::int64_t t0 = hapticctrl::monotonic_now_ns();
     client.send_to(ping, echo_at);
     proto::Endpoint from;
     if (client.receive(pong, from, 100ms).status == proto::Received::Status::kDatagram) {
-      rtt.push_back(static_cast<double>(proto::monotonic_ns() - t0) / 1e3);
+      rtt.push_back(static_cast<double>(hapticctrl::monotonic_now_ns() - t0) / 1e3);
     }
   }
   running.store(false);
@@ -111,9 +111,9 @@ StreamResult client_loop(std::uint16_t port, double seconds) {
   link.wait_for_answer(0, 1s, s);
   std::uint64_t rtt_samples = link.statistics().rtt_samples;
   std::int64_t last_arrival = 0;
-  const std::int64_t t0 = proto::monotonic_ns();
+  const std::int64_t t0 = hapticctrl::monotonic_now_ns();
   const auto end = t0 + static_cast<std::int64_t>(seconds * 1e9);
-  while (proto::monotonic_ns() < end) {
+  while (hapticctrl::monotonic_now_ns() < end) {
     if (!link.wait_for_answer(s.cycle, 100ms, s)) {
       continue;
     }
@@ -133,7 +133,7 @@ StreamResult client_loop(std::uint16_t port, double seconds) {
     }
     link.send_wrench({});
   }
-  r.seconds = static_cast<double>(proto::monotonic_ns() - t0) / 1e9;
+  r.seconds = static_cast<double>(hapticctrl::monotonic_now_ns() - t0) / 1e9;
   r.stats = link.statistics();
   r.gaps_over_3ms = static_cast<std::size_t>(std::count_if(
       r.interarrival_us.begin(), r.interarrival_us.end(), [](double g) { return g > 3000.0; }));

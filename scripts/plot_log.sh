@@ -36,7 +36,7 @@ for arm in "$OUT"/hapticctrl.*.arm_state.csv; do
   inst=$(basename "$prefix")
   t=$(col "$arm" utime)
   x=$(col "$arm" handle_x); y=$(col "$arm" handle_y); z=$(col "$arm" handle_z)
-  cf=$(col "$arm" coupling_x); of=$(col "$arm" operator_x)
+  cf=$(col "$arm" rendered_x); of=$(col "$arm" operator_x)
   t0=$(sed -n 2p "$arm" | cut -d, -f"$t")
   gnuplot <<GP
 set datafile separator ','

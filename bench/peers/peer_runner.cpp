@@ -18,13 +18,13 @@
 #include <new>
 #include <thread>
 
+#include "hapticctrl/base/time.hpp"
 #include "hapticctrl/rt_core/threaded_servo_tasks.hpp"  // place_current_thread
-#include "hapticctrl/shm/monotonic_clock.hpp"
 
 namespace hapticctrl::bench {
 namespace {
 
-using shm::monotonic_now_ns;
+using hapticctrl::monotonic_now_ns;
 
 constexpr std::uint32_t kMaxMessages = 60'000;
 constexpr std::int64_t kWarmUpLimitNs = 3'000'000'000;

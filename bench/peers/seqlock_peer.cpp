@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "hapticctrl/shm/monotonic_clock.hpp"
+#include "hapticctrl/base/time.hpp"
 #include "hapticctrl/shm/seqlock.hpp"
 #include "peers/peer_transport.hpp"
 
@@ -23,9 +23,9 @@ class SeqlockWriter final : public PeerWriter {
   SeqlockWriter(Cell& cell, bool wake) : cell_(&cell), wake_(wake) {}
   bool publish(const Message& message) override {
     if (wake_) {
-      cell_->publish(message, shm::monotonic_now_ns());
+      cell_->publish(message, hapticctrl::monotonic_now_ns());
     } else {
-      cell_->publish_quietly(message, shm::monotonic_now_ns());
+      cell_->publish_quietly(message, hapticctrl::monotonic_now_ns());
     }
     return true;  // a seqlock publish cannot fail or wait
   }

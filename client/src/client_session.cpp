@@ -9,13 +9,12 @@
 #include <cmath>
 #include <utility>
 
+#include "hapticctrl/base/time.hpp"
 #include "hapticctrl/protocol/timing.hpp"
 #include "hapticctrl/protocol/values.hpp"
 
 namespace hapticctrl::client {
 namespace {
-
-constexpr std::int64_t kNsPerMs = 1'000'000;
 
 std::string version_text(std::uint32_t v) {
   return std::to_string(protocol::version_major(v)) + "." +

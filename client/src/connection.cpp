@@ -12,8 +12,6 @@
 
 namespace hapticctrl::client {
 
-using protocol::monotonic_ns;
-
 Connection::Connection(const Address& address, const ConnectOptions& options)
     : impl_(std::make_unique<Impl>(address, options)) {}
 Connection::Connection(Connection&&) noexcept = default;
@@ -38,7 +36,7 @@ bool Connection::send_object_state(const Pose7& pose, const Vector6& twist) noex
   std::optional<hcp_frame> frame;
   {
     const std::lock_guard lock(impl_->session_mutex);
-    frame = impl_->session.object_frame(pose, twist, monotonic_ns());
+    frame = impl_->session.object_frame(pose, twist, hapticctrl::monotonic_now_ns());
   }
   const bool sent = impl_->send_control(frame);
   if (sent) {
@@ -59,7 +57,7 @@ bool Connection::send_wrench(const Vector6& wrench) noexcept {
   std::optional<hcp_frame> frame;
   {
     const std::lock_guard lock(impl_->session_mutex);
-    frame = impl_->session.wrench_frame(wrench, monotonic_ns());
+    frame = impl_->session.wrench_frame(wrench, hapticctrl::monotonic_now_ns());
   }
   const bool sent = impl_->send_control(frame);
   if (sent) {
@@ -72,7 +70,7 @@ bool Connection::send_joint_target(const Joints6& position, const Joints6& speed
   std::optional<hcp_frame> frame;
   {
     const std::lock_guard lock(impl_->session_mutex);
-    frame = impl_->session.joint_target_frame(position, speed, monotonic_ns());
+    frame = impl_->session.joint_target_frame(position, speed, hapticctrl::monotonic_now_ns());
   }
   return impl_->send_control(frame);
 }
@@ -81,7 +79,7 @@ bool Connection::send_joint_torque(const Joints6& torque) noexcept {
   std::optional<hcp_frame> frame;
   {
     const std::lock_guard lock(impl_->session_mutex);
-    frame = impl_->session.joint_torque_frame(torque, monotonic_ns());
+    frame = impl_->session.joint_torque_frame(torque, hapticctrl::monotonic_now_ns());
   }
   return impl_->send_control(frame);
 }

@@ -11,9 +11,9 @@
 #include <thread>
 
 #include "client_session.hpp"
+#include "hapticctrl/base/time.hpp"
 #include "hapticctrl/client/connection.hpp"
 #include "hapticctrl/protocol/codec.hpp"
-#include "hapticctrl/protocol/monotonic_clock.hpp"
 #include "hapticctrl/protocol/udp_socket.hpp"
 
 namespace hapticctrl::client {
@@ -75,7 +75,7 @@ struct Connection::Impl {
     if (!transmit(frame)) {
       return false;
     }
-    session.on_sent(protocol::monotonic_ns());
+    session.on_sent(hapticctrl::monotonic_now_ns());
     return true;
   }
 
@@ -98,10 +98,10 @@ struct Connection::Impl {
   // --- handshake ---------------------------------------------------------------------------
   void handshake() {
     const std::int64_t deadline =
-        protocol::monotonic_ns() + session.options().connect_timeout.count() * 1'000'000;
+        hapticctrl::monotonic_now_ns() + session.options().connect_timeout.count() * 1'000'000;
     protocol::FrameBuffer in;  // NOLINT(cppcoreguidelines-pro-type-member-init): receive() fills it
-    while (protocol::monotonic_ns() < deadline) {
-      if (const auto hello = session.hello_due(protocol::monotonic_ns())) {
+    while (hapticctrl::monotonic_now_ns() < deadline) {
+      if (const auto hello = session.hello_due(hapticctrl::monotonic_now_ns())) {
         send_locked(*hello);  // no other thread yet
       }
       protocol::Endpoint from;
@@ -113,7 +113,7 @@ struct Connection::Impl {
       if (!frame) {
         continue;
       }
-      HandshakeStep step = session.on_handshake_frame(*frame, protocol::monotonic_ns());
+      HandshakeStep step = session.on_handshake_frame(*frame, hapticctrl::monotonic_now_ns());
       if (step.reply) {
         send_locked(*step.reply);
       }
@@ -146,7 +146,7 @@ struct Connection::Impl {
 
   Arrival on_frame(const hcp_frame& frame) noexcept {
     const std::lock_guard lock(session_mutex);
-    return session.on_frame(frame, protocol::monotonic_ns());
+    return session.on_frame(frame, hapticctrl::monotonic_now_ns());
   }
 
   /// Wakes whoever waits for what arrived, runs the periodic function on a new state, then
@@ -157,7 +157,7 @@ struct Connection::Impl {
     {
       const std::lock_guard lock(session_mutex);
       state = session.latest();
-      const std::int64_t now = protocol::monotonic_ns();
+      const std::int64_t now = hapticctrl::monotonic_now_ns();
       if (const auto keepalive = session.keepalive_due(now)) {
         send_locked(*keepalive);
       }
@@ -185,7 +185,7 @@ struct Connection::Impl {
       return false;
     }
     const std::lock_guard lock(session_mutex);
-    session.on_sent(protocol::monotonic_ns());
+    session.on_sent(hapticctrl::monotonic_now_ns());
     session.on_control_sent();
     return true;
   }
@@ -196,7 +196,7 @@ struct Connection::Impl {
       std::optional<hcp_frame> contact;
       {
         const std::lock_guard lock(session_mutex);
-        contact = session.contact_frame_due(protocol::monotonic_ns());
+        contact = session.contact_frame_due(hapticctrl::monotonic_now_ns());
       }
       if (!contact || !send_control(contact)) {
         break;
@@ -213,10 +213,10 @@ struct Connection::Impl {
     hcp_frame frame = make();
     const std::uint32_t sequence = frame.header.sequence;
     const ConnectOptions& options = session.options();
-    const auto deadline = std::chrono::steady_clock::now() + options.call_timeout;
+    const auto deadline = hapticctrl::MonotonicClock::now() + options.call_timeout;
     int tries = 0;
-    while (std::chrono::steady_clock::now() < deadline) {
-      frame.header.sender_time_ns = protocol::monotonic_ns();
+    while (hapticctrl::MonotonicClock::now() < deadline) {
+      frame.header.sender_time_ns = hapticctrl::monotonic_now_ns();
       send_locked(frame);
       ++tries;
       std::optional<AckOutcome> ack;

@@ -82,10 +82,10 @@ double ContactSet::penetration_along(const std::array<double, 3>& normal) const 
   double deepest = 0.0;
   for (std::uint32_t i = 0; i < count_ && length > 1e-6; ++i) {
     const hcp_contact& c = contacts_[i];
-    const double along =
-        (static_cast<double>(c.normal[0]) * normal[0] + static_cast<double>(c.normal[1]) * normal[1] +
-         static_cast<double>(c.normal[2]) * normal[2]) /
-        length;
+    const double along = (static_cast<double>(c.normal[0]) * normal[0] +
+                          static_cast<double>(c.normal[1]) * normal[1] +
+                          static_cast<double>(c.normal[2]) * normal[2]) /
+                         length;
     if (along > 0.9) {
       deepest = std::max(deepest, -static_cast<double>(c.distance));
     }

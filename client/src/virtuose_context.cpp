@@ -5,7 +5,7 @@
 #include <cstring>
 #include <unordered_map>
 
-#include "hapticctrl/protocol/monotonic_clock.hpp"
+#include "hapticctrl/base/time.hpp"
 #include "virtuose_reconnect.hpp"
 
 namespace hapticctrl::client::virtuose {
@@ -175,11 +175,11 @@ void Context::on_answer(const StateSnapshot& s) noexcept {
     return;
   }
   answers_since_call = 0;
-  const std::int64_t start = protocol::monotonic_ns();
+  const std::int64_t start = hapticctrl::monotonic_now_ns();
   t_in_periodic = this;
   periodic(this, periodic_arg);
   t_in_periodic = nullptr;
-  const std::int64_t took = protocol::monotonic_ns() - start;
+  const std::int64_t took = hapticctrl::monotonic_now_ns() - start;
   const std::int64_t period = link()->controller_period_ns() * decimation;
   const std::lock_guard lock(mutex);
   flush_locked("the periodic function's command");

@@ -5,6 +5,8 @@
 #include <chrono>
 #include <span>
 
+#include "hapticctrl/base/time.hpp"
+
 namespace hapticctrl::client::virtuose {
 namespace {
 
@@ -129,8 +131,8 @@ void Reconnector::hand_over(const std::shared_ptr<Connection>& old,
   }
   ++sessions_;
   say("hapticctrl: session " + std::to_string(sessions_) + " open with the next controller");
-  const auto give_up = std::chrono::steady_clock::now() + kOldSessionGrace;
-  while (old.use_count() > 1 && std::chrono::steady_clock::now() < give_up) {
+  const auto give_up = hapticctrl::MonotonicClock::now() + kOldSessionGrace;
+  while (old.use_count() > 1 && hapticctrl::MonotonicClock::now() < give_up) {
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
 }

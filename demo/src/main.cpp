@@ -20,6 +20,7 @@
 #include <thread>
 #include <vector>
 
+#include "hapticctrl/base/time.hpp"
 #include "hapticctrl/client/connection.hpp"
 #include "hapticctrl/demo/demo_input.hpp"
 #include "hapticctrl/demo/demo_options.hpp"
@@ -34,16 +35,13 @@ namespace {
 namespace client = hapticctrl::client;
 namespace demo = hapticctrl::demo;
 namespace program = hapticctrl::program;
-using Clock = std::chrono::steady_clock;
+using Clock = hapticctrl::MonotonicClock;
+using hapticctrl::kNsPerUs;
+using hapticctrl::monotonic_now_ns;
 
 std::atomic<bool> g_stop{false};
 void on_signal(int /*sig*/) {
   g_stop.store(true);
-}
-
-std::int64_t monotonic_us() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(Clock::now().time_since_epoch())
-      .count();
 }
 
 /// The seeds' initialisation: references and frames, units and factors, time step, command
@@ -295,7 +293,8 @@ class DemoRun {
       (void)c_->send_object_state(scene_->pose(), scene_->twist());
     }
     ++steps_;
-    if (const std::int64_t now_us = monotonic_us(); scene_out_ && scene_out_->due(now_us * 1000)) {
+    if (const std::int64_t now_us = monotonic_now_ns() / kNsPerUs;
+        scene_out_ && scene_out_->due(now_us * 1000)) {
       (void)scene_out_->publish(
           demo::to_scene_message(*scene_, applied_, c_->statistics(), steps_, now_us));
     }

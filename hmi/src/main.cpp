@@ -11,6 +11,7 @@
 #include <thread>
 #include <vector>
 
+#include "hapticctrl/base/time.hpp"
 #include "hapticctrl/hmi/hmi_options.hpp"
 #include "hapticctrl/hmi/operator.hpp"
 #include "hapticctrl/hmi/panel.hpp"
@@ -65,8 +66,8 @@ int command(hmi::Operator& op, shm::CtrlCode code, const char* effect, const cha
 
 int stop_controller(hmi::Operator& op, const hmi::HmiOptions& o) {
   op.send(shm::CtrlCode::kStop);
-  const auto deadline = std::chrono::steady_clock::now() + o.timeout + std::chrono::seconds(3);
-  while (op.controller_alive() && std::chrono::steady_clock::now() < deadline) {
+  const auto deadline = hapticctrl::MonotonicClock::now() + o.timeout + std::chrono::seconds(3);
+  while (op.controller_alive() && hapticctrl::MonotonicClock::now() < deadline) {
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   if (op.controller_alive()) {

@@ -2,6 +2,7 @@
 // emergency stop, stop) and the operator wrench on the simulated handle, written through the
 // `force` region at a bounded rate.
 #include "hapticctrl/hmi/operator.hpp"
+#include "hapticctrl/base/time.hpp"
 
 #include <algorithm>
 #include <thread>
@@ -80,10 +81,10 @@ Operator::Operator(const std::string& instance, bool want_force) {
 }
 
 void Operator::send(shm::CtrlCode code) {
-  const auto deadline = std::chrono::steady_clock::now() + 100ms;
+  const auto deadline = hapticctrl::MonotonicClock::now() + 100ms;
   while (segment_->ctrl_writer().send(code, 0, monotonic_now_ns()) !=
          shm::CtrlSendStatus::kQueued) {
-    if (std::chrono::steady_clock::now() >= deadline) {
+    if (hapticctrl::MonotonicClock::now() >= deadline) {
       throw HmiError("the controller's command queue stays full: is hapticctrl-core stalled?");
     }
     std::this_thread::sleep_for(kPoll);
@@ -94,8 +95,8 @@ bool Operator::send_and_wait(shm::CtrlCode code,
                              const std::function<bool(const ControllerStatus&)>& done,
                              std::chrono::milliseconds timeout) {
   send(code);
-  const auto deadline = std::chrono::steady_clock::now() + timeout;
-  while (std::chrono::steady_clock::now() < deadline) {
+  const auto deadline = hapticctrl::MonotonicClock::now() + timeout;
+  while (hapticctrl::MonotonicClock::now() < deadline) {
     if (done(status())) {
       return true;
     }
@@ -154,10 +155,10 @@ bool Operator::set_hand(const shm::HandGrip& hand) {
 
 void Operator::settle_force() {
   // Bounded: the rate limit sets the time; 2 s more covers any scheduling delay.
-  const auto deadline =
-      std::chrono::steady_clock::now() + std::chrono::duration<double>(slew_.time_to_settle()) + 2s;
+  const auto deadline = hapticctrl::MonotonicClock::now() +
+                        std::chrono::duration<double>(slew_.time_to_settle()) + 2s;
   tick(monotonic_now_ns());
-  while (!slew_.settled() && std::chrono::steady_clock::now() < deadline) {
+  while (!slew_.settled() && hapticctrl::MonotonicClock::now() < deadline) {
     std::this_thread::sleep_for(kPoll);
     tick(monotonic_now_ns());
   }

@@ -96,9 +96,9 @@ void draw(const ControllerStatus& s, const PanelForce& force, const Operator& op
   line(row++, "operator %+7.2f %+7.2f %+7.2f N  %+6.3f %+6.3f %+6.3f N.m", p.operator_wrench[0],
        p.operator_wrench[1], p.operator_wrench[2], p.operator_wrench[3], p.operator_wrench[4],
        p.operator_wrench[5]);
-  line(row++, "coupling %+7.2f %+7.2f %+7.2f N  %+6.3f %+6.3f %+6.3f N.m", p.coupling_wrench[0],
-       p.coupling_wrench[1], p.coupling_wrench[2], p.coupling_wrench[3], p.coupling_wrench[4],
-       p.coupling_wrench[5]);
+  line(row++, "coupling %+7.2f %+7.2f %+7.2f N  %+6.3f %+6.3f %+6.3f N.m", p.rendered_wrench[0],
+       p.rendered_wrench[1], p.rendered_wrench[2], p.rendered_wrench[3], p.rendered_wrench[4],
+       p.rendered_wrench[5]);
   ++row;
   line(row++, "cycle    wake p99 %.1f us (max %.1f)  servo p99 %.1f us", us(t.wake_latency.p99_ns),
        us(t.wake_latency.max_ns), us(t.servo_execution.p99_ns));

@@ -23,8 +23,8 @@ void write_row(std::ostream& log, double t, const shm::Vector6& requested,
   csv(log, s.position.operator_wrench);
   csv(log, s.position.handle_pose);
   csv(log, s.position.joint_position);
-  csv(log, s.vp.coupling_wrench);
-  csv(log, s.position.coupling_wrench);
+  csv(log, s.vp.object_wrench);
+  csv(log, s.position.rendered_wrench);
   csv(log, hand.anchor);
   log << ',' << hand.stiffness << '\n';
 }

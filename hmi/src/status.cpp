@@ -103,7 +103,7 @@ std::string status_json(const ControllerStatus& s) {
   out << ",";
   json_array(out, "requested_force", s.requested_force);
   out << ",";
-  json_array(out, "coupling_wrench", s.vp.coupling_wrench);
+  json_array(out, "object_wrench", s.vp.object_wrench);
   out << ",\"cycle_health\":{\"period_ns\":" << t.period_ns << ",\"rt_mode\":\""
       << shm::rt_mode_name(t.rt_mode) << "\",\"wake_p99_ns\":" << t.wake_latency.p99_ns
       << ",\"wake_max_ns\":" << t.wake_latency.max_ns
@@ -119,9 +119,9 @@ std::string status_json(const ControllerStatus& s) {
         << ",\"control_accepted\":" << s.link.control_accepted
         << ",\"stale\":" << s.has_state_bit(shm::state_bits::kClientStale)
         << ",\"loop_delay_ms\":" << static_cast<double>(s.vp.loop_delay_ns) / 1e6
-        << ",\"link_delay_ms\":" << static_cast<double>(s.vp.link_delay_ns) / 1e6
-        << ",\"link_jitter_ms\":" << static_cast<double>(s.vp.link_jitter_ns) / 1e6
-        << ",\"link_loss\":" << static_cast<double>(s.vp.link_loss_ppm) / 1e6
+        << ",\"link_delay_ms\":" << static_cast<double>(s.link.link_delay_ns) / 1e6
+        << ",\"link_jitter_ms\":" << static_cast<double>(s.link.link_jitter_ns) / 1e6
+        << ",\"link_loss\":" << static_cast<double>(s.link.link_loss_ppm) / 1e6
         << ",\"channel_energy_in\":" << JsonNumber{s.vp.channel_energy_in}
         << ",\"channel_energy_out\":" << JsonNumber{s.vp.channel_energy_out}
         << ",\"client_energy_in\":" << JsonNumber{s.vpr.client_energy_in}

@@ -18,6 +18,7 @@
 #include <thread>
 #include <vector>
 
+#include "hapticctrl/base/time.hpp"
 #include "hapticctrl/client/connection.hpp"
 #include "hapticctrl/lcmtypes/paced_publisher.hpp"
 #include "hapticctrl/mujoco/contact_mapping.hpp"
@@ -33,7 +34,7 @@ namespace {
 
 namespace client = hapticctrl::client;
 namespace mj = hapticctrl::mujoco;
-using Clock = std::chrono::steady_clock;
+using Clock = hapticctrl::MonotonicClock;
 
 std::atomic<bool> g_stop{false};
 void on_signal(int /*sig*/) {

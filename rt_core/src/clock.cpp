@@ -9,9 +9,7 @@
 namespace hapticctrl::rt_core {
 
 TimeNs RealClock::now() noexcept {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return static_cast<TimeNs>(ts.tv_sec) * kNsPerS + ts.tv_nsec;
+  return monotonic_now_ns();
 }
 
 void RealClock::sleep_until(TimeNs deadline) noexcept {

@@ -340,7 +340,7 @@ ExecutiveResult Executive::stop_sequence(shm::StopReason reason, bool fail_safe)
         (gate_owned_->logical.state_word() & ~shm::state_bits::kPowered) | to_servo_->state_bits();
     vp.core_state = static_cast<std::uint32_t>(core_state_);
     vp.stop_reason = static_cast<std::uint32_t>(reason);
-    vp.coupling_wrench = {};
+    vp.object_wrench = {};
     gate_owned_->regions.vp->publish(vp, clock_->now());
     result.protocol_closed_in_vp = true;
   }

@@ -329,16 +329,13 @@ void ServoTask::commit(std::uint64_t cycle, TimeNs now) noexcept {
     vp.core_state = core_state;
     vp.stop_reason = stop_reason;
     vp.command_type = s.last_client.command_type;
-    copy_to(outputs_.coupling_wrench, vp.coupling_wrench);
-    vp.handle_pose = outputs_.client_handle_pose;
-    copy_to(outputs_.client_handle_twist, vp.handle_twist);
+    copy_to(outputs_.object_wrench, vp.object_wrench);
+    vp.client_handle_pose = outputs_.client_handle_pose;
+    copy_to(outputs_.client_handle_twist, vp.client_handle_twist);
     copy_to(inputs_.measures.position, vp.joint_position);
     copy_to(inputs_.measures.velocity, vp.joint_velocity);
     vp.sample_age_ns = inputs_.client_valid ? inputs_.client_age : 0;
     vp.loop_delay_ns = outputs_.loop_delay;
-    vp.link_delay_ns = s.last_client.link_delay_ns;
-    vp.link_jitter_ns = s.last_client.link_jitter_ns;
-    vp.link_loss_ppm = s.last_client.link_loss_ppm;
     const CouplingGains& g = outputs_.gains;
     vp.gains = {g.k_linear, g.b_linear, g.k_angular, g.b_angular};
     vp.channel_energy_in = outputs_.channel_energy_in;
@@ -364,7 +361,7 @@ void ServoTask::commit(std::uint64_t cycle, TimeNs now) noexcept {
     pos.handle_pose = outputs_.handle_pose;
     copy_to(outputs_.handle_twist, pos.handle_twist);
     copy_to(inputs_.measures.operator_wrench, pos.operator_wrench);
-    copy_to(outputs_.handle_wrench, pos.coupling_wrench);
+    copy_to(outputs_.rendered_wrench, pos.rendered_wrench);
     s.regions.position->publish_quietly(pos, now);
   }
   report.commit_cycle.store(cycle, std::memory_order_release);

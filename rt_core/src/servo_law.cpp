@@ -375,8 +375,8 @@ void ServoLaw::compute(const ServoInputs& in, bool /*degraded*/, ServoOutputs& o
   const ClientFrame frame = client_frame_of(in.client);
   express_for_client(frame, twist, out);
   follow_session(in);
-  out.coupling_wrench.setZero();
-  out.handle_wrench.setZero();
+  out.object_wrench.setZero();
+  out.rendered_wrench.setZero();
   out.coupled = false;
   out.client_stale = in.client_valid && in.client.session_id != 0 &&
                      in.client_silence > config_.stale_after;  // link state, powered or not
@@ -504,10 +504,10 @@ void ServoLaw::compute(const ServoInputs& in, bool /*degraded*/, ServoOutputs& o
     // 60 ms stall of its process, fell, and bounced back at 0.16 m/s when the coupling
     // returned, bench/gravity_rest.sh, 2026-12-02). A protocol 1.3 client closes this side
     // itself while a contact is in force (docs/control.md).
-    out.coupling_wrench << -(frame.rotation * object.head<3>()) / frame.force_factor,
+    out.object_wrench << -(frame.rotation * object.head<3>()) / frame.force_factor,
         -(frame.rotation * object.tail<3>()) / frame.force_factor;
   }
-  out.handle_wrench = wrench;
+  out.rendered_wrench = wrench;
   Vector6d joint_command = Vector6d::Zero();
   if (joint_mode) {  // the full rate on fresh data, wholly engaged, as the handle's coupling
     const bool fresh_joints = out.fade >= 1.0 && !out.braking && engage >= 1.0;

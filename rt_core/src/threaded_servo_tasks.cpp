@@ -12,6 +12,7 @@
 #include <cstring>
 #include <thread>
 
+#include "hapticctrl/base/time.hpp"
 #include "hapticctrl/shm/futex.hpp"
 
 namespace hapticctrl::rt_core {
@@ -73,10 +74,10 @@ ThreadedServoTasks::ThreadedServoTasks(Clock& clock, ServoTask& main_task, Servo
   degraded_.thread = std::thread([this] { worker_loop(degraded_); });
   pthread_setname_np(main_.thread.native_handle(), "hc-servo");
   pthread_setname_np(degraded_.thread.native_handle(), "hc-degraded");
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  const auto deadline = hapticctrl::MonotonicClock::now() + std::chrono::seconds(5);
   while (!(main_.ready.load(std::memory_order_acquire) &&
            degraded_.ready.load(std::memory_order_acquire)) &&
-         std::chrono::steady_clock::now() < deadline) {
+         hapticctrl::MonotonicClock::now() < deadline) {
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
 }

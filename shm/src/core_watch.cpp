@@ -3,7 +3,7 @@
 // core.
 #include "hapticctrl/shm/core_watch.hpp"
 
-#include "hapticctrl/shm/monotonic_clock.hpp"
+#include "hapticctrl/base/time.hpp"
 
 namespace hapticctrl::shm {
 

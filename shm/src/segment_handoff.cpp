@@ -24,6 +24,7 @@
 #include <utility>
 
 #include "handoff_wire.hpp"
+#include "hapticctrl/base/time.hpp"
 #include "hapticctrl/shm/error.hpp"
 #include "hapticctrl/shm/layout.hpp"
 
@@ -130,7 +131,7 @@ struct SegmentServer::State {
   /// A connected peer whose request has not fully arrived (credentials already checked).
   struct Peer {
     int fd = -1;
-    std::chrono::steady_clock::time_point deadline;
+    hapticctrl::MonotonicClock::time_point deadline;
     std::size_t got = 0;
     Request request{};
   };
@@ -158,7 +159,7 @@ struct SegmentServer::State {
     }
     for (Peer& peer : peers) {
       if (peer.fd < 0) {
-        peer = Peer{socket, std::chrono::steady_clock::now() + kPeerDeadline, 0, {}};
+        peer = Peer{socket, hapticctrl::MonotonicClock::now() + kPeerDeadline, 0, {}};
         return;
       }
     }
@@ -201,14 +202,14 @@ struct SegmentServer::State {
 
   /// Poll timeout (ms) until the nearest peer's deadline; -1 when no peer waits.
   int next_timeout() const {
-    const auto now = std::chrono::steady_clock::now();
-    auto nearest = std::chrono::steady_clock::time_point::max();
+    const auto now = hapticctrl::MonotonicClock::now();
+    auto nearest = hapticctrl::MonotonicClock::time_point::max();
     for (const Peer& peer : peers) {
       if (peer.fd >= 0) {
         nearest = std::min(nearest, peer.deadline);
       }
     }
-    if (nearest == std::chrono::steady_clock::time_point::max()) {
+    if (nearest == hapticctrl::MonotonicClock::time_point::max()) {
       return -1;
     }
     const auto left = std::chrono::ceil<std::chrono::milliseconds>(nearest - now).count();
@@ -216,7 +217,7 @@ struct SegmentServer::State {
   }
 
   void drop_late_peers() {
-    const auto now = std::chrono::steady_clock::now();
+    const auto now = hapticctrl::MonotonicClock::now();
     for (Peer& peer : peers) {
       if (peer.fd >= 0 && now >= peer.deadline) {
         refused.fetch_add(1, std::memory_order_relaxed);  // silent too long

@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "handoff_wire.hpp"
+#include "hapticctrl/base/time.hpp"
 #include "hapticctrl/shm/segment_handoff.hpp"
 
 namespace hapticctrl::shm {
@@ -123,7 +124,7 @@ HandedSegment request_segment(std::string_view instance, bool writable) {
     // A core whose every peer slot is held closes a new connection at once: asked again a
     // little later, it answers (J4). A core that stays silent for kAttacherTimeout does not.
     for (int attempt = 1;; ++attempt) {
-      const auto asked = std::chrono::steady_clock::now();
+      const auto asked = hapticctrl::MonotonicClock::now();
       const UniqueFd socket_fd = connect_to_core(paths, instance);
       core = peer_credentials(socket_fd.get());
       if (core.uid != owner && core.uid != 0) {
@@ -139,7 +140,7 @@ HandedSegment request_segment(std::string_view instance, bool writable) {
       // A core refuses an outsider right after accept, before reading: its refusal may be
       // waiting while our request found the connection closed.
       reply = receive_reply(socket_fd.get(), fds, count);
-      const bool closed_at_once = std::chrono::steady_clock::now() - asked < kBusyAnswer;
+      const bool closed_at_once = hapticctrl::MonotonicClock::now() - asked < kBusyAnswer;
       if (reply.magic != kReplyMagic && closed_at_once && attempt < kBusyAttempts) {
         std::this_thread::sleep_for(kBusyPause);
         continue;

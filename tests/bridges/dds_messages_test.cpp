@@ -20,7 +20,7 @@ shm::PositionPayload sample_position() {
     p.joint_velocity[i] = -0.2 * static_cast<double>(i);
     p.joint_torque[i] = 1.5 + static_cast<double>(i);
   }
-  p.coupling_wrench = {1, 2, 3, 0.1, 0.2, 0.3};
+  p.rendered_wrench = {1, 2, 3, 0.1, 0.2, 0.3};
   p.operator_wrench = {-4, -5, -6, -0.4, -0.5, -0.6};
   return p;
 }

@@ -51,7 +51,7 @@ TEST(LogCsv, EveryChannelGetsItsCsvWithTheExpectedColumns) {
   EXPECT_EQ(arm[0].rfind("utime,cycle,state_word,core_state,q1,", 0), 0U) << arm[0];
   EXPECT_NE(arm[0].find(",handle_x,handle_y,handle_z,handle_qx,"), std::string::npos);
   EXPECT_NE(arm[0].find(",operator_x,"), std::string::npos);
-  EXPECT_NE(arm[0].find(",coupling_rz"), std::string::npos);
+  EXPECT_NE(arm[0].find(",rendered_rz"), std::string::npos);
   EXPECT_EQ(std::count(arm[0].begin(), arm[0].end(), ','), 4 + 6 * 3 + 7 + 6 * 3 - 1);
   EXPECT_EQ(std::count(arm[3].begin(), arm[3].end(), ','),
             std::count(arm[0].begin(), arm[0].end(), ','));

@@ -15,7 +15,7 @@ TEST(Messages, ArmStateCopiesEveryField) {
   p.joint_torque[5] = -1.0;
   p.handle_pose = {0.1, 0.2, 0.3, 0, 0, 0, 1};
   p.operator_wrench[1] = 3.0;
-  p.coupling_wrench[0] = -2.0;
+  p.rendered_wrench[0] = -2.0;
   const auto m = to_arm_state(p, 99);
   EXPECT_EQ(m.utime, 99);
   EXPECT_EQ(m.cycle, 7);
@@ -24,7 +24,7 @@ TEST(Messages, ArmStateCopiesEveryField) {
   EXPECT_EQ(m.joint_torque[5], -1.0);
   EXPECT_EQ(m.handle_pose[1], 0.2);
   EXPECT_EQ(m.operator_wrench[1], 3.0);
-  EXPECT_EQ(m.coupling_wrench[0], -2.0);
+  EXPECT_EQ(m.rendered_wrench[0], -2.0);
 }
 
 TEST(Messages, CouplingCarriesLinkQuality) {
@@ -32,7 +32,7 @@ TEST(Messages, CouplingCarriesLinkQuality) {
   vp.cycle = 10;
   vp.state_word = shm::state_bits::kClientStale;
   vp.echo_client_sequence = 55;
-  vp.coupling_wrench[0] = 1.5;
+  vp.object_wrench[0] = 1.5;
   shm::VprPayload vpr;
   vpr.session_id = 3;
   vpr.flags = shm::vpr_flags::kObjectAttached;
@@ -41,9 +41,9 @@ TEST(Messages, CouplingCarriesLinkQuality) {
   t.vpr_stale = 12;
   vp.sample_age_ns = 7'500'000;
   vp.loop_delay_ns = 12'000'000;
-  vp.link_delay_ns = 5'000'000;
-  vp.link_jitter_ns = 250'000;
-  vp.link_loss_ppm = 100'000;
+  vpr.link_delay_ns = 5'000'000;  // the bridge's measure, as the core took it
+  vpr.link_jitter_ns = 250'000;
+  vpr.link_loss_ppm = 100'000;
   vp.gains = {868.0, 20.0, 0.3, 0.01};
   vp.channel_energy_in = 0.25;
   vp.channel_energy_out = 1.5;
@@ -64,7 +64,7 @@ TEST(Messages, CouplingCarriesLinkQuality) {
   EXPECT_DOUBLE_EQ(m.client_age_ms, 2.5);
   EXPECT_EQ(m.client_sequence, 55);
   EXPECT_EQ(m.vpr_stale_cycles, 12);
-  EXPECT_EQ(m.coupling_wrench[0], 1.5);
+  EXPECT_EQ(m.object_wrench[0], 1.5);
 }
 
 TEST(Messages, CouplingCarriesTheSurfaceRenderedOnTheHandle) {

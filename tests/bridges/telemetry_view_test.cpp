@@ -41,13 +41,13 @@ TEST(TelemetryView, FrameCarriesTheLatestArmStateAndItsAge) {
   arm.state_word = 1;
   arm.joint_position[1] = -0.6;
   arm.handle_pose[6] = 1.0;
-  arm.coupling_wrench[2] = -3.5;
+  arm.rendered_wrench[2] = -3.5;
   view.on_arm_state(arm, 1000 * kMs);
   const Json f = Json::parse(view.next_frame(1010 * kMs));
   EXPECT_EQ(f["type"], "state");
   EXPECT_EQ(f["arm"]["cycle"], 42);
   EXPECT_EQ(f["arm"]["q"][1], -0.6);
-  EXPECT_EQ(f["arm"]["coupling_wrench"][2], -3.5);
+  EXPECT_EQ(f["arm"]["rendered_wrench"][2], -3.5);
   EXPECT_DOUBLE_EQ(f["age_ms"]["arm"].get<double>(), 10.0);
   EXPECT_TRUE(f["age_ms"]["scene"].is_null());
   EXPECT_FALSE(f["controller_silent"].get<bool>());

@@ -158,7 +158,7 @@ TEST(Connection, WatchdogFadesTheCouplingWhenTheClientDiesAndARestartedClientRec
   ASSERT_TRUE(ControllerStack::eventually(
       [&] { return client.out().find("streaming") != std::string::npos; }, 10s))
       << client.err();
-  const auto coupled = [&] { return std::abs(stack.position().coupling_wrench[0]); };
+  const auto coupled = [&] { return std::abs(stack.position().rendered_wrench[0]); };
   EXPECT_TRUE(ControllerStack::eventually([&] { return coupled() > 0.5; }, 2s))
       << "coupled through the engagement ramp";
   client.signal(SIGKILL);

@@ -101,13 +101,13 @@ TEST(ContactSet, PenetrationCountsContactsAlongTheNormalOnly) {
   ContactSet set;
   const std::array<Contact, 2> two{floor_contact(-0.002), wall_contact()};
   ASSERT_EQ(set.set(two, 0.0), ContactResult::kAccepted);
-  EXPECT_NEAR(set.penetration_along({0.0, 0.0, 2.0}), 0.002, 1e-9);   // any length
-  EXPECT_NEAR(set.penetration_along({1.0, 0.0, 0.0}), 0.004, 1e-9);   // the wall
-  EXPECT_DOUBLE_EQ(set.penetration_along({0.0, 1.0, 0.0}), 0.0);      // neither
-  EXPECT_DOUBLE_EQ(set.penetration_along({0.0, 0.0, 0.0}), 0.0);      // no contact normal
+  EXPECT_NEAR(set.penetration_along({0.0, 0.0, 2.0}), 0.002, 1e-9);  // any length
+  EXPECT_NEAR(set.penetration_along({1.0, 0.0, 0.0}), 0.004, 1e-9);  // the wall
+  EXPECT_DOUBLE_EQ(set.penetration_along({0.0, 1.0, 0.0}), 0.0);     // neither
+  EXPECT_DOUBLE_EQ(set.penetration_along({0.0, 0.0, 0.0}), 0.0);     // no contact normal
   const std::array<Contact, 1> apart{floor_contact(0.01)};
   ASSERT_EQ(set.set(apart, 0.0), ContactResult::kAccepted);
-  EXPECT_DOUBLE_EQ(set.penetration_along({0.0, 0.0, 1.0}), 0.0);      // a gap is no penetration
+  EXPECT_DOUBLE_EQ(set.penetration_along({0.0, 0.0, 1.0}), 0.0);  // a gap is no penetration
 }
 
 }  // namespace

@@ -264,7 +264,7 @@ TEST(VirtuoseParameters, ForceFeedbackOffSendsNoWrenchAtOnceAndOnBringsTheNextOn
       [&] { return std::abs(stack.vpr().object_pose[0] - static_cast<double>(pose[0])) < 1e-6; }));
   ASSERT_EQ(virtEnableForceFeedback(vc.get(), 0), 0);
   EXPECT_TRUE(ControllerStack::eventually([&] {
-    return std::abs(stack.vpr().object_pose[0] - stack.vp().handle_pose[0]) < 1e-3;
+    return std::abs(stack.vpr().object_pose[0] - stack.vp().client_handle_pose[0]) < 1e-3;
   })) << "the object sent is the handle, not the application's 5 cm away";
 }
 

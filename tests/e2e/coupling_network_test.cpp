@@ -227,15 +227,15 @@ TEST_P(CouplingOverImpairedLink, StaysStillWithoutSaturationOrSpeed) {
       largest = std::max(largest, r[i].force);
     }
     const shm::VpPayload vp = s.stack.vp();
+    const shm::VprPayload vpr = s.stack.vpr();  // with the bridge's measure of the link
     std::printf(
         "%s: loop %.1f ms, link one-way %.1f ms, jitter %.2f ms, loss %.1f %%, k %.0f N/m,"
         " peak force %.1f N, peak speed %.3f m/s, last 2 s %.4f m/s (50 ms windows),"
         " per cycle %.4f m/s\n",
         c.name, static_cast<double>(vp.loop_delay_ns) / 1e6,
-        static_cast<double>(vp.link_delay_ns) / 1e6, static_cast<double>(vp.link_jitter_ns) / 1e6,
-        vp.link_loss_ppm / 1e4, vp.gains[0], largest, max_speed(r, from, r.size()),
+        static_cast<double>(vpr.link_delay_ns) / 1e6, static_cast<double>(vpr.link_jitter_ns) / 1e6,
+        vpr.link_loss_ppm / 1e4, vp.gains[0], largest, max_speed(r, from, r.size()),
         windowed_speed(r, last_two, r.size()), max_speed(r, last_two, r.size()));
-    const shm::VprPayload vpr = s.stack.vpr();
     std::printf(
         "%s: channel energy, core end: %.4f J in, %.4f J out (after its PC); the client"
         " reports %.4f J in\n",

@@ -92,7 +92,7 @@ TEST(DemoEndToEnd, BeforePowerOnAnOperatorForceMovesNothingAndNothingIsCoupled) 
   const shm::PositionPayload p = stack.position();
   EXPECT_EQ(p.operator_wrench[0], 8.0) << "the core does see the operator's push";
   EXPECT_LT(distance(p.handle_pose, before), 1e-9) << "but the unpowered arm stays on its brakes";
-  EXPECT_EQ(stack.vp().coupling_wrench, shm::Vector6{});
+  EXPECT_EQ(stack.vp().object_wrench, shm::Vector6{});
   EXPECT_EQ(stack.vp().state_word & shm::state_bits::kPowered, 0U);
   const std::string json = demo.finish();
   EXPECT_EQ(json_numbers(json, "coupling_wrench"), std::vector<double>(6, 0.0)) << json;
@@ -184,7 +184,7 @@ TEST(DemoEndToEnd, KillingTheClientFadesTheCouplingAndTheArmStaysPut) {
       [&] { return (stack.vp().state_word & shm::state_bits::kCoupled) != 0; }));
   std::this_thread::sleep_for(300ms);
   auto force_norm = [](const shm::VpPayload& vp) {
-    return std::hypot(vp.coupling_wrench[0], vp.coupling_wrench[1], vp.coupling_wrench[2]);
+    return std::hypot(vp.object_wrench[0], vp.object_wrench[1], vp.object_wrench[2]);
   };
   const double before = force_norm(stack.vp());
   demo.process().signal(SIGKILL);
@@ -194,7 +194,7 @@ TEST(DemoEndToEnd, KillingTheClientFadesTheCouplingAndTheArmStaysPut) {
         const shm::VpPayload vp = stack.vp();
         largest = std::max(largest, force_norm(vp));
         return (vp.state_word & shm::state_bits::kCoupled) == 0 &&
-               vp.coupling_wrench == shm::Vector6{};
+               vp.object_wrench == shm::Vector6{};
       },
       3s))
       << "the coupling fades to zero once the client falls silent";
@@ -223,7 +223,7 @@ TEST(DemoEndToEnd, StopFromTheHmiShutsTheControllerDownInTheFailSafeOrder) {
   const shm::VpPayload closing = stack.vp();
   EXPECT_EQ(closing.core_state, static_cast<std::uint32_t>(shm::CoreState::kStopping));
   EXPECT_EQ(closing.state_word & shm::state_bits::kPowered, 0U);
-  EXPECT_EQ(closing.coupling_wrench, shm::Vector6{});
+  EXPECT_EQ(closing.object_wrench, shm::Vector6{});
   EXPECT_EQ(demo.process().wait(10s), 0) << demo.err();
   EXPECT_NE(demo.err().find("ended (controller stopped)"), std::string::npos) << demo.err();
   EXPECT_NE(demo.process().out().find("\"powered\":false"), std::string::npos);

@@ -21,9 +21,9 @@
 #include <vector>
 
 #include "hapticctrl/arm_model/arm_model.hpp"
+#include "hapticctrl/base/time.hpp"
 #include "hapticctrl/client/connection.hpp"
 #include "hapticctrl/shm/force_slew.hpp"
-#include "hapticctrl/shm/monotonic_clock.hpp"
 #include "hapticctrl/shm/payloads.hpp"
 #include "hapticctrl/shm/rendezvous.hpp"
 #include "hapticctrl/shm/segment_handoff.hpp"
@@ -200,7 +200,7 @@ TEST(FaultInjection, SoftRealTimeProcessesKilledAtRandomMomentsComeBackWithoutAF
         player->signal(SIGKILL);
         player->wait(5s);
         start_player(player, stack, sequence);
-        const std::int64_t restarted_at = shm::monotonic_now_ns();
+        const std::int64_t restarted_at = hapticctrl::monotonic_now_ns();
         EXPECT_TRUE(ControllerStack::eventually([&] {
           return watch.last_force_sample_ns() > restarted_at;
         })) << "the new player writes the operator force: "
@@ -257,7 +257,7 @@ TEST(FaultInjection, AKilledCoreIsToldToClientAndLcmWithinMillisecondsAndTheNext
         << lcm->err();
     const std::size_t events_before = monitor.events_copy().size();
 
-    const std::int64_t killed_at = shm::monotonic_now_ns();
+    const std::int64_t killed_at = hapticctrl::monotonic_now_ns();
     stack.core().signal(SIGKILL);
     stack.core().wait(5s);
     ASSERT_TRUE(ControllerStack::eventually([&] { return !c.is_open(); }, 2s));

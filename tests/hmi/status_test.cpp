@@ -70,10 +70,10 @@ TEST(Status, JsonSaysNullForWhatIsNotANumber) {
   // "-nan" made the document unreadable for every reader (2026-12-03); 0 would hide the fault.
   ControllerStatus s = connected(42, 40);
   s.vp.channel_energy_out = std::numeric_limits<double>::quiet_NaN();
-  s.vp.coupling_wrench[2] = std::numeric_limits<double>::infinity();
+  s.vp.object_wrench[2] = std::numeric_limits<double>::infinity();
   const std::string json = status_json(s);
   EXPECT_NE(json.find("\"channel_energy_out\":null"), std::string::npos) << json;
-  EXPECT_NE(json.find("\"coupling_wrench\":[0,0,null,0,0,0]"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"object_wrench\":[0,0,null,0,0,0]"), std::string::npos) << json;
   EXPECT_EQ(json.find("nan"), std::string::npos) << json;
   EXPECT_EQ(json.find("inf"), std::string::npos) << json;
 }

@@ -90,7 +90,7 @@ TEST(CoreProcess, InjectedOverrunTripsFailSafeInOrderAndExitsWithTheReason) {
   EXPECT_EQ(closed->state_word & shm::state_bits::kPowered, 0U);
   EXPECT_NE(closed->state_word & shm::state_bits::kFailSafe, 0U);
   EXPECT_EQ(closed->stop_reason, static_cast<std::uint32_t>(shm::StopReason::kConsecutiveMisses));
-  EXPECT_TRUE(closed->coupling_wrench == shm::Vector6{});
+  EXPECT_TRUE(closed->object_wrench == shm::Vector6{});
 
   shm::TelemetryPayload t;
   ASSERT_TRUE(seg->region<shm::RegionId::kTelemetry>().read(t).ok()) << "published before VP";

@@ -113,8 +113,8 @@ TEST(ClosedLoop, CouplingBalancesTheOperatorForceAgainstAFixedObject) {
   for (int k = 0; k < 6000; ++k) {
     loop.cycle();
     if (k >= 5000) {
-      on_handle += loop.out.handle_wrench.head<3>() / 1000.0;
-      on_object += loop.out.coupling_wrench.head<3>() / 1000.0;
+      on_handle += loop.out.rendered_wrench.head<3>() / 1000.0;
+      on_object += loop.out.object_wrench.head<3>() / 1000.0;
     }
   }
   const Vector3d operator_force = push.head<3>();
@@ -183,7 +183,7 @@ PassivityRun run_delayed_coupling(bool guard, int delay_ms, double loss, unsigne
       }
     }
     loop.cycle();
-    to_client.push_back(loop.out.coupling_wrench.head<3>());
+    to_client.push_back(loop.out.object_wrench.head<3>());
     if (static_cast<int>(to_client.size()) > delay_ms) {
       const Vector3d f = to_client.front();
       to_client.pop_front();

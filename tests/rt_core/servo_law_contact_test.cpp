@@ -99,9 +99,9 @@ TEST(ServoLawContact, TheHandFeelsTheContactAtItsStiffnessAndTheObjectAStifferCo
   EXPECT_EQ(out.contacts, 1U);
   EXPECT_NEAR(out.contact_normal.x(), -1.0, 1e-9);
   EXPECT_NEAR(out.normal_stiffness, 1600.0 - k_free, 1e-6) << "1600 N/m in all";
-  EXPECT_NEAR(out.handle_wrench(0), -1600.0 * depth, 0.02 * 16.0)
+  EXPECT_NEAR(out.rendered_wrench(0), -1600.0 * depth, 0.02 * 16.0)
       << "the handle pressing 1 cm into the wall is pushed out with the wall's 1600 N/m";
-  EXPECT_NEAR(out.coupling_wrench(0), 1600.0 * depth, 0.02 * 16.0)
+  EXPECT_NEAR(out.object_wrench(0), 1600.0 * depth, 0.02 * 16.0)
       << "the object is pressed into its wall with what the hand feels";
   EXPECT_NEAR(out.surface_normal.x(), -1.0, 1e-9) << "telemetry: the surface rendered";
   EXPECT_NEAR(out.surface_depth, depth, 1e-9);
@@ -121,9 +121,9 @@ TEST(ServoLawContact, TheWallsStiffnessIsFeltWhateverTheLoopAndBoundedByTheDevic
     in.client.contacts[0] = wall_at(in.client.object_pose, 5000.0, in.now);
     run_on_contacts(law, in, 300);
     const double first = press_along_x(law, in, 0.0025);
-    const double f5 = run_on_contacts(law, in, 300).handle_wrench(0);
+    const double f5 = run_on_contacts(law, in, 300).rendered_wrench(0);
     const double second = press_along_x(law, in, 0.0025);
-    const double f10 = run_on_contacts(law, in, 300).handle_wrench(0);
+    const double f10 = run_on_contacts(law, in, 300).rendered_wrench(0);
     EXPECT_NEAR(-f5 / first, 2000.0, 20.0) << "loop " << loop;
     EXPECT_NEAR(-(f10 - f5) / second, 2000.0, 20.0) << "loop " << loop;
   }
@@ -139,7 +139,7 @@ TEST(ServoLawContact, TheStiffeningIsUnilateralAndAbsentBeforeTouching) {
     in.client.contacts[0].received_ns = in.now;
     out = run(law, in, 1);
   }
-  EXPECT_NEAR(out.handle_wrench(0), out.gains.k_linear * 0.01, 0.02 * out.gains.k_linear * 0.01)
+  EXPECT_NEAR(out.rendered_wrench(0), out.gains.k_linear * 0.01, 0.02 * out.gains.k_linear * 0.01)
       << "pulling away: the free spring alone";
 
   ServoLaw near_law(default_dynamics());
@@ -180,19 +180,19 @@ TEST(ServoLawContact, AfterAFullDisengagementTheSpringRestartsWhereTheHandleIs) 
   ServoInputs in = coupled_to_object_ahead(0.3);
   in.new_sample = true;
   ServoOutputs out = run(law, in, 1);
-  EXPECT_NEAR(out.handle_wrench.head<3>().norm(), 0.0, 1e-9) << "relaxed at the handle";
+  EXPECT_NEAR(out.rendered_wrench.head<3>().norm(), 0.0, 1e-9) << "relaxed at the handle";
   double last = 0.0;
   double largest_step = 0.0;
   for (int k = 0; k < 200; ++k) {
     out = run(law, in, 1);
-    largest_step = std::max(largest_step, std::abs(out.handle_wrench(0) - last));
-    last = out.handle_wrench(0);
+    largest_step = std::max(largest_step, std::abs(out.rendered_wrench(0) - last));
+    last = out.rendered_wrench(0);
   }
   EXPECT_LE(largest_step, 1.0) << "N per 1 ms cycle";
   const double k = out.gains.k_linear;
-  EXPECT_NEAR(out.handle_wrench(0), std::min(35.0, k * 0.08 * 0.2), 0.05 * 35.0)
+  EXPECT_NEAR(out.rendered_wrench(0), std::min(35.0, k * 0.08 * 0.2), 0.05 * 35.0)
       << "0.2 s at 8 cm/s: 1.6 cm of the stretch back";
-  EXPECT_NEAR(out.coupling_wrench(0), -out.handle_wrench(0), 0.05 * out.handle_wrench(0))
+  EXPECT_NEAR(out.object_wrench(0), -out.rendered_wrench(0), 0.05 * out.rendered_wrench(0))
       << "the object feels the same re-anchored spring (the whole stretch would be 35 N at once, "
          "energy the channel made)";
 }
@@ -205,8 +205,8 @@ TEST(ServoLawContact, TheHiddenStretchShrinksWithTheTrueOneAndNeverPullsBack) {
   const ChainState s = chain_at(kReady);
   in.client.object_pose[0] = s.handle_position.x() + 0.001;
   const ServoOutputs out = run(law, in, 40);  // re-engaging, the force falls at 1 N per ms
-  EXPECT_GE(out.handle_wrench(0), 0.0) << "never pulls the handle away from the object";
-  EXPECT_LE(out.handle_wrench(0), out.gains.k_linear * 0.001 + 1e-9);
+  EXPECT_GE(out.rendered_wrench(0), 0.0) << "never pulls the handle away from the object";
+  EXPECT_LE(out.rendered_wrench(0), out.gains.k_linear * 0.001 + 1e-9);
 }
 
 TEST(ServoLawContact, WhileTheStretchReturnsTheHandlesMotionAlongItIsDampedAndFreeAcrossIt) {
@@ -227,7 +227,7 @@ TEST(ServoLawContact, WhileTheStretchReturnsTheHandlesMotionAlongItIsDampedAndFr
     twist.head<3>() = velocity;
     in.measures.velocity = jacobian.colPivHouseholderQr().solve(twist);
     // 10 cycles at the new velocity: the rate limit (1 N/ms while the stretch returns) settles.
-    return run(law, in, 10).handle_wrench;
+    return run(law, in, 10).rendered_wrench;
   };
   // What moving adds to the force, with the hidden stretch (the object 10 cm ahead, +x) and
   // without it (the object at the handle): the coupling's own damper is the same in both.
@@ -290,7 +290,8 @@ TEST(ServoLawSurface, AnImpedanceSurfaceIsRenderedHereInPlaceOfTheClientsPushOut
   run_on_contacts(law, in, 100);
   const double depth = press_along_x(law, in, 0.005);
   ServoOutputs out = run_on_contacts(law, in, 200);
-  EXPECT_NEAR(out.handle_wrench.x(), -2000.0 * depth, 0.05) << "the surface, not the client's too";
+  EXPECT_NEAR(out.rendered_wrench.x(), -2000.0 * depth, 0.05)
+      << "the surface, not the client's too";
   EXPECT_EQ(out.contacts, 1U);
   EXPECT_NEAR(out.normal_stiffness, 2000.0, 1e-9);
 
@@ -299,7 +300,7 @@ TEST(ServoLawSurface, AnImpedanceSurfaceIsRenderedHereInPlaceOfTheClientsPushOut
   run_on_contacts(pressing_law, pressing, 100);
   const double pressed = press_along_x(pressing_law, pressing, 0.005);
   out = run_on_contacts(pressing_law, pressing, 200);
-  EXPECT_NEAR(out.handle_wrench.x(), -2000.0 * pressed + 3.0, 0.05)
+  EXPECT_NEAR(out.rendered_wrench.x(), -2000.0 * pressed + 3.0, 0.05)
       << "a push into the surface stays";
 }
 
@@ -312,13 +313,13 @@ TEST(ServoLawSurface, ASurfaceFoundWithTheHandleInsideIsRenderedFromWhereTheHand
   ServoInputs in = impedance_on_surface(0.005, -7.0);
   ForceTrace trace;
   for (int k = 0; k < 300; ++k) {
-    trace.add(run_on_contacts(law, in, 1).handle_wrench.x(), k == 0);
+    trace.add(run_on_contacts(law, in, 1).rendered_wrench.x(), k == 0);
   }
   EXPECT_LT(std::abs(trace.least), 0.05) << "held still, nothing comes back";
   EXPECT_LT(std::abs(trace.most), 0.05);
   EXPECT_GE(law.counters().surface_updates_held, 1U);
   const double depth = press_along_x(law, in, 0.002);
-  EXPECT_NEAR(run_on_contacts(law, in, 100).handle_wrench.x(), -2000.0 * depth, 0.05)
+  EXPECT_NEAR(run_on_contacts(law, in, 100).rendered_wrench.x(), -2000.0 * depth, 0.05)
       << "pressed 2 mm further, the surface from where the handle met it";
 }
 
@@ -328,12 +329,12 @@ TEST(ServoLawSurface, APlaneThatJumpsIntoTheHandleStepsNothingAndOneThatLeavesLe
   ServoInputs in = impedance_on_surface(0.0, 0.0);
   run_on_contacts(law, in, 100);
   const double depth = press_along_x(law, in, 0.005);
-  ASSERT_NEAR(run_on_contacts(law, in, 200).handle_wrench.x(), -2000.0 * depth, 0.05);
+  ASSERT_NEAR(run_on_contacts(law, in, 200).rendered_wrench.x(), -2000.0 * depth, 0.05);
   in.client.contacts[0].point[0] -= 0.005;  // 5 mm into the handle
   ForceTrace trace;
   trace.add(-2000.0 * depth, true);
   for (int k = 0; k < 300; ++k) {
-    trace.add(run_on_contacts(law, in, 1).handle_wrench.x(), false);
+    trace.add(run_on_contacts(law, in, 1).rendered_wrench.x(), false);
   }
   EXPECT_LT(trace.largest_step, 1.0) << "N per 1 ms cycle";
   EXPECT_NEAR(trace.least, -2000.0 * depth, 0.05) << "the still hand feels what it felt";
@@ -343,7 +344,7 @@ TEST(ServoLawSurface, APlaneThatJumpsIntoTheHandleStepsNothingAndOneThatLeavesLe
   EXPECT_NEAR(out.surface_withheld, 2000.0 * 0.005 * (depth + 0.0025), 1e-4)
       << "J: what the jump would have stored in the spring at once";
   in.client.contacts[0].point[0] += 0.008;  // then 8 mm away: 2 mm of the 5 are left
-  EXPECT_NEAR(run_on_contacts(law, in, 50).handle_wrench.x(), -2000.0 * (depth - 0.003), 0.05);
+  EXPECT_NEAR(run_on_contacts(law, in, 50).rendered_wrench.x(), -2000.0 * (depth - 0.003), 0.05);
 }
 
 TEST(ServoLawSurface, FrictionHoldsTheHandleWithinTheConeAndSlidesBeyondIt) {
@@ -356,12 +357,12 @@ TEST(ServoLawSurface, FrictionHoldsTheHandleWithinTheConeAndSlidesBeyondIt) {
   const double reach = chain_at(kReady).handle_position.head<2>().norm();
   in.measures.position[0] += 0.0005 / reach;  // 0.5 mm
   ServoOutputs out = run_on_contacts(law, in, 20);
-  EXPECT_NEAR(out.handle_wrench.y(), -2000.0 * 0.0005, 0.1) << "sticking: 1 N back";
+  EXPECT_NEAR(out.rendered_wrench.y(), -2000.0 * 0.0005, 0.1) << "sticking: 1 N back";
   in.measures.position[0] += 0.01 / reach;  // 1 cm more: past mu_s x 10 N = 5 N
   out = run_on_contacts(law, in, 20);
-  EXPECT_NEAR(out.handle_wrench.y(), -0.4 * 2000.0 * depth, 0.2)
+  EXPECT_NEAR(out.rendered_wrench.y(), -0.4 * 2000.0 * depth, 0.2)
       << "sliding: mu_d x the normal force";
-  EXPECT_NEAR(out.handle_wrench.x(), -2000.0 * depth, 0.2);
+  EXPECT_NEAR(out.rendered_wrench.x(), -2000.0 * depth, 0.2);
 }
 
 /// Runs `cycles` cycles of 1 ms with the link silent (no new sample: its silence and the last
@@ -378,7 +379,7 @@ ForceTrace run_link(ServoLaw& law, ServoInputs& in, int cycles, bool fresh) {
       in.client.contacts[0].received_ns = in.now;
     }
     law.compute(in, false, out);
-    trace.add(out.handle_wrench.x(), k == 0);
+    trace.add(out.rendered_wrench.x(), k == 0);
   }
   return trace;
 }

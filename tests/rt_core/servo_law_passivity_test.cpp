@@ -35,12 +35,12 @@ TEST(ServoLaw, TheChannelsPassivityControllerLetsTheImageGiveWayWhenTheClientGav
   const auto [free, idle] = run(100.0);  // the client reports plenty: nothing to do
   EXPECT_EQ(idle, 0U);
   EXPECT_GT(free.channel_energy_out, 0.01);
-  EXPECT_LT(std::abs(guarded.handle_wrench(0)), std::abs(free.handle_wrench(0)))
+  EXPECT_LT(std::abs(guarded.rendered_wrench(0)), std::abs(free.rendered_wrench(0)))
       << "the image gave way: less pull on the handle";
   const auto [old_client, none] = run(-1.0);  // a 1.0 client reports nothing at all
   EXPECT_EQ(none, 0U) << "no two-port PC without the client's energy";
   EXPECT_EQ(old_client.channel_energy_out, 0.0) << "nor an account";
-  EXPECT_EQ(old_client.handle_wrench(0), free.handle_wrench(0));
+  EXPECT_EQ(old_client.rendered_wrench(0), free.rendered_wrench(0));
 }
 
 TEST(ServoLaw, ANewSessionStartsItsChannelAccountAfresh) {
@@ -81,14 +81,14 @@ TEST(ServoLaw, AChannelAtItsBudgetGivesNoDriftBackAndStaysFinite) {
     in.logical.powered = false;  // off, then on: the coupling comes back from zero force
     law.compute(in, false, out);
     in.logical.powered = true;
-    Vector6d previous = out.handle_wrench;
+    Vector6d previous = out.rendered_wrench;
     for (int k = 0; k < 100; ++k) {
       law.compute(in, false, out);
-      ASSERT_TRUE(out.coupling_wrench.allFinite()) << over << " J over, cycle " << k;
+      ASSERT_TRUE(out.object_wrench.allFinite()) << over << " J over, cycle " << k;
       ASSERT_TRUE(std::isfinite(out.channel_energy_out)) << over << " J over, cycle " << k;
-      ASSERT_LE((out.handle_wrench - previous).head<3>().norm(), 2.0 + 1e-9)
+      ASSERT_LE((out.rendered_wrench - previous).head<3>().norm(), 2.0 + 1e-9)
           << over << " J over, cycle " << k << ": N per 1 ms cycle";
-      previous = out.handle_wrench;
+      previous = out.rendered_wrench;
     }
   }
 }
@@ -104,12 +104,12 @@ TEST(ServoLaw, ThePassivityGuardsDampingGoesThroughTheRateLimit) {
     law.compute(in, false, out);
   }
   double largest_step = 0.0;
-  Vector6d previous = out.handle_wrench;
+  Vector6d previous = out.rendered_wrench;
   for (int k = 0; k < 200; ++k) {
     in.measures.velocity(1) = -0.01 * k;  // the handle runs along the spring's pull, faster
     law.compute(in, false, out);
-    largest_step = std::max(largest_step, (out.handle_wrench - previous).head<3>().norm());
-    previous = out.handle_wrench;
+    largest_step = std::max(largest_step, (out.rendered_wrench - previous).head<3>().norm());
+    previous = out.rendered_wrench;
   }
   ASSERT_GT(law.counters().passivity_active, 0U);
   EXPECT_LE(largest_step, 2.0 + 1e-9) << "N per 1 ms cycle";
@@ -131,7 +131,7 @@ TEST(ServoLaw, TheObjectFeelsTheCouplingButNotThePassivityGuardsDamping) {
   }
   ASSERT_GT(law.counters().passivity_active, 0U);
   EXPECT_TRUE(out.coupled);
-  EXPECT_GT((out.handle_wrench + out.coupling_wrench).norm(), 1e-6)
+  EXPECT_GT((out.rendered_wrench + out.object_wrench).norm(), 1e-6)
       << "the handle got damping that the object did not";
 }
 
@@ -170,7 +170,7 @@ TEST(ServoLawImpedance, AWallThatThePushingHandAbsorbsIsRenderedWhole) {
   ServoLaw law(default_dynamics());
   ServoInputs in = impedance_moving({0.01, 0, 0}, {-8, 0, 0, 0, 0, 0}, 0.0);
   const ServoOutputs out = run_impedance(law, in, 300);
-  EXPECT_NEAR(out.handle_wrench(0), -8.0, 1e-6);
+  EXPECT_NEAR(out.rendered_wrench(0), -8.0, 1e-6);
   EXPECT_GT(out.channel_energy_in, 0.015) << "8 N x 10 mm/s for 0.3 s, less the ramp";
   EXPECT_EQ(law.counters().channel_pc_active, 0U);
 }
@@ -187,7 +187,7 @@ TEST(ServoLawImpedance, ACommandedForceThatDoesWorkIsPaidByTheClientsReportALoop
     in.client.energy_in = std::max(0.0, 0.1 * (k + 1 - 4) * 1e-3);
     out = run_impedance(law, in, 1);
   }
-  EXPECT_NEAR(out.handle_wrench(0), 1.0, 0.02) << "within 2 %";
+  EXPECT_NEAR(out.rendered_wrench(0), 1.0, 0.02) << "within 2 %";
   EXPECT_EQ(law.counters().channel_pc_active, 0U);
 }
 
@@ -201,7 +201,7 @@ TEST(ServoLawImpedance, OutputTheClientNeverPaidForIsDampedAndCut) {
   EXPECT_GT(law.counters().channel_pc_active, 0U);
   EXPECT_LE(out.channel_energy_out, 0.2 * 8.0 * 12e-3)
       << "at most what the client would bill for the last loop (4 ms) and two 4 ms slots";
-  EXPECT_GT(out.handle_wrench(0), -8.0 + 1.0) << "the force along the motion was taken down";
+  EXPECT_GT(out.rendered_wrench(0), -8.0 + 1.0) << "the force along the motion was taken down";
 }
 
 }  // namespace

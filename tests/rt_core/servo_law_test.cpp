@@ -46,7 +46,7 @@ TEST(ServoLaw, ImpedanceWrenchReachesTheJointsThroughTheJacobianAfterTheRamp) {
   in.client_valid = true;
   ServoOutputs out;
   law.compute(in, false, out);
-  EXPECT_NEAR(out.handle_wrench.head<3>().norm(), 10.0 / 50.0, 1e-9)
+  EXPECT_NEAR(out.rendered_wrench.head<3>().norm(), 10.0 / 50.0, 1e-9)
       << "a new session engages through the 50 ms ramp";
   for (int k = 0; k < 60; ++k) {
     law.compute(in, false, out);
@@ -69,14 +69,14 @@ TEST(ServoLaw, WrenchIsSaturatedToTheDeviceAndClientLimits) {
   for (int k = 0; k < 200; ++k) {
     law.compute(in, false, out);
   }
-  EXPECT_NEAR(out.handle_wrench.head<3>().norm(), 35.0, 1e-9);
-  EXPECT_NEAR(out.handle_wrench.tail<3>().norm(), 3.0, 1e-9);
+  EXPECT_NEAR(out.rendered_wrench.head<3>().norm(), 35.0, 1e-9);
+  EXPECT_NEAR(out.rendered_wrench.tail<3>().norm(), 3.0, 1e-9);
   in.client.force_limits = {5.0, 0.5};
   for (int k = 0; k < 100; ++k) {
     law.compute(in, false, out);
   }
-  EXPECT_NEAR(out.handle_wrench.head<3>().norm(), 5.0, 1e-9);
-  EXPECT_NEAR(out.handle_wrench.tail<3>().norm(), 0.5, 1e-9);
+  EXPECT_NEAR(out.rendered_wrench.head<3>().norm(), 5.0, 1e-9);
+  EXPECT_NEAR(out.rendered_wrench.tail<3>().norm(), 0.5, 1e-9);
 }
 
 TEST(ServoLaw, AClippedWrenchIsFlaggedSaturatedAndAnUnclippedOneIsNot) {
@@ -110,8 +110,8 @@ TEST(ServoLaw, VirtmechPullsTheHandleTowardTheObjectAndReturnsTheOpposite) {
     law.compute(in, false, out);
   }
   EXPECT_TRUE(out.coupled);
-  EXPECT_NEAR(out.handle_wrench(0), 4.0, 1e-6) << "2000 N/m x 2 mm";
-  EXPECT_NEAR(out.coupling_wrench(0), -4.0, 1e-6);
+  EXPECT_NEAR(out.rendered_wrench(0), 4.0, 1e-6) << "2000 N/m x 2 mm";
+  EXPECT_NEAR(out.object_wrench(0), -4.0, 1e-6);
 }
 
 TEST(ServoLaw, VirtmechWithoutAnAttachedObjectRendersNothing) {
@@ -122,8 +122,8 @@ TEST(ServoLaw, VirtmechWithoutAnAttachedObjectRendersNothing) {
   for (int k = 0; k < 50; ++k) {
     law.compute(in, false, out);
   }
-  EXPECT_TRUE(out.handle_wrench.isZero());
-  EXPECT_TRUE(out.coupling_wrench.isZero());
+  EXPECT_TRUE(out.rendered_wrench.isZero());
+  EXPECT_TRUE(out.object_wrench.isZero());
 }
 
 TEST(ServoLaw, ASilentLinkFadesTheForceOutWithin50msAtMost1NPerMs) {
@@ -133,22 +133,22 @@ TEST(ServoLaw, ASilentLinkFadesTheForceOutWithin50msAtMost1NPerMs) {
   for (int k = 0; k < 800; ++k) {  // the spring restarts relaxed and regains 1.75 cm at 5 cm/s
     law.compute(in, false, out);
   }
-  ASSERT_NEAR(out.handle_wrench(0), 35.0, 1e-6);
-  double previous = out.handle_wrench(0);
+  ASSERT_NEAR(out.rendered_wrench(0), 35.0, 1e-6);
+  double previous = out.rendered_wrench(0);
   double max_step = 0.0;
   for (int silent_ms = 1; silent_ms <= 100; ++silent_ms) {
     in.client_silence = silent_ms * kNsPerMs;
     in.client_age = in.client_silence;
     law.compute(in, false, out);
-    max_step = std::max(max_step, std::abs(out.handle_wrench(0) - previous));
-    previous = out.handle_wrench(0);
+    max_step = std::max(max_step, std::abs(out.rendered_wrench(0) - previous));
+    previous = out.rendered_wrench(0);
     if (silent_ms == 8) {
-      EXPECT_NEAR(out.handle_wrench(0), 35.0, 1e-6) << "held (extrapolated) before the fade";
+      EXPECT_NEAR(out.rendered_wrench(0), 35.0, 1e-6) << "held (extrapolated) before the fade";
       EXPECT_TRUE(out.client_stale);
     }
     if (silent_ms == 50) {
-      EXPECT_EQ(out.handle_wrench(0), 0.0) << "zero within 50 ms of the last fresh sample";
-      EXPECT_EQ(out.coupling_wrench(0), 0.0);
+      EXPECT_EQ(out.rendered_wrench(0), 0.0) << "zero within 50 ms of the last fresh sample";
+      EXPECT_EQ(out.object_wrench(0), 0.0);
     }
   }
   EXPECT_LE(max_step, 1.0 + 1e-9) << "never a step beyond 1 N per ms while fading";
@@ -160,10 +160,10 @@ TEST(ServoLaw, ASilentLinkFadesTheForceOutWithin50msAtMost1NPerMs) {
   max_step = 0.0;
   for (int k = 0; k < 800; ++k) {
     law.compute(in, false, out);
-    max_step = std::max(max_step, std::abs(out.handle_wrench(0) - previous));
-    previous = out.handle_wrench(0);
+    max_step = std::max(max_step, std::abs(out.rendered_wrench(0) - previous));
+    previous = out.rendered_wrench(0);
   }
-  EXPECT_NEAR(out.handle_wrench(0), 35.0, 1e-6);
+  EXPECT_NEAR(out.rendered_wrench(0), 35.0, 1e-6);
   // k x 8 cm/s = 0.16 N/ms, doubled at most while the engagement ramp multiplies it.
   EXPECT_LE(max_step, 2.0 * 2000.0 * 0.08 * 1e-3 + 1e-9) << "the stretch comes back at 8 cm/s";
 }
@@ -179,25 +179,25 @@ TEST(ServoLaw, ASilentLinkFadesASmallForceAsLateAsTheSlopeAllowsAndAnyForceWithi
     for (int k = 0; k < 800; ++k) {  // restarted relaxed: the stretch comes back at 5 cm/s
       law.compute(in, false, out);
     }
-    const double held = out.handle_wrench(0);
+    const double held = out.rendered_wrench(0);
     double previous = held;
     double max_step = 0.0;
     for (int silent_ms = 1; silent_ms <= 60; ++silent_ms) {
       in.client_silence = silent_ms * kNsPerMs;
       in.client_age = in.client_silence;
       law.compute(in, false, out);
-      max_step = std::max(max_step, std::abs(out.handle_wrench(0) - previous));
-      previous = out.handle_wrench(0);
+      max_step = std::max(max_step, std::abs(out.rendered_wrench(0) - previous));
+      previous = out.rendered_wrench(0);
       if (silent_ms == 30 && stretch < 0.01) {
-        EXPECT_NEAR(out.handle_wrench(0), held, 1e-9) << "5 N held through 30 ms of silence";
+        EXPECT_NEAR(out.rendered_wrench(0), held, 1e-9) << "5 N held through 30 ms of silence";
         EXPECT_EQ(out.fade, 1.0);
       }
       if (silent_ms == 40) {
-        EXPECT_NEAR(out.coupling_wrench(0), -held, 1e-6)
+        EXPECT_NEAR(out.object_wrench(0), -held, 1e-6)
             << "the object keeps its spring while the hand's force fades (as through a brake)";
       }
       if (silent_ms >= 45) {
-        EXPECT_NEAR(out.handle_wrench(0), 0.0, 1e-9) << silent_ms << " ms, " << held << " N held";
+        EXPECT_NEAR(out.rendered_wrench(0), 0.0, 1e-9) << silent_ms << " ms, " << held << " N held";
       }
     }
     EXPECT_NEAR(held, stretch < 0.01 ? 5.0 : 35.0, 1e-6);
@@ -214,13 +214,13 @@ TEST(ServoLaw, AnEndedSessionReleasesTheForceAt1NPerMs) {
     law.compute(in, false, out);
   }
   in.client.session_id = 0;  // the bridge ended the session
-  double previous = out.handle_wrench(0);
+  double previous = out.rendered_wrench(0);
   for (int k = 0; k < 40; ++k) {
     law.compute(in, false, out);
-    EXPECT_LE(std::abs(out.handle_wrench(0) - previous), 1.0 + 1e-9);
-    previous = out.handle_wrench(0);
+    EXPECT_LE(std::abs(out.rendered_wrench(0) - previous), 1.0 + 1e-9);
+    previous = out.rendered_wrench(0);
   }
-  EXPECT_EQ(out.handle_wrench(0), 0.0);
+  EXPECT_EQ(out.rendered_wrench(0), 0.0);
 }
 
 TEST(ServoLaw, SaturationKeepsTheCouplingsDamping) {
@@ -234,8 +234,8 @@ TEST(ServoLaw, SaturationKeepsTheCouplingsDamping) {
   for (int k = 0; k < 800; ++k) {  // restarted relaxed: 4 cm of stretch back, 80 N asked
     law.compute(in, false, out);
   }
-  ASSERT_NEAR(out.handle_wrench.head<3>().norm(), 35.0, 1e-6);
-  EXPECT_NEAR(-out.coupling_wrench(0), 35.0, 1e-6);
+  ASSERT_NEAR(out.rendered_wrench.head<3>().norm(), 35.0, 1e-6);
+  EXPECT_NEAR(-out.object_wrench(0), 35.0, 1e-6);
   // Now the object moves away fast: spring and damper pull the same way, the sum saturates;
   // then it turns back: the damper (now opposing) must be there at once, whole.
   in.client.object_twist = {0.5, 0, 0, 0, 0, 0};
@@ -244,8 +244,8 @@ TEST(ServoLaw, SaturationKeepsTheCouplingsDamping) {
   law.compute(in, false, out);
   const double damper = out.gains.b_linear * -1.0;
   ASSERT_LT(damper, -5.0);
-  const double spring_share = -out.coupling_wrench(0) - damper;  // what is left of the spring
-  EXPECT_NEAR(-out.coupling_wrench(0), 35.0, 1e-6) << "the force budget is used whole";
+  const double spring_share = -out.object_wrench(0) - damper;  // what is left of the spring
+  EXPECT_NEAR(-out.object_wrench(0), 35.0, 1e-6) << "the force budget is used whole";
   EXPECT_GT(spring_share, 35.0) << "the spring gave way to the damper, not the other way";
 }
 
@@ -265,7 +265,7 @@ TEST(ServoLaw, ADegradedCycleKeepsRenderingTheCoupling) {
   degraded_law.compute(in, true, degraded_out);
   main_law.compute(in, false, main_out);
   EXPECT_TRUE(degraded_out.coupled);
-  EXPECT_NEAR(degraded_out.handle_wrench(0), 4.0, 1e-6) << "2000 N/m x 2 mm";
+  EXPECT_NEAR(degraded_out.rendered_wrench(0), 4.0, 1e-6) << "2000 N/m x 2 mm";
   EXPECT_LT((degraded_out.commands.torque - main_out.commands.torque).norm(), 1e-12);
 }
 
@@ -279,7 +279,7 @@ TEST(ServoLaw, ExcessiveHandleSpeedBrakesInsteadOfRendering) {
   EXPECT_TRUE(out.braking);
   const ChainState s = chain_at(kReady);
   const Vector3d v = (default_dynamics().jacobian(s) * in.measures.velocity).head<3>();
-  EXPECT_LT(out.handle_wrench.head<3>().dot(v), 0.0) << "the wrench opposes the motion";
+  EXPECT_LT(out.rendered_wrench.head<3>().dot(v), 0.0) << "the wrench opposes the motion";
 }
 
 TEST(ServoLaw, TheBrakeIsNeverPassedToTheObjectWhichKeepsItsSpring) {
@@ -300,7 +300,7 @@ TEST(ServoLaw, TheBrakeIsNeverPassedToTheObjectWhichKeepsItsSpring) {
   EXPECT_TRUE(out.coupled);
   const Vector3d spring = out.gains.k_linear * Vector3d(0.002, 0, 0);
   const Vector3d damper = -out.gains.b_linear * out.handle_twist.head<3>();
-  EXPECT_LT((-out.coupling_wrench.head<3>() - (spring + damper)).norm(), 1e-6)
+  EXPECT_LT((-out.object_wrench.head<3>() - (spring + damper)).norm(), 1e-6)
       << "the object feels the coupling, not the brake";
   EXPECT_EQ(out.engage, 0.0) << "the handle gets the brake instead of the coupling";
 }
@@ -317,15 +317,15 @@ TEST(ServoLaw, AfterTheBrakeTheCouplingComesBackThroughTheRamp) {
     law.compute(in, false, out);
   }
   in.measures.velocity.setZero();
-  double previous = out.handle_wrench(0);
+  double previous = out.rendered_wrench(0);
   double max_step = 0.0;
   for (int k = 0; k < 200; ++k) {
     law.compute(in, false, out);
-    max_step = std::max(max_step, std::abs(out.handle_wrench(0) - previous));
-    previous = out.handle_wrench(0);
+    max_step = std::max(max_step, std::abs(out.rendered_wrench(0) - previous));
+    previous = out.rendered_wrench(0);
   }
   EXPECT_FALSE(out.braking);
-  EXPECT_NEAR(out.handle_wrench(0), 10.0, 1e-6);
+  EXPECT_NEAR(out.rendered_wrench(0), 10.0, 1e-6);
   EXPECT_LE(max_step, 1.0 + 1e-9);
 }
 

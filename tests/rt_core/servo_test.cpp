@@ -156,9 +156,9 @@ TEST(Servo, MainAndDegradedServoContinueOneRateLimitedWrench) {
     ASSERT_EQ(rig.cycle(task, k), StepResult::kDone);
     shm::PositionPayload p;
     ASSERT_TRUE(rig.regions.position->read(p).ok());
-    largest_step = std::max(largest_step, std::abs(p.coupling_wrench[0] - previous));
-    largest = std::max(largest, p.coupling_wrench[0]);
-    previous = p.coupling_wrench[0];
+    largest_step = std::max(largest_step, std::abs(p.rendered_wrench[0] - previous));
+    largest = std::max(largest, p.rendered_wrench[0]);
+    previous = p.rendered_wrench[0];
   }
   EXPECT_GT(largest, 10.0) << "the impedance wrench ramped up";
   EXPECT_LE(largest_step, limit + 1e-9) << "whichever SERVO renders, the wrench never steps";
@@ -194,7 +194,7 @@ TEST(Servo, TheLawSeesTheSampleConvertedAtTheEdge) {
   }
   shm::VpPayload vp = rig.last_vp();
   EXPECT_NE(vp.state_word & shm::state_bits::kCoupled, 0U) << "VIRTMECH with an object couples";
-  EXPECT_LT(vp.coupling_wrench[0], 0.0) << "the object is pulled back towards the handle (-x)";
+  EXPECT_LT(vp.object_wrench[0], 0.0) << "the object is pulled back towards the handle (-x)";
   EXPECT_EQ(rig.shared.to_clock.committed_session.load(), 7U);
 
   client.flags = 0;  // the object detached: the same sample without the flag

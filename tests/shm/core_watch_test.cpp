@@ -10,7 +10,7 @@
 #include <optional>
 #include <thread>
 
-#include "hapticctrl/shm/monotonic_clock.hpp"
+#include "hapticctrl/base/time.hpp"
 #include "support/child_process.hpp"
 
 namespace hapticctrl::shm {

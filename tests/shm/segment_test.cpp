@@ -92,14 +92,13 @@ TEST(Segment, PublishedDataReachesAnotherProcess) {
   Segment core = Segment::create({.instance = name});
   VpPayload vp;
   vp.cycle = 42;
-  vp.coupling_wrench[2] = -9.81;
+  vp.object_wrench[2] = -9.81;
   core.writable<RegionId::kVp>().publish(vp, 123);
   Child reader([&] {
     Segment seg = Segment::attach(name);
     VpPayload got;
     const ReadResult r = seg.region<RegionId::kVp>().read(got);
-    return (r.ok() && got.cycle == 42 && got.coupling_wrench[2] == -9.81 &&
-            r.publish_time_ns == 123)
+    return (r.ok() && got.cycle == 42 && got.object_wrench[2] == -9.81 && r.publish_time_ns == 123)
                ? 0
                : 1;
   });

@@ -81,7 +81,7 @@ class CycleRecorder {
     r.state_word = p.state_word;
     r.core_state = p.core_state;
     r.speed = std::hypot(p.handle_twist[0], p.handle_twist[1], p.handle_twist[2]);
-    r.wrench = {p.coupling_wrench[0], p.coupling_wrench[1], p.coupling_wrench[2]};
+    r.wrench = {p.rendered_wrench[0], p.rendered_wrench[1], p.rendered_wrench[2]};
     r.force = std::hypot(r.wrench[0], r.wrench[1], r.wrench[2]);
     r.position = {p.handle_pose[0], p.handle_pose[1], p.handle_pose[2]};
     const std::lock_guard lock(mutex_);

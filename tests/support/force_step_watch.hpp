@@ -76,9 +76,9 @@ class ForceStepWatch {
       }(p);
       if (have_last && p.cycle > last.cycle && rendering && last_rendering_) {
         const auto gap = static_cast<double>(p.cycle - last.cycle);
-        const double coupling = std::hypot(p.coupling_wrench[0] - last.coupling_wrench[0],
-                                           p.coupling_wrench[1] - last.coupling_wrench[1],
-                                           p.coupling_wrench[2] - last.coupling_wrench[2]);
+        const double coupling = std::hypot(p.rendered_wrench[0] - last.rendered_wrench[0],
+                                           p.rendered_wrench[1] - last.rendered_wrench[1],
+                                           p.rendered_wrench[2] - last.rendered_wrench[2]);
         const double speed =
             std::max(std::hypot(p.handle_twist[0], p.handle_twist[1], p.handle_twist[2]),
                      std::hypot(last.handle_twist[0], last.handle_twist[1], last.handle_twist[2]));

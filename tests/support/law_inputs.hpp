@@ -5,10 +5,10 @@
 
 namespace hapticctrl::test {
 
+using hapticctrl::kNsPerMs;
 using rt_core::ChainState;
 using rt_core::ClientCommand;
 using rt_core::ClientSample;
-using rt_core::kNsPerMs;
 using rt_core::ServoInputs;
 using rt_core::Vector6d;
 

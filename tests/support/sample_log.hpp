@@ -48,7 +48,7 @@ inline void write_sample_log(const std::string& path, double x_step = 0.1) {
     a.handle_pose[0] = x_step * cycle;
     a.handle_pose[6] = 1.0;
     a.operator_wrench[0] = cycle;
-    a.coupling_wrench[2] = -0.5 * cycle;
+    a.rendered_wrench[2] = -0.5 * cycle;
     log_message(log, "hapticctrl.lab.arm_state", a, t);
     t += 10'000;
   }

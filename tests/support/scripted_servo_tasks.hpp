@@ -15,11 +15,11 @@ namespace hapticctrl::test {
 
 class ScriptedServoTasks final : public rt_core::TaskRunners {
  public:
-  using Duration = std::function<rt_core::TimeNs(std::uint64_t cycle)>;
+  using Duration = std::function<hapticctrl::TimeNs(std::uint64_t cycle)>;
 
   ScriptedServoTasks(rt_core::FakeClock& clock, rt_core::ServoTask& main_task,
                      rt_core::ServoTask& degraded_task, rt_core::OverrunInjection& overrun,
-                     rt_core::TimeNs period, Duration main_duration)
+                     hapticctrl::TimeNs period, Duration main_duration)
       : clock_(&clock),
         overrun_(&overrun),
         period_(period),
@@ -28,17 +28,17 @@ class ScriptedServoTasks final : public rt_core::TaskRunners {
         degraded_{&degraded_task} {}
 
   void release(rt_core::TaskRole role, std::uint64_t cycle,
-               rt_core::TimeNs release_time) noexcept override {
+               hapticctrl::TimeNs release_time) noexcept override {
     catch_up();
     Pending& p = pending(role);
-    const rt_core::TimeNs start = release_time + start_delay;
+    const hapticctrl::TimeNs start = release_time + start_delay;
     p.task->begin(cycle, start, period_);
-    rt_core::TimeNs duration =
+    hapticctrl::TimeNs duration =
         role == rt_core::TaskRole::kMain ? main_duration_(cycle) : degraded_duration;
     if (role == rt_core::TaskRole::kMain) {
       const std::uint32_t k = overrun_->take();
       if (k > 0) {
-        duration = static_cast<rt_core::TimeNs>(k) * period_ - period_ / 5;
+        duration = static_cast<hapticctrl::TimeNs>(k) * period_ - period_ / 5;
       }
     }
     p.cycle = cycle;
@@ -50,19 +50,19 @@ class ScriptedServoTasks final : public rt_core::TaskRunners {
     catch_up();
     return pending(role).cycle.has_value();
   }
-  rt_core::TimeNs started_at(rt_core::TaskRole role) noexcept override {
+  hapticctrl::TimeNs started_at(rt_core::TaskRole role) noexcept override {
     catch_up();
     return pending(role).started;
   }
-  rt_core::TimeNs finished_at(rt_core::TaskRole role, std::uint64_t cycle) noexcept override {
+  hapticctrl::TimeNs finished_at(rt_core::TaskRole role, std::uint64_t cycle) noexcept override {
     catch_up();
     const Pending& p = pending(role);
     return p.last_finished_cycle == cycle ? p.last_finished_at : -1;
   }
   void stop() noexcept override { stopped = true; }
 
-  rt_core::TimeNs start_delay = 5 * rt_core::kNsPerUs;
-  rt_core::TimeNs degraded_duration = 20 * rt_core::kNsPerUs;
+  hapticctrl::TimeNs start_delay = 5 * hapticctrl::kNsPerUs;
+  hapticctrl::TimeNs degraded_duration = 20 * hapticctrl::kNsPerUs;
   bool stopped = false;
   int discarded = 0;
 
@@ -70,10 +70,10 @@ class ScriptedServoTasks final : public rt_core::TaskRunners {
   struct Pending {
     rt_core::ServoTask* task;
     std::optional<std::uint64_t> cycle;
-    rt_core::TimeNs started = -1;
-    rt_core::TimeNs finish_at = 0;
+    hapticctrl::TimeNs started = -1;
+    hapticctrl::TimeNs finish_at = 0;
     std::optional<std::uint64_t> last_finished_cycle;
-    rt_core::TimeNs last_finished_at = -1;
+    hapticctrl::TimeNs last_finished_at = -1;
   };
   Pending& pending(rt_core::TaskRole role) {
     return role == rt_core::TaskRole::kMain ? main_ : degraded_;
@@ -102,7 +102,7 @@ class ScriptedServoTasks final : public rt_core::TaskRunners {
 
   rt_core::FakeClock* clock_;
   rt_core::OverrunInjection* overrun_;
-  rt_core::TimeNs period_;
+  hapticctrl::TimeNs period_;
   Duration main_duration_;
   Pending main_;
   Pending degraded_;

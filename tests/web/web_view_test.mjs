@@ -138,7 +138,7 @@ test('the surface the controller renders on the handle is drawn while the hand p
     // loaded machine draws fewer), the push held all along.
     let pixels = 0;
     await until(async () => (pixels = await colourPixels(RENDERED_ARROW)) >= MIN_ARROW_PIXELS, { timeoutMs: 2000 });
-    const rendered = await page.evaluate(() => Math.hypot(...window.hapticctrl.frame.arm.coupling_wrench.slice(0, 3)));
+    const rendered = await page.evaluate(() => Math.hypot(...window.hapticctrl.frame.arm.rendered_wrench.slice(0, 3)));
     console.log(`rendered arrow: ${pixels} pixels at ${rendered.toFixed(2)} N`);
     assert.ok(pixels >= MIN_ARROW_PIXELS, `${rendered} N rendered drew ${pixels} pixels`);
     await shot('03-surface');

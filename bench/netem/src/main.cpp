@@ -30,15 +30,16 @@
 #include <string>
 #include <vector>
 
+#include "hapticctrl/base/time.hpp"
 #include "hapticctrl/netem/impairment.hpp"
 #include "hapticctrl/program/main_skeleton.hpp"
 #include "hapticctrl/program/options.hpp"
 
 namespace {
 
+using hapticctrl::TimeNs;
 using hapticctrl::netem::Impairment;
 using hapticctrl::netem::LinkModel;
-using hapticctrl::netem::TimeNs;
 using hapticctrl::netem::Verdict;
 
 std::atomic<bool> g_stop{false};
@@ -49,12 +50,6 @@ void on_stop(int /*signal*/) {
 }
 void on_toggle(int /*signal*/) {
   g_toggles.fetch_add(1);
-}
-
-TimeNs monotonic_ns() {
-  timespec ts{};
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return static_cast<TimeNs>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
 }
 
 struct Options {
@@ -197,11 +192,11 @@ class Relay {
   }
 
   void run() {
-    const TimeNs start = monotonic_ns();
+    const TimeNs start = hapticctrl::monotonic_now_ns();
     const TimeNs end =
         options_.duration_s > 0 ? start + static_cast<TimeNs>(options_.duration_s * 1e9) : 0;
     int toggles_seen = 0;
-    while (!g_stop.load() && (end == 0 || monotonic_ns() < end)) {
+    while (!g_stop.load() && (end == 0 || hapticctrl::monotonic_now_ns() < end)) {
       const int toggles = g_toggles.load();
       if (toggles != toggles_seen) {
         toggles_seen = toggles;
@@ -211,10 +206,10 @@ class Relay {
         std::fprintf(stderr, "hapticctrl-netem: blackout %s\n", toggles % 2 == 1 ? "on" : "off");
       }
       wait_for_traffic();
-      const TimeNs now = monotonic_ns();
+      const TimeNs now = hapticctrl::monotonic_now_ns();
       receive(front_, 0, now, now - start);
       receive(back_, 1, now, now - start);
-      deliver_due(monotonic_ns());
+      deliver_due(hapticctrl::monotonic_now_ns());
     }
   }
 
@@ -239,7 +234,7 @@ class Relay {
     std::array<pollfd, 2> fds{pollfd{front_, POLLIN, 0}, pollfd{back_, POLLIN, 0}};
     TimeNs wait = 10'000'000;  // wake at least every 10 ms for signals and the duration
     if (!queue_.empty()) {
-      wait = std::clamp<TimeNs>(queue_.top().at - monotonic_ns(), 0, wait);
+      wait = std::clamp<TimeNs>(queue_.top().at - hapticctrl::monotonic_now_ns(), 0, wait);
     }
     const timespec ts{static_cast<time_t>(wait / 1'000'000'000),
                       static_cast<long>(wait % 1'000'000'000)};

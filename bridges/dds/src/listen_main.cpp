@@ -12,17 +12,17 @@
 #include <thread>
 #include <vector>
 
+#include "hapticctrl/base/time.hpp"
 #include "hapticctrl/program/main_skeleton.hpp"
 #include "hapticctrl/program/options.hpp"
 #include "hapticctrl/ros2types/names.hpp"
 #include "hapticctrl/ros2types/participant.hpp"
 #include "hapticctrl/ros2types/qos.hpp"
-#include "hapticctrl/shm/monotonic_clock.hpp"
 
 namespace {
 
 namespace r2 = hapticctrl::ros2types;
-using hapticctrl::shm::monotonic_now_ns;
+using hapticctrl::monotonic_now_ns;
 
 struct ListenConfig {
   std::string ros_namespace = "/hapticctrl/default";

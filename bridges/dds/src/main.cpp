@@ -17,6 +17,7 @@
 #include <thread>
 #include <vector>
 
+#include "hapticctrl/base/time.hpp"
 #include "hapticctrl/dds_bridge/commands.hpp"
 #include "hapticctrl/dds_bridge/dds_bridge_config.hpp"
 #include "hapticctrl/dds_bridge/endpoints.hpp"
@@ -25,7 +26,6 @@
 #include "hapticctrl/program/main_skeleton.hpp"
 #include "hapticctrl/ros2types/names.hpp"
 #include "hapticctrl/shm/core_watch.hpp"
-#include "hapticctrl/shm/monotonic_clock.hpp"
 #include "hapticctrl/shm/names.hpp"
 #include "hapticctrl/shm/remote_commands.hpp"
 #include "hapticctrl/shm/segment.hpp"
@@ -34,9 +34,9 @@ namespace {
 
 namespace shm = hapticctrl::shm;
 namespace db = hapticctrl::dds_bridge;
+using hapticctrl::monotonic_now_ns;
 using hapticctrl::dds_bridge::DdsBridgeConfig;
 using hapticctrl::dds_bridge::Endpoints;
-using hapticctrl::shm::monotonic_now_ns;
 
 std::atomic<bool> g_stop{false};
 void on_signal(int /*sig*/) {

@@ -83,7 +83,7 @@ void ArmMessages::fill(const shm::PositionPayload& p, std::int64_t stamp_ns) noe
   pose.pose_.position_ = {h[0], h[1], h[2]};
   pose.pose_.orientation_ = {h[3], h[4], h[5], h[6]};
   set_header(rendered_wrench.header_, frame_, stamp_ns);
-  set_wrench(rendered_wrench.wrench_, p.coupling_wrench);
+  set_wrench(rendered_wrench.wrench_, p.rendered_wrench);
   set_header(operator_wrench.header_, frame_, stamp_ns);
   set_wrench(operator_wrench.wrench_, p.operator_wrench);
   set_header(joints.header_, frame_, stamp_ns);

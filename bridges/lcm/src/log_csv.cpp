@@ -81,7 +81,7 @@ std::map<std::string, Topic> topics() {
   t["arm_state"] = {"utime,cycle,state_word,core_state" + columns("q", kJoints) +
                         columns("qd", kJoints) + columns("tau", kJoints) +
                         columns("handle_", kPose) + columns("twist_", kVec6) +
-                        columns("operator_", kVec6) + columns("coupling_", kVec6),
+                        columns("operator_", kVec6) + columns("rendered_", kVec6),
                     [](const void* d, int n, Row& r) {
                       hapticctrl_lcm::arm_state_t m{};
                       if (!decode(d, n, m)) {
@@ -94,12 +94,13 @@ std::map<std::string, Topic> topics() {
                       put(r, m.handle_pose);
                       put(r, m.handle_twist);
                       put(r, m.operator_wrench);
-                      put(r, m.coupling_wrench);
+                      put(r, m.rendered_wrench);
                       return true;
                     }};
   t["coupling"] = {
       "utime,cycle,session_id,command_type,object_attached" + columns("object_", kPose) +
-          columns("object_twist_", kVec6) + columns("wrench_", kVec6) + columns("handle_", kPose) +
+          columns("object_twist_", kVec6) + columns("object_wrench_", kVec6) +
+          columns("client_handle_", kPose) +
           ",client_sequence,client_age_ms,client_stale,vpr_stale_cycles,"
           "sample_age_ms,loop_delay_ms,link_delay_ms,link_jitter_ms,link_loss" +
           columns("gain_", {"k_lin", "b_lin", "k_ang", "b_ang"}) + ",contacts" +
@@ -114,8 +115,8 @@ std::map<std::string, Topic> topics() {
           << (m.object_attached ? 1 : 0);
         put(r, m.object_pose);
         put(r, m.object_twist);
-        put(r, m.coupling_wrench);
-        put(r, m.handle_pose);
+        put(r, m.object_wrench);
+        put(r, m.client_handle_pose);
         r << ',' << m.client_sequence << ',' << m.client_age_ms << ',' << (m.client_stale ? 1 : 0)
           << ',' << m.vpr_stale_cycles << ',' << m.sample_age_ms << ',' << m.loop_delay_ms << ','
           << m.link_delay_ms << ',' << m.link_jitter_ms << ',' << m.link_loss;

@@ -16,20 +16,20 @@
 #include <thread>
 #include <vector>
 
+#include "hapticctrl/base/time.hpp"
 #include "hapticctrl/lcm_bridge/hmi_input.hpp"
 #include "hapticctrl/lcm_bridge/lcm_bridge_config.hpp"
 #include "hapticctrl/lcm_bridge/messages.hpp"
 #include "hapticctrl/program/main_skeleton.hpp"
 #include "hapticctrl/shm/core_watch.hpp"
-#include "hapticctrl/shm/monotonic_clock.hpp"
 #include "hapticctrl/shm/segment.hpp"
 
 namespace {
 
+using hapticctrl::monotonic_now_ns;
 using hapticctrl::lcm_bridge::Channels;
 using hapticctrl::lcm_bridge::HmiInput;
 using hapticctrl::lcm_bridge::LcmBridgeConfig;
-using hapticctrl::shm::monotonic_now_ns;
 namespace shm = hapticctrl::shm;
 namespace lb = hapticctrl::lcm_bridge;
 

@@ -43,7 +43,7 @@ hapticctrl_lcm::arm_state_t to_arm_state(const shm::PositionPayload& p, std::int
   copy(p.handle_pose, m.handle_pose);
   copy(p.handle_twist, m.handle_twist);
   copy(p.operator_wrench, m.operator_wrench);
-  copy(p.coupling_wrench, m.coupling_wrench);
+  copy(p.rendered_wrench, m.rendered_wrench);
   return m;
 }
 
@@ -58,8 +58,8 @@ hapticctrl_lcm::coupling_t to_coupling(const shm::VpPayload& vp, const shm::VprP
   m.object_attached = (vpr.flags & shm::vpr_flags::kObjectAttached) != 0 ? 1 : 0;
   copy(vpr.object_pose, m.object_pose);
   copy(vpr.object_twist, m.object_twist);
-  copy(vp.coupling_wrench, m.coupling_wrench);
-  copy(vp.handle_pose, m.handle_pose);
+  copy(vp.object_wrench, m.object_wrench);
+  copy(vp.client_handle_pose, m.client_handle_pose);
   m.client_sequence = static_cast<std::int64_t>(vp.echo_client_sequence);
   m.client_age_ms =
       vpr.session_id != 0 ? static_cast<double>(now_ns - vpr.received_time_ns) / 1e6 : 0.0;
@@ -67,9 +67,10 @@ hapticctrl_lcm::coupling_t to_coupling(const shm::VpPayload& vp, const shm::VprP
   m.vpr_stale_cycles = static_cast<std::int64_t>(t.vpr_stale);
   m.sample_age_ms = static_cast<double>(vp.sample_age_ns) / 1e6;
   m.loop_delay_ms = static_cast<double>(vp.loop_delay_ns) / 1e6;
-  m.link_delay_ms = static_cast<double>(vp.link_delay_ns) / 1e6;
-  m.link_jitter_ms = static_cast<double>(vp.link_jitter_ns) / 1e6;
-  m.link_loss = static_cast<double>(vp.link_loss_ppm) / 1e6;
+  // The link as the UDP bridge measured it for the core's gains (VPr).
+  m.link_delay_ms = static_cast<double>(vpr.link_delay_ns) / 1e6;
+  m.link_jitter_ms = static_cast<double>(vpr.link_jitter_ns) / 1e6;
+  m.link_loss = static_cast<double>(vpr.link_loss_ppm) / 1e6;
   copy(vp.gains, m.gains);
   m.channel_energy_in = vp.channel_energy_in;
   m.channel_energy_out = vp.channel_energy_out;

@@ -20,9 +20,9 @@
 #include <utility>
 #include <vector>
 
+#include "hapticctrl/base/time.hpp"
 #include "hapticctrl/program/main_skeleton.hpp"
 #include "hapticctrl/program/private_directory.hpp"
-#include "hapticctrl/protocol/monotonic_clock.hpp"
 #include "hapticctrl/shm/core_watch.hpp"
 #include "hapticctrl/shm/names.hpp"
 #include "hapticctrl/shm/rendezvous.hpp"
@@ -34,7 +34,6 @@ namespace {
 
 using hapticctrl::protocol::Endpoint;
 using hapticctrl::protocol::FrameBuffer;
-using hapticctrl::protocol::monotonic_ns;
 using hapticctrl::protocol::Received;
 using hapticctrl::protocol::UdpSocket;
 using hapticctrl::udp_bridge::BridgeConfig;
@@ -76,7 +75,7 @@ void serve(UdpSocket& socket, Session& session, std::int64_t end_ns, KeepServing
   while (!g_stop.load()) {
     Endpoint from;
     const Received r = socket.receive(in, from, std::chrono::milliseconds(2));
-    const std::int64_t now = monotonic_ns();
+    const std::int64_t now = hapticctrl::monotonic_now_ns();
     if (r.status == Received::Status::kDatagram) {
       const std::size_t n = session.on_datagram({in.data(), r.size}, from, now, reply);
       if (n != 0) {
@@ -98,7 +97,7 @@ void serve(UdpSocket& socket, Session& session, std::int64_t end_ns, KeepServing
 void send_answer(UdpSocket& socket, Session& session, const shm::VpPayload& sample) {
   FrameBuffer out{};
   Endpoint to;
-  const std::size_t n = session.answer(sample, monotonic_ns(), out, to);
+  const std::size_t n = session.answer(sample, hapticctrl::monotonic_now_ns(), out, to);
   if (n != 0 && send_counted(socket, session, {out.data(), n}, to)) {
     session.counters().answers_sent.fetch_add(1, std::memory_order_relaxed);
   }
@@ -168,7 +167,7 @@ std::uint32_t run_attached(shm::Segment& segment, UdpSocket& socket, Session& se
                                                 &segment.ctrl_writer(), segment.header().period_ns,
                                                 &segment.header().heartbeat_cycle};
   auto& stats = segment.writable<shm::RegionId::kLinkStats>();
-  session.set_controller(&ports, monotonic_ns());
+  session.set_controller(&ports, hapticctrl::monotonic_now_ns());
 
   std::atomic<bool> answering{true};
   std::atomic<bool> core_lost{false};
@@ -193,14 +192,14 @@ std::uint32_t run_attached(shm::Segment& segment, UdpSocket& socket, Session& se
   const char* why = g_stop.load() ? "the bridge is shutting down"
                     : lost        ? "the controller was lost (killed or crashed)"
                                   : "the controller stopped";
-  const std::size_t n = session.close(monotonic_ns(), why, notice, to);
+  const std::size_t n = session.close(hapticctrl::monotonic_now_ns(), why, notice, to);
   if (n != 0) {
     socket.send_to({notice.data(), n}, to);
   }
-  session.set_controller(nullptr, monotonic_ns());
+  session.set_controller(nullptr, hapticctrl::monotonic_now_ns());
   shm::LinkStatsPayload s;
   session.fill_stats(s);
-  stats.publish_quietly(s, monotonic_ns());
+  stats.publish_quietly(s, hapticctrl::monotonic_now_ns());
   answering.store(false);
   answers.join();
   if (!g_stop.load()) {
@@ -265,8 +264,9 @@ int run(const BridgeConfig& config) {
                     kTotalHellos * config.hello_rate / 2.0}},
                   random_token);
   const std::int64_t end_ns =
-      config.duration_s > 0.0 ? monotonic_ns() + static_cast<std::int64_t>(config.duration_s * 1e9)
-                              : 0;
+      config.duration_s > 0.0
+          ? hapticctrl::monotonic_now_ns() + static_cast<std::int64_t>(config.duration_s * 1e9)
+          : 0;
   bool said_waiting = false;
   while (!g_stop.load()) {
     std::optional<shm::Segment> segment = shm::Segment::try_attach(
@@ -286,7 +286,7 @@ int run(const BridgeConfig& config) {
       said_waiting = true;
     }
     // Serve (refusing HELLOs) for 100 ms, then try to attach again.
-    const std::int64_t retry_at = monotonic_ns() + 100'000'000;
+    const std::int64_t retry_at = hapticctrl::monotonic_now_ns() + 100'000'000;
     serve(socket, session, end_ns, [retry_at](std::int64_t now) { return now < retry_at; });
   }
   if (config.json) {

@@ -220,6 +220,7 @@ void Session::open(const hcp_frame& hello, const protocol::Endpoint& from, TimeN
   control_received_ = 0;
   control_received_shared_.store(0, std::memory_order_relaxed);
   link_.reset();
+  link_view_.publish_quietly({}, 0);
   have_energy_ = false;
   energy_in_total_ = 0.0;
   vpr_ = fresh_vpr(++session_number_);
@@ -326,6 +327,7 @@ void Session::take_sample(const hcp_frame& in, TimeNs now) noexcept {
   vpr_.link_delay_ns = link_.delay();
   vpr_.link_jitter_ns = link_.jitter();
   vpr_.link_loss_ppm = link_.loss_ppm();
+  link_view_.publish_quietly({vpr_.link_delay_ns, vpr_.link_jitter_ns, vpr_.link_loss_ppm, 0}, now);
   vpr_.client_sequence = control_seq_high_;
   vpr_.client_time_ns = in.header.sender_time_ns;
 }

@@ -9,13 +9,15 @@
 namespace hapticctrl::udp_bridge {
 namespace {
 
-void fill_report(const shm::VpPayload& vp, hcp_coupling_report& c) noexcept {
+/// The coupling as the core ran it (VP) and the link as this bridge measures it.
+void fill_report(const shm::VpPayload& vp, const LinkFigures& link,
+                 hcp_coupling_report& c) noexcept {
   c.energy_in = vp.channel_energy_in;
   c.sample_age_s = static_cast<double>(vp.sample_age_ns) * 1e-9;
   c.loop_delay_s = static_cast<double>(vp.loop_delay_ns) * 1e-9;
-  c.link_delay_s = static_cast<double>(vp.link_delay_ns) * 1e-9;
-  c.link_jitter_s = static_cast<double>(vp.link_jitter_ns) * 1e-9;
-  c.link_loss = static_cast<double>(vp.link_loss_ppm) * 1e-6;
+  c.link_delay_s = static_cast<double>(link.delay_ns) * 1e-9;
+  c.link_jitter_s = static_cast<double>(link.jitter_ns) * 1e-9;
+  c.link_loss = static_cast<double>(link.loss_ppm) * 1e-6;
   protocol::to_wire(vp.gains, c.gains);
 }
 
@@ -36,7 +38,9 @@ std::size_t Session::answer(const shm::VpPayload& vp, TimeNs now, std::span<std:
   auto& u = f.body.hcp_body_u;
   hcp_answer& a = coupled ? u.answer_coupled.answer : (timed ? u.answer_timed.answer : u.answer);
   if (timed) {
-    fill_report(vp, coupled ? u.answer_coupled.coupling : u.answer_timed.coupling);
+    // Unchanged when the receive thread is mid-write (the read then leaves it as it was).
+    (void)link_view_.read(link_answered_);
+    fill_report(vp, link_answered_, coupled ? u.answer_coupled.coupling : u.answer_timed.coupling);
   }
   if (coupled) {
     hcp_local_coupling& l = u.answer_coupled.local;
@@ -57,9 +61,9 @@ std::size_t Session::answer(const shm::VpPayload& vp, TimeNs now, std::span<std:
   if ((view.features & HCP_FEATURE_LINK_STATS) != 0) {
     a.control_received = control_received_shared_.load(std::memory_order_relaxed);
   }
-  protocol::to_wire(vp.coupling_wrench, a.coupling_wrench);
-  protocol::to_wire(vp.handle_pose, a.handle_pose);
-  protocol::to_wire(vp.handle_twist, a.handle_twist);
+  protocol::to_wire(vp.object_wrench, a.coupling_wrench);
+  protocol::to_wire(vp.client_handle_pose, a.handle_pose);
+  protocol::to_wire(vp.client_handle_twist, a.handle_twist);
   if ((view.features & HCP_FEATURE_JOINT_STATE) != 0) {
     protocol::to_wire(vp.joint_position, a.joint_position);
     protocol::to_wire(vp.joint_velocity, a.joint_velocity);
@@ -91,6 +95,9 @@ void Session::fill_stats(shm::LinkStatsPayload& out) const noexcept {
   for (std::size_t i = 0; i < shm::kLinkDropCount; ++i) {
     out.dropped[i] = get(counters_.dropped[i]);
   }
+  out.link_delay_ns = session_.token != 0 ? link_.delay() : 0;
+  out.link_jitter_ns = session_.token != 0 ? link_.jitter() : 0;
+  out.link_loss_ppm = session_.token != 0 ? link_.loss_ppm() : 0;
 }
 
 }  // namespace hapticctrl::udp_bridge

@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "hapticctrl/arm_model/arm_model.hpp"
+#include "hapticctrl/base/time.hpp"
 #include "hapticctrl/lcmtypes/channels.hpp"
 #include "hapticctrl/program/main_skeleton.hpp"
-#include "hapticctrl/shm/monotonic_clock.hpp"
 #include "hapticctrl/web_bridge/model_json.hpp"
 #include "hapticctrl/web_bridge/page_gateway.hpp"
 #include "hapticctrl/web_bridge/telemetry_view.hpp"
@@ -28,8 +28,8 @@
 namespace {
 
 namespace wb = hapticctrl::web_bridge;
+using hapticctrl::monotonic_now_ns;
 using hapticctrl::lcmtypes::Channels;
-using hapticctrl::shm::monotonic_now_ns;
 
 std::atomic<bool> g_stop{false};
 void on_signal(int /*sig*/) {
@@ -184,10 +184,10 @@ class BridgeHandler final : public wb::PageHandler {
 void push_loop(wb::TelemetryView& view, wb::WebServer& server, double rate_hz,
                const std::atomic<bool>& running) {
   const auto period = std::chrono::nanoseconds(static_cast<std::int64_t>(1e9 / rate_hz));
-  auto next = std::chrono::steady_clock::now();
+  auto next = hapticctrl::MonotonicClock::now();
   while (running.load()) {
     next += period;
-    const auto now = std::chrono::steady_clock::now();
+    const auto now = hapticctrl::MonotonicClock::now();
     if (next < now) {
       next = now + period;  // after a stall: the next slot, never a burst
     }

@@ -36,7 +36,7 @@ Json arm_json(const hapticctrl_lcm::arm_state_t& m) {
           {"handle_pose", array_of(m.handle_pose)},
           {"handle_twist", array_of(m.handle_twist)},
           {"operator_wrench", array_of(m.operator_wrench)},
-          {"coupling_wrench", array_of(m.coupling_wrench)}};
+          {"rendered_wrench", array_of(m.rendered_wrench)}};
 }
 
 Json coupling_json(const hapticctrl_lcm::coupling_t& m) {
@@ -44,7 +44,7 @@ Json coupling_json(const hapticctrl_lcm::coupling_t& m) {
           {"command_type", m.command_type},
           {"object_attached", m.object_attached},
           {"object_pose", array_of(m.object_pose)},
-          {"coupling_wrench", array_of(m.coupling_wrench)},
+          {"object_wrench", array_of(m.object_wrench)},
           {"client_age_ms", m.client_age_ms},
           {"client_stale", m.client_stale},
           {"contacts", m.contacts},

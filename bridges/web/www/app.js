@@ -213,7 +213,7 @@ function showState(frame) {
     $('estop').textContent = w & ESTOP ? 'E-STOP LATCHED' : 'EMERGENCY STOP';
     $('handle-position').textContent = vec3(arm.handle_pose, 4, ' m');
     $('operator-force').textContent = vec3(arm.operator_wrench, 2, ' N');
-    $('rendered-force').textContent = vec3(arm.coupling_wrench, 2, ' N');
+    $('rendered-force').textContent = vec3(arm.rendered_wrench, 2, ' N');
     if (status.model) {
       status.modelMismatchM = handleMismatch(status.model, arm.q, arm.handle_pose);
       const warning = $('model-warning');

@@ -189,7 +189,7 @@ export class ArmView {
       this.handleAxes.position.copy(handle);
       this.handleAxes.quaternion.set(p[3], p[4], p[5], p[6]);
       setArrow(this.arrows.operator, handle, arm.operator_wrench);
-      setArrow(this.arrows.rendered, handle, arm.coupling_wrench);
+      setArrow(this.arrows.rendered, handle, arm.rendered_wrench);
     }
     this.updateScene(frame.scene);
     this.world.update(frame.world);

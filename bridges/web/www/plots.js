@@ -77,7 +77,7 @@ export class Plots {
       this.latency.add(t, [worst < 0 ? OPEN_BUCKET_US : worst || null, stats.wake_us.p99, stats.interval.misses]);
     }
     if (arm) {
-      const f = arm.coupling_wrench;
+      const f = arm.rendered_wrench;
       const o = arm.operator_wrench;
       this.force.add(t, [Math.hypot(f[0], f[1], f[2]), f[0], f[1], f[2], Math.hypot(o[0], o[1], o[2])]);
     }

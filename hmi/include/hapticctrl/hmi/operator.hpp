@@ -15,10 +15,10 @@
 #include <string>
 #include <vector>
 
+#include "hapticctrl/base/time.hpp"
 #include "hapticctrl/hmi/status.hpp"
 #include "hapticctrl/shm/ctrl.hpp"
 #include "hapticctrl/shm/force_slew.hpp"
-#include "hapticctrl/shm/monotonic_clock.hpp"
 #include "hapticctrl/shm/segment.hpp"
 
 namespace hapticctrl::hmi {
@@ -76,8 +76,5 @@ class Operator {
   bool hand_changed_ = false;
   std::int64_t last_tick_ns_ = 0;
 };
-
-/// CLOCK_MONOTONIC in nanoseconds (the regions' publish clock).
-using shm::monotonic_now_ns;
 
 }  // namespace hapticctrl::hmi

@@ -8,15 +8,9 @@
 #include <cstdint>
 
 #include "hapticctrl/base/realtime.hpp"
+#include "hapticctrl/base/time.hpp"
 
 namespace hapticctrl::rt_core {
-
-/// Monotonic nanoseconds (CLOCK_MONOTONIC for the real clock).
-using TimeNs = std::int64_t;
-
-inline constexpr TimeNs kNsPerUs = 1'000;
-inline constexpr TimeNs kNsPerMs = 1'000'000;
-inline constexpr TimeNs kNsPerS = 1'000'000'000;
 
 /// Time source and absolute sleep.
 class Clock {
@@ -29,7 +23,7 @@ class Clock {
   HAPTICCTRL_RT virtual void sleep_until(TimeNs deadline) noexcept = 0;
 };
 
-/// CLOCK_MONOTONIC with clock_nanosleep(TIMER_ABSTIME), retried on EINTR.
+/// MonotonicClock (base/time.hpp) with clock_nanosleep(TIMER_ABSTIME), retried on EINTR.
 class RealClock final : public Clock {
  public:
   [[nodiscard]] HAPTICCTRL_RT TimeNs now() noexcept override;

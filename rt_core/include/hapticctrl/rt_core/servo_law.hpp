@@ -55,9 +55,9 @@ struct CouplingGains {
 struct ServoOutputs {
   ArmCommands commands;
   /// Wrench the coupling applies to the client's object (what VP reports), base frame.
-  Vector6d coupling_wrench = Vector6d::Zero();
+  Vector6d object_wrench = Vector6d::Zero();
   /// Wrench the controller renders on the handle (before the Jacobian transpose), base frame.
-  Vector6d handle_wrench = Vector6d::Zero();
+  Vector6d rendered_wrench = Vector6d::Zero();
   std::array<double, 7> handle_pose{0, 0, 0, 0, 0, 0, 1};  ///< base frame
   Vector6d handle_twist = Vector6d::Zero();                ///< base frame
   /// The same, in the client's environment frame (through its base frame and speed factor).

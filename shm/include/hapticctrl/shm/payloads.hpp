@@ -164,19 +164,19 @@ struct VpPayload {
   std::uint32_t core_state = 0;    ///< CoreState
   std::uint32_t stop_reason = 0;   ///< StopReason, once fail-safe or stop has begun
   std::uint32_t command_type = 0;  ///< CommandType in force
-  Vector6 coupling_wrench{};       ///< wrench the client applies to its object [N, N·m]
-  Pose7 handle_pose{0, 0, 0, 0, 0, 0, 1};
-  Vector6 handle_twist{};
+  /// The wrench the client applies to its object, in the client's frame [N, N·m] (force factor
+  /// applied; not the wrench rendered on the handle: PositionPayload::rendered_wrench).
+  Vector6 object_wrench{};
+  /// The handle as the client sees it: in the client's frame, speed factor applied (not the
+  /// handle in the base frame: PositionPayload::handle_pose).
+  Pose7 client_handle_pose{0, 0, 0, 0, 0, 0, 1};
+  Vector6 client_handle_twist{};
   Joints6 joint_position{};
   Joints6 joint_velocity{};
   /// The coupling as the core ran it this cycle (telemetry and the client's statistics).
   std::int64_t sample_age_ns = 0;  ///< age of the client sample used (network + bridge + wait)
   std::int64_t loop_delay_ns = 0;  ///< coupling loop delay the gains were derived for
-  std::int64_t link_delay_ns = 0;  ///< one-way delay of the client link (from VPr)
-  std::int64_t link_jitter_ns = 0;
-  std::uint32_t link_loss_ppm = 0;
-  std::uint32_t reserved = 0;
-  std::array<double, 4> gains{};  ///< k_lin N/m, b_lin N.s/m, k_ang N.m/rad, b_ang N.m.s/rad
+  std::array<double, 4> gains{};   ///< k_lin N/m, b_lin N.s/m, k_ang N.m/rad, b_ang N.m.s/rad
   /// Two-port passivity, the core's end of the channel (J since the session began): energy the
   /// core put in (sent to the client, which bounds its output by it) and took out.
   double channel_energy_in = 0.0;
@@ -235,7 +235,7 @@ struct PositionPayload {
   Pose7 handle_pose{0, 0, 0, 0, 0, 0, 1};
   Vector6 handle_twist{};
   Vector6 operator_wrench{};  ///< operator's wrench on the handle, base frame
-  Vector6 coupling_wrench{};  ///< wrench the controller renders on the handle, base frame
+  Vector6 rendered_wrench{};  ///< the wrench the controller renders on the handle, base frame
 };
 
 /// Real-time mode the core obtained at start (telemetry).
@@ -337,16 +337,22 @@ struct LinkStatsPayload {
   std::uint64_t refused_version = 0;
   std::uint64_t send_failures = 0;
   std::array<std::uint64_t, kLinkDropCount> dropped{};
+  /// The client link as the bridge measures it (protocol 1.1 timing; 0 for a 1.0 client): the
+  /// same figures the bridge puts in VPr for the core and on each answer for the client.
+  std::int64_t link_delay_ns = 0;   ///< smoothed one-way delay
+  std::int64_t link_jitter_ns = 0;  ///< smoothed |change| of the one-way delay between frames
+  std::uint32_t link_loss_ppm = 0;  ///< control frames lost on the way in (smoothed)
+  std::uint32_t reserved = 0;
 };
 
 // Layout pins: a change here is an ABI change (bump kAbiVersion in layout.hpp).
 static_assert(sizeof(ContactSlot) == 160);
 static_assert(sizeof(VprPayload) == 1896);
-static_assert(sizeof(VpPayload) == 536);
+static_assert(sizeof(VpPayload) == 512);
 static_assert(sizeof(ForcePayload) == 112);
 static_assert(sizeof(PositionPayload) == 360);
 static_assert(sizeof(LatencySummary) == 64);
 static_assert(sizeof(TelemetryPayload) == 496);
-static_assert(sizeof(LinkStatsPayload) == 208);
+static_assert(sizeof(LinkStatsPayload) == 232);
 
 }  // namespace hapticctrl::shm

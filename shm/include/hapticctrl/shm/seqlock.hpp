@@ -31,6 +31,7 @@
 #include <type_traits>
 
 #include "hapticctrl/base/realtime.hpp"
+#include "hapticctrl/base/time.hpp"
 #include "hapticctrl/shm/futex.hpp"
 
 namespace hapticctrl::shm {
@@ -158,13 +159,13 @@ class alignas(64) SeqlockCell {
   /// odd: the wait then simply times out, so a dead writer never hangs a reader.
   /// Real-time contract: blocking; never call from the cycle.
   WaitStatus wait_for_publish(std::uint32_t seen, std::chrono::nanoseconds timeout) const noexcept {
-    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    const auto deadline = hapticctrl::MonotonicClock::now() + timeout;
     for (;;) {
       const std::uint32_t current = seq_.load(std::memory_order_acquire);
       if (current != seen && (current & 1U) == 0) {
         return WaitStatus::kPublished;
       }
-      const auto left = deadline - std::chrono::steady_clock::now();
+      const auto left = deadline - hapticctrl::MonotonicClock::now();
       if (left <= std::chrono::nanoseconds::zero()) {
         return WaitStatus::kTimedOut;
       }

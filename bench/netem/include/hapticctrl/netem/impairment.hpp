@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-namespace hapticctrl::netem {
+#include "hapticctrl/base/time.hpp"
 
-using TimeNs = std::int64_t;
+namespace hapticctrl::netem {
 
 /// One window of total outage, relative to the relay's start.
 struct Blackout {

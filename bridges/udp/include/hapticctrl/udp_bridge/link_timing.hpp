@@ -11,11 +11,10 @@
 #include <atomic>
 #include <cstdint>
 
+#include "hapticctrl/base/time.hpp"
 #include "hapticctrl/protocol/timing.hpp"
 
 namespace hapticctrl::udp_bridge {
-
-using TimeNs = std::int64_t;
 
 /// Send times of the recent answers, by cycle. One writer (the answer thread), any reader.
 class AnswerLog {

@@ -13,6 +13,7 @@
 #include <functional>
 #include <span>
 
+#include "hapticctrl/base/time.hpp"
 #include "hapticctrl/protocol/codec.hpp"
 #include "hapticctrl/protocol/udp_socket.hpp"
 #include "hapticctrl/shm/ctrl.hpp"
@@ -23,8 +24,6 @@
 #include "hapticctrl/udp_bridge/link_timing.hpp"
 
 namespace hapticctrl::udp_bridge {
-
-using TimeNs = std::int64_t;
 
 /// Where accepted client data goes: the controller's VPr region and a ctrl slot.
 struct ControllerPorts {
@@ -40,6 +39,15 @@ struct SessionView {
   std::uint64_t token = 0;  ///< 0: no session
   protocol::Endpoint peer{};
   std::uint32_t features = 0;
+  std::uint32_t pad = 0;
+};
+
+/// The client link as this bridge measures it (LinkEstimator), for the answer thread: on each
+/// answer's coupling report and in the link_stats region.
+struct LinkFigures {
+  std::int64_t delay_ns = 0;
+  std::int64_t jitter_ns = 0;
+  std::uint32_t loss_ppm = 0;
   std::uint32_t pad = 0;
 };
 
@@ -192,9 +200,11 @@ class Session {
 
   // Shared with the answer thread.
   shm::SeqlockCell<SessionView> view_;
+  shm::SeqlockCell<LinkFigures> link_view_;  ///< written by the receive thread
   std::atomic<std::uint32_t> control_received_shared_{0};
   AnswerLog answer_log_;               ///< written by the answer thread
   std::uint32_t answer_sequence_ = 0;  ///< answer thread only
+  LinkFigures link_answered_;          ///< answer thread only: the figures of the last answer
   HelloLimiter hello_limiter_;         ///< receive thread only
   LinkCounters counters_;
 };

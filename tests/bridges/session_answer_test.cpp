@@ -35,6 +35,49 @@ TEST_F(SessionTest, AnswersGoToTheSessionWithTheNegotiatedFeatures) {
   EXPECT_EQ(a.body.hcp_body_u.answer.joint_position[0], 0.0);  // JOINT_STATE not negotiated
 }
 
+TEST_F(SessionTest, AnswersAndLinkStatsCarryTheLinkAsTheBridgeMeasuresIt) {
+  // The link figures come from the bridge's own estimator, not round through the core's VP
+  // (which no longer carries them, J7): a 3 ms round trip is a 1.5 ms one-way delay.
+  client.hello(protocol::kVersion, HCP_FEATURE_LINK_STATS | HCP_FEATURE_TIMING);
+  shm::VpPayload vp;
+  vp.cycle = 500;
+  FrameBuffer out{};
+  Endpoint to;
+  ASSERT_GT(session.answer(vp, client.now, out, to), 0U);  // answer 500 leaves at `now`
+  client.now += 4 * test::kMs;  // the state computed from it; the client held it 1 ms
+  client.feed(client.bytes(client.timed_object(500, 1 * test::kMs, 0)));
+  const shm::VprPayload vpr = controller.vpr_now();
+  ASSERT_GT(vpr.link_delay_ns, 0);
+
+  vp.cycle = 501;
+  const std::size_t n = session.answer(vp, client.now, out, to);
+  ASSERT_GT(n, 0U);
+  hcp_frame a;
+  ASSERT_EQ(protocol::decode({out.data(), n}, a), protocol::DecodeStatus::kOk);
+  ASSERT_EQ(a.body.type, HCP_ANSWER_TIMED);
+  const hcp_coupling_report& report = a.body.hcp_body_u.answer_timed.coupling;
+  EXPECT_DOUBLE_EQ(report.link_delay_s, static_cast<double>(vpr.link_delay_ns) * 1e-9);
+  EXPECT_NEAR(report.link_delay_s, 1.5e-3, 1e-6);
+  EXPECT_DOUBLE_EQ(report.link_jitter_s, static_cast<double>(vpr.link_jitter_ns) * 1e-9);
+
+  shm::LinkStatsPayload stats;
+  session.fill_stats(stats);
+  EXPECT_EQ(stats.link_delay_ns, vpr.link_delay_ns);
+  EXPECT_EQ(stats.link_jitter_ns, vpr.link_jitter_ns);
+  EXPECT_EQ(stats.link_loss_ppm, vpr.link_loss_ppm);
+
+  // A new session starts from no link figures.
+  client.feed(
+      client.bytes(protocol::make_frame(HCP_BYE, client.token, ++client.param_seq, client.now)));
+  client.hello(protocol::kVersion, HCP_FEATURE_LINK_STATS | HCP_FEATURE_TIMING);
+  session.fill_stats(stats);
+  EXPECT_EQ(stats.link_delay_ns, 0);
+  const std::size_t fresh = session.answer(vp, client.now, out, to);
+  ASSERT_GT(fresh, 0U);
+  ASSERT_EQ(protocol::decode({out.data(), fresh}, a), protocol::DecodeStatus::kOk);
+  EXPECT_EQ(a.body.hcp_body_u.answer_timed.coupling.link_delay_s, 0.0);
+}
+
 TEST_F(SessionTest, StatsReflectTheSessionAndCounters) {
   client.hello();
   client.send_object(0.1F);

@@ -226,21 +226,6 @@ TEST_F(SessionTest, ByeIsAcknowledgedAndEndsTheSession) {
   EXPECT_EQ(session.counters().sessions_closed.load(), 1U);
 }
 
-/// A CONTROL_OBJECT_TIMED frame from `client`.
-hcp_frame timed_object(Client& client, std::uint64_t answer_cycle, std::int64_t hold_ns,
-                       std::uint32_t energy_uj) {
-  hcp_frame f = protocol::make_frame(HCP_CONTROL_OBJECT_TIMED, client.token, ++client.control_seq,
-                                     client.now);
-  hcp_control_object_timed& t = f.body.hcp_body_u.timed;
-  t.position[0] = 0.3F;
-  const auto r = protocol::pack_rotation({0, 0, 0, 1});
-  t.rotation[0] = r[0];
-  t.rotation[1] = r[1];
-  t.answer_echo = protocol::pack_answer_echo(answer_cycle, hold_ns, true);
-  t.energy_in = energy_uj;
-  return f;
-}
-
 TEST_F(SessionTest, TimedObjectsAreDatedFromTheEchoedAnswerAndCarryTheClientsEnergy) {
   // A 1.1 client's features (timing, no local coupling): answers come as ANSWER_TIMED.
   client.hello(protocol::kVersion,
@@ -259,16 +244,16 @@ TEST_F(SessionTest, TimedObjectsAreDatedFromTheEchoedAnswerAndCarryTheClientsEne
   EXPECT_EQ(a.body.hcp_body_u.answer_timed.answer.cycle, 500U);
   // 4 ms later the state computed from it arrives; the client held the answer 1 ms.
   client.now += 4 * kMs;
-  client.feed(client.bytes(timed_object(client, 500, 1 * kMs, 0xFFFFFF00U)));
+  client.feed(client.bytes(client.timed_object(500, 1 * kMs, 0xFFFFFF00U)));
   shm::VprPayload v = controller.vpr_now();
   EXPECT_EQ(v.echo_cycle, 500U);
   EXPECT_EQ(v.sample_time_ns, client.now - 3 * kMs / 2) << "half of the 3 ms network round trip";
   EXPECT_EQ(v.object_pose[0], 0.3F);
   EXPECT_NEAR(v.object_pose[6], 1.0, 1e-6);
   EXPECT_EQ(v.client_energy_in, 0.0) << "the first report is the reference";
-  client.feed(client.bytes(timed_object(client, 500, 1 * kMs, 0x00000100U)));  // wraps: +512 uJ
+  client.feed(client.bytes(client.timed_object(500, 1 * kMs, 0x00000100U)));  // wraps: +512 uJ
   EXPECT_NEAR(controller.vpr_now().client_energy_in, 512e-6, 1e-12);
-  client.feed(client.bytes(timed_object(client, 500, 1 * kMs, 0x80000000U)));  // +2147 J: no
+  client.feed(client.bytes(client.timed_object(500, 1 * kMs, 0x80000000U)));  // +2147 J: no
   EXPECT_NEAR(controller.vpr_now().client_energy_in, 512e-6, 1e-12) << "not physical: ignored";
 }
 
@@ -408,7 +393,7 @@ TEST_F(SessionTest, LocalCouplingWithoutTimingIsNotGranted) {
 
 TEST_F(SessionTest, TimedObjectsFromASessionWithoutTimingAreDropped) {
   client.hello(protocol::kVersion, HCP_FEATURE_LINK_STATS);
-  client.feed(client.bytes(timed_object(client, 1, 0, 0)));
+  client.feed(client.bytes(client.timed_object(1, 0, 0)));
   EXPECT_EQ(session.counters().dropped_for(LinkDrop::kToken), 1U);
   EXPECT_EQ(session.counters().control_accepted.load(), 0U);
 }

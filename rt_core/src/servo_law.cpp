@@ -375,31 +375,7 @@ void ServoLaw::compute(const ServoInputs& in, bool /*degraded*/, ServoOutputs& o
   const ClientFrame frame = client_frame_of(in.client);
   express_for_client(frame, twist, out);
   follow_session(in);
-  out.object_wrench.setZero();
-  out.rendered_wrench.setZero();
-  out.coupled = false;
-  out.client_stale = in.client_valid && in.client.session_id != 0 &&
-                     in.client_silence > config_.stale_after;  // link state, powered or not
-  out.fade = 1.0;
-  out.commands.enable = in.logical.powered && in.measures.supply_on;
-  out.engage = 0.0;
-  out.braking = false;
-  out.velocity_fault = false;
-  out.saturated = false;
-  out.joint_bounds = joint_bounds(q);
-  out.gains = CouplingGains{};
-  out.contact_normal.setZero();
-  out.normal_stiffness = 0.0;
-  out.normal_damping = 0.0;
-  out.contacts = 0;
-  out.surface_point.setZero();
-  out.surface_normal.setZero();
-  out.surface_depth = 0.0;
-  out.surface_force = 0.0;
-  out.surface_hidden = 0.0;
-  out.contact_age = -1;
-  out.surface_withheld = memory_.surface_withheld;
-  set_limits(in.client, out);
+  start_outputs(in, q, out);
   track_loop_delay(in);
   out.loop_delay = memory_.design_delay;
   if (!out.commands.enable || dt <= 0.0) {
@@ -461,24 +437,8 @@ void ServoLaw::compute(const ServoInputs& in, bool /*degraded*/, ServoOutputs& o
   target.head<3>() += held_contact_force(in, engage);
   out.channel_energy_in = memory_.channel_in;
   out.channel_energy_out = memory_.channel_out;
+  brake_or_hold(in, out, twist, damper_share, target);
   const ArmLimits& lim = dynamics_->model().limits;
-  if (out.braking) {
-    // Speed safety: a damped brake on the handle while the coupling is disengaged; the object
-    // still feels its spring to the (braked) handle, so it stays with it, and the handle gets
-    // the coupling back through the engagement ramp.
-    target.head<3>() -= lim.max_damping_linear * twist.head<3>();
-    ++counters_.speed_limited;
-  } else if (in.client_valid && in.client.session_id != 0) {
-    // A session whose coupling is (partly) disengaged (link lost, ramping back) holds the handle
-    // in a viscous field instead of letting it drift: released from the wall that carried a
-    // weighted object, the handle coasted 3-5 cm during a 300 ms blackout and fell back at
-    // 0.44 m/s when the coupling returned (H1).
-    const double hold = 1.0 - damper_share;
-    target.head<3>() -= hold * lim.max_damping_linear * twist.head<3>();
-    target.tail<3>() -= hold * lim.max_damping_angular * twist.tail<3>();
-    // As the hold lets go, the returning stretch keeps the whole damping along it.
-    target += damper_share * restretch_damping(twist);
-  }
   // The one-port guard at the handle for what the two-port does not cover (a VIRTMECH object's
   // port to the hand, an IMPEDANCE client that reports no energy). Its damping goes through the
   // rate limit like every other term: after it, it stepped the force by up to 20 N.s/m x |v| in
@@ -521,8 +481,65 @@ void ServoLaw::compute(const ServoInputs& in, bool /*degraded*/, ServoOutputs& o
   // In joint space the joints' ranges bound the arm, not the handle's workspace box: its wall
   // held a joint the client drove toward its limit away from it.
   const Vector6d box = joint_mode ? Vector6d::Zero() : workspace_wall(twist.head<3>());
-  Vector6d tau = dynamics_->gravity_torque(chain_) - config_.joint_damping * qd + joint_walls(q) +
-                 jac.transpose() * (box + wrench) + joint_command;
+  command_torques(in, jac.transpose() * (box + wrench), joint_command, out);
+}
+
+void ServoLaw::start_outputs(const ServoInputs& in, const Vector6d& q,
+                             ServoOutputs& out) const noexcept {
+  out.object_wrench.setZero();
+  out.rendered_wrench.setZero();
+  out.coupled = false;
+  out.client_stale = in.client_valid && in.client.session_id != 0 &&
+                     in.client_silence > config_.stale_after;  // link state, powered or not
+  out.fade = 1.0;
+  out.commands.enable = in.logical.powered && in.measures.supply_on;
+  out.engage = 0.0;
+  out.braking = false;
+  out.velocity_fault = false;
+  out.saturated = false;
+  out.joint_bounds = joint_bounds(q);
+  out.gains = CouplingGains{};
+  out.contact_normal.setZero();
+  out.normal_stiffness = 0.0;
+  out.normal_damping = 0.0;
+  out.contacts = 0;
+  out.surface_point.setZero();
+  out.surface_normal.setZero();
+  out.surface_depth = 0.0;
+  out.surface_force = 0.0;
+  out.surface_hidden = 0.0;
+  out.contact_age = -1;
+  out.surface_withheld = memory_.surface_withheld;
+  set_limits(in.client, out);
+}
+
+void ServoLaw::brake_or_hold(const ServoInputs& in, const ServoOutputs& out, const Vector6d& twist,
+                             double damper_share, Vector6d& target) noexcept {
+  const ArmLimits& lim = dynamics_->model().limits;
+  if (out.braking) {
+    // Speed safety: a damped brake on the handle while the coupling is disengaged; the object
+    // still feels its spring to the (braked) handle, so it stays with it, and the handle gets
+    // the coupling back through the engagement ramp.
+    target.head<3>() -= lim.max_damping_linear * twist.head<3>();
+    ++counters_.speed_limited;
+  } else if (in.client_valid && in.client.session_id != 0) {
+    // A session whose coupling is (partly) disengaged (link lost, ramping back) holds the handle
+    // in a viscous field instead of letting it drift: released from the wall that carried a
+    // weighted object, the handle coasted 3-5 cm during a 300 ms blackout and fell back at
+    // 0.44 m/s when the coupling returned (H1).
+    const double hold = 1.0 - damper_share;
+    target.head<3>() -= hold * lim.max_damping_linear * twist.head<3>();
+    target.tail<3>() -= hold * lim.max_damping_angular * twist.tail<3>();
+    // As the hold lets go, the returning stretch keeps the whole damping along it.
+    target += damper_share * restretch_damping(twist);
+  }
+}
+
+void ServoLaw::command_torques(const ServoInputs& in, const Vector6d& handle_torque,
+                               const Vector6d& joint_command, ServoOutputs& out) noexcept {
+  const Vector6d& q = in.measures.position;
+  Vector6d tau = dynamics_->gravity_torque(chain_) - config_.joint_damping * in.measures.velocity +
+                 joint_walls(q) + handle_torque + joint_command;
   for (int i = 0; i < kJoints; ++i) {
     const double limit = dynamics_->model().joints[static_cast<std::size_t>(i)].torque_peak;
     tau(i) = std::clamp(tau(i), -limit, limit);

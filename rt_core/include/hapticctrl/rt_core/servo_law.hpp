@@ -343,6 +343,18 @@ class ServoLaw {
     double penetration = 0.0;  ///< the object's into its surface now (m, base)
     std::uint32_t fresh = 0;
   };
+  /// Every output of the cycle set to its value before the coupling is rendered (none of it).
+  HAPTICCTRL_RT void start_outputs(const ServoInputs& in, const Vector6d& q,
+                                   ServoOutputs& out) const noexcept;
+  /// Adds to `target` the speed brake, or the viscous hold of a session whose coupling is not
+  /// wholly engaged.
+  HAPTICCTRL_RT void brake_or_hold(const ServoInputs& in, const ServoOutputs& out,
+                                   const Vector6d& twist, double damper_share,
+                                   Vector6d& target) noexcept;
+  /// The joint torques: gravity, joint damping and walls, the handle's wrench (as joint torques)
+  /// and the joint command, each joint clamped to its peak; none if not finite.
+  HAPTICCTRL_RT void command_torques(const ServoInputs& in, const Vector6d& handle_torque,
+                                     const Vector6d& joint_command, ServoOutputs& out) noexcept;
   HAPTICCTRL_RT Coupling client_wrench(const ServoInputs& in, const ClientFrame& frame,
                                        const ChainState& chain, const Vector6d& twist,
                                        ServoOutputs& out) noexcept;

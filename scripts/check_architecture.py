@@ -17,7 +17,8 @@ ALLOWED = {
     "program": set(),  # scaffolding (options, main skeleton): every process may use it
     "shm": set(),
     "protocol": set(),
-    "lcmtypes": set(),
+    # the regions it carries one for one, mapped through shm's field tables (lcmtypes/regions.hpp)
+    "lcmtypes": {"shm"},
     "arm_model": set(),
     "ros2types": set(),
     "rt_core": {"shm", "arm_model", "program"},

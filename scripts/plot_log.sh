@@ -35,8 +35,8 @@ for arm in "$OUT"/hapticctrl.*.arm_state.csv; do
   prefix=${arm%.arm_state.csv}
   inst=$(basename "$prefix")
   t=$(col "$arm" utime)
-  x=$(col "$arm" handle_x); y=$(col "$arm" handle_y); z=$(col "$arm" handle_z)
-  cf=$(col "$arm" rendered_x); of=$(col "$arm" operator_x)
+  x=$(col "$arm" handle_pose_x); y=$(col "$arm" handle_pose_y); z=$(col "$arm" handle_pose_z)
+  cf=$(col "$arm" rendered_wrench_x); of=$(col "$arm" operator_wrench_x)
   t0=$(sed -n 2p "$arm" | cut -d, -f"$t")
   gnuplot <<GP
 set datafile separator ','
@@ -75,10 +75,10 @@ GP
 done
 for stats in "$OUT"/hapticctrl.*.cycle_stats.csv; do
   inst=$(basename "${stats%.cycle_stats.csv}")
-  first=$(col "$stats" wake_0_2us)
+  first=$(col "$stats" wake_histogram_0_2us)
   # The histogram is cumulative since the core started: the last row holds the whole run.
   tail -1 "$stats" | cut -d, -f"$first"- | tr ',' '\n' >"$OUT/$inst.histogram.dat"
-  labels=$(head -1 "$stats" | cut -d, -f"$first"- | tr ',' '\n' | sed 's/^wake_//' | paste -sd' ')
+  labels=$(head -1 "$stats" | cut -d, -f"$first"- | tr ',' '\n' | sed 's/^wake_histogram_//' | paste -sd' ')
   gnuplot <<GP
 set terminal pngcairo size 900,500 noenhanced
 set output '$OUT/$inst.latency_histogram.png'

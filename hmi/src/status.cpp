@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "hapticctrl/shm/names.hpp"
+#include "hapticctrl/shm/payload_text.hpp"
 
 namespace hapticctrl::hmi {
 namespace {
@@ -40,6 +41,23 @@ std::string ipv4_text(std::uint32_t host_order) {
   char text[INET_ADDRSTRLEN] = {};  // NOLINT(*-avoid-c-arrays)
   inet_ntop(AF_INET, &a, text, sizeof text);
   return text;
+}
+
+/// `,"regions":{...}`: every field of each region read, as its table describes it (a region that
+/// could not be read is null).
+std::string regions_json(const ControllerStatus& s) {
+  std::string out = ",\"regions\":{";
+  const auto add = [&out](const char* name, bool ok, const auto& payload) {
+    out += out.back() == '{' ? "\"" : ",\"";
+    out += name;
+    out += "\":" + (ok ? shm::fields_json(payload) : std::string("null"));
+  };
+  add("position", s.position_ok, s.position);
+  add("vp", s.vp_ok, s.vp);
+  add("vpr", s.vpr_ok, s.vpr);
+  add("telemetry", s.telemetry_ok, s.telemetry);
+  add("link_stats", s.link_ok, s.link);
+  return out + "}";
 }
 
 }  // namespace
@@ -148,7 +166,7 @@ std::string status_json(const ControllerStatus& s) {
     dropped += d;
   }
   out << ",\"frames_dropped\":" << dropped << ",\"watchdog_expiries\":" << s.link.watchdog_expiries
-      << "}}";
+      << "}" << regions_json(s) << "}";
   return out.str();
 }
 

@@ -1,12 +1,15 @@
 // Tests of dds_bridge/messages.hpp: the controller's regions as ROS 2 messages, filled in place.
 #include "hapticctrl/dds_bridge/messages.hpp"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <string>
+#include <vector>
 
 #include "hapticctrl/shm/names.hpp"
 #include "support/allocation_counter.hpp"
+#include "support/payload_leaves.hpp"
 
 namespace hapticctrl::dds_bridge {
 namespace {
@@ -98,6 +101,60 @@ TEST(DdsMessages, DiagnosticsSayTheStateAndTheCycleStatistics) {
   EXPECT_EQ(value_of(m, "wake_latency_p99_us"), "61.5");
   EXPECT_EQ(value_of(m, "misses_total"), "3");
   EXPECT_STREQ(m.array.header_.frame_id_, "hapticctrl/arm1/base");
+}
+
+/// The position fields the ROS 2 topics do not carry, and why: the rest must reach them.
+TEST(DdsMessages, TheArmTopicsCarryEveryPositionFieldButTheseListed) {
+  const auto seen = [](const shm::PositionPayload& p) {
+    ArmMessages m("f");
+    m.fill(p, 0);
+    const auto& pose = m.pose.pose_;
+    std::vector<double> v{pose.position_.x_,    pose.position_.y_,    pose.position_.z_,
+                          pose.orientation_.x_, pose.orientation_.y_, pose.orientation_.z_,
+                          pose.orientation_.w_};
+    for (const auto* w : {&m.rendered_wrench.wrench_, &m.operator_wrench.wrench_}) {
+      v.insert(v.end(), {w->force_.x_, w->force_.y_, w->force_.z_, w->torque_.x_, w->torque_.y_,
+                         w->torque_.z_});
+    }
+    for (const auto* q : {&m.joints.position_, &m.joints.velocity_, &m.joints.effort_}) {
+      v.insert(v.end(), q->_buffer, q->_buffer + q->_length);
+    }
+    return v;
+  };
+  EXPECT_THAT(test::uncarried<shm::PositionPayload>(seen),
+              testing::UnorderedElementsAreArray(std::vector<std::string>{
+                  // the cycle and the state: on /diagnostics, from telemetry
+                  "cycle", "state_word", "core_state",
+                  // no standard message pairs a twist with this pose stream (docs/ros2.md)
+                  "handle_twist_x", "handle_twist_y", "handle_twist_z", "handle_twist_rx",
+                  "handle_twist_ry", "handle_twist_rz"}));
+}
+
+/// /diagnostics carries these telemetry fields (its 14 values, level and message); the rest
+/// (histogram, full latency summaries, counters of the bridges' inputs) is on LCM.
+TEST(DdsMessages, DiagnosticsCarryTheseTelemetryFields) {
+  const auto seen = [](const shm::TelemetryPayload& t) {
+    DiagnosticsMessage m("n", "h", "f");
+    m.fill(t, true, 0);
+    const auto& s = m.array.status_._buffer[0];
+    std::vector<std::string> v{std::to_string(s.level_), s.message_};
+    for (std::uint32_t i = 0; i < s.values_._length; ++i) {
+      v.emplace_back(s.values_._buffer[i].value_);
+    }
+    return v;
+  };
+  const auto uncarried = test::uncarried<shm::TelemetryPayload>(seen);
+  std::vector<std::string> carried;
+  for (const std::string& column : test::leaf_columns<shm::TelemetryPayload>()) {
+    if (std::find(uncarried.begin(), uncarried.end(), column) == uncarried.end()) {
+      carried.push_back(column);
+    }
+  }
+  EXPECT_THAT(carried, testing::UnorderedElementsAreArray(std::vector<std::string>{
+                           "cycle", "period_ns", "rt_mode", "core_state", "stop_reason",
+                           "consecutive_misses", "misses_total", "degraded_cycles",
+                           "window_miss_ppm", "wake_latency_p99_ns", "servo_start_delay_p99_ns",
+                           "servo_execution_p99_ns", "vpr_stale", "force_rejected"}));
 }
 
 TEST(DdsMessages, DiagnosticLevelsFollowTheController) {

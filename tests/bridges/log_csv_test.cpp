@@ -48,19 +48,21 @@ TEST(LogCsv, EveryChannelGetsItsCsvWithTheExpectedColumns) {
 
   const auto arm = lines_of(dir.path / "hapticctrl.lab.arm_state.csv");
   ASSERT_EQ(arm.size(), 6U);
-  EXPECT_EQ(arm[0].rfind("utime,cycle,state_word,core_state,q1,", 0), 0U) << arm[0];
-  EXPECT_NE(arm[0].find(",handle_x,handle_y,handle_z,handle_qx,"), std::string::npos);
-  EXPECT_NE(arm[0].find(",operator_x,"), std::string::npos);
-  EXPECT_NE(arm[0].find(",rendered_rz"), std::string::npos);
+  // The columns are the position region's field table (shm/payload_fields.hpp).
+  EXPECT_EQ(arm[0].rfind("utime,cycle,state_word,core_state,joint_position_1,", 0), 0U) << arm[0];
+  EXPECT_NE(arm[0].find(",handle_pose_x,handle_pose_y,handle_pose_z,handle_pose_qx,"),
+            std::string::npos);
+  EXPECT_NE(arm[0].find(",operator_wrench_x,"), std::string::npos);
+  EXPECT_NE(arm[0].find(",rendered_wrench_rz"), std::string::npos);
   EXPECT_EQ(std::count(arm[0].begin(), arm[0].end(), ','), 4 + 6 * 3 + 7 + 6 * 3 - 1);
   EXPECT_EQ(std::count(arm[3].begin(), arm[3].end(), ','),
             std::count(arm[0].begin(), arm[0].end(), ','));
 
   const auto stats = lines_of(dir.path / "hapticctrl.lab.cycle_stats.csv");
   ASSERT_EQ(stats.size(), 3U);
-  EXPECT_NE(stats[0].find(",wake_p99_ns,"), std::string::npos);
-  EXPECT_NE(stats[0].find(",wake_0_2us,"), std::string::npos);
-  EXPECT_NE(stats[0].find(",wake_10000us_plus"), std::string::npos);
+  EXPECT_NE(stats[0].find(",wake_latency_p99_ns,"), std::string::npos);
+  EXPECT_NE(stats[0].find(",wake_histogram_0_2us,"), std::string::npos);
+  EXPECT_NE(stats[0].find(",wake_histogram_10000us_plus"), std::string::npos);
 
   const auto events = lines_of(dir.path / "hapticctrl.lab.events.csv");
   ASSERT_EQ(events.size(), 3U);

@@ -2,30 +2,17 @@
 // channel names.
 #include "hapticctrl/lcm_bridge/messages.hpp"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "support/payload_leaves.hpp"
 
 namespace hapticctrl::lcm_bridge {
 namespace {
-
-TEST(Messages, ArmStateCopiesEveryField) {
-  shm::PositionPayload p;
-  p.cycle = 7;
-  p.state_word = shm::state_bits::kPowered;
-  p.joint_position[2] = 0.5;
-  p.joint_torque[5] = -1.0;
-  p.handle_pose = {0.1, 0.2, 0.3, 0, 0, 0, 1};
-  p.operator_wrench[1] = 3.0;
-  p.rendered_wrench[0] = -2.0;
-  const auto m = to_arm_state(p, 99);
-  EXPECT_EQ(m.utime, 99);
-  EXPECT_EQ(m.cycle, 7);
-  EXPECT_EQ(m.state_word, 1);
-  EXPECT_EQ(m.joint_position[2], 0.5);
-  EXPECT_EQ(m.joint_torque[5], -1.0);
-  EXPECT_EQ(m.handle_pose[1], 0.2);
-  EXPECT_EQ(m.operator_wrench[1], 3.0);
-  EXPECT_EQ(m.rendered_wrench[0], -2.0);
-}
 
 TEST(Messages, CouplingCarriesLinkQuality) {
   shm::VpPayload vp;
@@ -91,31 +78,53 @@ TEST(Messages, CouplingCarriesTheSurfaceRenderedOnTheHandle) {
   EXPECT_EQ(m.contact_age_ms, -1.0) << "no contact in force";
 }
 
-TEST(Messages, CycleStatsCarryLatenciesAndTheHistogram) {
-  shm::TelemetryPayload t;
-  t.cycle = 1000;
-  t.misses_total = 4;
-  t.wake_latency.p99_ns = 90'000;
-  t.wake_histogram[5] = 17;
-  const auto m = to_cycle_stats(t, 0);
-  EXPECT_EQ(m.cycle, 1000);
-  EXPECT_EQ(m.misses_total, 4);
-  EXPECT_EQ(m.wake_latency.p99_ns, 90'000);
-  EXPECT_EQ(m.wake_histogram[5], 17);
-  EXPECT_EQ(m.histogram_edges_us[11], 10000);
-}
-
-TEST(Messages, BridgeStatsNameEveryDropReason) {
-  shm::LinkStatsPayload s;
-  s.session_id = 2;
-  s.peer_ipv4 = 0x7F000001;
-  s.peer_port = 40000;
-  s.dropped[static_cast<std::size_t>(shm::LinkDrop::kCrc)] = 5;
-  const auto m = to_bridge_stats(s, 0);
-  EXPECT_EQ(m.peer, "127.0.0.1:40000");
-  ASSERT_EQ(m.drop_reasons, static_cast<std::int32_t>(shm::kLinkDropCount));
-  EXPECT_EQ(m.drop_names[3], "crc");
-  EXPECT_EQ(m.dropped[3], 5);
+/// The VP and VPr fields the coupling message does not carry, and why: the rest must reach it.
+TEST(Messages, CouplingCarriesEveryFieldOfVpAndVprButTheseListed) {
+  const auto encoded = [](const hapticctrl_lcm::coupling_t& m) {
+    std::string bytes(static_cast<std::size_t>(m.getEncodedSize()), '\0');
+    m.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+    return bytes;
+  };
+  const shm::VprPayload vpr;
+  const shm::TelemetryPayload t;
+  const auto vp_uncarried = test::uncarried<shm::VpPayload>(
+      [&](const shm::VpPayload& vp) { return encoded(to_coupling(vp, vpr, t, 0, 0)); });
+  EXPECT_THAT(vp_uncarried,
+              testing::UnorderedElementsAreArray(std::vector<std::string>{
+                  // the core's echo of the client's own figures: the client's statistics
+                  "echo_client_time_ns",
+                  // on arm_state (position) and cycle_stats (telemetry)
+                  "core_state", "stop_reason", "joint_position_1", "joint_position_2",
+                  "joint_position_3", "joint_position_4", "joint_position_5", "joint_position_6",
+                  "joint_velocity_1", "joint_velocity_2", "joint_velocity_3", "joint_velocity_4",
+                  "joint_velocity_5", "joint_velocity_6",
+                  // the client's view of the handle's speed: its pose is enough to plot
+                  "client_handle_twist_x", "client_handle_twist_y", "client_handle_twist_z",
+                  "client_handle_twist_rx", "client_handle_twist_ry", "client_handle_twist_rz",
+                  // the contact coupling's terms: in hapticctrl-hmi status (regions.vp)
+                  "contact_normal_x", "contact_normal_y", "contact_normal_z",
+                  "normal_gains_stiffness", "normal_gains_damping", "limits_force", "limits_torque",
+                  "max_contact_stiffness", "contacts_rejected"}));
+  // What it carries of VPr: the session, the object's state, its energy in, the link and the
+  // sample's age (with a session); the client's parameters and contacts are not telemetry.
+  const shm::VpPayload vp;
+  const auto vpr_uncarried = test::uncarried<shm::VprPayload>([&](shm::VprPayload r) {
+    r.session_id = r.session_id != 0 ? r.session_id : 1;
+    return encoded(to_coupling(vp, r, t, 0, 0));
+  });
+  std::vector<std::string> carried;
+  for (const std::string& column : test::leaf_columns<shm::VprPayload>()) {
+    if (std::find(vpr_uncarried.begin(), vpr_uncarried.end(), column) == vpr_uncarried.end()) {
+      carried.push_back(column);
+    }
+  }
+  EXPECT_THAT(carried,
+              testing::UnorderedElementsAreArray(std::vector<std::string>{
+                  "session_id",     "received_time_ns", "link_delay_ns",   "link_jitter_ns",
+                  "link_loss_ppm",  "client_energy_in", "flags",           "object_pose_x",
+                  "object_pose_y",  "object_pose_z",    "object_pose_qx",  "object_pose_qy",
+                  "object_pose_qz", "object_pose_qw",   "object_twist_x",  "object_twist_y",
+                  "object_twist_z", "object_twist_rx",  "object_twist_ry", "object_twist_rz"}));
 }
 
 TEST(Messages, EventsAreDescribed) {

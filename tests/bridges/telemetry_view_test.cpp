@@ -46,7 +46,7 @@ TEST(TelemetryView, FrameCarriesTheLatestArmStateAndItsAge) {
   const Json f = Json::parse(view.next_frame(1010 * kMs));
   EXPECT_EQ(f["type"], "state");
   EXPECT_EQ(f["arm"]["cycle"], 42);
-  EXPECT_EQ(f["arm"]["q"][1], -0.6);
+  EXPECT_EQ(f["arm"]["joint_position"][1], -0.6);
   EXPECT_EQ(f["arm"]["rendered_wrench"][2], -3.5);
   EXPECT_DOUBLE_EQ(f["age_ms"]["arm"].get<double>(), 10.0);
   EXPECT_TRUE(f["age_ms"]["scene"].is_null());

@@ -66,6 +66,24 @@ TEST(Status, JsonCarriesStateWrenchesHealthAndLink) {
       << "restarted after a fault: waiting for the operator's power-on";
 }
 
+TEST(Status, JsonCarriesEveryRegionThroughItsFieldTable) {
+  ControllerStatus s = connected(42, 40);
+  s.position_ok = true;
+  s.telemetry_ok = true;
+  s.telemetry.wake_histogram[2] = 9;
+  s.vpr.contacts[0].stiffness = 3000;
+  const std::string json = status_json(s);
+  for (const char* part :
+       {",\"regions\":{\"position\":{\"cycle\":", "\"vp\":{\"cycle\":42,",
+        "\"vpr\":{\"session_id\":", "\"wake_histogram\":[0,0,9,",
+        "\"contacts\":[{\"point\":[0,0,0],", "\"peer_ipv4\":\"127.0.0.1\",\"peer_port\":40000",
+        "\"stiffness\":3000,"}) {
+    EXPECT_NE(json.find(part), std::string::npos) << part << " in " << json;
+  }
+  s.telemetry_ok = false;
+  EXPECT_NE(status_json(s).find("\"telemetry\":null"), std::string::npos);
+}
+
 TEST(Status, JsonSaysNullForWhatIsNotANumber) {
   // "-nan" made the document unreadable for every reader (2026-12-03); 0 would hide the fault.
   ControllerStatus s = connected(42, 40);

@@ -10,11 +10,9 @@
 #include <stdexcept>
 #include <vector>
 
-#include "hapticctrl/shm/payloads.hpp"
-#include "hapticctrl_lcm/arm_state_t.hpp"
-#include "hapticctrl_lcm/bridge_stats_t.hpp"
+#include "hapticctrl/lcmtypes/regions.hpp"
+#include "hapticctrl/shm/payload_text.hpp"
 #include "hapticctrl_lcm/coupling_t.hpp"
-#include "hapticctrl_lcm/cycle_stats_t.hpp"
 #include "hapticctrl_lcm/event_t.hpp"
 #include "hapticctrl_lcm/hmi_command_t.hpp"
 #include "hapticctrl_lcm/hmi_force_t.hpp"
@@ -35,22 +33,12 @@ std::string columns(const std::string& prefix, std::initializer_list<const char*
 }
 const std::initializer_list<const char*> kPose = {"x", "y", "z", "qx", "qy", "qz", "qw"};
 const std::initializer_list<const char*> kVec6 = {"x", "y", "z", "rx", "ry", "rz"};
-const std::initializer_list<const char*> kJoints = {"1", "2", "3", "4", "5", "6"};
 
 template <typename T, std::size_t N>
 void put(Row& r, const T (&values)[N]) {  // NOLINT(*-avoid-c-arrays): lcm-gen's arrays
   for (const T& v : values) {
     r << ',' << v;
   }
-}
-
-std::string latency_columns(const std::string& p) {
-  return columns(p, {"_min_ns", "_avg_ns", "_max_ns", "_p50_ns", "_p99_ns", "_p999_ns", "_samples",
-                     "_overflows"});
-}
-void put(Row& r, const hapticctrl_lcm::latency_t& l) {
-  r << ',' << l.min_ns << ',' << l.avg_ns << ',' << l.max_ns << ',' << l.p50_ns << ',' << l.p99_ns
-    << ',' << l.p999_ns << ',' << l.samples << ',' << l.overflows;
 }
 
 /// CSV text field: quoted, quotes doubled.
@@ -76,27 +64,25 @@ bool decode(const void* data, int size, M& m) {
   }
 }
 
+/// A region LCM carries one for one: the message read back into its payload and written through
+/// the payload's field table, after the message's utime.
+template <typename M, typename P>
+Topic region(P (*from)(const M&)) {
+  return {"utime," + shm::csv_header<P>(), [from](const void* d, int n, Row& r) {
+            M m{};
+            if (!decode(d, n, m)) {
+              return false;
+            }
+            r << m.utime << ',' << shm::csv_row(from(m));
+            return true;
+          }};
+}
+
 std::map<std::string, Topic> topics() {
   std::map<std::string, Topic> t;
-  t["arm_state"] = {"utime,cycle,state_word,core_state" + columns("q", kJoints) +
-                        columns("qd", kJoints) + columns("tau", kJoints) +
-                        columns("handle_", kPose) + columns("twist_", kVec6) +
-                        columns("operator_", kVec6) + columns("rendered_", kVec6),
-                    [](const void* d, int n, Row& r) {
-                      hapticctrl_lcm::arm_state_t m{};
-                      if (!decode(d, n, m)) {
-                        return false;
-                      }
-                      r << m.utime << ',' << m.cycle << ',' << m.state_word << ',' << m.core_state;
-                      put(r, m.joint_position);
-                      put(r, m.joint_velocity);
-                      put(r, m.joint_torque);
-                      put(r, m.handle_pose);
-                      put(r, m.handle_twist);
-                      put(r, m.operator_wrench);
-                      put(r, m.rendered_wrench);
-                      return true;
-                    }};
+  t["arm_state"] = region<hapticctrl_lcm::arm_state_t>(lcmtypes::from_arm_state);
+  t["cycle_stats"] = region<hapticctrl_lcm::cycle_stats_t>(lcmtypes::from_cycle_stats);
+  t["bridge_stats"] = region<hapticctrl_lcm::bridge_stats_t>(lcmtypes::from_bridge_stats);
   t["coupling"] = {
       "utime,cycle,session_id,command_type,object_attached" + columns("object_", kPose) +
           columns("object_twist_", kVec6) + columns("object_wrench_", kVec6) +
@@ -126,61 +112,6 @@ std::map<std::string, Topic> topics() {
         put(r, m.surface_normal);
         r << ',' << m.surface_depth_mm << ',' << m.surface_force << ',' << m.surface_hidden_mm
           << ',' << m.surface_withheld << ',' << m.contact_age_ms;
-        return true;
-      }};
-  std::string histogram;
-  std::int64_t lower = 0;
-  for (const std::int64_t edge : shm::kLatencyBucketEdgesUs) {
-    histogram += ",wake_" + std::to_string(lower) + "_" + std::to_string(edge) + "us";
-    lower = edge;
-  }
-  histogram += ",wake_" + std::to_string(lower) + "us_plus";
-  t["cycle_stats"] = {
-      "utime,cycle,period_ns,rt_mode,core_state,stop_reason,consecutive_misses,misses_total,"
-      "degraded_cycles,skipped_slots,late_servo_discarded,window_miss_ppm,leaky_bucket_score" +
-          latency_columns("wake") + latency_columns("start_delay") + latency_columns("execution") +
-          latency_columns("period") +
-          ",vpr_torn,vpr_stale,vpr_rejected,force_rejected,ctrl_accepted,ctrl_rejected" + histogram,
-      [](const void* d, int n, Row& r) {
-        hapticctrl_lcm::cycle_stats_t m{};
-        if (!decode(d, n, m)) {
-          return false;
-        }
-        r << m.utime << ',' << m.cycle << ',' << m.period_ns << ',' << m.rt_mode << ','
-          << m.core_state << ',' << m.stop_reason << ',' << m.consecutive_misses << ','
-          << m.misses_total << ',' << m.degraded_cycles << ',' << m.skipped_slots << ','
-          << m.late_servo_discarded << ',' << m.window_miss_ppm << ',' << m.leaky_bucket_score;
-        put(r, m.wake_latency);
-        put(r, m.servo_start_delay);
-        put(r, m.servo_execution);
-        put(r, m.measured_period);
-        r << ',' << m.vpr_torn << ',' << m.vpr_stale << ',' << m.vpr_rejected << ','
-          << m.force_rejected << ',' << m.ctrl_accepted << ',' << m.ctrl_rejected;
-        put(r, m.wake_histogram);
-        return true;
-      }};
-  std::string drops;
-  for (const char* name : shm::kLinkDropNames) {
-    drops += std::string(",dropped_") + name;
-  }
-  t["bridge_stats"] = {
-      "utime,session_id,peer,watchdog_ms,features,frames_in,frames_out,control_accepted,"
-      "params_applied,param_duplicates,params_rejected,sessions_opened,sessions_closed,"
-      "watchdog_expiries,refused_busy,refused_version,send_failures" +
-          drops,
-      [](const void* d, int n, Row& r) {
-        hapticctrl_lcm::bridge_stats_t m{};
-        if (!decode(d, n, m)) {
-          return false;
-        }
-        r << m.utime << ',' << m.session_id << ',' << quoted(m.peer) << ',' << m.watchdog_ms << ','
-          << m.features << ',' << m.frames_in << ',' << m.frames_out << ',' << m.control_accepted
-          << ',' << m.params_applied << ',' << m.param_duplicates << ',' << m.params_rejected << ','
-          << m.sessions_opened << ',' << m.sessions_closed << ',' << m.watchdog_expiries << ','
-          << m.refused_busy << ',' << m.refused_version << ',' << m.send_failures;
-        for (std::size_t i = 0; i < shm::kLinkDropCount; ++i) {
-          r << ',' << (i < m.dropped.size() ? m.dropped[i] : 0);
-        }
         return true;
       }};
   t["events"] = {"utime,index,cycle,time_ns,kind,code,value,text,lost_before",

@@ -20,6 +20,7 @@
 #include "hapticctrl/lcm_bridge/hmi_input.hpp"
 #include "hapticctrl/lcm_bridge/lcm_bridge_config.hpp"
 #include "hapticctrl/lcm_bridge/messages.hpp"
+#include "hapticctrl/lcmtypes/regions.hpp"
 #include "hapticctrl/program/main_skeleton.hpp"
 #include "hapticctrl/shm/core_watch.hpp"
 #include "hapticctrl/shm/segment.hpp"
@@ -32,6 +33,7 @@ using hapticctrl::lcm_bridge::HmiInput;
 using hapticctrl::lcm_bridge::LcmBridgeConfig;
 namespace shm = hapticctrl::shm;
 namespace lb = hapticctrl::lcm_bridge;
+namespace lcmtypes = hapticctrl::lcmtypes;
 
 std::atomic<bool> g_stop{false};
 void on_signal(int /*sig*/) {
@@ -105,7 +107,7 @@ void publish_loop(const shm::Segment& seg, lcm::LCM& lcm, const Channels& ch,
       if (seg.region<shm::RegionId::kPosition>().read(position).ok() && vp_cell.read(vp).ok() &&
           seg.region<shm::RegionId::kVpr>().read(vpr).status != shm::ReadStatus::kTorn) {
         next_arm = arm_every_ns == 0 ? 0 : std::max(next_arm + arm_every_ns, now - arm_every_ns);
-        auto arm = lb::to_arm_state(position, utime_of(now));
+        auto arm = lcmtypes::to_arm_state(position, utime_of(now));
         lcm.publish(ch.arm_state, &arm);
         auto coupling = lb::to_coupling(vp, vpr, telemetry, now, utime_of(now));
         lcm.publish(ch.coupling, &coupling);
@@ -114,12 +116,12 @@ void publish_loop(const shm::Segment& seg, lcm::LCM& lcm, const Channels& ch,
     }
     if (stats_due && telemetry_ok) {
       next_stats = now + stats_every_ns;
-      auto stats = lb::to_cycle_stats(telemetry, utime_of(now));
+      auto stats = lcmtypes::to_cycle_stats(telemetry, utime_of(now));
       lcm.publish(ch.cycle_stats, &stats);
       counters.cycle_stats.fetch_add(1, std::memory_order_relaxed);
       shm::LinkStatsPayload link;
       if (seg.region<shm::RegionId::kLinkStats>().read(link).ok()) {
-        auto bridge = lb::to_bridge_stats(link, utime_of(now));
+        auto bridge = lcmtypes::to_bridge_stats(link, utime_of(now));
         lcm.publish(ch.bridge_stats, &bridge);
       }
     }

@@ -5,7 +5,9 @@
 #include <cstring>
 #include <nlohmann/json.hpp>
 
+#include "hapticctrl/lcmtypes/regions.hpp"
 #include "hapticctrl/shm/names.hpp"
+#include "hapticctrl/shm/payload_text.hpp"
 
 namespace hapticctrl::web_bridge {
 namespace {
@@ -20,23 +22,15 @@ Json array_of(const T (&values)[N]) {
   return Json(std::vector<double>(values, values + N));
 }
 
-Json latency_us(const hapticctrl_lcm::latency_t& l) {
-  return {{"p50", static_cast<double>(l.p50_ns) / 1e3},
-          {"p99", static_cast<double>(l.p99_ns) / 1e3},
-          {"max", static_cast<double>(l.max_ns) / 1e3}};
+/// A region LCM carries one for one, read back into its payload and written through the
+/// payload's field table (shm/payload_text.hpp): the page reads the fields by their names there.
+template <typename M, typename P>
+Json region_json(const M& m, P (*from)(const M&)) {
+  return Json::parse(shm::fields_json(from(m)));
 }
 
 Json arm_json(const hapticctrl_lcm::arm_state_t& m) {
-  return {{"cycle", m.cycle},
-          {"state_word", m.state_word},
-          {"core_state", m.core_state},
-          {"q", array_of(m.joint_position)},
-          {"qd", array_of(m.joint_velocity)},
-          {"tau", array_of(m.joint_torque)},
-          {"handle_pose", array_of(m.handle_pose)},
-          {"handle_twist", array_of(m.handle_twist)},
-          {"operator_wrench", array_of(m.operator_wrench)},
-          {"rendered_wrench", array_of(m.rendered_wrench)}};
+  return region_json(m, lcmtypes::from_arm_state);
 }
 
 Json coupling_json(const hapticctrl_lcm::coupling_t& m) {
@@ -57,30 +51,15 @@ Json coupling_json(const hapticctrl_lcm::coupling_t& m) {
 }
 
 Json stats_json(const hapticctrl_lcm::cycle_stats_t& m, const StatsInterval& interval) {
-  const auto core_state = static_cast<std::uint64_t>(m.core_state);
-  const auto stop_reason = static_cast<std::uint64_t>(m.stop_reason);
-  return {{"cycle", m.cycle},
-          {"period_ns", m.period_ns},
-          {"rt_mode", shm::rt_mode_name(static_cast<std::uint64_t>(m.rt_mode))},
-          {"core_state", m.core_state},
-          {"core_state_name", shm::core_state_name(core_state)},
-          {"stop_reason", m.stop_reason},
-          {"stop_reason_name", shm::stop_reason_name(stop_reason)},
-          {"consecutive_misses", m.consecutive_misses},
-          {"misses_total", m.misses_total},
-          {"degraded_cycles", m.degraded_cycles},
-          {"skipped_slots", m.skipped_slots},
-          {"vpr_stale", m.vpr_stale},
-          {"vpr_rejected", m.vpr_rejected},
-          {"force_rejected", m.force_rejected},
-          {"wake_us", latency_us(m.wake_latency)},
-          {"servo_start_us", latency_us(m.servo_start_delay)},
-          {"servo_execution_us", latency_us(m.servo_execution)},
-          {"interval",
-           {{"cycles", interval.cycles},
-            {"misses", interval.misses},
-            {"skipped_slots", interval.skipped_slots},
-            {"wake_max_us_at_most", interval.wake_max_us_at_most}}}};
+  Json stats = region_json(m, lcmtypes::from_cycle_stats);
+  stats["rt_mode_name"] = shm::rt_mode_name(static_cast<std::uint64_t>(m.rt_mode));
+  stats["core_state_name"] = shm::core_state_name(static_cast<std::uint64_t>(m.core_state));
+  stats["stop_reason_name"] = shm::stop_reason_name(static_cast<std::uint64_t>(m.stop_reason));
+  stats["interval"] = {{"cycles", interval.cycles},
+                       {"misses", interval.misses},
+                       {"skipped_slots", interval.skipped_slots},
+                       {"wake_max_us_at_most", interval.wake_max_us_at_most}};
+  return stats;
 }
 
 Json scene_json(const hapticctrl_lcm::scene_t& m) {

@@ -188,7 +188,7 @@ function showState(frame) {
     setBadge($('core-state'), `core: ${stats.core_state_name}`, stats.core_state === 1 ? 'good' : 'bad');
   }
   if (stats) {
-    $('rt').textContent = `${(stats.period_ns / 1e6).toFixed(3)} ms cycle · ${stats.rt_mode} · ${stats.misses_total} misses`;
+    $('rt').textContent = `${(stats.period_ns / 1e6).toFixed(3)} ms cycle · ${stats.rt_mode_name} · ${stats.misses_total} misses`;
   }
   // A lost or silent controller's last state is not its state now: the badges say so instead of
   // a green "powered" / "client: coupled" from before (J8).
@@ -215,7 +215,7 @@ function showState(frame) {
     $('operator-force').textContent = vec3(arm.operator_wrench, 2, ' N');
     $('rendered-force').textContent = vec3(arm.rendered_wrench, 2, ' N');
     if (status.model) {
-      status.modelMismatchM = handleMismatch(status.model, arm.q, arm.handle_pose);
+      status.modelMismatchM = handleMismatch(status.model, arm.joint_position, arm.handle_pose);
       const warning = $('model-warning');
       if (status.webgl) {
         const off = status.modelMismatchM > MODEL_TOLERANCE_M;

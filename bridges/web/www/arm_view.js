@@ -178,7 +178,7 @@ export class ArmView {
     this.dirty = true;
     const arm = frame.arm;
     if (this.model && arm) {
-      const chain = forwardKinematics(this.model, arm.q);
+      const chain = forwardKinematics(this.model, arm.joint_position);
       const points = [[0, 0, 0], ...chain.joints, chain.handle].map(vec);
       this.links.forEach((link, i) => placeBetween(link, points[i], points[i + 1]));
       this.joints.forEach((joint, i) => joint.position.copy(points[i + 1]));

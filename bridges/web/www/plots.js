@@ -74,7 +74,7 @@ export class Plots {
     const { stats, arm, scene } = frame;
     if (stats) {
       const worst = stats.interval.wake_max_us_at_most;
-      this.latency.add(t, [worst < 0 ? OPEN_BUCKET_US : worst || null, stats.wake_us.p99, stats.interval.misses]);
+      this.latency.add(t, [worst < 0 ? OPEN_BUCKET_US : worst || null, stats.wake_latency.p99_ns / 1e3, stats.interval.misses]);
     }
     if (arm) {
       const f = arm.rendered_wrench;

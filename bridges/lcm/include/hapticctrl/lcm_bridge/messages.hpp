@@ -1,33 +1,26 @@
 #pragma once
 /// @file messages.hpp
-/// Shared-memory payloads to LCM messages (lcmtypes/), and the instance's channel names.
-/// Pure conversions: no I/O. Not for a hard-RT cycle (event texts are std::string).
+/// The shared-memory payloads that LCM carries combined or described (coupling from VP, VPr and
+/// telemetry; events), and the instance's channel names. The regions carried one for one
+/// (position, telemetry, link_stats) are mapped in lcmtypes/regions.hpp. Pure conversions: no I/O.
+/// Not for a hard-RT cycle (event texts are std::string).
 #include <string>
 
 #include "hapticctrl/lcmtypes/channels.hpp"
 #include "hapticctrl/shm/events.hpp"
 #include "hapticctrl/shm/payloads.hpp"
-#include "hapticctrl_lcm/arm_state_t.hpp"
-#include "hapticctrl_lcm/bridge_stats_t.hpp"
 #include "hapticctrl_lcm/coupling_t.hpp"
-#include "hapticctrl_lcm/cycle_stats_t.hpp"
 #include "hapticctrl_lcm/event_t.hpp"
 
 namespace hapticctrl::lcm_bridge {
 
 using lcmtypes::Channels;
 
-[[nodiscard]] hapticctrl_lcm::arm_state_t to_arm_state(const shm::PositionPayload& p,
-                                                       std::int64_t utime);
 /// `now_ns` dates the client sample's age (VPr.received_time_ns is the bridge's receive time).
 [[nodiscard]] hapticctrl_lcm::coupling_t to_coupling(const shm::VpPayload& vp,
                                                      const shm::VprPayload& vpr,
                                                      const shm::TelemetryPayload& t,
                                                      std::int64_t now_ns, std::int64_t utime);
-[[nodiscard]] hapticctrl_lcm::cycle_stats_t to_cycle_stats(const shm::TelemetryPayload& t,
-                                                           std::int64_t utime);
-[[nodiscard]] hapticctrl_lcm::bridge_stats_t to_bridge_stats(const shm::LinkStatsPayload& s,
-                                                             std::int64_t utime);
 /// An event with its utime: when the core recorded it, in microseconds since the epoch (its
 /// time_ns on this host's CLOCK_MONOTONIC moved onto the wall clock, `monotonic_now_ns` and
 /// `wall_now_us` read together), so that a page or a log says when the controller did it, not

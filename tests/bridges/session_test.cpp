@@ -1,6 +1,7 @@
 // The bridge's session state machine against real in-memory shm cells: handshake, parameters,
 // control frames, the watchdog, and a table of bad inputs that must each be dropped, counted
-// under their own reason, and leave the session unharmed.
+// under their own reason, and leave the session unharmed. Its parts alone: handshake_test.cpp,
+// parameter_channel_test.cpp, control_ingest_test.cpp.
 #include "hapticctrl/udp_bridge/session.hpp"
 
 #include <gtest/gtest.h>
@@ -226,37 +227,6 @@ TEST_F(SessionTest, ByeIsAcknowledgedAndEndsTheSession) {
   EXPECT_EQ(session.counters().sessions_closed.load(), 1U);
 }
 
-TEST_F(SessionTest, TimedObjectsAreDatedFromTheEchoedAnswerAndCarryTheClientsEnergy) {
-  // A 1.1 client's features (timing, no local coupling): answers come as ANSWER_TIMED.
-  client.hello(protocol::kVersion,
-               HCP_FEATURE_JOINT_STATE | HCP_FEATURE_LINK_STATS | HCP_FEATURE_TIMING);
-  FrameBuffer out{};
-  Endpoint to;
-  shm::VpPayload vp;
-  vp.cycle = 500;
-  vp.channel_energy_in = 0.75;
-  const std::size_t n = session.answer(vp, client.now, out, to);  // answer 500 leaves at `now`
-  ASSERT_GT(n, 0U);
-  hcp_frame a;
-  ASSERT_EQ(protocol::decode({out.data(), n}, a), protocol::DecodeStatus::kOk);
-  EXPECT_EQ(a.body.type, HCP_ANSWER_TIMED);
-  EXPECT_EQ(a.body.hcp_body_u.answer_timed.coupling.energy_in, 0.75);
-  EXPECT_EQ(a.body.hcp_body_u.answer_timed.answer.cycle, 500U);
-  // 4 ms later the state computed from it arrives; the client held the answer 1 ms.
-  client.now += 4 * kMs;
-  client.feed(client.bytes(client.timed_object(500, 1 * kMs, 0xFFFFFF00U)));
-  shm::VprPayload v = controller.vpr_now();
-  EXPECT_EQ(v.echo_cycle, 500U);
-  EXPECT_EQ(v.sample_time_ns, client.now - 3 * kMs / 2) << "half of the 3 ms network round trip";
-  EXPECT_EQ(v.object_pose[0], 0.3F);
-  EXPECT_NEAR(v.object_pose[6], 1.0, 1e-6);
-  EXPECT_EQ(v.client_energy_in, 0.0) << "the first report is the reference";
-  client.feed(client.bytes(client.timed_object(500, 1 * kMs, 0x00000100U)));  // wraps: +512 uJ
-  EXPECT_NEAR(controller.vpr_now().client_energy_in, 512e-6, 1e-12);
-  client.feed(client.bytes(client.timed_object(500, 1 * kMs, 0x80000000U)));  // +2147 J: no
-  EXPECT_NEAR(controller.vpr_now().client_energy_in, 512e-6, 1e-12) << "not physical: ignored";
-}
-
 TEST_F(SessionTest, ALocalCouplingSessionGetsAnswersCoupledAndSendsTimedWrenchesAndContacts) {
   client.hello();  // every feature: local coupling (1.3)
   EXPECT_NE(controller.vpr_now().flags & shm::vpr_flags::kLocalCoupling, 0U);
@@ -333,42 +303,6 @@ TEST_F(SessionTest, TimedWrenchesAndContactsFromASessionWithoutLocalCouplingAreD
   client.feed(client.bytes(c));
   EXPECT_EQ(session.counters().dropped_for(LinkDrop::kToken), 2U);
   EXPECT_EQ(controller.vpr_now().flags & shm::vpr_flags::kLocalCoupling, 0U);
-}
-
-TEST_F(SessionTest, JointFramesReachVprAndCountAsTheCommandOfTheirModeOnly) {
-  client.hello();
-  const auto command_type = [&](std::uint32_t type) {
-    hcp_frame f = client.param(HCP_P_COMMAND_TYPE);
-    f.body.hcp_body_u.param.hcp_param_u.command_type = type;
-    client.feed(client.bytes(f));
-    ASSERT_EQ(client.reply.body.hcp_body_u.ack.status, HCP_ACK_OK);
-  };
-  command_type(HCP_COMMAND_ARTICULAR);
-  hcp_frame torque =
-      protocol::make_frame(HCP_CONTROL_JOINT_TORQUE, client.token, ++client.control_seq, 1);
-  torque.body.hcp_body_u.joint_torque.torque[2] = 0.5F;
-  client.feed(client.bytes(torque));
-  shm::VprPayload v = controller.vpr_now();
-  EXPECT_DOUBLE_EQ(v.joint_torque[2], 0.5);
-  EXPECT_EQ(v.flags & shm::vpr_flags::kJointCommand, 0U) << "a torque is not ARTICULAR's command";
-  hcp_frame target =
-      protocol::make_frame(HCP_CONTROL_JOINT_TARGET, client.token, ++client.control_seq, 2);
-  target.body.hcp_body_u.joint_target.position[1] = -0.6F;
-  target.body.hcp_body_u.joint_target.speed[5] = 0.25F;
-  client.feed(client.bytes(target));
-  v = controller.vpr_now();
-  EXPECT_DOUBLE_EQ(v.joint_target[1], -0.6000000238418579);
-  EXPECT_DOUBLE_EQ(v.joint_speed[5], 0.25);
-  EXPECT_NE(v.flags & shm::vpr_flags::kJointCommand, 0U);
-  command_type(HCP_COMMAND_ARTICULAR_IMPEDANCE);  // a new mode: the fields are not its command
-  v = controller.vpr_now();
-  EXPECT_EQ(v.flags & shm::vpr_flags::kJointCommand, 0U);
-  EXPECT_DOUBLE_EQ(v.joint_target[1], 0.0);
-  EXPECT_DOUBLE_EQ(v.joint_torque[2], 0.0);
-  torque.body.hcp_body_u.joint_torque.torque[2] = std::nanf("");
-  torque.header.sequence = ++client.control_seq;
-  client.feed(client.bytes(torque));
-  EXPECT_EQ(dropped(LinkDrop::kRange), 1U) << "a NaN torque";
 }
 
 TEST_F(SessionTest, JointFramesAndModesFromASessionWithoutJointControlAreRefused) {

@@ -95,9 +95,10 @@ void Session::fill_stats(shm::LinkStatsPayload& out) const noexcept {
   for (std::size_t i = 0; i < shm::kLinkDropCount; ++i) {
     out.dropped[i] = get(counters_.dropped[i]);
   }
-  out.link_delay_ns = session_.token != 0 ? link_.delay() : 0;
-  out.link_jitter_ns = session_.token != 0 ? link_.jitter() : 0;
-  out.link_loss_ppm = session_.token != 0 ? link_.loss_ppm() : 0;
+  const LinkFigures link = session_.token != 0 ? ingest_.link() : LinkFigures{};
+  out.link_delay_ns = link.delay_ns;
+  out.link_jitter_ns = link.jitter_ns;
+  out.link_loss_ppm = link.loss_ppm;
 }
 
 }  // namespace hapticctrl::udp_bridge

@@ -3,7 +3,10 @@
 /// The UDP bridge's protocol state machine: one client session at a time, driven by datagrams
 /// and the clock, with no socket of its own (the caller sends the reply it produces). The
 /// receive side (on_datagram, check_watchdog) runs on one thread; the answer side (answer) on
-/// another, reading the session through an in-process seqlock.
+/// another, reading the session through an in-process seqlock. Its parts, each tested alone:
+/// the handshake gate (handshake.hpp), the parameter channel (parameter_channel.hpp) and the
+/// control intake with the link estimator (control_ingest.hpp); the session holds the state they
+/// share (the session, its VPr, the counters) and encodes the replies.
 ///
 /// Real-time contract: every member after construction is noexcept and allocation-free; the
 /// only syscall is getrandom() when a session opens.
@@ -20,8 +23,11 @@
 #include "hapticctrl/shm/payloads.hpp"
 #include "hapticctrl/shm/seqlock.hpp"
 #include "hapticctrl/udp_bridge/client_allow_list.hpp"
+#include "hapticctrl/udp_bridge/control_ingest.hpp"
+#include "hapticctrl/udp_bridge/handshake.hpp"
 #include "hapticctrl/udp_bridge/hello_limiter.hpp"
 #include "hapticctrl/udp_bridge/link_timing.hpp"
+#include "hapticctrl/udp_bridge/parameter_channel.hpp"
 
 namespace hapticctrl::udp_bridge {
 
@@ -32,23 +38,6 @@ struct ControllerPorts {
   std::int64_t period_ns = 0;
   /// The core's heartbeat cycle (the segment header's): WELCOME.cycle. Null: 0 is sent.
   const std::atomic<std::uint64_t>* heartbeat_cycle = nullptr;
-};
-
-/// What the answer thread needs to know about the session.
-struct SessionView {
-  std::uint64_t token = 0;  ///< 0: no session
-  protocol::Endpoint peer{};
-  std::uint32_t features = 0;
-  std::uint32_t pad = 0;
-};
-
-/// The client link as this bridge measures it (LinkEstimator), for the answer thread: on each
-/// answer's coupling report and in the link_stats region.
-struct LinkFigures {
-  std::int64_t delay_ns = 0;
-  std::int64_t jitter_ns = 0;
-  std::uint32_t loss_ppm = 0;
-  std::uint32_t pad = 0;
 };
 
 /// Counters shared by both threads (relaxed atomics), copied into the link_stats region.
@@ -136,37 +125,18 @@ class Session {
   void fill_stats(shm::LinkStatsPayload& out) const noexcept;
 
  private:
-  struct LastAck {
-    std::uint32_t sequence = 0;
-    hcp_ack_status status = HCP_ACK_OK;
-    char reason[HCP_TEXT_BYTES] = {};  // NOLINT(*-avoid-c-arrays): the XDR field's shape
-  };
-
   std::size_t on_hello(const hcp_frame& in, const protocol::Endpoint& from, TimeNs now,
                        std::span<std::uint8_t> reply) noexcept;
   std::size_t on_param(const hcp_frame& in, bool values_ok, TimeNs now,
                        std::span<std::uint8_t> reply) noexcept;
+  /// A valid PARAM of the session with a new sequence: its ACK (applied, rejected or RETRY).
+  ParamAck take_param(const hcp_param& param, std::uint32_t sequence, TimeNs now) noexcept;
   std::size_t on_bye(const hcp_frame& in, TimeNs now, std::span<std::uint8_t> reply) noexcept;
   void on_control(const hcp_frame& in, TimeNs now) noexcept;
-  /// An object state or an IMPEDANCE wrench: a new sample in vpr_, with its sequence and timing.
-  void take_sample(const hcp_frame& in, TimeNs now) noexcept;
-  /// CONTROL_OBJECT_TIMED: the pose, twist and the sample's timing into vpr_.
-  void take_timed_object(const hcp_control_object_timed& o, TimeNs now) noexcept;
-  /// The answer echo and the client's channel energy of a timed frame into vpr_ and the link.
-  void take_timing(std::uint32_t answer_echo, std::uint32_t energy_in_uj, TimeNs now) noexcept;
-  /// CONTROL_CONTACT: one contact slot (and the count in use) into vpr_.
-  void take_contact(const hcp_control_contact& c, TimeNs now) noexcept;
-  /// A joint frame is the command of `frame_mode`: it counts once that mode is in force.
-  void mark_joint_command(shm::CommandType frame_mode) noexcept;
-  /// Whether this session negotiated the feature a control frame type needs.
-  [[nodiscard]] bool negotiated(hcp_frame_type type) const noexcept;
-  [[nodiscard]] bool from_session(const hcp_frame& in,
-                                  const protocol::Endpoint& from) const noexcept;
-  hcp_ack_status apply(const hcp_param& param, TimeNs now) noexcept;
   std::size_t refuse(hcp_refuse_code code, std::uint32_t peer_version, std::uint32_t retry_ms,
                      std::string_view reason, TimeNs now, std::span<std::uint8_t> reply,
                      std::uint64_t token = 0) noexcept;
-  std::size_t ack(const LastAck& a, TimeNs now, std::span<std::uint8_t> reply) noexcept;
+  std::size_t ack(const ParamAck& a, TimeNs now, std::span<std::uint8_t> reply) noexcept;
   std::size_t welcome(TimeNs now, std::span<std::uint8_t> reply) noexcept;
   void open(const hcp_frame& hello, const protocol::Endpoint& from, TimeNs now) noexcept;
   void end_session(TimeNs now) noexcept;
@@ -184,28 +154,20 @@ class Session {
   std::uint32_t watchdog_ms_ = 0;
   TimeNs last_heard_ = 0;
   bool engaged_ = false;  ///< a control or parameter frame since the HELLO
-  bool have_control_seq_ = false;
-  std::uint32_t last_control_seq_ = 0;
-  std::uint64_t control_seq_high_ = 0;  ///< 64-bit extension of the control sequence
-  bool have_param_seq_ = false;
-  LastAck last_ack_{};
   std::uint32_t reply_sequence_ = 0;
   std::uint32_t control_received_ = 0;
   shm::VprPayload vpr_{};
-  LinkEstimator link_;
-  static constexpr std::uint32_t kMaxEnergyStepUj = 4'000'000;
-  bool have_energy_ = false;
-  std::uint32_t energy_in_last_ = 0;
-  double energy_in_total_ = 0.0;
+  AnswerLog answer_log_;  ///< written by the answer thread, read by the intake
+  ControlIngest ingest_{answer_log_};
+  ParameterChannel params_;
+  HelloLimiter hello_limiter_;
 
   // Shared with the answer thread.
   shm::SeqlockCell<SessionView> view_;
   shm::SeqlockCell<LinkFigures> link_view_;  ///< written by the receive thread
   std::atomic<std::uint32_t> control_received_shared_{0};
-  AnswerLog answer_log_;               ///< written by the answer thread
   std::uint32_t answer_sequence_ = 0;  ///< answer thread only
   LinkFigures link_answered_;          ///< answer thread only: the figures of the last answer
-  HelloLimiter hello_limiter_;         ///< receive thread only
   LinkCounters counters_;
 };
 

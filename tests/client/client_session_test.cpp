@@ -9,31 +9,19 @@
 #include <string>
 
 #include "hapticctrl/protocol/timing.hpp"
+#include "support/client_session_frames.hpp"
 
 namespace hapticctrl::client {
 namespace {
 
 using namespace std::chrono_literals;
 
-constexpr std::int64_t kMs = 1'000'000;
-constexpr std::uint64_t kToken = 0x1234'5678'9abc'def0ULL;
-
-ConnectOptions options() {
-  ConnectOptions o;
-  o.retransmit_after = 20ms;
-  o.connect_timeout = 500ms;
-  o.answer_timeout = 300ms;
-  return o;
-}
-
-hcp_frame welcome(std::uint32_t version = protocol::kVersion) {
-  hcp_frame w = protocol::make_frame(HCP_WELCOME, kToken, 1, 0);
-  w.header.protocol = version;
-  w.body.hcp_body_u.welcome.features = protocol::kAllFeatures;
-  w.body.hcp_body_u.welcome.watchdog_ms = 400;
-  w.body.hcp_body_u.welcome.period_ns = kMs;
-  return w;
-}
+using test::answer;
+using test::kMs;
+using test::kToken;
+using test::open_session;
+using test::options;
+using test::welcome;
 
 hcp_frame refusal(hcp_refuse_code code, std::uint32_t retry_ms, const char* reason) {
   hcp_frame r = protocol::make_frame(HCP_REFUSE, 0, 1, 0);
@@ -44,31 +32,12 @@ hcp_frame refusal(hcp_refuse_code code, std::uint32_t retry_ms, const char* reas
   return r;
 }
 
-hcp_frame answer(std::uint32_t sequence, std::uint64_t cycle) {
-  hcp_frame f = protocol::make_frame(HCP_ANSWER_TIMED, kToken, sequence, 0);
-  hcp_answer& a = f.body.hcp_body_u.answer_timed.answer;
-  a.cycle = cycle;
-  a.core_state = 1;
-  a.handle_pose[6] = 1.0;
-  a.coupling_wrench[0] = 2.5;
-  return f;
-}
-
 hcp_frame ack(std::uint32_t sequence, hcp_ack_status status, const char* reason = "") {
   hcp_frame f = protocol::make_frame(HCP_ACK, kToken, 9, 0);
   f.body.hcp_body_u.ack.acked_sequence = sequence;
   f.body.hcp_body_u.ack.status = status;
   protocol::set_text(f.body.hcp_body_u.ack.reason, reason);
   return f;
-}
-
-/// A session welcomed at t = 0.
-ClientSession open_session() {
-  ClientSession s(options(), "127.0.0.1:5125");
-  EXPECT_TRUE(s.hello_due(0).has_value());
-  EXPECT_TRUE(s.on_handshake_frame(welcome(), 0).welcomed);
-  s.on_sent(0);
-  return s;
 }
 
 hcp_param watchdog_param(std::uint32_t ms) {
@@ -251,26 +220,6 @@ TEST(ClientSession, AValueTheProtocolRefusesNeverLeaves) {
     EXPECT_EQ(e.code(), ErrorCode::kInvalidArgument);
     EXPECT_EQ(std::string(e.what()).rfind("set_time_step: ", 0), 0U) << e.what();
   }
-}
-
-TEST(ClientSession, ObjectFramesCarryTheEchoOfTheNewestAnswerAndRefuseANonRotation) {
-  ClientSession s = open_session();
-  const auto before = s.object_frame({0, 0, 0, 0, 0, 0, 1}, {}, kMs);
-  ASSERT_TRUE(before.has_value());
-  EXPECT_FALSE(protocol::unpack_answer_echo(before->body.hcp_body_u.timed.answer_echo).valid)
-      << "no answer yet: the echo says so";
-  ASSERT_EQ(s.on_frame(answer(1, 4242), 10 * kMs), Arrival::kAnswer);
-  const auto f = s.object_frame({0.1, 0.2, 0.3, 0, 0, 0, 1}, {0.01, 0, 0, 0, 0, 0}, 12 * kMs);
-  ASSERT_TRUE(f.has_value());
-  EXPECT_EQ(f->body.type, HCP_CONTROL_OBJECT_TIMED) << "the controller speaks timing";
-  const protocol::AnswerEcho echo =
-      protocol::unpack_answer_echo(f->body.hcp_body_u.timed.answer_echo);
-  EXPECT_TRUE(echo.valid);
-  EXPECT_EQ(echo.cycle_low, 4242U);
-  EXPECT_EQ(echo.hold_ns, 2 * kMs) << "held from its arrival to this send";
-  EXPECT_FLOAT_EQ(f->body.hcp_body_u.timed.position[2], 0.3F);
-  EXPECT_FALSE(s.object_frame({0, 0, 0, 0, 0, 0, 2}, {}, 13 * kMs).has_value())
-      << "a quaternion of norm 2 is not a rotation";
 }
 
 }  // namespace

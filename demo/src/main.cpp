@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "hapticctrl/base/time.hpp"
+#include "hapticctrl/client/application.hpp"
 #include "hapticctrl/client/connection.hpp"
 #include "hapticctrl/demo/demo_input.hpp"
 #include "hapticctrl/demo/demo_options.hpp"
@@ -80,13 +81,6 @@ demo::SphereScene scene_at(const client::StateSnapshot& s, const demo::DemoOptio
   return {config, start};
 }
 
-/// The spheres' contact is reported from this gap on (protocol 1.3), plus what the handle can
-/// cover meanwhile: the controller renders it only once touched, and knows of it before.
-constexpr double kContactNear = 0.005;  // m
-/// How fast a hand may bring the handle to a surface (the arm's speed brake, m/s): a surface is
-/// reported from as far as the handle can come over twice the round trip.
-constexpr double kReachSpeed = 1.0;
-
 /// At most this many steps are integrated for one answer (a longer gap pauses the world).
 constexpr std::uint64_t kMaxCatchUpSteps = 20;
 /// The first connection retries this long: a client that crashed holds the session until the
@@ -95,55 +89,25 @@ constexpr std::chrono::seconds kFirstConnectPatience{10};
 constexpr std::chrono::seconds kRetryForever{0};
 
 /// A session, initialised the seeds' way, or nothing when `may_continue` turns false or
-/// `patience` (0: unbounded) runs out. Refusals (busy, no controller, no answer) are retried
-/// every 0.5 s and said once each; other errors throw. When reconnecting (patience 0) a refused
-/// setup is retried too: the controller that accepted it before is failing safe again (a stall
-/// of the machine can fail the new one while the demo sets it up).
+/// `patience` (0: unbounded, and a refused setup retried too: reconnecting) runs out; refusals
+/// retried as application.hpp says.
 template <typename MayContinue>
 std::optional<client::Connection> open_session(const demo::DemoOptions& o, MayContinue may_continue,
                                                std::chrono::seconds patience) {
-  const auto give_up = Clock::now() + patience;
   client::ConnectOptions connect;
   connect.client_name = "hapticctrl-demo";
-  std::string last_said;
-  for (;;) {
-    try {
-      std::optional<client::Connection> c;
-      c.emplace(client::Address::parse(o.server), connect);
-      initialise(*c, o, static_cast<double>(c->controller_period_ns()) / 1e9);
-      return c;
-    } catch (const client::ClientError& e) {
-      const bool retry =
-          e.code() == client::ErrorCode::kBusy || e.code() == client::ErrorCode::kNoController ||
-          e.code() == client::ErrorCode::kTimeout || e.code() == client::ErrorCode::kClosed ||
-          (patience.count() == 0 && e.code() == client::ErrorCode::kRejected);
-      const bool patient = patience.count() == 0 || Clock::now() < give_up;
-      if (!retry || !patient) {
-        throw;
-      }
-      if (last_said != e.what()) {
-        last_said = e.what();
+  client::RetryPolicy policy;
+  policy.patience = patience;
+  policy.reconnecting = patience.count() == 0;
+  return client::connect_retrying(
+      client::Address::parse(o.server), connect,
+      [&o](client::Connection& c) {
+        initialise(c, o, static_cast<double>(c.controller_period_ns()) / 1e9);
+      },
+      may_continue, policy,
+      [](const client::ClientError& e) {
         std::fprintf(stderr, "hapticctrl-demo: %s; retrying\n", e.what());
-      }
-    }
-    for (int i = 0; i < 10 && may_continue(); ++i) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    }
-    if (!may_continue()) {
-      return std::nullopt;
-    }
-  }
-}
-
-/// Ends a session; a controller that is going away ends it anyway.
-void close_quietly(client::Connection& c) {
-  if (c.is_open()) {
-    try {
-      c.close();
-    } catch (const client::ClientError&) {
-      // The controller may be gone already: the session ends either way.
-    }
-  }
+      });
 }
 
 /// One run of the demo: its inputs and outputs (script, keyboard, log, scene channel), the
@@ -198,7 +162,7 @@ class DemoRun {
         break;
       }
       std::fprintf(stderr, "\nhapticctrl-demo: %s; connecting again\n", ended_);
-      close_quietly(*c_);
+      client::close_quietly(*c_);
       ++reconnects_;
     }
     return finish();
@@ -318,8 +282,7 @@ class DemoRun {
     // report came. So the gap that counts is the handle's too, and the reach over the round
     // trip is added as for an IMPEDANCE surface.
     const client::LinkStatistics link = c_->statistics();
-    const double near =
-        kContactNear + kReachSpeed * 2e-6 * std::max(link.rtt_mean_us, link.loop_delay_us);
+    const double near = client::contact_report_distance(link);
     const Eigen::Vector3d handle(s_.handle_pose[0], s_.handle_pose[1], s_.handle_pose[2]);
     std::optional<client::Contact> contact = scene_->contact_report_toward(
         handle, std::numeric_limits<double>::infinity(), link.max_contact_stiffness);
@@ -361,8 +324,7 @@ class DemoRun {
       // went with the handle's delayed image at 100 ms one way, and the handle went through the
       // wall between reports (2 m/s, 2026-12-03). The controller renders it only once touched.
       const client::LinkStatistics link = c_->statistics();
-      const double near =
-          kContactNear + kReachSpeed * 2e-6 * std::max(link.rtt_mean_us, link.loop_delay_us);
+      const double near = client::contact_report_distance(link);
       const std::optional<client::Contact> surface =
           scene_->surface_for_center(near, link.max_contact_stiffness);
       (void)c_->set_contacts(surface ? std::span<const client::Contact>(&*surface, 1)
@@ -380,7 +342,7 @@ class DemoRun {
       return 1;
     }
     const bool failed_safe = s_.fail_safe();
-    close_quietly(*c_);
+    client::close_quietly(*c_);
     demo::print_status(stderr, elapsed(), s_, *scene_, "\n");
     std::fprintf(stderr, "hapticctrl-demo: ended (%s) after %llu steps, %llu reconnections\n",
                  ended_, static_cast<unsigned long long>(steps_),

@@ -19,12 +19,14 @@
 #include <vector>
 
 #include "hapticctrl/base/time.hpp"
+#include "hapticctrl/client/application.hpp"
 #include "hapticctrl/client/connection.hpp"
 #include "hapticctrl/lcmtypes/paced_publisher.hpp"
 #include "hapticctrl/mujoco/contact_mapping.hpp"
 #include "hapticctrl/mujoco/grasp.hpp"
 #include "hapticctrl/mujoco/mujoco_options.hpp"
 #include "hapticctrl/mujoco/real_time_steps.hpp"
+#include "hapticctrl/mujoco/run_summary.hpp"
 #include "hapticctrl/mujoco/world.hpp"
 #include "hapticctrl/mujoco/world_message.hpp"
 #include "hapticctrl/program/main_skeleton.hpp"
@@ -56,28 +58,9 @@ std::int64_t thread_cpu_ns() {
 constexpr std::int64_t kMaxCatchUpNs = 50'000'000;
 /// With no answer for this long the world pauses (the controller holds the handle meanwhile).
 constexpr std::int64_t kSilentAfterNs = 50'000'000;
-/// Contacts are reported from this gap on, plus what the handle can cover over the round trip
-/// at the arm's speed brake and how far it leads the body (as the demo does: J2).
-constexpr double kContactNear = 0.005;  // m
-constexpr double kReachSpeed = 1.0;     // m/s
 /// The first connection retries this long (a crashed client holds the session until the
 /// bridge's 3 s watchdog frees it); reconnections retry until the run's time is up.
 constexpr std::chrono::seconds kFirstConnectPatience{10};
-
-/// Step and wall-clock statistics of the engine.
-struct EngineLoad {
-  std::uint64_t steps = 0;
-  std::int64_t cpu_ns = 0;
-  std::int64_t cpu_max_ns = 0;
-  void add(std::int64_t ns) {
-    ++steps;
-    cpu_ns += ns;
-    cpu_max_ns = std::max(cpu_max_ns, ns);
-  }
-  [[nodiscard]] double mean_us() const {
-    return steps > 0 ? static_cast<double>(cpu_ns) / static_cast<double>(steps) / 1e3 : 0.0;
-  }
-};
 
 class MujocoRun {
  public:
@@ -121,7 +104,7 @@ class MujocoRun {
         break;
       }
       std::fprintf(stderr, "\nhapticctrl-mujoco: %s; connecting again\n", ended_);
-      close_quietly();
+      client::close_quietly(*c_);
       ++reconnects_;
     }
     return finish();
@@ -151,46 +134,19 @@ class MujocoRun {
     }
   }
 
-  /// A session, or nothing once the run's time is up. Refusals (busy, no controller, no answer;
-  /// when reconnecting also a refused setup: the controller is failing safe again) are retried
-  /// every 0.5 s and said once each; other errors throw.
+  /// A session, or nothing once the run's time is up (refusals retried: application.hpp).
   std::optional<client::Connection> open_session() {
-    const auto give_up = Clock::now() + kFirstConnectPatience;
     client::ConnectOptions connect;
     connect.client_name = "hapticctrl-mujoco";
-    std::string last_said;
-    while (time_left()) {
-      try {
-        std::optional<client::Connection> c;
-        c.emplace(client::Address::parse(o_.server), connect);
-        initialise(*c);
-        return c;
-      } catch (const client::ClientError& e) {
-        const bool retry =
-            e.code() == client::ErrorCode::kBusy || e.code() == client::ErrorCode::kNoController ||
-            e.code() == client::ErrorCode::kTimeout || e.code() == client::ErrorCode::kClosed ||
-            (reconnects_ > 0 && e.code() == client::ErrorCode::kRejected);
-        if (!retry || (reconnects_ == 0 && Clock::now() >= give_up)) {
-          throw;
-        }
-        if (last_said != e.what()) {
-          last_said = e.what();
+    client::RetryPolicy policy;
+    policy.patience = reconnects_ > 0 ? std::chrono::seconds(0) : kFirstConnectPatience;
+    policy.reconnecting = reconnects_ > 0;
+    return client::connect_retrying(
+        client::Address::parse(o_.server), connect,
+        [this](client::Connection& c) { initialise(c); }, [this] { return time_left(); }, policy,
+        [](const client::ClientError& e) {
           std::fprintf(stderr, "hapticctrl-mujoco: %s; retrying\n", e.what());
-        }
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(500));
-    }
-    return std::nullopt;
-  }
-
-  void close_quietly() {
-    if (c_ && c_->is_open()) {
-      try {
-        c_->close();
-      } catch (const client::ClientError&) {
-        // The controller may be gone already: the session ends either way.
-      }
-    }
+        });
   }
 
   /// The scene is held where the handle is; then steps until the session or the run ends.
@@ -300,8 +256,7 @@ class MujocoRun {
     const client::Pose7 body = grasp_.to_client(world_.pose());
     const double lead = std::hypot(s_.handle_pose[0] - body[0], s_.handle_pose[1] - body[1],
                                    s_.handle_pose[2] - body[2]);
-    world_.set_report_distance(kContactNear + lead +
-                               kReachSpeed * 2e-6 * std::max(link.rtt_mean_us, link.loop_delay_us));
+    world_.set_report_distance(client::contact_report_distance(link) + lead);
     std::array<mj::EngineContact, client::kMaxContacts> found{};
     const std::size_t n = world_.contacts(found);
     std::array<client::Contact, client::kMaxContacts>& out = contacts_out_;
@@ -356,7 +311,9 @@ class MujocoRun {
 
   int finish() {
     const bool failed_safe = s_.fail_safe();
-    close_quietly();
+    if (c_) {
+      client::close_quietly(*c_);
+    }
     print_status("\n");
     std::fprintf(stderr,
                  "hapticctrl-mujoco: ended (%s) after %llu steps (%llu dropped after stalls, %llu "
@@ -375,42 +332,29 @@ class MujocoRun {
   }
 
   void print_json() const {
-    const client::Pose7 p = world_.pose();
-    const std::array<double, 3> f = world_.contact_force();
-    const client::Vector6& w = s_.coupling_wrench;
-    std::printf(
-        "{\"ended\":\"%s\",\"body\":\"%s\",\"mass\":%.6g,\"timestep\":%.6g,"
-        "\"body_pose\":[%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f],"
-        "\"contact_force\":[%.4f,%.4f,%.4f],\"coupling_wrench\":[%.4f,%.4f,%.4f,%.4f,%.4f,%.4f],"
-        "\"steps\":%llu,\"steps_per_second\":%.1f,\"model_steps_per_second\":%.1f,"
-        "\"steps_dropped\":%llu,\"steps_paused\":%llu,\"catch_ups\":%llu,"
-        "\"cpu_us_per_step_mean\":%.2f,\"cpu_us_per_step_max\":%.1f,"
-        "\"contact_reports\":%llu,\"contacts_supported\":%s,\"instabilities\":%d,"
-        "\"reconnections\":%llu,\"powered\":%s,\"gripping\":%s,",
-        ended_, world_.body_name().c_str(), world_.mass(), world_.timestep(), p[0], p[1], p[2],
-        p[3], p[4], p[5], p[6], f[0], f[1], f[2], w[0], w[1], w[2], w[3], w[4], w[5],
-        static_cast<unsigned long long>(steps_.run()), steps_per_second(), 1.0 / world_.timestep(),
-        static_cast<unsigned long long>(steps_.dropped()),
-        static_cast<unsigned long long>(steps_.paused()),
-        static_cast<unsigned long long>(steps_.catch_ups()), load_.mean_us(),
-        static_cast<double>(load_.cpu_max_ns) / 1e3, static_cast<unsigned long long>(reported_),
-        contacts_unsupported_ ? "false" : "true", world_.instabilities(),
-        static_cast<unsigned long long>(reconnects_), s_.powered() ? "true" : "false",
-        gripping_ ? "true" : "false");
-    // The scene's other free bodies and its hinges and slides: what the hand moved.
-    const char* separator = "";
-    std::printf("\"bodies\":{");
-    for (const auto& [name, at] : world_.free_bodies()) {
-      std::printf("%s\"%s\":[%.6f,%.6f,%.6f]", separator, name.c_str(), at[0], at[1], at[2]);
-      separator = ",";
-    }
-    separator = "";
-    std::printf("},\"joints\":{");
-    for (const auto& [name, q] : world_.joints()) {
-      std::printf("%s\"%s\":%.6f", separator, name.c_str(), q);
-      separator = ",";
-    }
-    std::printf("}}\n");
+    mj::RunSummary r;
+    r.ended = ended_;
+    r.body = world_.body_name();
+    r.mass = world_.mass();
+    r.timestep = world_.timestep();
+    r.body_pose = world_.pose();
+    r.contact_force = world_.contact_force();
+    r.coupling_wrench = s_.coupling_wrench;
+    r.steps = steps_.run();
+    r.steps_per_second = steps_per_second();
+    r.steps_dropped = steps_.dropped();
+    r.steps_paused = steps_.paused();
+    r.catch_ups = steps_.catch_ups();
+    r.load = load_;
+    r.contact_reports = reported_;
+    r.contacts_supported = !contacts_unsupported_;
+    r.instabilities = world_.instabilities();
+    r.reconnections = reconnects_;
+    r.powered = s_.powered();
+    r.gripping = gripping_;
+    r.bodies = world_.free_bodies();
+    r.joints = world_.joints();
+    std::printf("%s\n", mj::summary_json(r).c_str());
   }
 
   const mj::MujocoOptions& o_;
@@ -421,7 +365,7 @@ class MujocoRun {
   std::optional<hapticctrl::program::RawKeyboard> keyboard_;
   Clock::time_point next_status_;
   std::optional<Clock::time_point> stepping_since_;
-  EngineLoad load_;
+  mj::EngineLoad load_;
   std::uint64_t reconnects_ = 0;
   std::uint64_t reported_ = 0;
   const char* ended_ = "duration";

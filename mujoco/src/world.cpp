@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "world_engine.hpp"
+
 namespace hapticctrl::mujoco {
 namespace {
 
@@ -44,11 +46,6 @@ std::string body_named_by(const mjModel* m) {
                      static_cast<std::size_t>(std::max(0, length - 1)));
 }
 
-/// Element `index` of a MuJoCo array with `width` numbers per object, as a pointer offset.
-std::ptrdiff_t at(int width, int index) {
-  return static_cast<std::ptrdiff_t>(width) * index;
-}
-
 bool is_free(const mjModel* m, int body) {
   return m->body_jntnum[body] == 1 && m->jnt_type[m->body_jntadr[body]] == mjJNT_FREE;
 }
@@ -69,50 +66,6 @@ std::string free_body_names(const mjModel* m) {
   return names.empty() ? "none" : names;
 }
 
-/// Each mesh's bounding box, in the frame MuJoCo keeps its vertices in (its geoms').
-std::vector<std::array<double, 6>> mesh_boxes_of(const mjModel* m) {
-  std::vector<std::array<double, 6>> boxes;
-  for (int mesh = 0; mesh < m->nmesh; ++mesh) {
-    std::array<double, 3> low{HUGE_VAL, HUGE_VAL, HUGE_VAL};
-    std::array<double, 3> high{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-    for (int v = 0; v < m->mesh_vertnum[mesh]; ++v) {
-      const float* p = m->mesh_vert + at(3, m->mesh_vertadr[mesh] + v);
-      for (std::size_t k = 0; k < 3; ++k) {
-        low[k] = std::min(low[k], static_cast<double>(p[k]));
-        high[k] = std::max(high[k], static_cast<double>(p[k]));
-      }
-    }
-    std::array<double, 6> box{};
-    for (std::size_t k = 0; k < 3 && m->mesh_vertnum[mesh] > 0; ++k) {
-      box[k] = 0.5 * (low[k] + high[k]);
-      box[3 + k] = 0.5 * (high[k] - low[k]);
-    }
-    boxes.push_back(box);
-  }
-  return boxes;
-}
-
-/// Geom `g`'s colour: its material's when it has one (MuJoCo draws that), else its own.
-const float* rgba_of(const mjModel* m, int g) {
-  const int material = m->geom_matid[g];
-  return material >= 0 ? m->mat_rgba + at(4, material) : m->geom_rgba + at(4, g);
-}
-
-/// Whether a view draws geom `g`: visible, and a shape world_t carries.
-bool drawn(const mjModel* m, int g) {
-  const int type = m->geom_type[g];
-  return rgba_of(m, g)[3] > 0.0F && type != mjGEOM_HFIELD && type <= mjGEOM_MESH;
-}
-
-/// How many geoms a view draws (fixed by the model).
-std::size_t drawn_geoms_of(const mjModel* m) {
-  std::size_t n = 0;
-  for (int g = 0; g < m->ngeom; ++g) {
-    n += drawn(m, g) ? 1U : 0U;
-  }
-  return n;
-}
-
 /// The adhesion actuators on `body` (a body transmission).
 std::vector<int> grips_of(const mjModel* m, int body) {
   std::vector<int> grips;
@@ -125,35 +78,6 @@ std::vector<int> grips_of(const mjModel* m, int body) {
 }
 
 }  // namespace
-
-struct World::Engine {
-  mjModel* model = nullptr;
-  mjData* data = nullptr;
-  int body = -1;
-  int qpos = 0;  ///< the free joint's address in qpos (position, then quaternion w x y z)
-  int dof = 0;   ///< and in qvel (linear velocity in the world, angular in the body's frame)
-  /// The contacts are found on a copy of the model whose body's geoms have the report distance
-  /// added to their margin, on a copy of the state: raising the physics model's own margins
-  /// (with as much gap, so the solver would skip the far contacts) changed box-box contacts
-  /// that touched: the peg, pushed into its hole, turned 90 degrees and jammed (2026-12-05).
-  mjModel* report_model = nullptr;
-  mjData* report_data = nullptr;
-  std::vector<double> margin;  ///< the body's geoms' own margin
-  std::vector<int> grips;      ///< adhesion actuators on the body
-  /// Each mesh's bounding box in its geom's frame (centre, half-sizes), found once at load.
-  std::vector<std::array<double, 6>> mesh_boxes;
-  std::size_t drawn_geoms = 0;  ///< the geoms a view draws, counted once at load
-
-  Engine() = default;
-  Engine(const Engine&) = delete;
-  Engine& operator=(const Engine&) = delete;
-  ~Engine() {
-    mj_deleteData(report_data);
-    mj_deleteModel(report_model);
-    mj_deleteData(data);
-    mj_deleteModel(model);
-  }
-};
 
 World::World(const std::string& path, const std::string& body, double timestep)
     : engine_(std::make_unique<Engine>()) {
@@ -391,43 +315,6 @@ std::vector<std::pair<std::string, double>> World::joints() const {
 
 std::string engine_version() {
   return "MuJoCo " + std::string(mj_versionString());
-}
-
-std::size_t World::visible_geoms() const noexcept {
-  return engine_->drawn_geoms;
-}
-
-std::size_t World::geoms(std::span<GeomView> out) const noexcept {
-  const Engine& e = *engine_;
-  const mjModel* m = e.model;
-  std::size_t n = 0;
-  for (int g = 0; g < m->ngeom && n < out.size(); ++g) {
-    if (!drawn(m, g)) {
-      continue;
-    }
-    GeomView& v = out[n++];
-    v.type = m->geom_type[g];
-    const mjtNum* size = m->geom_size + at(3, g);
-    std::copy(size, size + 3, v.size.begin());
-    const mjtNum* rotation = e.data->geom_xmat + at(9, g);
-    mjtNum position[3];
-    mju_copy3(position, e.data->geom_xpos + at(3, g));
-    if (v.type == mjGEOM_MESH && m->geom_dataid[g] >= 0) {
-      const std::array<double, 6>& box = e.mesh_boxes[static_cast<std::size_t>(m->geom_dataid[g])];
-      mjtNum centre[3];
-      mju_rotVecMat(centre, box.data(), rotation);
-      mju_addTo3(position, centre);
-      std::copy(box.begin() + 3, box.end(), v.size.begin());
-      v.type = mjGEOM_BOX;
-    }
-    mjtNum quat[4];  // w x y z
-    mju_mat2Quat(quat, rotation);
-    v.pose = {position[0], position[1], position[2], quat[1], quat[2], quat[3], quat[0]};
-    const float* rgba = rgba_of(m, g);
-    std::copy(rgba, rgba + 4, v.rgba.begin());
-    v.coupled = m->geom_bodyid[g] == e.body;
-  }
-  return n;
 }
 
 }  // namespace hapticctrl::mujoco

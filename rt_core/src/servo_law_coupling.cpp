@@ -1,7 +1,7 @@
 // The coupling the servo law renders (ServoLaw's coupling half): the client's frame, the
 // object's image in the base frame, the client's wrench (VIRTMECH spring-damper, IMPEDANCE
-// wrench) with its contact stiffening, the local surface (J2), and the engagement and fade of a
-// session. The cycle that uses them is servo_law.cpp.
+// wrench) with its contact stiffening, and the engagement and fade of a session. The cycle that
+// uses them is servo_law.cpp; the local surface (J2) is servo_law_surface.cpp.
 #include <algorithm>
 #include <cmath>
 
@@ -171,32 +171,6 @@ ServoLaw::Coupling ServoLaw::client_wrench(const ServoInputs& in, const ClientFr
   }
   out.coupled = true;
   return coupling;
-}
-
-ServoLaw::Surface ServoLaw::local_surface(const ServoInputs& in, const ClientFrame& frame,
-                                          const ChainState& chain, const Vector6d& twist,
-                                          bool on_object, Coupling& coupling,
-                                          ServoOutputs& out) noexcept {
-  Surface surface = reported_surface(in, frame, chain, on_object);
-  render_surface(surface, chain, twist, static_cast<double>(in.dt) * 1e-9);
-  const RenderMemory& m = memory_;
-  out.surface_withheld = m.surface_withheld;
-  out.contact_age = surface.age;
-  if (m.on_surface) {
-    out.surface_normal = surface.normal;
-    out.surface_point = m.surface_point;
-    out.surface_depth = (m.surface_point - chain.handle_position).dot(surface.normal);
-    out.surface_force = surface.force * frame.force_factor;
-    out.surface_hidden = m.surface_hidden;
-  }
-  if (surface.weight > 0.0) {
-    coupling.contact_in_force = true;
-    coupling.contact_whole = surface.weight >= 1.0;
-    coupling.contact_local = true;
-    coupling.contact = {surface.normal, surface.point - memory_.surface_hidden * surface.normal,
-                        0.0, surface.stiffness * frame.force_factor};
-  }
-  return surface;
 }
 
 void ServoLaw::follow_session(const ServoInputs& in) noexcept {

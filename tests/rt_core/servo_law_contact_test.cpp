@@ -1,5 +1,5 @@
-// Tests of servo_law_contact.cpp: the coupling stiffened along a contact the client reports, and
-// the spring re-anchored after a full disengagement (J1).
+// Tests of servo_law_contact.cpp: the coupling stiffened along a contact the client reports, the
+// spring re-anchored after a full disengagement, and the contact held through a blackout (J1).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -7,6 +7,7 @@
 
 #include "hapticctrl/rt_core/servo_law.hpp"
 #include "support/law_inputs.hpp"
+#include "support/law_runs.hpp"
 
 namespace hapticctrl::rt_core {
 namespace {
@@ -14,61 +15,14 @@ namespace {
 using test::chain_at;
 using test::coupled_to_object_ahead;
 using test::default_dynamics;
+using test::ForceTrace;
+using test::impedance_on_surface;
 using test::kReady;
 using test::powered_at;
-
-/// A surface at the object that pushes it along -x (the object rests against it from -x).
-ClientContact wall_at(const std::array<double, 7>& object_pose, double stiffness, TimeNs received) {
-  ClientContact c;
-  c.point = {object_pose[0], object_pose[1], object_pose[2]};
-  c.normal = {-1.0, 0.0, 0.0};
-  c.distance = 0.0;
-  c.stiffness = stiffness;
-  c.object_pose = object_pose;
-  c.received_ns = received;
-  return c;
-}
-
-/// Runs `cycles` cycles of 1 ms from `in`, with the clock advancing, and returns the last output.
-ServoOutputs run(ServoLaw& law, ServoInputs& in, int cycles) {
-  ServoOutputs out;
-  for (int k = 0; k < cycles; ++k) {
-    in.now += in.dt;
-    law.compute(in, false, out);
-  }
-  return out;
-}
-
-/// Runs `cycles` cycles with every contact refreshed every cycle (as a client sending them does).
-ServoOutputs run_on_contacts(ServoLaw& law, ServoInputs& in, int cycles) {
-  ServoOutputs out;
-  for (int k = 0; k < cycles; ++k) {
-    for (std::size_t i = 0; i < in.client.contact_count; ++i) {
-      in.client.contacts[i].received_ns = in.now + in.dt;
-    }
-    out = run(law, in, 1);
-  }
-  return out;
-}
-
-/// Moves the handle `dx` along x through the Jacobian, in steps of at most 0.5 mm of one cycle
-/// each with the contacts refreshed (a hand pressing at 0.5 m/s at most), and returns how far it
-/// went (forward kinematics). The measured velocity stays zero: no damping is in the figures.
-double press_along_x(ServoLaw& law, ServoInputs& in, double dx) {
-  const double start = chain_at(in.measures.position).handle_position.x();
-  const int steps = std::max(1, static_cast<int>(std::ceil(std::abs(dx) / 5e-4)));
-  for (int k = 0; k < steps; ++k) {
-    const Matrix6d jacobian = default_dynamics().jacobian(chain_at(in.measures.position));
-    Vector6d move = Vector6d::Zero();
-    move.x() = dx / steps;
-    in.measures.position += jacobian.colPivHouseholderQr().solve(move);
-    for (std::size_t i = 0; i < in.client.contact_count; ++i) {
-      in.client.contacts[i].received_ns = in.now + in.dt;
-    }
-    run(law, in, 1);
-  }
-  return chain_at(in.measures.position).handle_position.x() - start;
-}
+using test::press_along_x;
+using test::run;
+using test::run_on_contacts;
+using test::wall_at;
 
 /// Coupled to an object `dx` ahead of the handle along x, with the loop of a 20 ms link (the
 /// derived stiffness is then about 70 N/m), a fresh sample every cycle.
@@ -243,126 +197,6 @@ TEST(ServoLawContact, WhileTheStretchReturnsTheHandlesMotionAlongItIsDampedAndFr
   const Vector6d sliding = damping_added(Vector3d(0.0, v, 0.0));  // along the wall
   EXPECT_NEAR(sliding.norm(), 0.0, 0.05 * max_damping * v)
       << "across the stretch nothing is added: the hand slides freely";
-}
-
-/// The handle's force along x over cycles of 1 ms: its extremes and largest step per cycle.
-struct ForceTrace {
-  double least = 1e9;
-  double most = -1e9;
-  double largest_step = 0.0;
-  double last = 0.0;
-  void add(double f, bool first) {
-    least = std::min(least, f);
-    most = std::max(most, f);
-    if (!first) {
-      largest_step = std::max(largest_step, std::abs(f - last));
-    }
-    last = f;
-  }
-};
-
-/// An IMPEDANCE client (protocol 1.3) that reports a 2000 N/m surface (mu_s 0.5, mu_d 0.4)
-/// whose normal is -x, with the handle's point `depth` inside it, and pushes `client_push`
-/// along x itself.
-ServoInputs impedance_on_surface(double depth, double client_push) {
-  ServoInputs in = powered_at(kReady);
-  const ChainState s = chain_at(kReady);
-  in.client.session_id = 1;
-  in.client.command = ClientCommand::kImpedance;
-  in.client.time_step = 1e-3;
-  in.client.impedance_wrench = {client_push, 0, 0, 0, 0, 0};
-  in.client_valid = true;
-  in.new_sample = true;
-  in.client.contact_count = 1;
-  ClientContact& c = in.client.contacts[0];
-  c.point = {s.handle_position.x() - depth, s.handle_position.y(), s.handle_position.z()};
-  c.normal = {-1.0, 0.0, 0.0};
-  c.stiffness = 2000.0;
-  c.friction = {0.5, 0.4};
-  return in;
-}
-
-TEST(ServoLawSurface, AnImpedanceSurfaceIsRenderedHereInPlaceOfTheClientsPushOutOfIt) {
-  // The client's own push out of the surface (-7 N, a loop late) gives way to the surface
-  // rendered at the servo rate: 2000 N/m x 5 mm.
-  ServoLaw law(default_dynamics());
-  ServoInputs in = impedance_on_surface(0.0, -7.0);
-  run_on_contacts(law, in, 100);
-  const double depth = press_along_x(law, in, 0.005);
-  ServoOutputs out = run_on_contacts(law, in, 200);
-  EXPECT_NEAR(out.rendered_wrench.x(), -2000.0 * depth, 0.05)
-      << "the surface, not the client's too";
-  EXPECT_EQ(out.contacts, 1U);
-  EXPECT_NEAR(out.normal_stiffness, 2000.0, 1e-9);
-
-  ServoLaw pressing_law(default_dynamics());
-  ServoInputs pressing = impedance_on_surface(0.0, 3.0);  // the client pushes into it
-  run_on_contacts(pressing_law, pressing, 100);
-  const double pressed = press_along_x(pressing_law, pressing, 0.005);
-  out = run_on_contacts(pressing_law, pressing, 200);
-  EXPECT_NEAR(out.rendered_wrench.x(), -2000.0 * pressed + 3.0, 0.05)
-      << "a push into the surface stays";
-}
-
-TEST(ServoLawSurface, ASurfaceFoundWithTheHandleInsideIsRenderedFromWhereTheHandleIs) {
-  // Reported a loop late (or moved onto the handle), a surface found with the handle 5 mm inside
-  // is no step and puts no energy out: a 2000 N/m wall whose first report found the handle 7 cm
-  // deep kicked it out at 35 N (100 ms one way, 2026-12-03); given back on time alone, the
-  // hidden 5 mm would have pushed a still hand out with 25 mJ it never put in (J2).
-  ServoLaw law(default_dynamics());
-  ServoInputs in = impedance_on_surface(0.005, -7.0);
-  ForceTrace trace;
-  for (int k = 0; k < 300; ++k) {
-    trace.add(run_on_contacts(law, in, 1).rendered_wrench.x(), k == 0);
-  }
-  EXPECT_LT(std::abs(trace.least), 0.05) << "held still, nothing comes back";
-  EXPECT_LT(std::abs(trace.most), 0.05);
-  EXPECT_GE(law.counters().surface_updates_held, 1U);
-  const double depth = press_along_x(law, in, 0.002);
-  EXPECT_NEAR(run_on_contacts(law, in, 100).rendered_wrench.x(), -2000.0 * depth, 0.05)
-      << "pressed 2 mm further, the surface from where the handle met it";
-}
-
-TEST(ServoLawSurface, APlaneThatJumpsIntoTheHandleStepsNothingAndOneThatLeavesLetsGo) {
-  // J2's model update: the client's surface comes 5 mm toward the handle pressing 10 N on it.
-  ServoLaw law(default_dynamics());
-  ServoInputs in = impedance_on_surface(0.0, 0.0);
-  run_on_contacts(law, in, 100);
-  const double depth = press_along_x(law, in, 0.005);
-  ASSERT_NEAR(run_on_contacts(law, in, 200).rendered_wrench.x(), -2000.0 * depth, 0.05);
-  in.client.contacts[0].point[0] -= 0.005;  // 5 mm into the handle
-  ForceTrace trace;
-  trace.add(-2000.0 * depth, true);
-  for (int k = 0; k < 300; ++k) {
-    trace.add(run_on_contacts(law, in, 1).rendered_wrench.x(), false);
-  }
-  EXPECT_LT(trace.largest_step, 1.0) << "N per 1 ms cycle";
-  EXPECT_NEAR(trace.least, -2000.0 * depth, 0.05) << "the still hand feels what it felt";
-  EXPECT_NEAR(trace.most, -2000.0 * depth, 0.05);
-  ServoOutputs out = run_on_contacts(law, in, 1);
-  EXPECT_NEAR(out.surface_hidden, 0.005, 1e-6) << "telemetry: the jump held back";
-  EXPECT_NEAR(out.surface_withheld, 2000.0 * 0.005 * (depth + 0.0025), 1e-4)
-      << "J: what the jump would have stored in the spring at once";
-  in.client.contacts[0].point[0] += 0.008;  // then 8 mm away: 2 mm of the 5 are left
-  EXPECT_NEAR(run_on_contacts(law, in, 50).rendered_wrench.x(), -2000.0 * (depth - 0.003), 0.05);
-}
-
-TEST(ServoLawSurface, FrictionHoldsTheHandleWithinTheConeAndSlidesBeyondIt) {
-  ServoLaw law(default_dynamics());
-  ServoInputs in = impedance_on_surface(0.0, 0.0);
-  run_on_contacts(law, in, 100);
-  const double depth = press_along_x(law, in, 0.005);
-  run_on_contacts(law, in, 200);  // 10 N into the surface
-  // Turning the first joint moves the handle's point along y, on the surface.
-  const double reach = chain_at(kReady).handle_position.head<2>().norm();
-  in.measures.position[0] += 0.0005 / reach;  // 0.5 mm
-  ServoOutputs out = run_on_contacts(law, in, 20);
-  EXPECT_NEAR(out.rendered_wrench.y(), -2000.0 * 0.0005, 0.1) << "sticking: 1 N back";
-  in.measures.position[0] += 0.01 / reach;  // 1 cm more: past mu_s x 10 N = 5 N
-  out = run_on_contacts(law, in, 20);
-  EXPECT_NEAR(out.rendered_wrench.y(), -0.4 * 2000.0 * depth, 0.2)
-      << "sliding: mu_d x the normal force";
-  EXPECT_NEAR(out.rendered_wrench.x(), -2000.0 * depth, 0.2);
 }
 
 /// Runs `cycles` cycles of 1 ms with the link silent (no new sample: its silence and the last

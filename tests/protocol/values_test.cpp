@@ -4,7 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <limits>
+#include <utility>
+#include <vector>
 
 namespace hapticctrl::protocol {
 namespace {
@@ -98,6 +101,47 @@ TEST(Values, ControlTwistAndWrenchBounds) {
   b.type = HCP_CONTROL_WRENCH;
   b.hcp_body_u.wrench.wrench[0] = -1001.0F;
   EXPECT_TRUE(check_control(b));
+}
+
+TEST(Values, AContactMustBeASurface) {
+  const auto contact = [](const std::function<void(hcp_control_contact&)>& edit) {
+    hcp_control_contact c{};
+    c.slots = pack_contact_slots(0, 1);
+    c.contact.normal[2] = 1.0F;
+    c.contact.stiffness = 1000.0F;
+    c.contact.friction[0] = 0.5F;
+    c.contact.friction[1] = 0.5F;
+    edit(c);
+    return c;
+  };
+  EXPECT_FALSE(check_contact(contact([](hcp_control_contact&) {})));
+  const std::vector<std::pair<const char*, std::function<void(hcp_control_contact&)>>> bad{
+      {"normal not unit", [](hcp_control_contact& c) { c.contact.normal[2] = 0.5F; }},
+      {"normal NaN",
+       [](hcp_control_contact& c) {
+         c.contact.normal[0] = std::numeric_limits<float>::quiet_NaN();
+       }},
+      {"point far", [](hcp_control_contact& c) { c.contact.point[1] = 1e3F; }},
+      {"gap beyond 1 m", [](hcp_control_contact& c) { c.contact.distance = 2.0F; }},
+      {"no stiffness", [](hcp_control_contact& c) { c.contact.stiffness = 0.0F; }},
+      {"stiffness inf",
+       [](hcp_control_contact& c) {
+         c.contact.stiffness = std::numeric_limits<float>::infinity();
+       }},
+      {"negative damping", [](hcp_control_contact& c) { c.contact.damping = -1.0F; }},
+      {"dynamic over static", [](hcp_control_contact& c) { c.contact.friction[1] = 0.6F; }},
+      {"slot at the count", [](hcp_control_contact& c) { c.slots = pack_contact_slots(1, 1); }},
+      {"nine slots", [](hcp_control_contact& c) { c.slots = pack_contact_slots(0, 9); }},
+      {"reserved bits", [](hcp_control_contact& c) { c.slots |= 1U << 20U; }},
+  };
+  for (const auto& [why, edit] : bad) {
+    EXPECT_TRUE(check_contact(contact(edit))) << why;
+  }
+  // A count of 0 clears every slot: its contact is not looked at.
+  EXPECT_FALSE(check_contact(contact([](hcp_control_contact& c) {
+    c.slots = pack_contact_slots(0, 0);
+    c.contact.stiffness = 0.0F;
+  })));
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 
 #include "support/controller_stack.hpp"
 #include "support/json_fields.hpp"
+#include "support/network_scenario.hpp"
 #include "support/spawned_process.hpp"
 
 namespace hapticctrl::test {

@@ -44,6 +44,8 @@
 # interrupted.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# shellcheck source=scripts/run_scenarios.sh
+source scripts/run_scenarios.sh
 if [[ " $* " == *" --help "* || " $* " == *" -h "* ]]; then  # before any build or probe (J8)
   sed -n '2,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//'
   echo "Environment: HAPTICCTRL_INSTANCE (demo), HAPTICCTRL_PORT (5125), HAPTICCTRL_WEB_PORT" \
@@ -358,47 +360,21 @@ if [[ $SUPERVISE -eq 1 ]]; then
   exit 0
 fi
 
+# No terminal: a short scripted scenario (scripts/run_scenarios.sh), its outcome, then the
+# controller's end.
+OUTCOME=0
 if [[ -n $SCENE ]]; then
-  # No terminal, a scene: the tool pushed 3 N down for 3 s; where it went and what it met.
-  echo "== scripted scenario (no terminal): push the scene's tool 3 N down"
-  "${HMI[@]}" force 0 0 -3 0 0 0
-  sleep 3
-  kill -TERM "$DEMO_PID" && wait "$DEMO_PID" || true
-  "${HMI[@]}" zero-force >/dev/null
-  tail -n 2 "$RUN_DIR/mujoco.log"
-  OUTCOME=$(awk 'match($0, /"contact_force":\[[^]]*\]/) {
-      split(substr($0, RSTART + 17, RLENGTH - 18), f, ",")
-      match($0, /"steps_per_second":[0-9.]+/); rate = substr($0, RSTART + 19, RLENGTH - 19)
-      printf "outcome: contact force %.3f N up on the tool, %s engine steps/s\n", f[3], rate
-    }' "$RUN_DIR/mujoco.json")
-  echo "${OUTCOME:-run: no outcome: hapticctrl-mujoco printed no summary ($RUN_DIR/mujoco.log)}"
-  "${HMI[@]}" stop
-  reap_core
-  echo "core figures: $(cat "$RUN_DIR/core.json")"
-  echo "logs in $RUN_DIR/"
-  [[ -n $OUTCOME ]] || exit 1
-  exit 0
+  scene_scenario "$RUN_DIR" "$DEMO_PID" "${HMI[@]}" || OUTCOME=$?
+else
+  demo_scenario "$RUN_DIR" "$DEMO_PID" "${HMI[@]}" || OUTCOME=$?
 fi
-
-# No terminal: a short scenario. The demo has powered the arm and coupled its sphere; the
-# operator pushes the handle along +x until the sphere rests against the fixed sphere.
-echo "== scripted scenario (no terminal): push the handle 5 N along +x"
-"${HMI[@]}" status
-"${HMI[@]}" force 5 0 0 0 0 0
-sleep 3
-"${HMI[@]}" status
-kill -TERM "$DEMO_PID" && wait "$DEMO_PID" || true
-"${HMI[@]}" zero-force >/dev/null
-tail -n 2 "$RUN_DIR/demo.log"
-OUTCOME=$(awk -v operator=5 'match($0, /"contact_force":\[[^]]*\]/) {
-    split(substr($0, RSTART + 17, RLENGTH - 18), f, ",")
-    printf "outcome: contact force %.3f N for an operator force of %.1f N (%.1f %%)\n",
-           -f[1], operator, 100 * -f[1] / operator
-  }' "$RUN_DIR/demo.json")
-echo "${OUTCOME:-run: no outcome: the demo printed no contact force (its log: $RUN_DIR/demo.log)}"
 "${HMI[@]}" stop
 reap_core
-cat "$RUN_DIR/core.log"
+[[ -n $SCENE ]] || cat "$RUN_DIR/core.log"
 echo "core figures: $(cat "$RUN_DIR/core.json")"
-echo "logs in $RUN_DIR/ (demo.csv: the scene per step)"
-[[ -n $OUTCOME ]] || exit 1
+if [[ -n $SCENE ]]; then
+  echo "logs in $RUN_DIR/"
+else
+  echo "logs in $RUN_DIR/ (demo.csv: the scene per step)"
+fi
+exit "$OUTCOME"

@@ -24,7 +24,7 @@ __attribute__((format(printf, 1, 2))) std::string format(const char* fmt, ...) {
   return out;
 }
 
-using ull = unsigned long long;
+using Count = unsigned long long;  // printf's %llu
 
 }  // namespace
 
@@ -52,13 +52,13 @@ std::string summary_json(const RunSummary& s) {
       "\"contact_reports\":%llu,\"contacts_supported\":%s,\"instabilities\":%d,"
       "\"reconnections\":%llu,\"powered\":%s,\"gripping\":%s,",
       s.ended.c_str(), s.body.c_str(), s.mass, s.timestep, p[0], p[1], p[2], p[3], p[4], p[5], p[6],
-      f[0], f[1], f[2], w[0], w[1], w[2], w[3], w[4], w[5], static_cast<ull>(s.steps),
+      f[0], f[1], f[2], w[0], w[1], w[2], w[3], w[4], w[5], static_cast<Count>(s.steps),
       s.steps_per_second, s.timestep > 0.0 ? 1.0 / s.timestep : 0.0,
-      static_cast<ull>(s.steps_dropped), static_cast<ull>(s.steps_paused),
-      static_cast<ull>(s.catch_ups), s.load.mean_us(), static_cast<double>(s.load.cpu_max_ns) / 1e3,
-      static_cast<ull>(s.contact_reports), s.contacts_supported ? "true" : "false", s.instabilities,
-      static_cast<ull>(s.reconnections), s.powered ? "true" : "false",
-      s.gripping ? "true" : "false");
+      static_cast<Count>(s.steps_dropped), static_cast<Count>(s.steps_paused),
+      static_cast<Count>(s.catch_ups), s.load.mean_us(),
+      static_cast<double>(s.load.cpu_max_ns) / 1e3, static_cast<Count>(s.contact_reports),
+      s.contacts_supported ? "true" : "false", s.instabilities, static_cast<Count>(s.reconnections),
+      s.powered ? "true" : "false", s.gripping ? "true" : "false");
   const char* separator = "";
   out += "\"bodies\":{";
   for (const auto& [name, at] : s.bodies) {

@@ -35,8 +35,8 @@ struct SceneCase {
   }
 };
 
-inline void PrintTo(const SceneCase& c,
-                    std::ostream* os) {  // NOLINT(readability-identifier-naming)
+// NOLINTNEXTLINE(readability-identifier-naming): GoogleTest's name
+inline void PrintTo(const SceneCase& c, std::ostream* os) {
   *os << c.name();
 }
 

@@ -18,9 +18,7 @@ using test::default_dynamics;
 using test::ForceTrace;
 using test::impedance_on_surface;
 using test::kReady;
-using test::powered_at;
 using test::press_along_x;
-using test::run;
 using test::run_on_contacts;
 
 TEST(ServoLawSurface, AnImpedanceSurfaceIsRenderedHereInPlaceOfTheClientsPushOutOfIt) {

@@ -24,7 +24,7 @@ inline int run_hmi(const Scenario& s, std::vector<std::string> args, std::chrono
 
 /// The demo with its sphere on a wall `toward` of the handle, stiff and barely damped.
 inline std::vector<std::string> wall_demo(double stiffness, const std::string& toward,
-                                   const std::string& command = "virtmech") {
+                                          const std::string& command = "virtmech") {
   return {"--obstacle",
           "wall",
           "--toward",
@@ -40,7 +40,8 @@ inline std::vector<std::string> wall_demo(double stiffness, const std::string& t
 }
 
 /// `args` and `more` after them.
-inline std::vector<std::string> with(std::vector<std::string> args, const std::vector<std::string>& more) {
+inline std::vector<std::string> with(std::vector<std::string> args,
+                                     const std::vector<std::string>& more) {
   args.insert(args.end(), more.begin(), more.end());
   return args;
 }
@@ -53,7 +54,7 @@ struct Judged {
 };
 
 inline Judged judge(const std::vector<CycleRecord>& r, std::size_t from, std::size_t to,
-             std::size_t axis) {
+                    std::size_t axis) {
   Judged j;
   to = std::min(to, r.size());
   for (std::size_t i = from; i < to; ++i) {
@@ -70,7 +71,8 @@ struct WallCase {
   std::vector<std::string> impairment;
 };
 
-inline void PrintTo(const WallCase& c, std::ostream* os) {  // NOLINT(readability-identifier-naming)
+// NOLINTNEXTLINE(readability-identifier-naming): GoogleTest's name
+inline void PrintTo(const WallCase& c, std::ostream* os) {
   *os << c.name;
 }
 
@@ -88,7 +90,7 @@ inline double port_energy(const std::vector<CycleRecord>& r, std::size_t from, s
 
 /// Mean handle position along `axis` over records [from, to).
 inline double mean_position(const std::vector<CycleRecord>& r, std::size_t from, std::size_t to,
-                     std::size_t axis) {
+                            std::size_t axis) {
   to = std::min(to, r.size());
   double sum = 0.0;
   for (std::size_t i = from; i < to; ++i) {

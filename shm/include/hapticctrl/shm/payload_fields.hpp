@@ -259,8 +259,9 @@ void leaf_of(const std::string& column, const Field& f, T& value, L& leaf) {
     leaf(column, f, value);
   } else {  // std::array of values or of structs
     for (std::size_t i = 0; i < value.size(); ++i) {
-      const std::string part = i < f.parts.size() ? f.parts[i] : std::to_string(i);
-      leaf_of(column + "_" + part, f, value[i], leaf);
+      std::string part = column + "_";
+      part += i < f.parts.size() ? std::string(f.parts[i]) : std::to_string(i);
+      leaf_of(part, f, value[i], leaf);
     }
   }
 }

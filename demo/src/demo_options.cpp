@@ -60,7 +60,7 @@ void declare(program::Options& o, DemoOptions& d) {
       "--command", "virtmech|impedance",
       [&d](const std::string& v) {
         if (v != "virtmech" && v != "impedance") {
-          throw std::invalid_argument("--command must be virtmech or impedance");
+          throw std::invalid_argument("must be virtmech or impedance");
         }
         d.impedance = v == "impedance";
       },
@@ -70,7 +70,7 @@ void declare(program::Options& o, DemoOptions& d) {
       "--obstacle", "sphere|wall",
       [&d](const std::string& v) {
         if (v != "sphere" && v != "wall") {
-          throw std::invalid_argument("--obstacle must be sphere or wall");
+          throw std::invalid_argument("must be sphere or wall");
         }
         d.scene.obstacle = v == "wall" ? Obstacle::kWall : Obstacle::kSphere;
       },
@@ -85,7 +85,7 @@ void declare(program::Options& o, DemoOptions& d) {
             {"z", Eigen::Vector3d::UnitZ()}, {"-z", -Eigen::Vector3d::UnitZ()}};
         const auto found = axes.find(v);
         if (found == axes.end()) {
-          throw std::invalid_argument("--toward must be one of x -x y -y z -z");
+          throw std::invalid_argument("must be one of x -x y -y z -z");
         }
         d.scene.toward = found->second;
       },

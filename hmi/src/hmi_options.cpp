@@ -82,10 +82,10 @@ void declare(program::Options& o, HmiOptions& h, std::vector<std::string>& posit
       [&h, &play_only](const std::string& text) {
         const auto comma = text.find(',');
         if (comma == std::string::npos) {
-          throw std::invalid_argument("--hand needs K,B (stiffness N/m, damping N.s/m)");
+          throw std::invalid_argument("needs K,B (stiffness N/m, damping N.s/m)");
         }
-        h.hand.stiffness = number_of(text.substr(0, comma), "--hand stiffness");
-        h.hand.damping = number_of(text.substr(comma + 1), "--hand damping");
+        h.hand.stiffness = number_of(text.substr(0, comma), "the stiffness");
+        h.hand.damping = number_of(text.substr(comma + 1), "the damping");
         h.with_hand = true;
         play_only.emplace_back("--hand");
       },
@@ -93,7 +93,7 @@ void declare(program::Options& o, HmiOptions& h, std::vector<std::string>& posit
   o.custom(
       "--wander", "M",
       [&h, &play_only](const std::string& v) {
-        h.hand.wander = number_of(v, "--wander");
+        h.hand.wander = number_of(v, "the distance");
         play_only.emplace_back("--wander");
       },
       "play: the hand's anchor wanders up to M per axis");

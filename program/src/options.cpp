@@ -24,11 +24,6 @@ std::string text_of(T value) {
   return out.str();
 }
 
-/// Prefixes `message` with the option's name unless it already starts with it.
-std::string about(const std::string& option, const std::string& message) {
-  return message.rfind(option, 0) == 0 ? message : option + ": " + message;
-}
-
 }  // namespace
 
 template <typename T>
@@ -38,8 +33,8 @@ T number_in(const std::string& option, const std::string& text, T lo, T hi) {
   const auto [ptr, ec] = std::from_chars(text.data(), end, value);
   // Written so that NaN is out of range too.
   if (ec != std::errc() || ptr != end || !(value >= lo && value <= hi)) {
-    throw std::invalid_argument(option + ": expected a number from " + text_of(lo) + " to " +
-                                text_of(hi) + ", got '" + text + "'");
+    throw OptionError(option, "expected a number from " + text_of(lo) + " to " + text_of(hi) +
+                                  ", got '" + text + "'");
   }
   return value;
 }
@@ -95,7 +90,7 @@ Options& Options::instance(std::string& target, const std::string& help) {
       "--instance", "NAME",
       [&target](const std::string& v) {
         if (v.empty() || v.find_first_of(". \t") != std::string::npos) {
-          throw std::invalid_argument("--instance must be a non-empty name without dots or spaces");
+          throw std::invalid_argument("must be a non-empty name without dots or spaces");
         }
         target = v;
       },
@@ -118,8 +113,10 @@ Options& Options::custom(const std::string& name, const std::string& value_name,
   const auto checked = [name, apply = std::move(apply)](const std::string& value) {
     try {
       apply(value);
+    } catch (const OptionError&) {
+      throw;  // it names its option already
     } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument(about(name, e.what()));
+      throw OptionError(name, e.what());
     }
   };
   if (repeat) {

@@ -65,7 +65,7 @@ void declare(program::Options& o, CoreConfig& c) {
       [&c](const std::string& v) {
         const auto colon = v.find(':');
         if (colon == std::string::npos) {
-          throw std::invalid_argument("--inject-overrun wants CYCLE:K, got '" + v + "'");
+          throw std::invalid_argument("wants CYCLE:K, got '" + v + "'");
         }
         c.inject_at_cycle =
             number<std::uint64_t>("--inject-overrun", v.substr(0, colon), 1, 1ULL << 40);

@@ -56,7 +56,7 @@ TEST(HmiOptions, RefusesWhatItCannotDoWithAClearMessage) {
   EXPECT_EQ(message({"play"}), "play needs one sequence file");
   EXPECT_EQ(message({"power-on", "now"}), "unexpected argument 'now'");
   EXPECT_EQ(message({"play", "s", "--hand", "400"}),
-            "--hand needs K,B (stiffness N/m, damping N.s/m)");
+            "--hand: needs K,B (stiffness N/m, damping N.s/m)");
   EXPECT_NE(message({"play", "s", "--hand", "9000,5"}).find("0..3000 N/m"), std::string::npos);
   EXPECT_NE(message({"play", "s", "--hand", "400,5", "--wander", "1"}).find("0..0.1 m"),
             std::string::npos);

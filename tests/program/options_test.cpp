@@ -66,6 +66,32 @@ TEST(Options, ParsesEachKindAndKeepsDefaults) {
       << "negative numbers stay positional";
 }
 
+TEST(Options, AnErrorNamesItsOptionOnceAndCarriesIt) {
+  Sample s;
+  Options o("prog", "A program.");
+  declare(o, s);
+  try {
+    o.parse({"--client", "x1"});
+    FAIL() << "a bad network was taken";
+  } catch (const OptionError& e) {
+    EXPECT_EQ(e.option(), "--client") << "the caller decides on the subject, not the text";
+    EXPECT_STREQ(e.what(), "--client: not a network: 'x1'");
+  }
+  Options other("prog", "A program.");
+  int port = 0;
+  other.custom(
+      "--listen", "ADDR",
+      [&port](const std::string& v) { port = number_in<int>("--listen port", v, 1, 9); },
+      "an address");
+  try {
+    other.parse({"--listen", "10"});
+    FAIL() << "port 10 was taken";
+  } catch (const OptionError& e) {
+    EXPECT_EQ(e.option(), "--listen port") << "a number's own error, as it was thrown";
+    EXPECT_STREQ(e.what(), "--listen port: expected a number from 1 to 9, got '10'");
+  }
+}
+
 TEST(Options, NumbersOutsideTheirRangeNaNAndInfinityAreRefusedNamingTheOption) {
   for (const std::string bad : {"0", "99", "7.5", "x", "", "nan"}) {
     Sample s;
@@ -119,7 +145,7 @@ TEST(Options, AnInstanceIsANameWithoutDotsOrSpaces) {
     Options again("prog", "A program.");
     again.instance(instance, "controller instance");
     EXPECT_EQ(error_of(again, {"--instance", bad}),
-              "--instance must be a non-empty name without dots or spaces")
+              "--instance: must be a non-empty name without dots or spaces")
         << bad;
   }
 }

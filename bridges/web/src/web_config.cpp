@@ -25,8 +25,8 @@ void check_listen(const std::string& text) {
     digits_only = digits_only && (c == '.' || (c >= '0' && c <= '9'));
   }
   if (!digits_only || dots != 3) {
-    throw std::invalid_argument(
-        "--listen: expected IPV4-ADDRESS:PORT such as 127.0.0.1:8080, got '" + text + "'");
+    throw std::invalid_argument("expected IPV4-ADDRESS:PORT such as 127.0.0.1:8080, got '" + text +
+                                "'");
   }
   (void)program::number_in<int>("--listen port", port, 0, 65535);
 }

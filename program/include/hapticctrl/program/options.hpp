@@ -2,19 +2,36 @@
 /// @file options.hpp
 /// A program's command line, declared once with CLI11: the --help text is generated from the
 /// declarations, numbers are range-checked with NaN and infinities refused (CLI::Range lets NaN
-/// through), and every usage error is a std::invalid_argument naming the option, which
-/// main_skeleton.hpp turns into the project's usage exit (64). CLI11 stays inside options.cpp
-/// (GCC's -Wnull-dereference misfires in its string splitting when inlined into a ThreadSanitizer
-/// build, 2026-12-02). Setup code: allocates, throws; never called from a cycle.
+/// through), and every usage error about an option is an OptionError (a std::invalid_argument)
+/// whose text starts with the option's name and whose option() names it; main_skeleton.hpp turns
+/// any std::invalid_argument into the project's usage exit (64). A `custom` option's function
+/// throws the reason only ("must be sphere or wall"): the option's name is put before it once.
+/// CLI11 stays inside options.cpp (GCC's -Wnull-dereference misfires in its string splitting when
+/// inlined into a ThreadSanitizer build, 2026-12-02). Setup code: allocates, throws; never called
+/// from a cycle.
 #include <functional>
 #include <memory>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace hapticctrl::program {
 
+/// A usage error about one option: its text starts with the option's name ("--period-us:
+/// expected ..."), and option() names it for a caller that decides on it.
+class OptionError : public std::invalid_argument {
+ public:
+  OptionError(std::string option, const std::string& why)
+      : std::invalid_argument(option + ": " + why), option_(std::move(option)) {}
+  [[nodiscard]] const std::string& option() const noexcept { return option_; }
+
+ private:
+  std::string option_;
+};
+
 /// `text` as a T within [lo, hi]: whole for integer types, finite for floating ones. Throws
-/// std::invalid_argument("<option>: expected a number from LO to HI, got 'TEXT'").
+/// OptionError("<option>: expected a number from LO to HI, got 'TEXT'").
 template <typename T>
 T number_in(const std::string& option, const std::string& text, T lo, T hi);
 

@@ -6,9 +6,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <ostream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "support/network_scenario.hpp"
@@ -120,6 +122,37 @@ inline std::optional<bool> wait_for_wrenches(Scenario& s) {
   }
   std::this_thread::sleep_for(500ms);
   return std::nullopt;
+}
+
+/// A 10 N push judged: the force felt and the speed over the push's 2nd and 3rd second, with the
+/// records for a failure's report.
+struct JudgedPush {
+  Judged judged;
+  std::vector<CycleRecord> records;
+  std::size_t from = 0;
+  std::size_t to = 0;
+};
+
+/// Pushes `force_x` N along x through the force region for 3 s and judges the last 2; nullopt
+/// when the machine disturbed the attempt (the core failed safe, or the link was held up 30 ms
+/// or more in the judged window), which with_retries then tries again.
+inline std::optional<JudgedPush> push_and_judge(Scenario& s, double force_x, const char* name) {
+  const std::uint64_t pushed_at = s.recorder->newest_cycle();
+  EXPECT_EQ(run_hmi(s, {"force", std::to_string(force_x), "0", "0", "0", "0", "0"}, 10s), 0);
+  std::this_thread::sleep_for(3s);
+  if (s.core_failed_safe()) {
+    return std::nullopt;
+  }
+  JudgedPush p;
+  p.records = s.recorder->records();
+  p.from = index_of(p.records, pushed_at + kCyclesPerSecond);
+  p.to = index_of(p.records, pushed_at + 3 * kCyclesPerSecond);
+  if (longest_silence(p.records, p.from, p.to) >= 30 * kCyclesPerSecond / 1000) {
+    std::printf("%s: the link was held up in the judged window: tried again\n", name);
+    return std::nullopt;
+  }
+  p.judged = judge(p.records, p.from, p.to, 0);
+  return p;
 }
 
 }  // namespace hapticctrl::test

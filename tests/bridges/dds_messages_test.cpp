@@ -125,7 +125,7 @@ TEST(DdsMessages, TheArmTopicsCarryEveryPositionFieldButTheseListed) {
               testing::UnorderedElementsAreArray(std::vector<std::string>{
                   // the cycle and the state: on /diagnostics, from telemetry
                   "cycle", "state_word", "core_state",
-                  // no standard message pairs a twist with this pose stream (docs/ros2.md)
+                  // on LCM's arm_state only (docs/ros2.md, Not published over DDS)
                   "handle_twist_x", "handle_twist_y", "handle_twist_z", "handle_twist_rx",
                   "handle_twist_ry", "handle_twist_rz"}));
 }

@@ -2,8 +2,6 @@
 // and its JSON form (`hapticctrl-hmi status --json`).
 #include "hapticctrl/hmi/status.hpp"
 
-#include <arpa/inet.h>
-
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -33,14 +31,6 @@ void json_array(std::ostringstream& out, const char* name, const std::array<doub
     out << (i == 0 ? "" : ",") << JsonNumber{values[i]};
   }
   out << "]";
-}
-
-std::string ipv4_text(std::uint32_t host_order) {
-  in_addr a{};
-  a.s_addr = htonl(host_order);
-  char text[INET_ADDRSTRLEN] = {};  // NOLINT(*-avoid-c-arrays)
-  inet_ntop(AF_INET, &a, text, sizeof text);
-  return text;
 }
 
 /// `,"regions":{...}`: every field of each region read, as its table describes it (a region that
@@ -132,7 +122,7 @@ std::string status_json(const ControllerStatus& s) {
       << ",\"degraded_cycles\":" << t.degraded_cycles
       << "},\"client\":{\"connected\":" << s.client_connected();
   if (s.client_connected()) {
-    out << ",\"peer\":\"" << ipv4_text(s.link.peer_ipv4) << ":" << s.link.peer_port
+    out << ",\"peer\":\"" << shm::ipv4_text(s.link.peer_ipv4) << ":" << s.link.peer_port
         << "\",\"session_id\":" << s.link.session_id << ",\"sample_age_ms\":" << s.client_age_ms()
         << ",\"control_accepted\":" << s.link.control_accepted
         << ",\"stale\":" << s.has_state_bit(shm::state_bits::kClientStale)

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <string>
 
+#include "hapticctrl/shm/payload_text.hpp"
+
 namespace hapticctrl::lcmtypes {
 namespace {
 
@@ -44,13 +46,6 @@ shm::LatencySummary from_latency(const hapticctrl_lcm::latency_t& l) noexcept {
   s.samples = static_cast<std::uint64_t>(l.samples);
   s.overflows = static_cast<std::uint64_t>(l.overflows);
   return s;
-}
-
-std::string peer_text(std::uint32_t ipv4, std::uint32_t port) {
-  in_addr a{htonl(ipv4)};
-  char text[INET_ADDRSTRLEN] = {};  // NOLINT(*-avoid-c-arrays): inet_ntop's buffer
-  ::inet_ntop(AF_INET, &a, text, sizeof text);
-  return std::string(text) + ":" + std::to_string(port);
 }
 
 void read_peer(const std::string& peer, shm::LinkStatsPayload& s) {
@@ -167,7 +162,7 @@ hapticctrl_lcm::bridge_stats_t to_bridge_stats(const shm::LinkStatsPayload& s, s
   m.utime = utime;
   m.session_id = static_cast<std::int64_t>(s.session_id);
   if (s.session_id != 0) {
-    m.peer = peer_text(s.peer_ipv4, s.peer_port);
+    m.peer = shm::ipv4_text(s.peer_ipv4) + ":" + std::to_string(s.peer_port);
   }
   m.watchdog_ms = static_cast<std::int32_t>(s.watchdog_ms);
   m.features = static_cast<std::int32_t>(s.features);

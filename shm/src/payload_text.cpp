@@ -22,10 +22,7 @@ void write_value(std::ostringstream& out, const Field& f, T value, bool quote_te
       out << (quote_text ? "null" : "");
     }
   } else if (std::strcmp(f.unit, "ipv4") == 0) {
-    in_addr a{};
-    a.s_addr = htonl(static_cast<std::uint32_t>(value));
-    char text[INET_ADDRSTRLEN] = {};  // NOLINT(*-avoid-c-arrays): inet_ntop's buffer
-    ::inet_ntop(AF_INET, &a, text, sizeof text);
+    const std::string text = ipv4_text(static_cast<std::uint32_t>(value));
     out << (quote_text ? "\"" : "") << text << (quote_text ? "\"" : "");
   } else {
     out << +value;  // + : a uint8_t would print as a character
@@ -56,6 +53,14 @@ void write_json(std::ostringstream& out, const Field& f, const T& value) {
 }
 
 }  // namespace
+
+std::string ipv4_text(std::uint32_t host_order) {
+  in_addr a{};
+  a.s_addr = htonl(host_order);
+  char text[INET_ADDRSTRLEN] = {};  // NOLINT(*-avoid-c-arrays): inet_ntop's buffer
+  ::inet_ntop(AF_INET, &a, text, sizeof text);
+  return text;
+}
 
 template <Described P>
 std::string csv_header() {

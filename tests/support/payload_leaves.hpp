@@ -36,19 +36,31 @@ P with_leaf(std::size_t index) {
   return p;
 }
 
-/// The columns of P whose change leaves `seen(p)` as it is with a default P: what the mapping
-/// behind `seen` does not carry.
+/// The columns of P whose change does (`carried`) or does not change `seen(p)` from what it is
+/// with a default P.
 template <typename P, typename Seen>
-std::vector<std::string> uncarried(Seen seen) {
+std::vector<std::string> columns_where(Seen seen, bool carried) {
   const auto columns = leaf_columns<P>();
   const auto baseline = seen(P{});
   std::vector<std::string> out;
   for (std::size_t i = 0; i < columns.size(); ++i) {
-    if (seen(with_leaf<P>(i)) == baseline) {
+    if ((seen(with_leaf<P>(i)) != baseline) == carried) {
       out.push_back(columns[i]);
     }
   }
   return out;
+}
+
+/// What the mapping behind `seen` does not carry of P.
+template <typename P, typename Seen>
+std::vector<std::string> uncarried(Seen seen) {
+  return columns_where<P>(seen, false);
+}
+
+/// What the mapping behind `seen` carries of P.
+template <typename P, typename Seen>
+std::vector<std::string> carried(Seen seen) {
+  return columns_where<P>(seen, true);
 }
 
 }  // namespace hapticctrl::test

@@ -7,6 +7,7 @@
 ///
 /// Real-time contract: not for the cycle (allocates).
 
+#include <cstdint>
 #include <string>
 
 #include "hapticctrl/shm/payload_fields.hpp"
@@ -24,5 +25,8 @@ template <Described P>
 /// `p` as one JSON object keyed by field name.
 template <Described P>
 [[nodiscard]] std::string fields_json(const P& p);
+
+/// An IPv4 address held in host byte order (link_stats' peer_ipv4) as dotted text.
+[[nodiscard]] std::string ipv4_text(std::uint32_t host_order);
 
 }  // namespace hapticctrl::shm

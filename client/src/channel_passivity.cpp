@@ -18,6 +18,12 @@ constexpr double kDamperShare = 0.5;
 /// explicit integration's motion brought to rest, never reversed). With half of it, a hand
 /// wandering on a 3000 N/m wall at 100 ms one way left the client's end 3.9 J over what the core
 /// put in in 60 s; with all of it 0.40-0.77 J (bench/contact.sh, J1 2026-12-03: still open).
+/// Along the object's motion only: a contact turns the object too (friction at its contact
+/// point, a rolling patch), with terms the library does not see and that an application sets
+/// near its own integration's bound. The demo's sphere on the fixed one at a 10 ms cycle (its
+/// rolling spring at I / dt^2, damper at I / (2 dt)) rang at the step's Nyquist rate with the
+/// whole damper on its rotation (+-0.23 N.m a step; the client's end 2.1-2.4 J over what the
+/// core put in, 3 runs of 3) and 0.31-0.40 J over with half of it (4 runs, 2026-12-07).
 constexpr double kContactDamperShare = 1.0;
 
 double dot3(const Vector6& a, const Vector6& b, std::size_t from) noexcept {
@@ -133,7 +139,7 @@ void ChannelPassivity::on_step(const Vector6& twist, double dt, double held,
     const double alpha = excess / ((lin_sq + ang_sq) * dt);
     const double share = contact_share_ > 0.0 ? kContactDamperShare : kDamperShare;
     alpha_linear_ = std::min(alpha, share * mass_ / held);
-    alpha_angular_ = std::min(alpha, share * inertia_ / held);
+    alpha_angular_ = std::min(alpha, kDamperShare * inertia_ / held);
     ++active_steps_;
   }
 }

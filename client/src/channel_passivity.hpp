@@ -10,7 +10,8 @@
 /// application's integration bears. Free, the damper takes at most the wrench's share along the
 /// motion (it never pushes against the motion itself: beyond it, it shook a resting weighted
 /// object's support between 1.4 and 7.4 N, J1 2026-12-03). Held by a contact (protocol 1.3), it
-/// takes the whole excess the integration bears (up to stopping the object's step), even
+/// takes the whole excess the integration bears (up to stopping the object's step; on its
+/// rotation half of that, where the application's own contact terms act unseen), even
 /// against the motion: bounded there, the balance broke (4.0-8.6 J out for the core's 2.3-3.1 J
 /// in at 10-20 ms, J1 review). What it cannot take stays owed and is damped on the next steps.
 ///

@@ -54,8 +54,12 @@ SphereScene::ContactGains SphereScene::gains_for(double dt) const noexcept {
   const double r2 = config_.mobile_radius * config_.mobile_radius;
   // Friction acts at the contact point, which both translation and rotation move.
   const double contact_point_mass = m * inertia / (inertia + m * r2);
+  // Half of the explicit bound's share for the stiffness (k dt^2 / m <= 0.5, of 4): the client
+  // library adds the coupling and its passivity damper on the same motion. At m / dt^2 the
+  // rolling patch, the friction and that damper rang at the step's Nyquist rate on a 10 ms step
+  // (2026-12-07); below 4 ms no gain of the default scene reaches the bound.
   const auto stiffness = [dt](double k, double mass) {
-    return dt > 0.0 ? std::min(k, mass / (dt * dt)) : k;
+    return dt > 0.0 ? std::min(k, 0.5 * mass / (dt * dt)) : k;
   };
   const auto damping = [dt](double b, double mass) {
     return dt > 0.0 ? std::min(b, 0.5 * mass / dt) : b;

@@ -85,6 +85,19 @@ TEST(ChannelPassivity, HeldByAContactTheDamperIsWholeWithinTheIntegrationAndTheR
       << "0.3 J still owed: the damper stays on the next step";
 }
 
+TEST(ChannelPassivity, HeldByAContactTheRotationsDamperStaysAtHalfTheIntegrationsBound) {
+  // The application's own contact terms turn the object unseen (friction at the contact point,
+  // a rolling patch): on the rotation the damper keeps the free bound, I / (2 dt).
+  ChannelPassivity pc;
+  pc.set_object(0.2, 1e-5);
+  pc.set_contact_share(1.0);
+  (void)pc.render({5000.0, 0, 0, 0, 0, 0.5});
+  pc.on_step({1.0, 0, 0, 0, 0, 1.0}, kDt, kDt, next_ns());  // 5 J out: alpha 2500 wanted
+  const Vector6 w = pc.render({5000.0, 0, 0, 0, 0, 0.5});
+  EXPECT_NEAR(w[0], 5000.0 - 0.2 / kDt * 1.0, 1e-9) << "along the motion: m / dt";
+  EXPECT_NEAR(w[5], 0.5 - 0.5 * 1e-5 / kDt * 1.0, 1e-9) << "on the rotation: I / (2 dt)";
+}
+
 TEST(ChannelPassivity, TheObjectsOutputIsComparedALoopLate) {
   // The controller's report covers the object's motion up to a loop ago: with a 5 ms loop, the
   // output of the last 5 ms is not yet excess.

@@ -148,6 +148,34 @@ TEST(SphereScene, ACoarseClientStepBoundsTheContactGainsAndStaysStable) {
   EXPECT_DOUBLE_EQ(scene.contact_stiffness(), c.contact_stiffness) << "already stable";
 }
 
+TEST(SphereScene, ACoarseStepLeavesTheClientLibrarysDamperRoomOnTheRotation) {
+  // The client library's passivity controller adds a damper of up to I / (2 dt) on the object's
+  // rotation (channel_passivity.cpp), on the twist of the step before, beside the scene's own
+  // rolling and friction terms. With the scene's stiffness at its integration's bound (m / dt^2)
+  // the three together rang at the step's Nyquist rate on a 10 ms step (2026-12-07); with half
+  // of the bound they come to rest.
+  SceneConfig c = touching_scene();
+  c.fixed_center = {0.06, 0.0, 0.0};
+  SphereState start;
+  start.position = {0.0001, 0.0, 0.0};
+  SphereScene scene(c, start);
+  constexpr double kCoarse = 0.01;
+  for (int i = 0; i < 200; ++i) {
+    scene.step({}, {5, 0, 0, 0, 0, 0}, kCoarse);
+  }
+  SphereState spun = scene.state();
+  spun.angular_velocity = {0.0, 0.0, 1.0};  // rolling along the fixed sphere's surface
+  SphereScene rolled(c, spun);
+  const double damper = 0.5 * c.inertia() / kCoarse;
+  for (int i = 0; i < 300; ++i) {
+    const Eigen::Vector3d w = rolled.state().angular_velocity;
+    rolled.step({0, 0, 0, -damper * w.x(), -damper * w.y(), -damper * w.z()}, {5, 0, 0, 0, 0, 0},
+                kCoarse);
+  }
+  EXPECT_LT(rolled.state().angular_velocity.norm(), 1e-3);
+  EXPECT_LT(rolled.state().velocity.norm(), 1e-3);
+}
+
 TEST(SphereScene, CorruptInputsAndBadStepsLeaveTheSceneUntouched) {
   SphereScene scene(touching_scene(), {});
   scene.step({std::nan(""), 0, 0, 0, 0, 0}, {}, kDt);

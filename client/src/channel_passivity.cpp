@@ -22,8 +22,9 @@ constexpr double kDamperShare = 0.5;
 /// point, a rolling patch), with terms the library does not see and that an application sets
 /// near its own integration's bound. The demo's sphere on the fixed one at a 10 ms cycle (its
 /// rolling spring at I / dt^2, damper at I / (2 dt)) rang at the step's Nyquist rate with the
-/// whole damper on its rotation (+-0.23 N.m a step; the client's end 2.1-2.4 J over what the
-/// core put in, 3 runs of 3) and 0.31-0.40 J over with half of it (4 runs, 2026-12-07).
+/// whole damper on its rotation (+-0.23 N.m a step; the client's end put out 2.38-2.73 J for
+/// the core's 0.22-0.31 J in, 3 runs of 3) and 0.31-0.40 J over with half of it (4 runs,
+/// 2026-12-07).
 constexpr double kContactDamperShare = 1.0;
 
 double dot3(const Vector6& a, const Vector6& b, std::size_t from) noexcept {

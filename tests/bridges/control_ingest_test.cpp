@@ -6,8 +6,7 @@
 
 #include <memory>
 
-#include "hapticctrl/protocol/timing.hpp"
-#include "hapticctrl/protocol/values.hpp"
+#include "support/protocol_frames.hpp"
 
 namespace hapticctrl::udp_bridge {
 namespace {
@@ -21,14 +20,9 @@ struct ControlIngestTest : testing::Test {
 
   static hcp_frame timed_object(std::uint32_t sequence, std::uint64_t answer_cycle, TimeNs hold_ns,
                                 std::uint32_t energy_uj) {
-    hcp_frame f = protocol::make_frame(HCP_CONTROL_OBJECT_TIMED, 1, sequence, 0);
-    hcp_control_object_timed& t = f.body.hcp_body_u.timed;
-    t.position[1] = -0.2F;
-    const auto r = protocol::pack_rotation({0, 0, 0, 1});
-    t.rotation[0] = r[0];
-    t.rotation[1] = r[1];
-    t.answer_echo = protocol::pack_answer_echo(answer_cycle, hold_ns, true);
-    t.energy_in = energy_uj;
+    hcp_frame f =
+        protocol::test::timed_object_frame(1, sequence, 0, answer_cycle, hold_ns, energy_uj);
+    f.body.hcp_body_u.timed.position[1] = -0.2F;
     return f;
   }
 };

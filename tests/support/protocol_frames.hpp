@@ -1,6 +1,6 @@
 #pragma once
 // Test support of the protocol's tests: one valid frame of every type (round trips, mutation,
-// sizes) and a control frame with an object state.
+// sizes), a control frame with an object state and a timed one for the bridge's tests.
 #include <cstdint>
 #include <cstring>
 #include <vector>
@@ -19,6 +19,21 @@ inline hcp_frame object_frame() {
   const float twist[6] = {0.5F, 0, 0, 0, 0, 0.25F};      // NOLINT(*-avoid-c-arrays)
   std::memcpy(f.body.hcp_body_u.object.pose, pose, sizeof pose);
   std::memcpy(f.body.hcp_body_u.object.twist, twist, sizeof twist);
+  return f;
+}
+
+/// A CONTROL_OBJECT_TIMED frame at the origin, unturned, echoing answer `answer_cycle` that the
+/// client held `hold_ns`, with the client's energy in (µJ); the caller places the object.
+inline hcp_frame timed_object_frame(std::uint64_t token, std::uint32_t sequence, std::int64_t now,
+                                    std::uint64_t answer_cycle, std::int64_t hold_ns,
+                                    std::uint32_t energy_uj) {
+  hcp_frame f = make_frame(HCP_CONTROL_OBJECT_TIMED, token, sequence, now);
+  hcp_control_object_timed& t = f.body.hcp_body_u.timed;
+  const auto r = pack_rotation({0, 0, 0, 1});
+  t.rotation[0] = r[0];
+  t.rotation[1] = r[1];
+  t.answer_echo = pack_answer_echo(answer_cycle, hold_ns, true);
+  t.energy_in = energy_uj;
   return f;
 }
 
@@ -58,15 +73,13 @@ inline std::vector<hcp_frame> one_of_each() {
   a.handle_pose[0] = 0.25;
   a.joint_position[5] = -0.5;
   frames.push_back(answer);
-  hcp_frame timed = make_frame(HCP_CONTROL_OBJECT_TIMED, kToken, 6, 15);
+  hcp_frame timed = timed_object_frame(kToken, 6, 15, 1234, 300'000, 0xFFFFFFF0U);
   hcp_control_object_timed& t = timed.body.hcp_body_u.timed;
   t.position[0] = 0.5F;
   const auto packed = pack_rotation({0.1, 0.2, 0.3, 0.9});
   t.rotation[0] = packed[0];
   t.rotation[1] = packed[1];
   t.twist[3] = 0.25F;
-  t.answer_echo = pack_answer_echo(1234, 300'000, true);
-  t.energy_in = 0xFFFFFFF0U;
   frames.push_back(timed);
   hcp_frame answer_timed = make_frame(HCP_ANSWER_TIMED, kToken, 7, 15);
   answer_timed.body.hcp_body_u.answer_timed.answer = a;

@@ -11,6 +11,7 @@
 #include "hapticctrl/protocol/values.hpp"
 #include "hapticctrl/udp_bridge/session.hpp"
 #include "support/in_memory_controller.hpp"
+#include "support/protocol_frames.hpp"
 
 namespace hapticctrl::test {
 
@@ -69,14 +70,9 @@ struct Client {
   /// A CONTROL_OBJECT_TIMED frame echoing answer `answer_cycle`, held `hold_ns` by the client.
   hcp_frame timed_object(std::uint64_t answer_cycle, std::int64_t hold_ns,
                          std::uint32_t energy_uj) {
-    hcp_frame f = protocol::make_frame(HCP_CONTROL_OBJECT_TIMED, token, ++control_seq, now);
-    hcp_control_object_timed& t = f.body.hcp_body_u.timed;
-    t.position[0] = 0.3F;
-    const auto r = protocol::pack_rotation({0, 0, 0, 1});
-    t.rotation[0] = r[0];
-    t.rotation[1] = r[1];
-    t.answer_echo = protocol::pack_answer_echo(answer_cycle, hold_ns, true);
-    t.energy_in = energy_uj;
+    hcp_frame f = protocol::test::timed_object_frame(token, ++control_seq, now, answer_cycle,
+                                                     hold_ns, energy_uj);
+    f.body.hcp_body_u.timed.position[0] = 0.3F;
     return f;
   }
   hcp_frame param(hcp_param_id id) {

@@ -11,3 +11,10 @@ add_compile_definitions(HAPTICCTRL_SANITIZED=1)
 if(HAPTICCTRL_SANITIZER STREQUAL "thread")
   add_compile_definitions(HAPTICCTRL_TSAN=1)
 endif()
+if(CMAKE_C_COMPILER_ID STREQUAL "Clang")
+  # A C program linked against the C++ client library (the VirtuoseAPI example and the
+  # declarations' check) needs the C++ part of clang's UBSan runtime, which only its C++ driver
+  # links.
+  set(CMAKE_C_LINK_EXECUTABLE
+    "${CMAKE_CXX_COMPILER} <FLAGS> <CMAKE_C_LINK_FLAGS> <LINK_FLAGS> <OBJECTS> -o <TARGET> <LINK_LIBRARIES>")
+endif()

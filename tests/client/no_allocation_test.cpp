@@ -21,7 +21,17 @@ namespace {
 
 using namespace std::chrono_literals;
 
-TEST(ClientNoAllocation, CounterSeesAllocations) {
+class ClientNoAllocation : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!test::kCountsAllocations) {
+      GTEST_SKIP()
+          << "ThreadSanitizer's runtime owns the allocator (support/allocation_counter.hpp)";
+    }
+  }
+};
+
+TEST_F(ClientNoAllocation, CounterSeesAllocations) {
   test::allocations = 0;
   test::counting = true;
   auto probe = std::make_unique<int>(3);
@@ -29,7 +39,7 @@ TEST(ClientNoAllocation, CounterSeesAllocations) {
   EXPECT_EQ(test::allocations.load(), 1U) << "the counter works, so a zero below means something";
 }
 
-TEST(ClientNoAllocation, PerCycleCallsAllocateNothing) {
+TEST_F(ClientNoAllocation, PerCycleCallsAllocateNothing) {
   // The slow cycle: at 2 ms a 10 ms stall of this VM failed the core safe mid-count, the
   // session ended and the test counted the closing path's allocation (CI, 2026-12-01).
   test::ControllerStack stack("noalloc", test::ControllerStack::kDefaultPeriodUs);
@@ -56,7 +66,7 @@ TEST(ClientNoAllocation, PerCycleCallsAllocateNothing) {
   EXPECT_EQ(test::allocations.load(), 0U);
 }
 
-TEST(ClientNoAllocation, TheVirtuoseApisPerCycleCallsAllocateNothing) {
+TEST_F(ClientNoAllocation, TheVirtuoseApisPerCycleCallsAllocateNothing) {
   test::ControllerStack stack("noallocvirt", test::ControllerStack::kDefaultPeriodUs);
   ASSERT_TRUE(stack.ready()) << stack.diagnostics();
   const std::string name = "127.0.0.1#" + std::to_string(stack.port());

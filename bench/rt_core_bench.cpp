@@ -23,7 +23,7 @@ const ArmDynamics& dynamics() {
 
 ServoInputs coupled_inputs() {
   ServoInputs in;
-  in.dt = kNsPerMs;
+  in.dt = std::chrono::milliseconds(1);
   in.logical.powered = true;
   in.client.session_id = 1;
   in.client.command = ClientCommand::kVirtmech;
@@ -77,7 +77,7 @@ void BM_SimulatorStep1ms(benchmark::State& state) {
 BENCHMARK(BM_SimulatorStep1ms);
 
 /// One full cycle as the SERVO runs it: measures, law, commands (simulator integration).
-void run_full_cycle(benchmark::State& state, TimeNs period) {
+void run_full_cycle(benchmark::State& state, Duration period) {
   auto force = std::make_unique<shm::SeqlockCell<shm::ForcePayload>>();
   SimulatedArm arm(dynamics(), SimulatorOptions{}, kReady, force.get());
   arm.set_supply(true);
@@ -88,18 +88,18 @@ void run_full_cycle(benchmark::State& state, TimeNs period) {
   for (auto _ : state) {
     arm.get_measures(in.measures);
     law.compute(in, false, out);
-    arm.send_commands(out.commands, 0, period);
+    arm.send_commands(out.commands, TimePoint{}, period);
   }
 }
 
 void BM_FullCycle1ms(benchmark::State& state) {
-  run_full_cycle(state, kNsPerMs);
+  run_full_cycle(state, std::chrono::milliseconds(1));
 }
 BENCHMARK(BM_FullCycle1ms);
 
 /// At 100 µs the simulator runs a single sub-step.
 void BM_FullCycle100us(benchmark::State& state) {
-  run_full_cycle(state, 100 * kNsPerUs);
+  run_full_cycle(state, std::chrono::microseconds(100));
 }
 BENCHMARK(BM_FullCycle100us);
 

@@ -35,7 +35,7 @@ LINK = re.compile(r'\]\(([^)\s#]*)(#[\w-]+)?\)')
 
 
 def tracked(root):
-    if os.path.isdir(os.path.join(root, '.git')):
+    if os.path.exists(os.path.join(root, '.git')):  # a folder, or a worktree's file
         out = subprocess.run(['git', 'ls-files'], cwd=root, capture_output=True, text=True,
                              check=True).stdout
         return [f for f in out.split('\n') if f]

@@ -186,7 +186,8 @@ void SimulatedArm::read_operator_wrench() noexcept {
   hand_.damping = sample.hand.damping;
 }
 
-void SimulatedArm::send_commands(const ArmCommands& commands, TimeNs /*now*/, TimeNs dt) noexcept {
+void SimulatedArm::send_commands(const ArmCommands& commands, TimePoint /*now*/,
+                                 Duration dt) noexcept {
   read_operator_wrench();
   const bool enabled =
       supply_on_.load(std::memory_order_acquire) && commands.enable && commands.torque.allFinite();
@@ -197,7 +198,7 @@ void SimulatedArm::send_commands(const ArmCommands& commands, TimeNs /*now*/, Ti
       applied_torque_(i) = std::clamp(commands.torque(i), -limit, limit);
     }
   }
-  const double h = static_cast<double>(dt) * 1e-9;
+  const double h = to_seconds(dt);
   sim_.step(applied_torque_, operator_wrench_, h, /*brakes=*/!enabled, hand_);
   const Vector6d previous = measured_position_;
   measured_position_ = quantised(sim_.position());

@@ -4,31 +4,33 @@
 #include "hapticctrl/rt_core/clock.hpp"
 
 #include <cerrno>
+#include <chrono>
 #include <ctime>
 
 namespace hapticctrl::rt_core {
 
-TimeNs RealClock::now() noexcept {
-  return monotonic_now_ns();
+TimePoint RealClock::now() noexcept {
+  return MonotonicClock::now();
 }
 
-void RealClock::sleep_until(TimeNs deadline) noexcept {
+void RealClock::sleep_until(TimePoint deadline) noexcept {
+  const auto seconds = std::chrono::floor<std::chrono::seconds>(deadline.time_since_epoch());
   timespec ts{};
-  ts.tv_sec = static_cast<time_t>(deadline / kNsPerS);
-  ts.tv_nsec = static_cast<long>(deadline % kNsPerS);
+  ts.tv_sec = static_cast<time_t>(seconds.count());
+  ts.tv_nsec = static_cast<long>((deadline.time_since_epoch() - seconds).count());
   while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
   }
 }
 
-void FakeClock::sleep_until(TimeNs deadline) noexcept {
+void FakeClock::sleep_until(TimePoint deadline) noexcept {
   if (deadline > now_) {
     now_ = deadline;
   }
   now_ += oversleep_;
-  oversleep_ = 0;
+  oversleep_ = Duration{0};
   if (deadline == oversleep_deadline_) {
     now_ += oversleep_at_extra_;
-    oversleep_deadline_ = -1;
+    oversleep_deadline_ = kNotYet;
   }
 }
 

@@ -30,13 +30,14 @@ void declare(program::Options& o, CoreConfig& c) {
   o.custom(
       "--period-us", "N",
       [&c](const std::string& v) {
-        c.period = number<TimeNs>("--period-us", v, 100, 10'000) * kNsPerUs;
+        c.period = std::chrono::microseconds(number<std::int64_t>("--period-us", v, 100, 10'000));
       },
       "cycle period, us [100..10000] (default 1000)");
   o.custom(
       "--duration", "S",
       [&c](const std::string& v) {
-        c.duration = static_cast<TimeNs>(number<double>("--duration", v, 0.0, 1e7) * 1e9);
+        c.duration = std::chrono::duration_cast<Duration>(
+            std::chrono::duration<double>(number<double>("--duration", v, 0.0, 1e7)));
       },
       "stop after S seconds (default: run until stopped)");
   o.custom(
@@ -82,7 +83,8 @@ void declare(program::Options& o, CoreConfig& c) {
   o.custom(
       "--sim-substep-us", "N",
       [&c](const std::string& v) {
-        c.sim_substep = number<TimeNs>("--sim-substep-us", v, 10, 1000) * kNsPerUs;
+        c.sim_substep =
+            std::chrono::microseconds(number<std::int64_t>("--sim-substep-us", v, 10, 1000));
       },
       "simulator's longest integration sub-step, us [10..1000] (default 125: 0.28 % energy "
       "drift in 10 s); longer steps cost less CPU, for slow or instrumented builds, and are "

@@ -12,7 +12,7 @@ DeadlineMonitor::DeadlineMonitor(const ChronicMissConfig& config) noexcept : con
 
 MonitorVerdict DeadlineMonitor::on_cycle(const CycleTimes& times) noexcept {
   const bool committed_in_time =
-      !times.degraded && times.finished >= 0 && times.finished <= times.checked;
+      !times.degraded && times.finished != kNotYet && times.finished <= times.checked;
   return record(!committed_in_time);
 }
 

@@ -11,7 +11,7 @@ namespace {
 /// Bound on waiting for a task to leave the gate during the stop sequence.
 constexpr int kGateCloseAttempts = 2000;
 /// How long client data must stay stale (or fresh) before the change is an event.
-constexpr TimeNs kStaleEventHold = 20 * kNsPerMs;
+constexpr Duration kStaleEventHold = std::chrono::milliseconds(20);
 
 }  // namespace
 
@@ -34,7 +34,7 @@ Executive::Executive(const ExecutiveConfig& config, Clock& clock, TaskRunners& s
       arm_(&arm),
       outputs_(outputs),
       black_box_(&black_box),
-      stale_(static_cast<std::uint64_t>(kStaleEventHold / std::max<TimeNs>(1, config.period))) {
+      stale_(static_cast<std::uint64_t>(kStaleEventHold / std::max(Duration{1}, config.period))) {
   tasks_.activate(servo_);
 }
 
@@ -44,9 +44,10 @@ bool Executive::is_fault(shm::StopReason reason) noexcept {
 }
 
 ExecutiveResult Executive::run(const std::atomic<bool>* external_stop) noexcept {
-  const TimeNs period = config_.period;
-  const TimeNs start = clock_->now();
-  const TimeNs first_slot = (start / period + 2) * period;  // aligned, at least a period ahead
+  const Duration period = config_.period;
+  const TimePoint start = clock_->now();
+  // Aligned on the period, at least a period ahead.
+  const TimePoint first_slot{(start.time_since_epoch() / period + 2) * period};
   if (outputs_.header != nullptr) {
     outputs_.header->core_state.store(static_cast<std::uint32_t>(shm::CoreState::kRunning),
                                       std::memory_order_release);
@@ -54,18 +55,16 @@ ExecutiveResult Executive::run(const std::atomic<bool>* external_stop) noexcept 
   emit(shm::EventKind::kCoreState, static_cast<std::uint32_t>(shm::CoreState::kRunning), 0, start);
   std::uint64_t slot = 0;
   for (;;) {
-    const TimeNs scheduled = first_slot + static_cast<TimeNs>(slot) * period;
+    const TimePoint scheduled = first_slot + static_cast<std::int64_t>(slot) * period;
     clock_->sleep_until(scheduled);
-    const TimeNs woke = clock_->now();
-    const TimeNs late = woke - scheduled;
+    const TimePoint woke = clock_->now();
+    const Duration late = woke - scheduled;
     wake_latency_.add(late);
     if (late > period / 2) {
       // Too late for this slot: skip it and every slot passed meanwhile, resume at the next
       // future slot. Never run back to back to catch up.
       const auto passed = static_cast<std::uint64_t>(late / period);
-      const std::uint64_t lateness_in_last = static_cast<std::uint64_t>(late % period);
-      const std::uint64_t skip =
-          passed + 1 - ((lateness_in_last <= static_cast<std::uint64_t>(period / 2)) ? 1U : 0U);
+      const std::uint64_t skip = passed + 1 - ((late % period <= period / 2) ? 1U : 0U);
       skipped_slots_ += skip;
       const MonitorVerdict verdict = tasks_.skip(static_cast<std::uint32_t>(skip));
       // The stall itself goes into the black box (before a fail-safe writes it out).
@@ -82,7 +81,7 @@ ExecutiveResult Executive::run(const std::atomic<bool>* external_stop) noexcept 
       slot += skip;
       if (skip == passed) {
         // The latest passed slot is recent enough (<= P/2 late): run it now.
-        const TimeNs run_scheduled = first_slot + static_cast<TimeNs>(slot) * period;
+        const TimePoint run_scheduled = first_slot + static_cast<std::int64_t>(slot) * period;
         const shm::StopReason reason = run_slot(run_scheduled, woke);
         if (reason != shm::StopReason::kNone) {
           return stop_sequence(reason, is_fault(reason));
@@ -96,7 +95,7 @@ ExecutiveResult Executive::run(const std::atomic<bool>* external_stop) noexcept 
         external_stop->load(std::memory_order_acquire)) {
       reason = shm::StopReason::kSignal;
     }
-    if (reason == shm::StopReason::kNone && config_.duration > 0 &&
+    if (reason == shm::StopReason::kNone && config_.duration > Duration{0} &&
         woke - start >= config_.duration) {
       reason = shm::StopReason::kDurationElapsed;
     }
@@ -107,16 +106,16 @@ ExecutiveResult Executive::run(const std::atomic<bool>* external_stop) noexcept 
   }
 }
 
-shm::StopReason Executive::run_slot(TimeNs scheduled, TimeNs woke) noexcept {
-  const TimeNs period = config_.period;
+shm::StopReason Executive::run_slot(TimePoint scheduled, TimePoint woke) noexcept {
+  const Duration period = config_.period;
   ++cycle_;
-  if (last_woke_ >= 0) {
+  if (last_woke_ != kNotYet) {
     measured_period_.add(woke - last_woke_);
   }
   last_woke_ = woke;
   if (outputs_.header != nullptr) {
     outputs_.header->heartbeat_cycle.store(cycle_, std::memory_order_relaxed);
-    outputs_.header->heartbeat_ns.store(woke, std::memory_order_release);
+    outputs_.header->heartbeat_ns.store(to_ns(woke), std::memory_order_release);
   }
 
   CycleTimes times;
@@ -133,9 +132,9 @@ shm::StopReason Executive::run_slot(TimeNs scheduled, TimeNs woke) noexcept {
   times.started = servo.started;
   times.finished = servo.finished;
   const bool miss = verdict != MonitorVerdict::kGood;
-  if (times.started >= 0) {
+  if (times.started != kNotYet) {
     servo_start_delay_.add(times.started - times.released);
-    if (times.finished >= 0) {
+    if (times.finished != kNotYet) {
       servo_execution_.add(times.finished - times.started);
     }
   }
@@ -170,11 +169,12 @@ void Executive::record(const CycleTimes& times, std::uint32_t flags,
                        std::uint32_t skipped) noexcept {
   CycleRecord r;
   r.cycle = cycle_;
-  r.scheduled = times.scheduled;
-  r.wake_latency = times.woke - times.scheduled;
-  r.servo_start_delay = times.started >= 0 ? times.started - times.released : -1;
-  r.servo_execution =
-      (times.finished >= 0 && times.started >= 0) ? times.finished - times.started : -1;
+  r.scheduled = to_ns(times.scheduled);
+  r.wake_latency = to_ns(times.woke - times.scheduled);
+  r.servo_start_delay = times.started != kNotYet ? to_ns(times.started - times.released) : -1;
+  r.servo_execution = (times.finished != kNotYet && times.started != kNotYet)
+                          ? to_ns(times.finished - times.started)
+                          : -1;
   r.flags = flags;
   r.consecutive_misses = monitor().consecutive_misses();
   r.skipped = skipped;
@@ -193,7 +193,7 @@ void Executive::record(const CycleTimes& times, std::uint32_t flags,
   if ((flags & kRecordStall) != 0) {
     stall_in_misses_ = std::max(stall_in_misses_, times.woke - times.scheduled);
   } else if (r.consecutive_misses == 0) {
-    stall_in_misses_ = 0;
+    stall_in_misses_ = Duration{0};
   }
 }
 
@@ -213,7 +213,7 @@ bool Executive::trips(MonitorVerdict verdict) noexcept {
 shm::TelemetryPayload Executive::telemetry() const noexcept {
   shm::TelemetryPayload t;
   t.cycle = cycle_;
-  t.period_ns = config_.period;
+  t.period_ns = to_ns(config_.period);
   t.rt_mode = static_cast<std::uint32_t>(config_.rt_mode);
   t.core_state = static_cast<std::uint32_t>(core_state_);
   t.stop_reason = static_cast<std::uint32_t>(stop_reason_);
@@ -242,13 +242,13 @@ shm::TelemetryPayload Executive::telemetry() const noexcept {
 }
 
 void Executive::emit(shm::EventKind kind, std::uint32_t code, std::uint64_t value,
-                     TimeNs now) noexcept {
+                     TimePoint now) noexcept {
   if (outputs_.events != nullptr) {
-    shm::push_event(*outputs_.events, cycle_, now, kind, code, value);
+    shm::push_event(*outputs_.events, cycle_, to_ns(now), kind, code, value);
   }
 }
 
-void Executive::report_state_changes(TimeNs now) noexcept {
+void Executive::report_state_changes(TimePoint now) noexcept {
   struct BitEvent {
     std::uint32_t bit;
     shm::EventKind kind;
@@ -277,9 +277,9 @@ void Executive::report_state_changes(TimeNs now) noexcept {
   }
 }
 
-void Executive::publish_telemetry(TimeNs now) noexcept {
+void Executive::publish_telemetry(TimePoint now) noexcept {
   if (outputs_.telemetry != nullptr) {
-    outputs_.telemetry->publish_quietly(telemetry(), now);
+    outputs_.telemetry->publish_quietly(telemetry(), to_ns(now));
   }
 }
 
@@ -311,7 +311,7 @@ ExecutiveResult Executive::stop_sequence(shm::StopReason reason, bool fail_safe)
   for (int attempt = 0; attempt < kGateCloseAttempts && !exclusive; ++attempt) {
     exclusive = gate_->close() || gate_->closed();
     if (!exclusive) {
-      clock_->sleep_until(clock_->now() + 10 * kNsPerUs);
+      clock_->sleep_until(clock_->now() + std::chrono::microseconds(10));
     }
   }
   if (exclusive) {
@@ -341,7 +341,7 @@ ExecutiveResult Executive::stop_sequence(shm::StopReason reason, bool fail_safe)
     vp.core_state = static_cast<std::uint32_t>(core_state_);
     vp.stop_reason = static_cast<std::uint32_t>(reason);
     vp.object_wrench = {};
-    gate_owned_->regions.vp->publish(vp, clock_->now());
+    gate_owned_->regions.vp->publish(vp, to_ns(clock_->now()));
     result.protocol_closed_in_vp = true;
   }
   emit(shm::EventKind::kCoreState, static_cast<std::uint32_t>(core_state_),

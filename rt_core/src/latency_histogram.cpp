@@ -8,9 +8,9 @@
 
 namespace hapticctrl::rt_core {
 
-void LatencyHistogram::add(TimeNs sample_ns) noexcept {
-  const TimeNs sample = std::max<TimeNs>(sample_ns, 0);
-  const auto us = static_cast<std::size_t>(sample / kNsPerUs);
+void LatencyHistogram::add(Duration sample_or_negative) noexcept {
+  const Duration sample = std::max(sample_or_negative, Duration{0});
+  const auto us = static_cast<std::size_t>(sample / std::chrono::microseconds(1));
   if (us < kBins) {
     ++bins_[us];
   } else {
@@ -20,13 +20,13 @@ void LatencyHistogram::add(TimeNs sample_ns) noexcept {
     min_ = sample;
   }
   max_ = std::max(max_, sample);
-  sum_ += static_cast<long double>(sample);
+  sum_ += static_cast<long double>(sample.count());
   ++samples_;
 }
 
-TimeNs LatencyHistogram::percentile(double fraction) const noexcept {
+Duration LatencyHistogram::percentile(double fraction) const noexcept {
   if (samples_ == 0) {
-    return 0;
+    return Duration{0};
   }
   const auto wanted =
       static_cast<std::uint64_t>(std::ceil(fraction * static_cast<double>(samples_)));
@@ -34,7 +34,7 @@ TimeNs LatencyHistogram::percentile(double fraction) const noexcept {
   for (std::size_t us = 0; us < kBins; ++us) {
     seen += bins_[us];
     if (seen >= wanted && seen > 0) {
-      return std::min<TimeNs>(static_cast<TimeNs>(us + 1) * kNsPerUs, max_);
+      return std::min<Duration>(std::chrono::microseconds(us + 1), max_);
     }
   }
   return max_;  // in the overflow
@@ -47,12 +47,12 @@ shm::LatencySummary LatencyHistogram::summary() const noexcept {
   if (samples_ == 0) {
     return s;
   }
-  s.min_ns = min_;
-  s.max_ns = max_;
+  s.min_ns = to_ns(min_);
+  s.max_ns = to_ns(max_);
   s.avg_ns = static_cast<std::int64_t>(sum_ / static_cast<long double>(samples_));
-  s.p50_ns = percentile(0.50);
-  s.p99_ns = percentile(0.99);
-  s.p999_ns = percentile(0.999);
+  s.p50_ns = to_ns(percentile(0.50));
+  s.p99_ns = to_ns(percentile(0.99));
+  s.p999_ns = to_ns(percentile(0.999));
   return s;
 }
 
@@ -71,6 +71,7 @@ void LatencyHistogram::write_cyclictest_format(std::ostream& out) const {
   }
   const shm::LatencySummary s = summary();
   out << "# Total: " << samples_ << "\n";
+  constexpr std::int64_t kNsPerUs = 1'000;  // cyclictest's unit
   out << "# Min Latencies: " << s.min_ns / kNsPerUs << "\n";
   out << "# Avg Latencies: " << s.avg_ns / kNsPerUs << "\n";
   out << "# Max Latencies: " << s.max_ns / kNsPerUs << "\n";

@@ -15,12 +15,12 @@ inline constexpr double kTouchBand = 1e-3;  // m
 
 /// Share of the contact a slot still has after `silence` without a refresh: 1 while fresh,
 /// falling linearly to 0 over the fade (a contact that stops coming fades as the link does).
-HAPTICCTRL_RT inline double contact_weight(TimeNs silence, const LawConfig& config) noexcept {
+HAPTICCTRL_RT inline double contact_weight(Duration silence, const LawConfig& config) noexcept {
   if (silence <= config.contact_fresh) {
     return 1.0;
   }
-  const auto left = static_cast<double>(config.contact_fresh + config.contact_fade - silence);
-  return std::clamp(left / static_cast<double>(config.contact_fade), 0.0, 1.0);
+  const std::chrono::duration<double> left = config.contact_fresh + config.contact_fade - silence;
+  return std::clamp(left / config.contact_fade, 0.0, 1.0);
 }
 
 }  // namespace hapticctrl::rt_core::law_contacts

@@ -37,13 +37,13 @@ std::atomic<bool> g_signal_stop{false};
 
 /// Says that a miss rule tripped on a stall of the machine, and how long: scripts/run.sh starts
 /// the demo again at a longer period on this (J5), never on a fail-safe the software caused.
-std::string stall_text(TimeNs tripped_by_stall) {
-  if (tripped_by_stall <= 0) {
+std::string stall_text(Duration tripped_by_stall) {
+  if (tripped_by_stall <= Duration{0}) {
     return "";
   }
   char text[96];
   std::snprintf(text, sizeof text, ", on a stall of the machine (the clock woke %.1f ms late)",
-                static_cast<double>(tripped_by_stall) / 1e6);
+                std::chrono::duration<double, std::milli>(tripped_by_stall).count());
   return text;
 }
 static_assert(std::atomic<bool>::is_always_lock_free, "used from a signal handler");
@@ -137,7 +137,7 @@ int run_core(const CoreConfig& config) {
                         "'s peak torque at some pose: it cannot be gravity-compensated");
   }
   shm::Segment segment = shm::Segment::create(
-      {.instance = config.instance, .group = config.group, .period_ns = config.period});
+      {.instance = config.instance, .group = config.group, .period_ns = to_ns(config.period)});
   // Checked now, not at the fail-safe: a directory others could plant a link in is refused at
   // start, with the reason (J4).
   const PrivateDirectory state_directory(config.state_dir.empty() ? shm::creator_runtime_directory()
@@ -146,7 +146,7 @@ int run_core(const CoreConfig& config) {
   RestartMarker restart_marker(state_directory, config.instance);
   const Vector6d ready_pose = (Vector6d() << 0, -0.6, 1.2, 0, -0.6, 0).finished();
   SimulatorOptions sim_options;
-  sim_options.max_substep = static_cast<double>(config.sim_substep) * 1e-9;
+  sim_options.max_substep = to_seconds(config.sim_substep);
   SimulatedArm arm(dynamics, sim_options, ready_pose, &segment.region<shm::RegionId::kForce>());
   ServoShared shared(
       arm, segment.ctrl_reader(),
@@ -171,7 +171,7 @@ int run_core(const CoreConfig& config) {
   }
   ServoTask main_task(shared, TaskRole::kMain, ServoLaw(dynamics));
   ServoTask degraded_task(shared, TaskRole::kDegraded, ServoLaw(dynamics));
-  BlackBox black_box(static_cast<std::size_t>(2 * kNsPerS / config.period),
+  BlackBox black_box(static_cast<std::size_t>(std::chrono::seconds(2) / config.period),
                      &segment.writable<shm::RegionId::kBlackBox>());
   RealClock clock;
 
@@ -198,8 +198,8 @@ int run_core(const CoreConfig& config) {
   ExecutiveConfig exec_config;
   exec_config.period = config.period;
   exec_config.duration = config.duration;
-  exec_config.telemetry_every =
-      static_cast<std::uint32_t>(std::max<TimeNs>(1, 20 * kNsPerMs / config.period));
+  exec_config.telemetry_every = static_cast<std::uint32_t>(
+      std::max<std::int64_t>(1, std::chrono::milliseconds(20) / config.period));
   exec_config.chronic = config.chronic;
   exec_config.rt_mode = rt.mode();
   exec_config.ride_through_misses = config.benchmark_mode;
@@ -210,8 +210,9 @@ int run_core(const CoreConfig& config) {
                                        &segment.writable<shm::RegionId::kEvents>()},
                       black_box);
   std::cerr << "hapticctrl-core: instance '" << config.instance << "' running, period "
-            << config.period / kNsPerUs << " us, rt mode "
-            << shm::rt_mode_name(static_cast<std::uint32_t>(rt.mode())) << ", cpu " << cpu << "\n";
+            << std::chrono::duration_cast<std::chrono::microseconds>(config.period).count()
+            << " us, rt mode " << shm::rt_mode_name(static_cast<std::uint32_t>(rt.mode()))
+            << ", cpu " << cpu << "\n";
   if (config.benchmark_mode) {
     std::cerr << "hapticctrl-core: BENCHMARK MODE: missed deadlines are counted as would-be "
                  "fail-safes and never stop the core (simulated arm only)\n";

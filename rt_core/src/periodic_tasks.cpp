@@ -20,8 +20,8 @@ TaskId PeriodicTasks::add(const PeriodicTaskSpec& spec) {
   }
   Task& task = tasks_[count_];
   task.spec = spec;
-  if (task.spec.deadline <= 0) {
-    task.spec.deadline = base_period_ * static_cast<TimeNs>(spec.period_multiple) * 3 / 4;
+  if (task.spec.deadline <= Duration{0}) {
+    task.spec.deadline = base_period_ * spec.period_multiple * 3 / 4;
   }
   task.monitor = DeadlineMonitor(spec.chronic);
   return count_++;
@@ -51,7 +51,7 @@ void PeriodicTasks::restart(TaskId id) noexcept {
   activate(id);
 }
 
-void PeriodicTasks::release_due(std::uint64_t tick, TimeNs scheduled, TimeNs now) noexcept {
+void PeriodicTasks::release_due(std::uint64_t tick, TimePoint scheduled, TimePoint now) noexcept {
   for (std::size_t i = 0; i < count_; ++i) {
     Task& task = tasks_[i];
     const bool due = task.state == TaskState::kActive && tick % task.spec.period_multiple == 0;
@@ -62,7 +62,8 @@ void PeriodicTasks::release_due(std::uint64_t tick, TimeNs scheduled, TimeNs now
   }
 }
 
-void PeriodicTasks::release(Task& task, std::uint64_t tick, TimeNs scheduled, TimeNs now) noexcept {
+void PeriodicTasks::release(Task& task, std::uint64_t tick, TimePoint scheduled,
+                            TimePoint now) noexcept {
   TaskRunners& runners = *task.spec.runners;
   TaskRelease& r = task.last;
   r = TaskRelease{};
@@ -85,7 +86,7 @@ void PeriodicTasks::release(Task& task, std::uint64_t tick, TimeNs scheduled, Ti
   r.ran = true;
 }
 
-MonitorVerdict PeriodicTasks::check_deadlines(TimeNs now) noexcept {
+MonitorVerdict PeriodicTasks::check_deadlines(TimePoint now) noexcept {
   MonitorVerdict verdict = MonitorVerdict::kGood;
   for (std::size_t i = 0; i < count_; ++i) {
     Task& task = tasks_[i];
@@ -96,7 +97,7 @@ MonitorVerdict PeriodicTasks::check_deadlines(TimeNs now) noexcept {
   return verdict;
 }
 
-MonitorVerdict PeriodicTasks::judge(Task& task, TimeNs now) noexcept {
+MonitorVerdict PeriodicTasks::judge(Task& task, TimePoint now) noexcept {
   TaskRunners& runners = *task.spec.runners;
   TaskRelease& r = task.last;
   (void)runners.busy(TaskRole::kMain);  // lets a scripted runner catch up to `now`

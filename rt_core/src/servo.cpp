@@ -59,21 +59,20 @@ HAPTICCTRL_RT bool client_sample_valid(const shm::VprPayload& s) noexcept {
 /// When the client computed the sample, on our clock: the bridge's estimate (protocol timing)
 /// when it is plausible (not in the future, not older than its arrival by more than 10 s),
 /// otherwise its arrival here.
-HAPTICCTRL_RT TimeNs sample_time_of(const shm::VprPayload& s, TimeNs arrival) noexcept {
-  constexpr TimeNs kMaxAge = 10'000 * kNsPerMs;
-  return s.sample_time_ns > 0 && s.sample_time_ns <= arrival &&
-                 arrival - s.sample_time_ns <= kMaxAge
-             ? s.sample_time_ns
-             : arrival;
+HAPTICCTRL_RT TimePoint sample_time_of(const shm::VprPayload& s, TimePoint arrival) noexcept {
+  constexpr Duration kMaxAge = std::chrono::seconds(10);
+  const TimePoint computed = time_point_from_ns(s.sample_time_ns);
+  return s.sample_time_ns > 0 && computed <= arrival && arrival - computed <= kMaxAge ? computed
+                                                                                      : arrival;
 }
 
 /// The coupling loop's delay: cycles from the answer the client echoed to this one (0: none).
-HAPTICCTRL_RT TimeNs loop_delay_of(const shm::VprPayload& s, std::uint64_t cycle,
-                                   TimeNs period) noexcept {
+HAPTICCTRL_RT Duration loop_delay_of(const shm::VprPayload& s, std::uint64_t cycle,
+                                     Duration period) noexcept {
   if (s.echo_cycle == 0 || s.echo_cycle > cycle) {
-    return 0;
+    return Duration{0};
   }
-  return static_cast<TimeNs>(cycle - s.echo_cycle) * period;
+  return static_cast<std::int64_t>(cycle - s.echo_cycle) * period;
 }
 
 /// The law's view of the sample's contacts: the valid ones in their slots (an invalid one is
@@ -99,7 +98,7 @@ HAPTICCTRL_RT void take_contacts(const shm::VprPayload& s, double max_stiffness,
     to.damping = from.damping;
     to.friction = from.friction;
     to.object_pose = from.object_pose;
-    to.received_ns = from.received_time_ns;
+    to.received = time_point_from_ns(from.received_time_ns);
   }
 }
 
@@ -170,10 +169,10 @@ void ServoTask::publish_surface(const ClientFrame& frame, shm::VpPayload& vp) co
   vp.surface_force = o.surface_force;
   vp.surface_hidden = o.surface_hidden * frame.speed_factor;
   vp.surface_withheld = o.surface_withheld;
-  vp.contact_age_ns = o.contact_age;
+  vp.contact_age_ns = to_ns(o.contact_age);
 }
 
-StepResult ServoTask::begin(std::uint64_t cycle, TimeNs now, TimeNs dt) noexcept {
+StepResult ServoTask::begin(std::uint64_t cycle, TimePoint now, Duration dt) noexcept {
   if (!gate_->enter(cycle)) {
     return StepResult::kNotGranted;
   }
@@ -183,7 +182,7 @@ StepResult ServoTask::begin(std::uint64_t cycle, TimeNs now, TimeNs dt) noexcept
   return StepResult::kDone;
 }
 
-StepResult ServoTask::finish(std::uint64_t cycle, TimeNs now) noexcept {
+StepResult ServoTask::finish(std::uint64_t cycle, TimePoint now) noexcept {
   if (!gate_->enter(cycle)) {
     to_clock_->counters.late_discarded.fetch_add(1, std::memory_order_relaxed);
     return StepResult::kDiscarded;
@@ -193,12 +192,12 @@ StepResult ServoTask::finish(std::uint64_t cycle, TimeNs now) noexcept {
   return StepResult::kDone;
 }
 
-StepResult ServoTask::run(std::uint64_t cycle, TimeNs now, TimeNs dt) noexcept {
+StepResult ServoTask::run(std::uint64_t cycle, TimePoint now, Duration dt) noexcept {
   const StepResult begun = begin(cycle, now, dt);
   return begun == StepResult::kDone ? finish(cycle, now) : begun;
 }
 
-void ServoTask::gather(std::uint64_t cycle, TimeNs now, TimeNs dt) noexcept {
+void ServoTask::gather(std::uint64_t cycle, TimePoint now, Duration dt) noexcept {
   GateOwnedState& s = *state_;
   ServoCounters& counters = to_clock_->counters;
   inputs_.cycle = cycle;
@@ -240,7 +239,7 @@ void ServoTask::gather(std::uint64_t cycle, TimeNs now, TimeNs dt) noexcept {
   exchange_client(now);
 }
 
-void ServoTask::exchange_client(TimeNs now) noexcept {
+void ServoTask::exchange_client(TimePoint now) noexcept {
   GateOwnedState& s = *state_;
   ServoCounters& counters = to_clock_->counters;
   inputs_.new_sample = false;
@@ -281,11 +280,11 @@ void ServoTask::exchange_client(TimeNs now) noexcept {
   }
   inputs_.client = s.client;
   inputs_.client_valid = s.client_valid;
-  inputs_.client_age = s.client_valid ? now - s.last_client_time : 0;
-  inputs_.client_silence = s.client_valid ? now - s.last_client_arrival : 0;
+  inputs_.client_age = s.client_valid ? now - s.last_client_time : Duration{0};
+  inputs_.client_silence = s.client_valid ? now - s.last_client_arrival : Duration{0};
 }
 
-void ServoTask::commit(std::uint64_t cycle, TimeNs now) noexcept {
+void ServoTask::commit(std::uint64_t cycle, TimePoint now) noexcept {
   GateOwnedState& s = *state_;
   ServoToClock& report = *to_clock_;
   ArmCommands commands = outputs_.commands;
@@ -334,8 +333,8 @@ void ServoTask::commit(std::uint64_t cycle, TimeNs now) noexcept {
     copy_to(outputs_.client_handle_twist, vp.client_handle_twist);
     copy_to(inputs_.measures.position, vp.joint_position);
     copy_to(inputs_.measures.velocity, vp.joint_velocity);
-    vp.sample_age_ns = inputs_.client_valid ? inputs_.client_age : 0;
-    vp.loop_delay_ns = outputs_.loop_delay;
+    vp.sample_age_ns = inputs_.client_valid ? to_ns(inputs_.client_age) : 0;
+    vp.loop_delay_ns = to_ns(outputs_.loop_delay);
     const CouplingGains& g = outputs_.gains;
     vp.gains = {g.k_linear, g.b_linear, g.k_angular, g.b_angular};
     vp.channel_energy_in = outputs_.channel_energy_in;
@@ -348,7 +347,7 @@ void ServoTask::commit(std::uint64_t cycle, TimeNs now) noexcept {
     vp.contacts = outputs_.contacts;
     vp.contacts_rejected = s.contacts_rejected;
     publish_surface(client_frame_of(s.client), vp);
-    s.regions.vp->publish(vp, now);  // the UDP bridge blocks on VP: notify
+    s.regions.vp->publish(vp, to_ns(now));  // the UDP bridge blocks on VP: notify
   }
   if (s.regions.position != nullptr) {
     shm::PositionPayload pos;
@@ -362,7 +361,7 @@ void ServoTask::commit(std::uint64_t cycle, TimeNs now) noexcept {
     copy_to(outputs_.handle_twist, pos.handle_twist);
     copy_to(inputs_.measures.operator_wrench, pos.operator_wrench);
     copy_to(outputs_.rendered_wrench, pos.rendered_wrench);
-    s.regions.position->publish_quietly(pos, now);
+    s.regions.position->publish_quietly(pos, to_ns(now));
   }
   report.commit_cycle.store(cycle, std::memory_order_release);
 }

@@ -114,7 +114,7 @@ void ServoLaw::express_for_client(const ClientFrame& frame, const Vector6d& twis
 }
 
 void ServoLaw::compute(const ServoInputs& in, bool /*degraded*/, ServoOutputs& out) noexcept {
-  const double dt = static_cast<double>(in.dt) * 1e-9;
+  const double dt = to_seconds(in.dt);
   const Vector6d& q = in.measures.position;
   const Vector6d& qd = in.measures.velocity;
   dynamics_->forward_kinematics(q, chain_);
@@ -160,8 +160,9 @@ void ServoLaw::compute(const ServoInputs& in, bool /*degraded*/, ServoOutputs& o
   // whole ramp: the damping on the handle stays whole while the coupling returns (the hold let
   // go over the whole ramp before 2026-12-03; released within 50 ms with the spring, the handle
   // that came back onto a wall after a 2 s blackout shook at up to 25 N).
-  const double damper_share = std::min(1.0, engage * static_cast<double>(config_.engage_duration) /
-                                                static_cast<double>(config_.hold_release));
+  const double damper_share = std::min(
+      1.0,
+      engage * (std::chrono::duration<double>(config_.engage_duration) / config_.hold_release));
   Vector6d target = parts.spring * engage + parts.damper * damper_share;
   const SaturatedParts object_parts = saturate_parts(coupling.object_spring, coupling.object_damper,
                                                      out.force_limit, out.torque_limit);
@@ -258,7 +259,7 @@ void ServoLaw::start_outputs(const ServoInputs& in, const Vector6d& q,
   out.surface_depth = 0.0;
   out.surface_force = 0.0;
   out.surface_hidden = 0.0;
-  out.contact_age = -1;
+  out.contact_age = Duration{-1};
   out.surface_withheld = memory_.surface_withheld;
   set_limits(in.client, out);
 }

@@ -51,7 +51,7 @@ ServoLaw::Stiffening ServoLaw::contact_stiffening(const ServoInputs& in, const C
     if (!(contact.stiffness > 0.0)) {
       continue;
     }
-    const double weight = contact_weight(in.now - contact.received_ns, config_);
+    const double weight = contact_weight(in.now - contact.received, config_);
     if (weight <= 0.0) {
       continue;
     }

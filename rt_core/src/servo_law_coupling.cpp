@@ -41,7 +41,7 @@ ServoLaw::ObjectImage ServoLaw::object_image(const ServoInputs& in,
   image.twist = object_twist_in_base(c, frame);
   // Best estimate of where the object is now: extrapolate over the sample's true age (bounded).
   const double horizon =
-      static_cast<double>(std::clamp<TimeNs>(in.client_age, 0, config_.extrapolate_max)) * 1e-9;
+      to_seconds(std::clamp(in.client_age, Duration{0}, config_.extrapolate_max));
   const Vector3d w = image.twist.tail<3>();
   image.ahead = image.twist.head<3>() * horizon;
   image.position += image.ahead + memory_.drift.head<3>();
@@ -102,8 +102,7 @@ ServoLaw::Coupling ServoLaw::client_wrench(const ServoInputs& in, const ClientFr
     return coupling;  // VIRTMECH couples an attached object only (and refuses a non-rotation)
   }
   ObjectImage image = object_image(in, frame);
-  const CouplingGains g =
-      slew_gains(derive_gains(c, static_cast<double>(memory_.design_delay) * 1e-9), in.dt);
+  const CouplingGains g = slew_gains(derive_gains(c, to_seconds(memory_.design_delay)), in.dt);
   out.gains = g;
   // Along a contact the object is held by its surface: the coupling may be as stiff as the
   // device allows there (unilateral: only while it pushes the object into the surface), and the
@@ -116,7 +115,7 @@ ServoLaw::Coupling ServoLaw::client_wrench(const ServoInputs& in, const ClientFr
   Vector6d stretch;
   stretch << image.position - chain.handle_position,
       rotation_vector(image.rotation * chain.handle_rotation.transpose());
-  const Vector6d used = stretch_in_use(stretch, twist, static_cast<double>(in.dt) * 1e-9);
+  const Vector6d used = stretch_in_use(stretch, twist, to_seconds(in.dt));
   coupling.stretch = used;
   Vector6d relative = image.twist - twist;
   coupling.spring << g.k_linear * used.head<3>(), g.k_angular * used.tail<3>();
@@ -195,7 +194,7 @@ double ServoLaw::peak_share(const Vector6d& wrench) const noexcept {
                   wrench.tail<3>().norm() / lim.torque_peak);
 }
 
-double ServoLaw::fade_of(TimeNs silence, double share) const noexcept {
+double ServoLaw::fade_of(Duration silence, double share) const noexcept {
   // The force is zero by the end of the window and never falls faster than the full-scale slope
   // (the device's peaks over fade_duration: 1 N/ms): a peak force starts fading at fade_after,
   // a smaller one as late as that slope allows but over shortest_fade at least (5 N: from 30
@@ -204,13 +203,14 @@ double ServoLaw::fade_of(TimeNs silence, double share) const noexcept {
   // and came back at 30 mm/s (H1 end-to-end test at 1 ms one way, 2026-12-02). Without the
   // shortest fade, the 0.8 N a hand pressed through a blackout went in 1 ms (0.84 N/ms, the
   // coupling bench), a click where it had faded at 0.05 N/ms.
-  const TimeNs end = config_.fade_after + config_.fade_duration;
+  const Duration end = config_.fade_after + config_.fade_duration;
   if (silence >= end) {
     return 0.0;
   }
-  const double needed = std::max(share * static_cast<double>(config_.fade_duration),
-                                 static_cast<double>(config_.shortest_fade));
-  const auto left = static_cast<double>(end - silence);
+  using Seconds = std::chrono::duration<double>;
+  const Seconds needed =
+      std::max(share * Seconds(config_.fade_duration), Seconds(config_.shortest_fade));
+  const Seconds left = end - silence;
   return needed <= left ? 1.0 : left / needed;
 }
 
@@ -222,10 +222,10 @@ double ServoLaw::update_engagement(const ServoInputs& in, const Vector6d& twist,
   // The brake comes on above max_speed and lets go below brake_release_ratio of it.
   m.braking =
       speed > lim.max_speed || (m.braking && speed > config_.brake_release_ratio * lim.max_speed);
-  m.overspeed = speed > lim.max_speed ? m.overspeed + in.dt : 0;
+  m.overspeed = speed > lim.max_speed ? m.overspeed + in.dt : Duration{0};
   out.velocity_fault = m.overspeed >= config_.overspeed_fault_after;
   out.braking = m.braking;
-  const double step = static_cast<double>(in.dt) / static_cast<double>(config_.engage_duration);
+  const double step = std::chrono::duration<double>(in.dt) / config_.engage_duration;
   if (m.braking || fade < 1.0) {
     // Disengage (as fast as the release rate allows) and re-engage only through the ramp.
     m.engage = std::min(m.engage, m.braking ? 0.0 : fade);

@@ -21,7 +21,7 @@ constexpr double kDampingRatio = 0.7;
 /// k * stretch stepped with it (the weighted sphere jiggled at 25 mm/s with 10 % loss, H1).
 constexpr double kLoopDelayRelease = 0.005;
 /// The loop delay is believed up to this; longer is a stale echo, not a loop.
-constexpr TimeNs kMaxLoopDelay = 2'000 * kNsPerMs;
+constexpr Duration kMaxLoopDelay = std::chrono::seconds(2);
 /// The gains are designed for a loop delay that follows the envelope only when the envelope
 /// leaves a band around it (10 %, at least 0.5 ms), and they rise to a new design over a time
 /// constant, not in one cycle: a spring that carries a weight is stretched (72 mm for the demo's
@@ -31,8 +31,8 @@ constexpr TimeNs kMaxLoopDelay = 2'000 * kNsPerMs;
 /// to 8 mm/s (2026-12-02). A 10 % longer loop leaves the stiffness at most 21 % over its design,
 /// inside the margin kStiffnessFraction keeps.
 constexpr double kDesignDelayBand = 0.1;
-constexpr TimeNs kDesignDelayBandMin = kNsPerMs / 2;
-constexpr TimeNs kGainSlewTime = 50 * kNsPerMs;
+constexpr Duration kDesignDelayBandMin = std::chrono::microseconds(500);
+constexpr Duration kGainSlewTime = std::chrono::milliseconds(50);
 
 HAPTICCTRL_RT double bounded(double value, double upper) noexcept {
   return std::clamp(value, 0.0, upper);
@@ -88,33 +88,32 @@ void ServoLaw::track_loop_delay(const ServoInputs& in) noexcept {
   }
   RenderMemory& m = memory_;
   m.loop_samples[m.loop_next % m.loop_samples.size()] =
-      in.loop_delay > 0 && in.loop_delay <= kMaxLoopDelay ? in.loop_delay
-                                                          : config_.assumed_loop_delay;
+      in.loop_delay > Duration{0} && in.loop_delay <= kMaxLoopDelay ? in.loop_delay
+                                                                    : config_.assumed_loop_delay;
   ++m.loop_next;
   const std::size_t n = std::min<std::size_t>(m.loop_next, m.loop_samples.size());
-  std::array<TimeNs, RenderMemory::kLoopSamples> sorted{};
+  std::array<Duration, RenderMemory::kLoopSamples> sorted{};
   std::copy_n(m.loop_samples.begin(), n, sorted.begin());
   std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(n / 2),
                    sorted.begin() + static_cast<std::ptrdiff_t>(n));
-  const TimeNs measured = sorted[n / 2];
-  TimeNs& envelope = m.loop_delay;
+  const Duration measured = sorted[n / 2];
+  Duration& envelope = m.loop_delay;
   if (measured >= envelope) {
     envelope = measured;
   } else {
-    envelope -= static_cast<TimeNs>(static_cast<double>(envelope - measured) * kLoopDelayRelease);
+    envelope -= std::chrono::duration_cast<Duration>((envelope - measured) * kLoopDelayRelease);
   }
-  const TimeNs band =
-      std::max(kDesignDelayBandMin,
-               static_cast<TimeNs>(static_cast<double>(m.design_delay) * kDesignDelayBand));
-  if (m.design_delay == 0 || envelope > m.design_delay + band || envelope < m.design_delay - band) {
+  const Duration band = std::max(
+      kDesignDelayBandMin, std::chrono::duration_cast<Duration>(m.design_delay * kDesignDelayBand));
+  if (m.design_delay == Duration{0} || envelope > m.design_delay + band ||
+      envelope < m.design_delay - band) {
     m.design_delay = envelope;
   }
 }
 
-CouplingGains ServoLaw::slew_gains(const CouplingGains& target, TimeNs dt) noexcept {
+CouplingGains ServoLaw::slew_gains(const CouplingGains& target, Duration dt) noexcept {
   // Softer at once (a slower loop is a stability matter), stiffer over kGainSlewTime.
-  const double share =
-      std::clamp(static_cast<double>(dt) / static_cast<double>(kGainSlewTime), 0.0, 1.0);
+  const double share = std::clamp(std::chrono::duration<double>(dt) / kGainSlewTime, 0.0, 1.0);
   const auto towards = [share](double& gain, double design) {
     gain = gain <= 0.0 || design <= gain ? design : gain + (design - gain) * share;
   };

@@ -48,9 +48,9 @@ HAPTICCTRL_RT double cut_output(Vector6d& force, const Vector6d& weight, const V
 
 }  // namespace
 
-void TravelHistory::advance(TimeNs now, const Vector6d& twist, double dt) noexcept {
+void TravelHistory::advance(TimePoint now, const Vector6d& twist, double dt) noexcept {
   now_travel += twist * dt;
-  const std::int64_t slot = now / kSlot;
+  const std::int64_t slot = now.time_since_epoch() / kSlot;
   if (newest >= 0 && slot < newest) {
     return;  // a clock that went back: keep what was kept
   }
@@ -68,15 +68,16 @@ void TravelHistory::advance(TimeNs now, const Vector6d& twist, double dt) noexce
   newest = slot;
 }
 
-Vector6d TravelHistory::since(TimeNs now, TimeNs ago) const noexcept {
+Vector6d TravelHistory::since(TimePoint now, Duration ago) const noexcept {
   if (newest < 0) {
     return Vector6d::Zero();
   }
   const std::int64_t oldest = std::max(first, newest - static_cast<std::int64_t>(kSlots) + 1);
   // A slot holds the travel at its end: the travel since the end of the slot before the one
   // `ago` falls in covers `ago` at least (up to one slot more).
-  const TimeNs at = now - std::max<TimeNs>(0, ago);
-  const std::int64_t wanted = (at >= 0 ? at / kSlot : (at - kSlot + 1) / kSlot) - 1;
+  const Duration at = (now - std::max(Duration{0}, ago)).time_since_epoch();
+  const std::int64_t wanted =
+      (at >= Duration{0} ? at / kSlot : (at - kSlot + Duration{1}) / kSlot) - 1;
   if (wanted < first) {
     return now_travel;  // all of it: the session's first slot is younger than that
   }
@@ -186,7 +187,7 @@ Vector6d ServoLaw::guard_impedance(const ServoInputs& in, const ClientFrame& fra
   // with the output of a loop ago, a wall's bounce got a loop of energy through at every
   // bounce (a 2000 N/m wall at 10 ms one way: a limit cycle with 35 N peaks, J1 2026-12-03).
   m.travel.advance(in.now, twist, dt);
-  const TimeNs loop = m.loop_delay > 0 ? m.loop_delay : config_.assumed_loop_delay;
+  const Duration loop = m.loop_delay > Duration{0} ? m.loop_delay : config_.assumed_loop_delay;
   const double credit = handle_force.cwiseProduct(weight).dot(m.travel.since(in.now, loop));
   const double excess = book_channel_power(-handle_force.cwiseProduct(weight).dot(twist),
                                            in.client.energy_in + std::max(0.0, credit), dt);

@@ -27,7 +27,7 @@ ServoLaw::Surface ServoLaw::local_surface(const ServoInputs& in, const ClientFra
                                           bool on_object, Coupling& coupling,
                                           ServoOutputs& out) noexcept {
   Surface surface = reported_surface(in, frame, chain, on_object);
-  render_surface(surface, chain, twist, static_cast<double>(in.dt) * 1e-9);
+  render_surface(surface, chain, twist, to_seconds(in.dt));
   const RenderMemory& m = memory_;
   out.surface_withheld = m.surface_withheld;
   out.contact_age = surface.age;
@@ -65,7 +65,7 @@ ServoLaw::Surface ServoLaw::reported_surface(const ServoInputs& in, const Client
   const ArmLimits& lim = dynamics_->model().limits;
   const ClientSample& c = in.client;
   const Matrix3d to_base = frame.rotation.conjugate().toRotationMatrix();
-  const double period = static_cast<double>(in.dt) * 1e-9;
+  const double period = to_seconds(in.dt);
   const double bound = period > 0.0
                            ? std::min(lim.max_stiffness_linear, config_.surface_bound_share * 2.0 *
                                                                     lim.max_damping_linear / period)
@@ -74,13 +74,13 @@ ServoLaw::Surface ServoLaw::reported_surface(const ServoInputs& in, const Client
   double deepest = -std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < std::min<std::size_t>(c.contact_count, c.contacts.size()); ++i) {
     const ClientContact& contact = c.contacts[i];
-    const double weight = contact_weight(in.now - contact.received_ns, config_);
+    const double weight = contact_weight(in.now - contact.received, config_);
     if (!(contact.stiffness > 0.0) || weight <= 0.0) {
       continue;
     }
     ++best.fresh;
-    const TimeNs age = in.now - contact.received_ns;
-    best.age = best.age < 0 ? age : std::min(best.age, age);
+    const Duration age = in.now - contact.received;
+    best.age = best.age < Duration{0} ? age : std::min(best.age, age);
     const Vector3d normal =
         (to_base * Vector3d(contact.normal[0], contact.normal[1], contact.normal[2])).normalized();
     const Vector3d point =

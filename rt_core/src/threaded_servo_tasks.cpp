@@ -62,7 +62,7 @@ bool place_current_thread(const ThreadPlacement& placement, std::size_t stack_by
 }
 
 ThreadedServoTasks::ThreadedServoTasks(Clock& clock, ServoTask& main_task, ServoTask& degraded_task,
-                                       OverrunInjection& overrun, TimeNs period,
+                                       OverrunInjection& overrun, Duration period,
                                        const ThreadPlacement& main_placement,
                                        const ThreadPlacement& degraded_placement)
     : clock_(&clock), overrun_(&overrun), period_(period) {
@@ -103,7 +103,7 @@ void ThreadedServoTasks::worker_loop(Worker& w) noexcept {
       break;
     }
     const std::uint64_t cycle = w.released_cycle.load(std::memory_order_acquire);
-    const TimeNs start = clock_->now();
+    const TimePoint start = clock_->now();
     w.started.store(start, std::memory_order_release);
     w.task->begin(cycle, start, period_);
     if (w.task->role() == TaskRole::kMain) {
@@ -111,8 +111,8 @@ void ThreadedServoTasks::worker_loop(Worker& w) noexcept {
       // exactly K consecutive cycles miss their deadline).
       const std::uint32_t k = overrun_->take();
       if (k > 0) {
-        clock_->sleep_until(w.release_time.load(std::memory_order_relaxed) +
-                            static_cast<TimeNs>(k) * period_ - period_ / 5);
+        clock_->sleep_until(w.release_time.load(std::memory_order_relaxed) + k * period_ -
+                            period_ / 5);
       }
     }
     w.task->finish(cycle, clock_->now());
@@ -123,9 +123,10 @@ void ThreadedServoTasks::worker_loop(Worker& w) noexcept {
   }
 }
 
-void ThreadedServoTasks::release(TaskRole role, std::uint64_t cycle, TimeNs release_time) noexcept {
+void ThreadedServoTasks::release(TaskRole role, std::uint64_t cycle,
+                                 TimePoint release_time) noexcept {
   Worker& w = worker(role);
-  w.started.store(-1, std::memory_order_relaxed);
+  w.started.store(kNotYet, std::memory_order_relaxed);
   w.release_time.store(release_time, std::memory_order_relaxed);
   w.released_cycle.store(cycle, std::memory_order_release);
   w.release_word.fetch_add(1, std::memory_order_acq_rel);
@@ -138,14 +139,14 @@ bool ThreadedServoTasks::busy(TaskRole role) noexcept {
          w.released_cycle.load(std::memory_order_acquire);
 }
 
-TimeNs ThreadedServoTasks::started_at(TaskRole role) noexcept {
+TimePoint ThreadedServoTasks::started_at(TaskRole role) noexcept {
   return worker(role).started.load(std::memory_order_acquire);
 }
 
-TimeNs ThreadedServoTasks::finished_at(TaskRole role, std::uint64_t cycle) noexcept {
+TimePoint ThreadedServoTasks::finished_at(TaskRole role, std::uint64_t cycle) noexcept {
   const Worker& w = worker(role);
   if (w.finished_cycle.load(std::memory_order_acquire) != cycle) {
-    return -1;
+    return kNotYet;
   }
   return w.finished.load(std::memory_order_relaxed);
 }

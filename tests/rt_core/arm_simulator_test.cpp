@@ -9,6 +9,8 @@
 #include <memory>
 #include <thread>
 
+using namespace std::chrono_literals;
+
 namespace hapticctrl::rt_core {
 namespace {
 
@@ -79,7 +81,7 @@ TEST_F(ArmSimulatorTest, SimulatedArmQuantisesAndSaturates) {
   ArmCommands cmd;
   cmd.enable = true;
   cmd.torque.setConstant(1000.0);
-  arm.send_commands(cmd, 0, kNsPerMs);
+  arm.send_commands(cmd, TimePoint{}, 1ms);
   ArmMeasures m;
   ASSERT_TRUE(arm.get_measures(m));
   EXPECT_DOUBLE_EQ(m.torque(0), 30.0);
@@ -107,11 +109,11 @@ TEST_F(ArmSimulatorTest, TheSupplyCutFromAnotherThreadReachesARunningCycle) {
   });
   ArmMeasures m;
   for (int k = 0; k < 2000 && !cut.load(); ++k) {
-    arm.send_commands(cmd, 0, kNsPerMs / 10);
+    arm.send_commands(cmd, TimePoint{}, 100us);
     arm.get_measures(m);
   }
   fail_safe.join();
-  arm.send_commands(cmd, 0, kNsPerMs / 10);
+  arm.send_commands(cmd, TimePoint{}, 100us);
   ASSERT_TRUE(arm.get_measures(m));
   EXPECT_FALSE(m.supply_on);
   EXPECT_EQ(m.torque, Vector6d::Zero()) << "no torque once the supply is cut";
@@ -126,7 +128,7 @@ TEST_F(ArmSimulatorTest, UnpoweredSimulatedArmDoesNotMoveUnderOperatorForce) {
   ArmMeasures before;
   arm.get_measures(before);
   for (int k = 0; k < 1000; ++k) {
-    arm.send_commands(ArmCommands{}, 0, kNsPerMs);
+    arm.send_commands(ArmCommands{}, TimePoint{}, 1ms);
   }
   ArmMeasures after;
   arm.get_measures(after);
@@ -140,7 +142,7 @@ TEST_F(ArmSimulatorTest, InvalidOperatorWrenchIsRejected) {
   bad.wrench[2] = 1e9;
   force->publish(bad, 0);
   SimulatedArm arm(dynamics_, SimulatorOptions{}, kReady, force.get());
-  arm.send_commands(ArmCommands{}, 0, kNsPerMs);
+  arm.send_commands(ArmCommands{}, TimePoint{}, 1ms);
   EXPECT_EQ(arm.rejected_force_samples(), 1U);
   EXPECT_TRUE(arm.operator_wrench().isZero());
 }
@@ -192,7 +194,7 @@ TEST_F(ArmSimulatorTest, TheOperatorWrenchIsSaturatedAndRateLimitedWhateverTheRe
   force->publish(blow, 0);
   Vector6d before = Vector6d::Zero();
   for (int k = 0; k < 20; ++k) {
-    arm.send_commands(hold, 0, kNsPerMs);
+    arm.send_commands(hold, TimePoint{}, 1ms);
     const Vector6d now = arm.operator_wrench();
     EXPECT_LE((now - before).head<3>().cwiseAbs().maxCoeff(), 0.5 + 1e-9) << "cycle " << k;
     EXPECT_LE((now - before).tail<3>().cwiseAbs().maxCoeff(), 0.05 + 1e-9) << "cycle " << k;
@@ -210,7 +212,7 @@ TEST_F(ArmSimulatorTest, TheOperatorWrenchIsSaturatedAndRateLimitedWhateverTheRe
   hand_force->publish(far, 0);
   double largest = 0.0;
   for (int k = 0; k < 400; ++k) {
-    held.send_commands(hold, 0, kNsPerMs);
+    held.send_commands(hold, TimePoint{}, 1ms);
     largest = std::max(largest, held.operator_wrench()(0));
     ASSERT_LE(held.operator_wrench()(0), 0.5 * (k + 1) + 1e-9);
   }
@@ -231,7 +233,7 @@ TEST_F(ArmSimulatorTest, TheSimulatedArmReadsTheHandAndRefusesOneOutOfRange) {
   grip.hand.damping = 15.0;
   force->publish(grip, 0);
   for (int k = 0; k < 2000; ++k) {
-    arm.send_commands(hold, 0, kNsPerMs);
+    arm.send_commands(hold, TimePoint{}, 1ms);
   }
   EXPECT_LT((arm.simulator().chain().handle_position - start).norm(), 0.05);
   EXPECT_GT(arm.operator_wrench()(2), 0.5);
@@ -242,7 +244,7 @@ TEST_F(ArmSimulatorTest, TheSimulatedArmReadsTheHandAndRefusesOneOutOfRange) {
   shm::ForcePayload bad = grip;
   bad.hand.stiffness = 1e6;
   force->publish(bad, 0);
-  arm.send_commands(hold, 0, kNsPerMs);
+  arm.send_commands(hold, TimePoint{}, 1ms);
   EXPECT_EQ(arm.rejected_force_samples(), 1U);
   EXPECT_GT(arm.operator_wrench()(2), 0.5) << "the last valid hand keeps holding";
 }

@@ -5,40 +5,42 @@
 
 #include <gtest/gtest.h>
 
+using namespace std::chrono_literals;
+
 namespace hapticctrl::rt_core {
 namespace {
 
 TEST(Clock, RealClockIsMonotonicAndSleepsToAbsoluteDeadlines) {
   RealClock clock;
-  const TimeNs start = clock.now();
-  clock.sleep_until(start + 2 * kNsPerMs);
-  EXPECT_GE(clock.now(), start + 2 * kNsPerMs);
-  const TimeNs before = clock.now();
-  clock.sleep_until(before - kNsPerS);  // in the past: returns at once
+  const TimePoint start = clock.now();
+  clock.sleep_until(start + 2ms);
+  EXPECT_GE(clock.now(), start + 2ms);
+  const TimePoint before = clock.now();
+  clock.sleep_until(before - 1s);  // in the past: returns at once
   EXPECT_GE(clock.now(), before);
 }
 
 TEST(Clock, FakeClockMovesOnlyWhenTold) {
-  FakeClock clock(100);
-  EXPECT_EQ(clock.now(), 100);
-  clock.sleep_until(50);
-  EXPECT_EQ(clock.now(), 100) << "no travel back in time";
-  clock.sleep_until(200);
-  EXPECT_EQ(clock.now(), 200);
-  clock.advance(5);
-  EXPECT_EQ(clock.now(), 205);
+  FakeClock clock(TimePoint{100ns});
+  EXPECT_EQ(clock.now(), TimePoint{100ns});
+  clock.sleep_until(TimePoint{50ns});
+  EXPECT_EQ(clock.now(), TimePoint{100ns}) << "no travel back in time";
+  clock.sleep_until(TimePoint{200ns});
+  EXPECT_EQ(clock.now(), TimePoint{200ns});
+  clock.advance(5ns);
+  EXPECT_EQ(clock.now(), TimePoint{205ns});
 }
 
 TEST(Clock, FakeClockOversleepsOnDemand) {
-  FakeClock clock(0);
-  clock.oversleep_next(7);
-  clock.sleep_until(10);
-  EXPECT_EQ(clock.now(), 17);
-  clock.oversleep_at(30, 3);
-  clock.sleep_until(20);
-  EXPECT_EQ(clock.now(), 20);
-  clock.sleep_until(30);
-  EXPECT_EQ(clock.now(), 33);
+  FakeClock clock(TimePoint{0ns});
+  clock.oversleep_next(7ns);
+  clock.sleep_until(TimePoint{10ns});
+  EXPECT_EQ(clock.now(), TimePoint{17ns});
+  clock.oversleep_at(TimePoint{30ns}, 3ns);
+  clock.sleep_until(TimePoint{20ns});
+  EXPECT_EQ(clock.now(), TimePoint{20ns});
+  clock.sleep_until(TimePoint{30ns});
+  EXPECT_EQ(clock.now(), TimePoint{33ns});
 }
 
 }  // namespace

@@ -4,6 +4,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+using namespace std::chrono_literals;
+
 namespace hapticctrl::rt_core {
 namespace {
 
@@ -23,9 +25,9 @@ void expect_error(const std::vector<std::string>& args, const std::string& text)
 TEST(CoreConfig, Defaults) {
   const CoreConfig c = parse({});
   EXPECT_EQ(c.instance, "default");
-  EXPECT_EQ(c.period, kNsPerMs);
+  EXPECT_EQ(c.period, 1ms);
   EXPECT_EQ(c.rt_policy, RtPolicy::kWarn);
-  EXPECT_EQ(c.duration, 0);
+  EXPECT_EQ(c.duration, 0ns);
   EXPECT_FALSE(c.benchmark_mode);
 }
 
@@ -43,8 +45,8 @@ TEST(CoreConfig, ParsesEveryOption) {
                               "500",         "--sim-substep-us",
                               "400",         "--benchmark-mode"});
   EXPECT_EQ(c.instance, "a1");
-  EXPECT_EQ(c.period, 250 * kNsPerUs);
-  EXPECT_EQ(c.duration, 1'500'000'000);
+  EXPECT_EQ(c.period, 250us);
+  EXPECT_EQ(c.duration, 1500ms);
   EXPECT_EQ(c.rt_policy, RtPolicy::kIgnore);
   EXPECT_EQ(c.priority, 70);
   EXPECT_EQ(c.cpu, -1);
@@ -55,7 +57,7 @@ TEST(CoreConfig, ParsesEveryOption) {
   EXPECT_TRUE(c.allow_fault_injection);
   EXPECT_EQ(c.chronic.trip_window_ppm, 1000U);
   EXPECT_EQ(c.chronic.window_cycles, 500U);
-  EXPECT_EQ(c.sim_substep, 400 * kNsPerUs);
+  EXPECT_EQ(c.sim_substep, 400us);
   EXPECT_TRUE(c.benchmark_mode);
 }
 

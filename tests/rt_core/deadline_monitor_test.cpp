@@ -4,19 +4,24 @@
 
 #include <gtest/gtest.h>
 
+using namespace std::chrono_literals;
+
 namespace hapticctrl::rt_core {
 namespace {
 
-constexpr TimeNs kP = kNsPerMs;
+constexpr Duration kP = 1ms;
 
-CycleTimes good(TimeNs t) {
-  return {t, t, t + 1000, t + 2000, t + 50'000, t + 3 * kP / 4, false};
+CycleTimes good(Duration since_start) {
+  const TimePoint t{since_start};
+  return {t, t, t + 1us, t + 2us, t + 50us, t + 3 * kP / 4, false};
 }
-CycleTimes late(TimeNs t) {
-  return {t, t, t + 1000, t + 2000, -1, t + 3 * kP / 4, false};
+CycleTimes late(Duration since_start) {
+  const TimePoint t{since_start};
+  return {t, t, t + 1us, t + 2us, kNotYet, t + 3 * kP / 4, false};
 }
-CycleTimes degraded(TimeNs t) {
-  return {t, t, t + 1000, -1, -1, t + 3 * kP / 4, true};
+CycleTimes degraded(Duration since_start) {
+  const TimePoint t{since_start};
+  return {t, t, t + 1us, kNotYet, kNotYet, t + 3 * kP / 4, true};
 }
 
 TEST(DeadlineMonitor, FourMissesThenGoodIsNoFailSafe) {
@@ -39,8 +44,8 @@ TEST(DeadlineMonitor, ExactlyTheFifthConsecutiveMissTrips) {
 
 TEST(DeadlineMonitor, CommitAfterTheCheckIsAMiss) {
   DeadlineMonitor m;
-  CycleTimes t = good(0);
-  t.finished = t.checked + 1;
+  CycleTimes t = good(0ns);
+  t.finished = t.checked + 1ns;
   EXPECT_EQ(m.on_cycle(t), MonitorVerdict::kMiss);
 }
 

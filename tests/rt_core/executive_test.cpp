@@ -13,32 +13,34 @@
 #include "support/mock_arm.hpp"
 #include "support/scripted_servo_tasks.hpp"
 
+using namespace std::chrono_literals;
+
 namespace hapticctrl::rt_core {
 namespace {
 
 using test::MockArm;
 using test::ScriptedServoTasks;
 
-constexpr TimeNs kPeriod = kNsPerMs;
-constexpr TimeNs kStart = 1'000 * kNsPerS + 123'456;  // deliberately not slot-aligned
+constexpr Duration kPeriod = 1ms;
+constexpr TimePoint kStart{1'000s + 123'456ns};  // deliberately not slot-aligned
 
 /// Everything one scenario needs, with in-process regions.
 struct Rig {
-  explicit Rig(ScriptedServoTasks::Duration main_duration, ExecutiveConfig config = {})
+  explicit Rig(ScriptedServoTasks::CycleLength main_duration, ExecutiveConfig config = {})
       : tasks(clock, main_task, degraded_task, shared.overrun, kPeriod, std::move(main_duration)),
         executive(with_defaults(config), clock, tasks, shared, arm,
                   ExecutiveOutputs{nullptr, telemetry.get(), position.get(), events.get()}, box) {}
 
   static ExecutiveConfig with_defaults(ExecutiveConfig c) {
     c.period = kPeriod;
-    if (c.duration == 0) {
-      c.duration = 200 * kNsPerMs;
+    if (c.duration == Duration{0}) {
+      c.duration = 200ms;
     }
     return c;
   }
   /// The k-th slot's deadline (k from 0), as the executive computes it.
-  static TimeNs slot(std::uint64_t k) {
-    return (kStart / kPeriod + 2) * kPeriod + static_cast<TimeNs>(k) * kPeriod;
+  static TimePoint slot(std::uint64_t k) {
+    return TimePoint{(kStart.time_since_epoch() / kPeriod + 2) * kPeriod} + k * kPeriod;
   }
   shm::CtrlWriter ctrl_writer() { return regions.ctrl_writer(); }
 
@@ -58,13 +60,14 @@ struct Rig {
 };
 
 /// Main SERVO takes `slow` for the given cycles, 50 µs otherwise.
-ScriptedServoTasks::Duration slow_for(std::uint64_t first, std::uint64_t last, TimeNs slow) {
-  return
-      [=](std::uint64_t cycle) { return (cycle >= first && cycle <= last) ? slow : 50 * kNsPerUs; };
+ScriptedServoTasks::CycleLength slow_for(std::uint64_t first, std::uint64_t last, Duration slow) {
+  return [=](std::uint64_t cycle) {
+    return (cycle >= first && cycle <= last) ? slow : Duration{50us};
+  };
 }
 
 TEST(Executive, NominalRunHasNoMissAndStopsWhenDurationElapses) {
-  Rig rig(slow_for(0, 0, 0));
+  Rig rig(slow_for(0, 0, 0ns));
   const ExecutiveResult r = rig.executive.run();
   EXPECT_EQ(r.reason, shm::StopReason::kDurationElapsed);
   EXPECT_FALSE(r.fail_safe);
@@ -73,9 +76,9 @@ TEST(Executive, NominalRunHasNoMissAndStopsWhenDurationElapses) {
   EXPECT_EQ(rig.executive.cycles(), 200U);
   const shm::TelemetryPayload t = rig.executive.telemetry();
   EXPECT_EQ(t.wake_latency.max_ns, 0);  // a fake clock wakes exactly on time
-  EXPECT_EQ(t.servo_start_delay.p50_ns, 5 * kNsPerUs);
-  EXPECT_EQ(t.measured_period.min_ns, kPeriod);
-  EXPECT_EQ(t.measured_period.max_ns, kPeriod);
+  EXPECT_EQ(t.servo_start_delay.p50_ns, to_ns(5us));
+  EXPECT_EQ(t.measured_period.min_ns, to_ns(kPeriod));
+  EXPECT_EQ(t.measured_period.max_ns, to_ns(kPeriod));
 }
 
 TEST(Executive, FourMissesThenAGoodCycleDoNotTrip) {
@@ -155,7 +158,7 @@ TEST(Executive, StateTransitionsAndTheFailSafeAreEvents) {
 }
 
 TEST(Executive, TelemetryCarriesTheCoarseWakeHistogram) {
-  Rig rig([](std::uint64_t) { return 50 * kNsPerUs; });
+  Rig rig([](std::uint64_t) { return 50us; });
   (void)rig.executive.run();
   shm::TelemetryPayload t;
   ASSERT_TRUE(rig.telemetry->read(t).ok());
@@ -169,8 +172,8 @@ TEST(Executive, TelemetryCarriesTheCoarseWakeHistogram) {
 
 TEST(Executive, ChronicOneInThreeIsReportedButDoesNotTripByDefault) {
   ExecutiveConfig config;
-  config.duration = 3 * kNsPerS;
-  Rig rig([](std::uint64_t c) { return c % 3 == 0 ? kPeriod * 9 / 10 : 50 * kNsPerUs; }, config);
+  config.duration = 3s;
+  Rig rig([](std::uint64_t c) { return c % 3 == 0 ? kPeriod * 9 / 10 : 50us; }, config);
   const ExecutiveResult r = rig.executive.run();
   EXPECT_FALSE(r.fail_safe);
   const shm::TelemetryPayload t = rig.executive.telemetry();
@@ -181,9 +184,9 @@ TEST(Executive, ChronicOneInThreeIsReportedButDoesNotTripByDefault) {
 
 TEST(Executive, ChronicMissesTripWhenAThresholdIsConfigured) {
   ExecutiveConfig config;
-  config.duration = 3 * kNsPerS;
+  config.duration = 3s;
   config.chronic.trip_window_ppm = 200'000;
-  Rig rig([](std::uint64_t c) { return c % 3 == 0 ? kPeriod * 9 / 10 : 50 * kNsPerUs; }, config);
+  Rig rig([](std::uint64_t c) { return c % 3 == 0 ? kPeriod * 9 / 10 : 50us; }, config);
   const ExecutiveResult r = rig.executive.run();
   EXPECT_TRUE(r.fail_safe);
   EXPECT_EQ(r.reason, shm::StopReason::kChronicMisses);
@@ -206,7 +209,7 @@ TEST(Executive, BenchmarkModeCountsWouldBeFailSafesAndRunsOn) {
   EXPECT_GT(rig.executive.cycles(), 180U);
 
   // The same stall without benchmark mode fails safe, and counts nothing as would-be.
-  Rig strict(slow_for(0, 0, 0));
+  Rig strict(slow_for(0, 0, 0ns));
   strict.clock.oversleep_at(Rig::slot(40), kPeriod * 12);
   EXPECT_TRUE(strict.executive.run().fail_safe);
   EXPECT_EQ(strict.executive.telemetry().would_fail_safe, 0U);
@@ -230,7 +233,7 @@ TEST(Executive, ServoOverrunOf2Point7PeriodsMissesThreeSlotsRunsTwoDegraded) {
 }
 
 TEST(Executive, ClockWakingLateBy2Point7PeriodsSkipsThreeSlots) {
-  Rig rig(slow_for(0, 0, 0));
+  Rig rig(slow_for(0, 0, 0ns));
   rig.clock.oversleep_at(Rig::slot(10), kPeriod * 27 / 10);
   const ExecutiveResult r = rig.executive.run();
   EXPECT_FALSE(r.fail_safe);
@@ -238,26 +241,26 @@ TEST(Executive, ClockWakingLateBy2Point7PeriodsSkipsThreeSlots) {
   EXPECT_EQ(t.skipped_slots, 3U);
   EXPECT_EQ(t.misses_total, 3U);
   EXPECT_EQ(rig.executive.cycles(), 200U - 3U) << "skipped slots are not run back to back";
-  EXPECT_EQ(t.wake_latency.max_ns, kPeriod * 27 / 10);
+  EXPECT_EQ(t.wake_latency.max_ns, to_ns(kPeriod * 27 / 10));
 }
 
 TEST(Executive, ClockWakingSlightlyPastHalfAPeriodSkipsOnlyThatSlot) {
-  Rig rig(slow_for(0, 0, 0));
+  Rig rig(slow_for(0, 0, 0ns));
   rig.clock.oversleep_at(Rig::slot(20), kPeriod * 6 / 10);
   rig.executive.run();
   EXPECT_EQ(rig.executive.telemetry().skipped_slots, 1U);
 }
 
 TEST(Executive, WakeUpLessThanHalfAPeriodLateRunsTheCycleLate) {
-  Rig rig(slow_for(0, 0, 0));
+  Rig rig(slow_for(0, 0, 0ns));
   rig.clock.oversleep_at(Rig::slot(20), kPeriod * 3 / 10);
   rig.executive.run();
   EXPECT_EQ(rig.executive.telemetry().skipped_slots, 0U);
-  EXPECT_EQ(rig.executive.telemetry().wake_latency.max_ns, kPeriod * 3 / 10);
+  EXPECT_EQ(rig.executive.telemetry().wake_latency.max_ns, to_ns(kPeriod * 3 / 10));
 }
 
 TEST(Executive, StopRequestMidRunStopsInOrderWithoutFault) {
-  Rig rig([&](std::uint64_t) { return 50 * kNsPerUs; });
+  Rig rig([&](std::uint64_t) { return 50us; });
   // The request is queued before the run and consumed by the first SERVO cycle.
   rig.ctrl_writer().send(shm::CtrlCode::kPowerOn, 0, 0);
   rig.ctrl_writer().send(shm::CtrlCode::kStop, 0, 0);
@@ -274,7 +277,7 @@ TEST(Executive, StopRequestMidRunStopsInOrderWithoutFault) {
 }
 
 TEST(Executive, ExternalStopFlagEndsTheRun) {
-  Rig rig(slow_for(0, 0, 0));
+  Rig rig(slow_for(0, 0, 0ns));
   std::atomic<bool> stop{true};
   const ExecutiveResult r = rig.executive.run(&stop);
   EXPECT_EQ(r.reason, shm::StopReason::kSignal);
@@ -302,7 +305,7 @@ TEST(Executive, DegradedCycleCommitsAndLateMainOutputIsDiscarded) {
 
 TEST(Executive, FaultInjectionOfFiveCyclesTripsAndOfFourDoesNot) {
   for (const std::uint32_t k : {4U, 5U}) {
-    Rig rig(slow_for(0, 0, 0));
+    Rig rig(slow_for(0, 0, 0ns));
     rig.ctrl_writer().send(shm::CtrlCode::kInjectOverrun, k, 0);
     const ExecutiveResult r = rig.executive.run();
     EXPECT_EQ(r.fail_safe, k == 5) << "K=" << k;
@@ -314,15 +317,15 @@ TEST(Executive, TheBlackBoxOfAStallThatFailedSafeEndsWithTheStall) {
   // H5: the cause of a fail-safe is in its black box. A clock that wakes 12 periods late skips
   // 12 slots; the fail-safe follows, and the last record is that late wake-up, after the
   // ordinary cycle before it.
-  Rig rig(slow_for(0, 0, 0));
+  Rig rig(slow_for(0, 0, 0ns));
   rig.clock.oversleep_at(Rig::slot(40), kPeriod * 12);
   EXPECT_TRUE(rig.executive.run().fail_safe);
   ASSERT_GE(rig.box.size(), 2U);
   const CycleRecord& stall = rig.box.at(rig.box.size() - 1);
   EXPECT_EQ(stall.flags, kRecordMiss | kRecordStall);
   EXPECT_EQ(stall.skipped, 12U);
-  EXPECT_EQ(stall.wake_latency, kPeriod * 12);
-  EXPECT_EQ(stall.scheduled, Rig::slot(40));
+  EXPECT_EQ(stall.wake_latency, to_ns(kPeriod * 12));
+  EXPECT_EQ(stall.scheduled, to_ns(Rig::slot(40)));
   EXPECT_EQ(stall.servo_start_delay, -1);
   EXPECT_EQ(stall.cycle, 40U) << "the last cycle that ran";
   const CycleRecord& before = rig.box.at(rig.box.size() - 2);
@@ -331,7 +334,7 @@ TEST(Executive, TheBlackBoxOfAStallThatFailedSafeEndsWithTheStall) {
 }
 
 TEST(Executive, BlackBoxHoldsTheLastCycles) {
-  Rig rig(slow_for(0, 0, 0));
+  Rig rig(slow_for(0, 0, 0ns));
   rig.executive.run();
   ASSERT_EQ(rig.box.size(), 200U);
   EXPECT_EQ(rig.box.at(0).cycle, 1U);

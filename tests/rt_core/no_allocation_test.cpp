@@ -14,6 +14,8 @@
 #include "support/in_memory_regions.hpp"
 #include "support/scripted_servo_tasks.hpp"
 
+using namespace std::chrono_literals;
+
 namespace hapticctrl::rt_core {
 namespace {
 
@@ -28,7 +30,7 @@ TEST(NoAllocation, CounterSeesAllocations) {
 /// Two seconds of armed cycles at 1 kHz with `client` in VPr and an operator's push; every 50th
 /// cycle overruns, so degraded cycles and discarded late commits are exercised too.
 void expect_no_allocation(const shm::VprPayload& client) {
-  constexpr TimeNs kPeriod = kNsPerMs;
+  constexpr Duration kPeriod = 1ms;
   FakeClock clock;
   test::InMemoryRegions regions;
   shm::ForcePayload push;
@@ -42,11 +44,11 @@ void expect_no_allocation(const shm::VprPayload& client) {
   ServoTask degraded_task(shared, TaskRole::kDegraded, ServoLaw(test::default_dynamics()));
   test::ScriptedServoTasks tasks(
       clock, main_task, degraded_task, shared.overrun, kPeriod,
-      [](std::uint64_t c) { return c % 50 == 0 ? kPeriod * 3 / 2 : 100 * kNsPerUs; });
+      [=](std::uint64_t c) { return c % 50 == 0 ? kPeriod * 3 / 2 : Duration{100us}; });
   BlackBox box(2000);
   ExecutiveConfig config;
   config.period = kPeriod;
-  config.duration = 2 * kNsPerS;
+  config.duration = 2s;
   config.telemetry_every = 10;
   Executive executive(config, clock, tasks, shared, arm,
                       ExecutiveOutputs{nullptr, regions.telemetry.get(), regions.position.get()},

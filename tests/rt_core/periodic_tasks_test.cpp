@@ -11,10 +11,17 @@
 
 #include "hapticctrl/rt_core/clock.hpp"
 
+using namespace std::chrono_literals;
+
 namespace hapticctrl::rt_core {
 namespace {
 
-constexpr TimeNs kTick = kNsPerMs;
+constexpr Duration kTick = 1ms;
+
+/// The moment `since` after the clock's origin.
+constexpr TimePoint at(Duration since) {
+  return TimePoint{since};
+}
 
 /// Runners whose functions finish when the test says so.
 class ScriptedRunners final : public TaskRunners {
@@ -22,26 +29,26 @@ class ScriptedRunners final : public TaskRunners {
   struct Release {
     TaskRole role;
     std::uint64_t cycle;
-    TimeNs time;
+    TimePoint time;
   };
 
-  void release(TaskRole role, std::uint64_t cycle, TimeNs release_time) noexcept override {
+  void release(TaskRole role, std::uint64_t cycle, TimePoint release_time) noexcept override {
     releases.push_back({role, cycle, release_time});
     Function& f = function(role);
     f.cycle = cycle;
     f.busy = true;
-    f.started = release_time + 10 * kNsPerUs;
+    f.started = release_time + 10us;
   }
   bool busy(TaskRole role) noexcept override { return function(role).busy; }
-  TimeNs started_at(TaskRole role) noexcept override { return function(role).started; }
-  TimeNs finished_at(TaskRole role, std::uint64_t cycle) noexcept override {
+  TimePoint started_at(TaskRole role) noexcept override { return function(role).started; }
+  TimePoint finished_at(TaskRole role, std::uint64_t cycle) noexcept override {
     const Function& f = function(role);
-    return !f.busy && f.cycle == cycle ? f.finished : -1;
+    return !f.busy && f.cycle == cycle ? f.finished : kNotYet;
   }
   void stop() noexcept override { stopped = true; }
 
   /// The function `role` finishes its cycle at `at`.
-  void finish(TaskRole role, TimeNs at) {
+  void finish(TaskRole role, TimePoint at) {
     function(role).busy = false;
     function(role).finished = at;
   }
@@ -53,8 +60,8 @@ class ScriptedRunners final : public TaskRunners {
   struct Function {
     bool busy = false;
     std::uint64_t cycle = 0;
-    TimeNs started = -1;
-    TimeNs finished = -1;
+    TimePoint started = kNotYet;
+    TimePoint finished = kNotYet;
   };
   Function& function(TaskRole role) { return functions_[role == TaskRole::kMain ? 0 : 1]; }
   std::array<Function, 2> functions_{};
@@ -72,13 +79,13 @@ struct Rig {
     return tasks.add({.runners = &runners, .period_multiple = multiple, .gate = gate});
   }
   MonitorVerdict tick(std::uint64_t k) {
-    const TimeNs scheduled = static_cast<TimeNs>(k) * kTick;
+    const TimePoint scheduled{k * kTick};
     tasks.release_due(k, scheduled, scheduled);
     if (!hold_normal && runners.busy(TaskRole::kMain)) {
-      runners.finish(TaskRole::kMain, scheduled + 200 * kNsPerUs);
+      runners.finish(TaskRole::kMain, scheduled + 200us);
     }
     if (runners.busy(TaskRole::kDegraded)) {
-      runners.finish(TaskRole::kDegraded, scheduled + 50 * kNsPerUs);
+      runners.finish(TaskRole::kDegraded, scheduled + 50us);
     }
     return tasks.check_deadlines(scheduled + kTick * 3 / 4);
   }
@@ -131,7 +138,7 @@ TEST(PeriodicTasks, AStoppedTaskIsNotReleasedAndARestartedOneStartsAfresh) {
   EXPECT_EQ(rig.tasks.monitor(id).total_misses(), 2U);
   rig.tasks.stop(id);
   EXPECT_EQ(rig.tasks.state(id), TaskState::kStopped);
-  rig.runners.finish(TaskRole::kMain, 3 * kTick);
+  rig.runners.finish(TaskRole::kMain, at(3 * kTick));
   rig.hold_normal = false;
   const std::size_t released = rig.runners.releases.size();
   rig.tick(3);
@@ -179,7 +186,7 @@ TEST(PeriodicTasks, FiveConsecutiveMissesTripTheFailSafeAndAGoodReleaseResetsThe
     EXPECT_EQ(rig.tick(k), MonitorVerdict::kMiss) << "tick " << k;
   }
   rig.hold_normal = false;
-  rig.runners.finish(TaskRole::kMain, 5 * kTick);
+  rig.runners.finish(TaskRole::kMain, at(5 * kTick));
   EXPECT_EQ(rig.tick(6), MonitorVerdict::kGood);
   rig.hold_normal = true;
   for (std::uint64_t k = 7; k <= 10; ++k) {
@@ -193,13 +200,13 @@ TEST(PeriodicTasks, AFinishAfterTheCheckIsAMissAndAReleaseIsJudgedOnlyAtItsDeadl
   Rig rig;
   const TaskId id = rig.add(1);
   rig.tasks.activate(id);
-  rig.tasks.release_due(1, kTick, kTick);
-  EXPECT_EQ(rig.tasks.check_deadlines(kTick + kTick / 2), MonitorVerdict::kGood);
-  EXPECT_EQ(rig.tasks.last_release(id).checked, -1) << "before its deadline: not judged";
-  rig.runners.finish(TaskRole::kMain, kTick + kTick * 9 / 10);  // after the 3/4 check
-  EXPECT_EQ(rig.tasks.check_deadlines(kTick + kTick * 3 / 4), MonitorVerdict::kMiss);
-  EXPECT_EQ(rig.tasks.last_release(id).checked, kTick + kTick * 3 / 4);
-  EXPECT_EQ(rig.tasks.check_deadlines(2 * kTick), MonitorVerdict::kGood) << "judged once";
+  rig.tasks.release_due(1, at(kTick), at(kTick));
+  EXPECT_EQ(rig.tasks.check_deadlines(at(kTick + kTick / 2)), MonitorVerdict::kGood);
+  EXPECT_EQ(rig.tasks.last_release(id).checked, kNotYet) << "before its deadline: not judged";
+  rig.runners.finish(TaskRole::kMain, at(kTick + kTick * 9 / 10));  // after the 3/4 check
+  EXPECT_EQ(rig.tasks.check_deadlines(at(kTick + kTick * 3 / 4)), MonitorVerdict::kMiss);
+  EXPECT_EQ(rig.tasks.last_release(id).checked, at(kTick + kTick * 3 / 4));
+  EXPECT_EQ(rig.tasks.check_deadlines(at(2 * kTick)), MonitorVerdict::kGood) << "judged once";
 }
 
 TEST(PeriodicTasks, TheGateIsGrantedTheReleasesCycleAndAHeldGateStopsTheRelease) {

@@ -12,12 +12,14 @@
 #include "hapticctrl/shm/payloads.hpp"
 #include "support/default_dynamics.hpp"
 
+using namespace std::chrono_literals;
+
 namespace hapticctrl::rt_core {
 namespace {
 
 using test::default_dynamics;
 
-constexpr TimeNs kDt = kNsPerMs;
+constexpr Duration kDt = 1ms;
 const Vector6d kReady = (Vector6d() << 0, -0.6, 1.2, 0, -0.6, 0).finished();
 
 /// The simulated arm driven by the law at 1 kHz, as the servo does.
@@ -164,8 +166,8 @@ PassivityRun run_delayed_coupling(bool guard, int delay_ms, double loss, unsigne
   PassivityRun result;
   for (int k = 0; k < 10'000; ++k) {
     to_controller.push_back({x.x(), x.y(), x.z(), v.x(), v.y(), v.z(), client_in});
-    loop.in.client_age += kNsPerMs;
-    loop.in.client_silence += kNsPerMs;
+    loop.in.client_age += 1ms;
+    loop.in.client_silence += 1ms;
     loop.in.new_sample = false;
     if (static_cast<int>(to_controller.size()) > delay_ms) {
       const auto state = to_controller.front();
@@ -176,10 +178,10 @@ PassivityRun run_delayed_coupling(bool guard, int delay_ms, double loss, unsigne
         loop.in.client.object_pose = {state[0], state[1], state[2], 0, 0, 0, 1};
         loop.in.client.object_twist = {state[3], state[4], state[5], 0, 0, 0};
         loop.in.client.energy_in = two_port ? state[6] : -1.0;
-        loop.in.client_age = delay_ms * kNsPerMs;
-        loop.in.client_silence = 0;
+        loop.in.client_age = delay_ms * 1ms;
+        loop.in.client_silence = 0ns;
         loop.in.new_sample = true;
-        loop.in.loop_delay = (2 * delay_ms + 1) * kNsPerMs;
+        loop.in.loop_delay = (2 * delay_ms + 1) * 1ms;
       }
     }
     loop.cycle();

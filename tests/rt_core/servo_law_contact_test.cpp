@@ -9,6 +9,8 @@
 #include "support/law_inputs.hpp"
 #include "support/law_runs.hpp"
 
+using namespace std::chrono_literals;
+
 namespace hapticctrl::rt_core {
 namespace {
 
@@ -29,7 +31,7 @@ ServoInputs slow_link_coupling(double dx) {
   ServoInputs in = coupled_to_object_ahead(dx);
   in.client.local_coupling = true;
   in.client.energy_in = 1e3;  // the two-port has budget: this test is about the stiffness
-  in.loop_delay = 40 * kNsPerMs;
+  in.loop_delay = 40ms;
   in.new_sample = true;
   return in;
 }
@@ -60,13 +62,13 @@ TEST(ServoLawContact, TheHandFeelsTheContactAtItsStiffnessAndTheObjectAStifferCo
   EXPECT_NEAR(out.surface_depth, depth, 1e-9);
   EXPECT_NEAR(out.surface_force, 1600.0 * depth, 1e-6);
   EXPECT_EQ(out.surface_hidden, 0.0);
-  EXPECT_GE(out.contact_age, 0);
-  EXPECT_LE(out.contact_age, kNsPerMs);
+  EXPECT_GE(out.contact_age, 0ns);
+  EXPECT_LE(out.contact_age, 1ms);
 }
 
 TEST(ServoLawContact, TheWallsStiffnessIsFeltWhateverTheLoopAndBoundedByTheDevice) {
   // A 5000 N/m wall is rendered at the device's 2000 N/m, at any loop delay.
-  for (const TimeNs loop : {TimeNs{2 * kNsPerMs}, TimeNs{200 * kNsPerMs}}) {
+  for (const Duration loop : {Duration{2ms}, Duration{200ms}}) {
     ServoLaw law(default_dynamics());
     ServoInputs in = slow_link_coupling(0.0);
     in.loop_delay = loop;
@@ -77,8 +79,8 @@ TEST(ServoLawContact, TheWallsStiffnessIsFeltWhateverTheLoopAndBoundedByTheDevic
     const double f5 = run_on_contacts(law, in, 300).rendered_wrench(0);
     const double second = press_along_x(law, in, 0.0025);
     const double f10 = run_on_contacts(law, in, 300).rendered_wrench(0);
-    EXPECT_NEAR(-f5 / first, 2000.0, 20.0) << "loop " << loop;
-    EXPECT_NEAR(-(f10 - f5) / second, 2000.0, 20.0) << "loop " << loop;
+    EXPECT_NEAR(-f5 / first, 2000.0, 20.0) << "loop " << to_ns(loop) << " ns";
+    EXPECT_NEAR(-(f10 - f5) / second, 2000.0, 20.0) << "loop " << to_ns(loop) << " ns";
   }
 }
 
@@ -86,10 +88,10 @@ TEST(ServoLawContact, TheStiffeningIsUnilateralAndAbsentBeforeTouching) {
   ServoLaw law(default_dynamics());
   ServoInputs in = slow_link_coupling(0.01);  // the handle pulls the object off the wall
   in.client.contact_count = 1;
-  in.client.contacts[0] = wall_at(in.client.object_pose, 1600.0, 0);
+  in.client.contacts[0] = wall_at(in.client.object_pose, 1600.0, TimePoint{});
   ServoOutputs out;
   for (int k = 0; k < 300; ++k) {
-    in.client.contacts[0].received_ns = in.now;
+    in.client.contacts[0].received = in.now;
     out = run(law, in, 1);
   }
   EXPECT_NEAR(out.rendered_wrench(0), out.gains.k_linear * 0.01, 0.02 * out.gains.k_linear * 0.01)
@@ -98,10 +100,10 @@ TEST(ServoLawContact, TheStiffeningIsUnilateralAndAbsentBeforeTouching) {
   ServoLaw near_law(default_dynamics());
   ServoInputs near = slow_link_coupling(-0.01);
   near.client.contact_count = 1;
-  near.client.contacts[0] = wall_at(near.client.object_pose, 1600.0, 0);
+  near.client.contacts[0] = wall_at(near.client.object_pose, 1600.0, TimePoint{});
   near.client.contacts[0].distance = 0.003;  // 3 mm short of the wall
   for (int k = 0; k < 300; ++k) {
-    near.client.contacts[0].received_ns = near.now;
+    near.client.contacts[0].received = near.now;
     out = run(near_law, near, 1);
   }
   EXPECT_EQ(out.normal_stiffness, 0.0) << "not touching yet";
@@ -111,10 +113,10 @@ TEST(ServoLawContact, AContactThatStopsComingFadesOutWithinFortyFiveMs) {
   ServoLaw law(default_dynamics());
   ServoInputs in = slow_link_coupling(-0.01);
   in.client.contact_count = 1;
-  in.client.contacts[0] = wall_at(in.client.object_pose, 1600.0, 0);
+  in.client.contacts[0] = wall_at(in.client.object_pose, 1600.0, TimePoint{});
   ServoOutputs out;
   for (int k = 0; k < 300; ++k) {
-    in.client.contacts[0].received_ns = in.now;
+    in.client.contacts[0].received = in.now;
     out = run(law, in, 1);
   }
   ASSERT_GT(out.normal_stiffness, 0.0);
@@ -206,10 +208,10 @@ ForceTrace run_link(ServoLaw& law, ServoInputs& in, int cycles, bool fresh) {
   for (int k = 0; k < cycles; ++k) {
     in.now += in.dt;
     in.new_sample = fresh;
-    in.client_silence = fresh ? 0 : in.client_silence + in.dt;
-    in.client_age = fresh ? 0 : in.client_age + in.dt;
+    in.client_silence = fresh ? 0ns : in.client_silence + in.dt;
+    in.client_age = fresh ? 0ns : in.client_age + in.dt;
     if (fresh) {
-      in.client.contacts[0].received_ns = in.now;
+      in.client.contacts[0].received = in.now;
     }
     law.compute(in, false, out);
     trace.add(out.rendered_wrench.x(), k == 0);
@@ -258,7 +260,7 @@ TEST(ServoLawHeldContact, AnObjectDeeperInItsSurfaceThanTheHandleDoesNotPullTheH
   ServoLaw law(default_dynamics());
   ServoInputs in;
   const double felt = pressed_on_wall(law, in);
-  in.loop_delay = 4 * kNsPerMs;  // a stiff coupling: what it would pull shows
+  in.loop_delay = 4ms;  // a stiff coupling: what it would pull shows
   ForceTrace trace = run_link(law, in, 300, true);
   ASSERT_NEAR(trace.last, felt, 0.2);
   in.client.object_pose[0] += 0.02;  // 2 cm deeper than the handle, going in at 0.3 m/s

@@ -8,6 +8,8 @@
 
 #include "support/law_inputs.hpp"
 
+using namespace std::chrono_literals;
+
 namespace hapticctrl::rt_core {
 namespace {
 
@@ -74,7 +76,7 @@ TEST(ServoLaw, ASilentLinkFadesTheForceOutWithin50msAtMost1NPerMs) {
   double previous = out.rendered_wrench(0);
   double max_step = 0.0;
   for (int silent_ms = 1; silent_ms <= 100; ++silent_ms) {
-    in.client_silence = silent_ms * kNsPerMs;
+    in.client_silence = silent_ms * 1ms;
     in.client_age = in.client_silence;
     law.compute(in, false, out);
     max_step = std::max(max_step, std::abs(out.rendered_wrench(0) - previous));
@@ -91,8 +93,8 @@ TEST(ServoLaw, ASilentLinkFadesTheForceOutWithin50msAtMost1NPerMs) {
   EXPECT_LE(max_step, 1.0 + 1e-9) << "never a step beyond 1 N per ms while fading";
   // Fresh samples again: the spring restarts relaxed where the handle is and regains its
   // stretch at 8 cm/s (2000 N/m: 0.16 N per ms), never in one step.
-  in.client_silence = 0;
-  in.client_age = 0;
+  in.client_silence = 0ns;
+  in.client_age = 0ns;
   previous = 0.0;
   max_step = 0.0;
   for (int k = 0; k < 800; ++k) {
@@ -120,7 +122,7 @@ TEST(ServoLaw, ASilentLinkFadesASmallForceAsLateAsTheSlopeAllowsAndAnyForceWithi
     double previous = held;
     double max_step = 0.0;
     for (int silent_ms = 1; silent_ms <= 60; ++silent_ms) {
-      in.client_silence = silent_ms * kNsPerMs;
+      in.client_silence = silent_ms * 1ms;
       in.client_age = in.client_silence;
       law.compute(in, false, out);
       max_step = std::max(max_step, std::abs(out.rendered_wrench(0) - previous));

@@ -7,6 +7,8 @@
 #include "hapticctrl/shm/payloads.hpp"
 #include "support/law_inputs.hpp"
 
+using namespace std::chrono_literals;
+
 namespace hapticctrl::rt_core {
 namespace {
 
@@ -67,23 +69,23 @@ TEST(ServoLaw, TheLoopDelayEnvelopeFollowsTheMedianUpAtOnceAndDownSlowly) {
   ServoInputs in = coupled_to_object_ahead(0.0);
   ServoOutputs out;
   in.new_sample = true;
-  const auto feed = [&](TimeNs loop, int samples) {
+  const auto feed = [&](Duration loop, int samples) {
     in.loop_delay = loop;
     for (int k = 0; k < samples; ++k) {
       law.compute(in, false, out);
     }
   };
-  feed(3 * kNsPerMs, 15);
-  EXPECT_EQ(out.loop_delay, 3 * kNsPerMs);
-  feed(40 * kNsPerMs, 1);
-  EXPECT_EQ(out.loop_delay, 3 * kNsPerMs) << "one long loop (a lost answer) changes nothing";
-  feed(40 * kNsPerMs, 7);
-  EXPECT_EQ(out.loop_delay, 40 * kNsPerMs) << "a slower link lowers the gains at once";
-  feed(3 * kNsPerMs, 18);
-  EXPECT_GT(out.loop_delay, 35 * kNsPerMs) << "and they come back slowly";
-  feed(3 * kNsPerMs, 2000);
-  EXPECT_LT(out.loop_delay, 4 * kNsPerMs);
-  feed(0, 2000);  // a client without the timing echo: the assumed loop
+  feed(3ms, 15);
+  EXPECT_EQ(out.loop_delay, 3ms);
+  feed(40ms, 1);
+  EXPECT_EQ(out.loop_delay, 3ms) << "one long loop (a lost answer) changes nothing";
+  feed(40ms, 7);
+  EXPECT_EQ(out.loop_delay, 40ms) << "a slower link lowers the gains at once";
+  feed(3ms, 18);
+  EXPECT_GT(out.loop_delay, 35ms) << "and they come back slowly";
+  feed(3ms, 2000);
+  EXPECT_LT(out.loop_delay, 4ms);
+  feed(0ns, 2000);  // a client without the timing echo: the assumed loop
   EXPECT_EQ(out.loop_delay, law.config().assumed_loop_delay);
 }
 
@@ -93,36 +95,35 @@ TEST(ServoLaw, GainsIgnoreLoopJitterWithinTheirBandDropAtOnceAndRiseSmoothly) {
   // once, a faster one raises them over 50 ms.
   ServoLaw law(default_dynamics());
   ServoInputs in = coupled_to_object_ahead(0.0);
-  in.dt = kNsPerMs;
+  in.dt = 1ms;
   in.new_sample = true;
   ServoOutputs out;
-  const auto feed = [&](TimeNs loop) {
+  const auto feed = [&](Duration loop) {
     in.loop_delay = loop;
     law.compute(in, false, out);
   };
   for (int k = 0; k < 15; ++k) {
-    feed(40 * kNsPerMs);
+    feed(40ms);
   }
   const double k40 = law.derive_gains(in.client, 0.040).k_linear;
   ASSERT_EQ(out.gains.k_linear, k40);
   for (int k = 0; k < 500; ++k) {
-    feed((k % 2 == 0 ? 40 : 43) * kNsPerMs);
+    feed((k % 2 == 0 ? 40 : 43) * 1ms);
     ASSERT_EQ(out.gains.k_linear, k40) << "jitter within 10 % of the design, sample " << k;
   }
-  EXPECT_EQ(out.loop_delay, 40 * kNsPerMs) << "the design delay stays";
+  EXPECT_EQ(out.loop_delay, 40ms) << "the design delay stays";
   double largest_rise = 0.0;
   for (int k = 0; k < 5000; ++k) {
     const double before = out.gains.k_linear;
-    feed(3 * kNsPerMs);
+    feed(3ms);
     largest_rise = std::max(largest_rise, out.gains.k_linear / before - 1.0);
   }
-  const double k_fast =
-      law.derive_gains(in.client, static_cast<double>(out.loop_delay) * 1e-9).k_linear;
+  const double k_fast = law.derive_gains(in.client, to_seconds(out.loop_delay)).k_linear;
   EXPECT_NEAR(out.gains.k_linear, k_fast, 1e-6 * k_fast) << "at the faster link's design";
   EXPECT_GT(k_fast, 10.0 * k40);
   EXPECT_LT(largest_rise, 0.02) << "stiffer by 1/50 of the way per cycle (a new design: 23 %)";
   for (int k = 0; k < 8; ++k) {
-    feed(40 * kNsPerMs);
+    feed(40ms);
   }
   EXPECT_EQ(out.gains.k_linear, k40) << "a slower loop lowers the gains at once";
 }

@@ -7,6 +7,8 @@
 #include "hapticctrl/shm/payloads.hpp"
 #include "support/law_inputs.hpp"
 
+using namespace std::chrono_literals;
+
 namespace hapticctrl::rt_core {
 namespace {
 
@@ -151,7 +153,7 @@ ServoInputs impedance_moving(const Vector3d& v, const std::array<double, 6>& wre
   in.client.energy_in = energy_in;
   in.client_valid = true;
   in.new_sample = true;
-  in.loop_delay = 4 * kNsPerMs;
+  in.loop_delay = 4ms;
   return in;
 }
 

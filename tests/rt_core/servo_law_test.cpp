@@ -8,6 +8,8 @@
 
 #include "support/law_inputs.hpp"
 
+using namespace std::chrono_literals;
+
 namespace hapticctrl::rt_core {
 namespace {
 
@@ -205,7 +207,7 @@ TEST(ServoLaw, SpeedThatOutlastsTheBrakeIsAVelocityFault) {
 TEST(ServoLaw, HandleIsReportedInTheClientsEnvironmentFrame) {
   ServoLaw law(test::default_dynamics());
   ServoInputs in;
-  in.dt = kNsPerMs;
+  in.dt = 1ms;
   in.measures.position = (Vector6d() << 0, -0.6, 1.2, 0, -0.6, 0).finished();
   // Our base sits 1 m along the client's x, turned 90 degrees about z.
   in.client.base_frame = {1.0, 0, 0, 0, 0, std::sqrt(0.5), std::sqrt(0.5)};

@@ -13,6 +13,8 @@
 #include "support/in_memory_regions.hpp"
 #include "support/mock_arm.hpp"
 
+using namespace std::chrono_literals;
+
 namespace hapticctrl::rt_core {
 namespace {
 
@@ -30,7 +32,7 @@ struct ServoRig {
 
   StepResult cycle(ServoTask& task, std::uint64_t k) {
     shared.gate.grant(k);
-    return task.run(k, static_cast<TimeNs>(k) * kNsPerMs, kNsPerMs);
+    return task.run(k, TimePoint{k * 1ms}, 1ms);
   }
   shm::VpPayload last_vp() {
     shm::VpPayload out;
@@ -126,11 +128,11 @@ TEST(Servo, StaleClientIsFlagged) {
 TEST(Servo, LateMainCommitAfterDegradedIsDiscarded) {
   ServoRig rig;
   rig.shared.gate.grant(5);
-  ASSERT_EQ(rig.main_task.begin(5, 0, kNsPerMs), StepResult::kDone);
+  ASSERT_EQ(rig.main_task.begin(5, TimePoint{}, 1ms), StepResult::kDone);
   ASSERT_EQ(rig.cycle(rig.degraded_task, 6), StepResult::kDone);
   EXPECT_NE(rig.last_vp().state_word & shm::state_bits::kDegraded, 0U);
   const int sends_before = rig.arm.sends;
-  EXPECT_EQ(rig.main_task.finish(5, 0), StepResult::kDiscarded);
+  EXPECT_EQ(rig.main_task.finish(5, TimePoint{}), StepResult::kDiscarded);
   EXPECT_EQ(rig.arm.sends, sends_before) << "nothing reached the arm";
   EXPECT_EQ(rig.last_vp().cycle, 6U);
   EXPECT_EQ(rig.shared.to_clock.counters.late_discarded.load(), 1U);
@@ -149,7 +151,7 @@ TEST(Servo, MainAndDegradedServoContinueOneRateLimitedWrench) {
   double largest = 0.0;
   for (std::uint64_t k = 1; k <= 240; ++k) {
     client.client_sequence = static_cast<std::uint32_t>(k);
-    rig.vpr->publish(client, static_cast<TimeNs>(k) * kNsPerMs);
+    rig.vpr->publish(client, to_ns(k * 1ms));
     // After the 150 ms engagement ramp, every other cycle is the degraded SERVO's (it renders
     // no coupling).
     ServoTask& task = (k >= 170 && k % 2 == 0) ? rig.degraded_task : rig.main_task;
@@ -189,7 +191,7 @@ TEST(Servo, TheLawSeesTheSampleConvertedAtTheEdge) {
   std::uint64_t k = 2;
   for (; k <= 200; ++k) {
     client.client_sequence = k;
-    rig.vpr->publish(client, static_cast<TimeNs>(k) * kNsPerMs);
+    rig.vpr->publish(client, to_ns(k * 1ms));
     rig.cycle(rig.main_task, k);
   }
   shm::VpPayload vp = rig.last_vp();
@@ -200,7 +202,7 @@ TEST(Servo, TheLawSeesTheSampleConvertedAtTheEdge) {
   client.flags = 0;  // the object detached: the same sample without the flag
   for (const std::uint64_t last = k + 50; k <= last; ++k) {
     client.client_sequence = k;
-    rig.vpr->publish(client, static_cast<TimeNs>(k) * kNsPerMs);
+    rig.vpr->publish(client, to_ns(k * 1ms));
     rig.cycle(rig.main_task, k);
   }
   EXPECT_EQ(rig.last_vp().state_word & shm::state_bits::kCoupled, 0U) << "no object, no coupling";

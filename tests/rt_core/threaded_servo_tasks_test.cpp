@@ -9,6 +9,8 @@
 #include "support/in_memory_regions.hpp"
 #include "support/mock_arm.hpp"
 
+using namespace std::chrono_literals;
+
 namespace hapticctrl::rt_core {
 namespace {
 
@@ -34,25 +36,25 @@ bool wait_idle(ThreadedServoTasks& tasks, TaskRole role) {
 
 TEST(ThreadedServoTasks, ReleasedCyclesRunAndCommit) {
   ThreadRig rig;
-  ThreadedServoTasks tasks(rig.clock, rig.main_task, rig.degraded_task, rig.shared.overrun,
-                           kNsPerMs, {}, {});
+  ThreadedServoTasks tasks(rig.clock, rig.main_task, rig.degraded_task, rig.shared.overrun, 1ms, {},
+                           {});
   for (std::uint64_t k = 1; k <= 20; ++k) {
     ASSERT_TRUE(rig.shared.gate.grant(k));
     tasks.release(TaskRole::kMain, k, rig.clock.now());
     ASSERT_TRUE(wait_idle(tasks, TaskRole::kMain)) << "cycle " << k;
-    EXPECT_GE(tasks.started_at(TaskRole::kMain), 0);
+    EXPECT_NE(tasks.started_at(TaskRole::kMain), kNotYet);
     EXPECT_EQ(rig.shared.to_clock.commit_cycle.load(), k);
     EXPECT_GE(tasks.finished_at(TaskRole::kMain, k), tasks.started_at(TaskRole::kMain))
         << "timed after the commit, arm commands included";
-    EXPECT_EQ(tasks.finished_at(TaskRole::kMain, k + 1), -1) << "not finished yet";
+    EXPECT_EQ(tasks.finished_at(TaskRole::kMain, k + 1), kNotYet) << "not finished yet";
   }
   tasks.stop();
 }
 
 TEST(ThreadedServoTasks, InjectedOverrunKeepsMainBusyWhileDegradedCommits) {
   ThreadRig rig;
-  ThreadedServoTasks tasks(rig.clock, rig.main_task, rig.degraded_task, rig.shared.overrun,
-                           kNsPerMs, {}, {});
+  ThreadedServoTasks tasks(rig.clock, rig.main_task, rig.degraded_task, rig.shared.overrun, 1ms, {},
+                           {});
   rig.shared.overrun.request(20);  // ~20 ms stall
   ASSERT_TRUE(rig.shared.gate.grant(1));
   tasks.release(TaskRole::kMain, 1, rig.clock.now());
@@ -72,7 +74,7 @@ TEST(ThreadedServoTasks, InjectedOverrunKeepsMainBusyWhileDegradedCommits) {
 TEST(ThreadedServoTasks, StopJoinsPromptly) {
   ThreadRig rig;
   auto tasks = std::make_unique<ThreadedServoTasks>(rig.clock, rig.main_task, rig.degraded_task,
-                                                    rig.shared.overrun, kNsPerMs, ThreadPlacement{},
+                                                    rig.shared.overrun, 1ms, ThreadPlacement{},
                                                     ThreadPlacement{});
   const auto start = std::chrono::steady_clock::now();
   tasks->stop();

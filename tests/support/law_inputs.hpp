@@ -5,7 +5,7 @@
 
 namespace hapticctrl::test {
 
-using hapticctrl::kNsPerMs;
+using namespace std::chrono_literals;  // 1ms, 20ms: the law's times in its tests
 using rt_core::ChainState;
 using rt_core::ClientCommand;
 using rt_core::ClientSample;
@@ -16,7 +16,7 @@ inline const Vector6d kReady = (Vector6d() << 0, -0.6, 1.2, 0, -0.6, 0).finished
 
 inline ServoInputs powered_at(const Vector6d& q) {
   ServoInputs in;
-  in.dt = kNsPerMs;
+  in.dt = 1ms;
   in.logical.powered = true;
   in.measures.supply_on = true;
   in.measures.position = q;

@@ -16,14 +16,14 @@ using rt_core::ServoOutputs;
 
 /// A surface at the object that pushes it along -x (the object rests against it from -x).
 inline rt_core::ClientContact wall_at(const std::array<double, 7>& object_pose, double stiffness,
-                                      TimeNs received) {
+                                      TimePoint received) {
   rt_core::ClientContact c;
   c.point = {object_pose[0], object_pose[1], object_pose[2]};
   c.normal = {-1.0, 0.0, 0.0};
   c.distance = 0.0;
   c.stiffness = stiffness;
   c.object_pose = object_pose;
-  c.received_ns = received;
+  c.received = received;
   return c;
 }
 
@@ -42,7 +42,7 @@ inline ServoOutputs run_on_contacts(ServoLaw& law, ServoInputs& in, int cycles) 
   ServoOutputs out;
   for (int k = 0; k < cycles; ++k) {
     for (std::size_t i = 0; i < in.client.contact_count; ++i) {
-      in.client.contacts[i].received_ns = in.now + in.dt;
+      in.client.contacts[i].received = in.now + in.dt;
     }
     out = run(law, in, 1);
   }
@@ -61,7 +61,7 @@ inline double press_along_x(ServoLaw& law, ServoInputs& in, double dx) {
     move.x() = dx / steps;
     in.measures.position += jacobian.colPivHouseholderQr().solve(move);
     for (std::size_t i = 0; i < in.client.contact_count; ++i) {
-      in.client.contacts[i].received_ns = in.now + in.dt;
+      in.client.contacts[i].received = in.now + in.dt;
     }
     run(law, in, 1);
   }

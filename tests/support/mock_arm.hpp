@@ -15,8 +15,8 @@ class MockArm final : public rt_core::ArmIo {
     out.supply_on = supply;
     return !fail_reads;
   }
-  void send_commands(const rt_core::ArmCommands& commands, hapticctrl::TimeNs now,
-                     hapticctrl::TimeNs dt) noexcept override {
+  void send_commands(const rt_core::ArmCommands& commands, hapticctrl::TimePoint now,
+                     hapticctrl::Duration dt) noexcept override {
     last = commands;
     last_now = now;
     last_dt = dt;
@@ -34,8 +34,8 @@ class MockArm final : public rt_core::ArmIo {
   bool supply = false;
   bool fail_reads = false;
   rt_core::ArmCommands last;
-  hapticctrl::TimeNs last_now = 0;
-  hapticctrl::TimeNs last_dt = 0;
+  hapticctrl::TimePoint last_now;
+  hapticctrl::Duration last_dt{0};
   int reads = 0;
   int sends = 0;
   int enabled_sends = 0;

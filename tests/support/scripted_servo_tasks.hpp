@@ -15,11 +15,11 @@ namespace hapticctrl::test {
 
 class ScriptedServoTasks final : public rt_core::TaskRunners {
  public:
-  using Duration = std::function<hapticctrl::TimeNs(std::uint64_t cycle)>;
+  using CycleLength = std::function<hapticctrl::Duration(std::uint64_t cycle)>;
 
   ScriptedServoTasks(rt_core::FakeClock& clock, rt_core::ServoTask& main_task,
                      rt_core::ServoTask& degraded_task, rt_core::OverrunInjection& overrun,
-                     hapticctrl::TimeNs period, Duration main_duration)
+                     hapticctrl::Duration period, CycleLength main_duration)
       : clock_(&clock),
         overrun_(&overrun),
         period_(period),
@@ -28,17 +28,17 @@ class ScriptedServoTasks final : public rt_core::TaskRunners {
         degraded_{&degraded_task} {}
 
   void release(rt_core::TaskRole role, std::uint64_t cycle,
-               hapticctrl::TimeNs release_time) noexcept override {
+               hapticctrl::TimePoint release_time) noexcept override {
     catch_up();
     Pending& p = pending(role);
-    const hapticctrl::TimeNs start = release_time + start_delay;
+    const hapticctrl::TimePoint start = release_time + start_delay;
     p.task->begin(cycle, start, period_);
-    hapticctrl::TimeNs duration =
+    hapticctrl::Duration duration =
         role == rt_core::TaskRole::kMain ? main_duration_(cycle) : degraded_duration;
     if (role == rt_core::TaskRole::kMain) {
       const std::uint32_t k = overrun_->take();
       if (k > 0) {
-        duration = static_cast<hapticctrl::TimeNs>(k) * period_ - period_ / 5;
+        duration = k * period_ - period_ / 5;
       }
     }
     p.cycle = cycle;
@@ -50,19 +50,19 @@ class ScriptedServoTasks final : public rt_core::TaskRunners {
     catch_up();
     return pending(role).cycle.has_value();
   }
-  hapticctrl::TimeNs started_at(rt_core::TaskRole role) noexcept override {
+  hapticctrl::TimePoint started_at(rt_core::TaskRole role) noexcept override {
     catch_up();
     return pending(role).started;
   }
-  hapticctrl::TimeNs finished_at(rt_core::TaskRole role, std::uint64_t cycle) noexcept override {
+  hapticctrl::TimePoint finished_at(rt_core::TaskRole role, std::uint64_t cycle) noexcept override {
     catch_up();
     const Pending& p = pending(role);
-    return p.last_finished_cycle == cycle ? p.last_finished_at : -1;
+    return p.last_finished_cycle == cycle ? p.last_finished_at : kNotYet;
   }
   void stop() noexcept override { stopped = true; }
 
-  hapticctrl::TimeNs start_delay = 5 * hapticctrl::kNsPerUs;
-  hapticctrl::TimeNs degraded_duration = 20 * hapticctrl::kNsPerUs;
+  hapticctrl::Duration start_delay = std::chrono::microseconds(5);
+  hapticctrl::Duration degraded_duration = std::chrono::microseconds(20);
   bool stopped = false;
   int discarded = 0;
 
@@ -70,10 +70,10 @@ class ScriptedServoTasks final : public rt_core::TaskRunners {
   struct Pending {
     rt_core::ServoTask* task;
     std::optional<std::uint64_t> cycle;
-    hapticctrl::TimeNs started = -1;
-    hapticctrl::TimeNs finish_at = 0;
+    hapticctrl::TimePoint started = kNotYet;
+    hapticctrl::TimePoint finish_at;
     std::optional<std::uint64_t> last_finished_cycle;
-    hapticctrl::TimeNs last_finished_at = -1;
+    hapticctrl::TimePoint last_finished_at = kNotYet;
   };
   Pending& pending(rt_core::TaskRole role) {
     return role == rt_core::TaskRole::kMain ? main_ : degraded_;
@@ -102,8 +102,8 @@ class ScriptedServoTasks final : public rt_core::TaskRunners {
 
   rt_core::FakeClock* clock_;
   rt_core::OverrunInjection* overrun_;
-  hapticctrl::TimeNs period_;
-  Duration main_duration_;
+  hapticctrl::Duration period_;
+  CycleLength main_duration_;
   Pending main_;
   Pending degraded_;
 };

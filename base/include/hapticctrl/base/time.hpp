@@ -1,9 +1,10 @@
 #pragma once
 /// @file time.hpp
-/// The one time base of the project: CLOCK_MONOTONIC. Every timestamp in the shared memory, on
-/// the wire and in the cycle is a TimeNs on it; a deadline of a setup or blocking call is a
-/// MonotonicClock::time_point (std::chrono's type checking for spans and moments). Both read the
-/// same clock, so a TimeNs from a region and MonotonicClock::now() compare directly.
+/// The one time base of the project: CLOCK_MONOTONIC. A moment on it is a TimePoint and a span a
+/// Duration (std::chrono's checked types: a moment and a span do not mix, nor a span and a bare
+/// number); the shared memory's and the wire's timestamps are nanosecond counts on the same
+/// clock (to_ns, time_point_from_ns). The rooms that have not moved to the checked types yet
+/// carry TimeNs, that count (docs/architecture.md, the vocabulary).
 ///
 /// Real-time contract: now() and monotonic_now_ns() are one vDSO call (no syscall on x86-64),
 /// allocate nothing; safe in the cycle.
@@ -17,8 +18,8 @@
 
 namespace hapticctrl {
 
-/// A moment on CLOCK_MONOTONIC, or a span, in nanoseconds: the form the regions, the protocol's
-/// frames and the cycle's arithmetic carry.
+/// A moment on CLOCK_MONOTONIC, or a span, in nanoseconds: the regions' and the frames' form, and
+/// the rooms' that have not moved to TimePoint and Duration yet.
 using TimeNs = std::int64_t;
 
 inline constexpr TimeNs kNsPerUs = 1'000;
@@ -40,6 +41,29 @@ struct MonotonicClock {
     return time_point(duration(static_cast<TimeNs>(ts.tv_sec) * kNsPerS + ts.tv_nsec));
   }
 };
+
+/// A span of time (std::chrono's checked arithmetic; the cycle, the law, the clock seam).
+using Duration = std::chrono::nanoseconds;
+/// A moment on CLOCK_MONOTONIC.
+using TimePoint = MonotonicClock::time_point;
+/// "Not yet": a moment that has not happened (a task not started, a release not judged).
+inline constexpr TimePoint kNotYet = TimePoint::min();
+
+/// The edges (the regions' and frames' nanosecond fields) and the physics (seconds): the only
+/// places a moment or a span leaves its type. Real-time contract: constexpr arithmetic; safe in
+/// the cycle.
+[[nodiscard]] HAPTICCTRL_RT constexpr std::int64_t to_ns(Duration span) noexcept {
+  return span.count();
+}
+[[nodiscard]] HAPTICCTRL_RT constexpr std::int64_t to_ns(TimePoint moment) noexcept {
+  return moment.time_since_epoch().count();
+}
+[[nodiscard]] HAPTICCTRL_RT constexpr TimePoint time_point_from_ns(std::int64_t ns) noexcept {
+  return TimePoint(Duration(ns));
+}
+[[nodiscard]] HAPTICCTRL_RT constexpr double to_seconds(Duration span) noexcept {
+  return std::chrono::duration<double>(span).count();
+}
 
 /// MonotonicClock::now() as a TimeNs.
 HAPTICCTRL_RT inline TimeNs monotonic_now_ns() noexcept {

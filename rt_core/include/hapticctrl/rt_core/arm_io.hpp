@@ -42,8 +42,8 @@ class ArmIo {
   /// Reads the sensors. Returns false on an I/O fault (the servo then latches a fault).
   HAPTICCTRL_RT virtual bool get_measures(ArmMeasures& out) noexcept = 0;
   /// Applies `commands` for the period `dt` that starts at `now`.
-  HAPTICCTRL_RT virtual void send_commands(const ArmCommands& commands, TimeNs now,
-                                           TimeNs dt) noexcept = 0;
+  HAPTICCTRL_RT virtual void send_commands(const ArmCommands& commands, TimePoint now,
+                                           Duration dt) noexcept = 0;
   /// Switches the motor power supply (fail-safe and power requests). Safe to call while a cycle
   /// runs on another thread: the fail-safe cuts the supply even when it could not take the cycle
   /// from a SERVO that hangs in it, as a hardware supply relay is cut independently of the bus.

@@ -99,8 +99,8 @@ class SimulatedArm final : public ArmIo {
                const shm::SeqlockCell<shm::ForcePayload>* force) noexcept;
 
   HAPTICCTRL_RT bool get_measures(ArmMeasures& out) noexcept override;
-  HAPTICCTRL_RT void send_commands(const ArmCommands& commands, TimeNs now,
-                                   TimeNs dt) noexcept override;
+  HAPTICCTRL_RT void send_commands(const ArmCommands& commands, TimePoint now,
+                                   Duration dt) noexcept override;
   HAPTICCTRL_RT void set_supply(bool on) noexcept override {
     supply_on_.store(on, std::memory_order_release);
   }

@@ -31,7 +31,7 @@ struct ClientContact {
   double damping = 0.0;              ///< [N·s/m]
   std::array<double, 2> friction{};  ///< static, dynamic
   std::array<double, 7> object_pose{0, 0, 0, 0, 0, 0, 1};  ///< the object when it came
-  std::int64_t received_ns = 0;  ///< when it arrived (our clock): it fades 30 ms after
+  TimePoint received;  ///< when it arrived (our clock): it fades 30 ms after
 };
 
 /// One client sample (units SI; poses x, y, z, qx, qy, qz, qw; twists and wrenches linear first).

@@ -15,10 +15,10 @@ namespace hapticctrl::rt_core {
 
 struct CoreConfig {
   std::string instance = "default";
-  std::string group;         ///< shm group (mode 0660)
-  std::string model_path;    ///< arm model file (empty: the shipped default)
-  TimeNs period = kNsPerMs;  ///< 100 µs .. 10 ms
-  TimeNs duration = 0;       ///< 0: run until stopped
+  std::string group;                               ///< shm group (mode 0660)
+  std::string model_path;                          ///< arm model file (empty: the shipped default)
+  Duration period = std::chrono::milliseconds(1);  ///< 100 µs .. 10 ms
+  Duration duration{0};                            ///< 0: run until stopped
   RtPolicy rt_policy = RtPolicy::kWarn;
   int priority = 80;           ///< CLOCK; SERVO = priority - 1, degraded = priority - 2
   int cpu = -2;                ///< -2: auto (last CPU), -1: none, >= 0: that CPU
@@ -33,8 +33,9 @@ struct CoreConfig {
   std::uint64_t inject_at_cycle = 0;   ///< --inject-overrun CYCLE:K (0: none)
   std::uint32_t inject_cycles = 0;
   ChronicMissConfig chronic;
-  TimeNs sim_substep = 125 * kNsPerUs;  ///< simulator's longest integration sub-step
-  bool benchmark_mode = false;          ///< miss rules counted, not acted on (simulated arm)
+  Duration sim_substep =
+      std::chrono::microseconds(125);  ///< simulator's longest integration sub-step
+  bool benchmark_mode = false;         ///< miss rules counted, not acted on (simulated arm)
   bool fresh_start = false;  ///< an operator's deliberate start: no restart awaits the operator
   bool show_help = false;
 };

@@ -22,13 +22,13 @@ inline constexpr std::uint32_t kFailSafeConsecutiveMisses = 5;
 
 /// What CLOCK observed for one cycle.
 struct CycleTimes {
-  TimeNs scheduled = 0;   ///< the slot's deadline
-  TimeNs woke = 0;        ///< CLOCK's actual wake-up
-  TimeNs released = 0;    ///< when CLOCK released the SERVO task
-  TimeNs started = -1;    ///< main SERVO start, -1 if it did not start this cycle
-  TimeNs finished = -1;   ///< main SERVO commit of this cycle, -1 if none by the check
-  TimeNs checked = 0;     ///< the 3/4-period check
-  bool degraded = false;  ///< the degraded SERVO ran this cycle
+  TimePoint scheduled;           ///< the slot's deadline
+  TimePoint woke;                ///< CLOCK's actual wake-up
+  TimePoint released;            ///< when CLOCK released the SERVO task
+  TimePoint started = kNotYet;   ///< main SERVO start (kNotYet: it did not start this cycle)
+  TimePoint finished = kNotYet;  ///< main SERVO commit of this cycle (kNotYet: none by the check)
+  TimePoint checked;             ///< the 3/4-period check
+  bool degraded = false;         ///< the degraded SERVO ran this cycle
 };
 
 /// Thresholds for the chronic-miss detectors (0 disables tripping; they are always reported).

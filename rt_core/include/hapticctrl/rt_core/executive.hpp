@@ -42,8 +42,8 @@ enum class StopStep : std::uint8_t {
 };
 
 struct ExecutiveConfig {
-  TimeNs period = kNsPerMs;
-  TimeNs duration = 0;                 ///< stop after this long (0: run until stopped)
+  Duration period = std::chrono::milliseconds(1);
+  Duration duration{0};                ///< stop after this long (0: run until stopped)
   std::uint32_t telemetry_every = 20;  ///< publish telemetry every N cycles
   ChronicMissConfig chronic;
   shm::RtMode rt_mode = shm::RtMode::kNone;
@@ -67,13 +67,13 @@ struct ExecutiveResult {
   shm::StopReason reason = shm::StopReason::kNone;
   bool fail_safe = false;  ///< a fault (exit non-zero), not an orderly stop
   std::array<StopStep, 4> steps{};
-  std::array<TimeNs, 4> step_times{};
+  std::array<TimePoint, 4> step_times{};
   std::size_t step_count = 0;
   bool protocol_closed_in_vp = false;  ///< VP carried the final state (gate could be closed)
   /// A miss rule tripped in a run of misses that a stall began: the clock task, the core's
-  /// highest-priority thread, woke this late (ns) after a slot. 0: no stall in that run, or no
+  /// highest-priority thread, woke this late after a slot. 0: no stall in that run, or no
   /// fail-safe on misses.
-  TimeNs tripped_by_stall = 0;
+  Duration tripped_by_stall{0};
 };
 
 class Executive {
@@ -99,15 +99,15 @@ class Executive {
 
  private:
   /// Runs one slot; returns a stop reason when the cycle must end.
-  HAPTICCTRL_RT shm::StopReason run_slot(TimeNs scheduled, TimeNs woke) noexcept;
+  HAPTICCTRL_RT shm::StopReason run_slot(TimePoint scheduled, TimePoint woke) noexcept;
   /// One black-box record: a cycle, or a stall (kRecordStall) that skipped `skipped` slots.
   HAPTICCTRL_RT void record(const CycleTimes& times, std::uint32_t flags,
                             std::uint32_t skipped) noexcept;
-  HAPTICCTRL_RT void publish_telemetry(TimeNs now) noexcept;
+  HAPTICCTRL_RT void publish_telemetry(TimePoint now) noexcept;
   HAPTICCTRL_RT void emit(shm::EventKind kind, std::uint32_t code, std::uint64_t value,
-                          TimeNs now) noexcept;
+                          TimePoint now) noexcept;
   /// Turns changes of the committed state word and client session into events.
-  HAPTICCTRL_RT void report_state_changes(TimeNs now) noexcept;
+  HAPTICCTRL_RT void report_state_changes(TimePoint now) noexcept;
   ExecutiveResult stop_sequence(shm::StopReason reason, bool fail_safe) noexcept;
   /// Whether a monitor verdict stops the core; in benchmark mode a trip is only counted.
   HAPTICCTRL_RT bool trips(MonitorVerdict verdict) noexcept;
@@ -131,10 +131,10 @@ class Executive {
   LatencyHistogram measured_period_;
   std::uint64_t cycle_ = 0;
   std::uint64_t skipped_slots_ = 0;
-  TimeNs stall_in_misses_ = 0;  ///< the latest stall in the current run of misses (its lateness)
+  Duration stall_in_misses_{0};  ///< the latest stall in the current run of misses (its lateness)
   std::uint64_t would_fail_safe_ = 0;  ///< benchmark mode: miss-rule trips ridden through
   std::uint64_t first_would_fail_safe_cycle_ = 0;
-  TimeNs last_woke_ = -1;
+  TimePoint last_woke_ = kNotYet;
   shm::StopReason stop_reason_ = shm::StopReason::kNone;
   shm::CoreState core_state_ = shm::CoreState::kRunning;
   std::uint32_t reported_state_word_ = 0;

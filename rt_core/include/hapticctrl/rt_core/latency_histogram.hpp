@@ -20,7 +20,7 @@ class LatencyHistogram {
   static constexpr std::size_t kBins = 10'000;
 
   /// Adds one sample. Negative samples count as 0. Real-time contract: safe in the cycle.
-  HAPTICCTRL_RT void add(TimeNs sample_ns) noexcept;
+  HAPTICCTRL_RT void add(Duration sample) noexcept;
 
   /// min/avg/max/p50/p99/p99.9 (percentiles at 1 µs resolution, upper bin edge).
   /// Real-time contract: bounded (one pass over kBins); call at telemetry rate, not per cycle.
@@ -30,8 +30,8 @@ class LatencyHistogram {
   /// Real-time contract: bounded (one pass over kBins); at telemetry rate.
   HAPTICCTRL_RT void coarse(std::array<std::uint64_t, shm::kLatencyBuckets>& out) const noexcept;
 
-  /// The value under which `fraction` of the samples lie (upper edge of its bin), ns.
-  [[nodiscard]] HAPTICCTRL_RT TimeNs percentile(double fraction) const noexcept;
+  /// The value under which `fraction` of the samples lie (upper edge of its bin).
+  [[nodiscard]] HAPTICCTRL_RT Duration percentile(double fraction) const noexcept;
 
   [[nodiscard]] std::uint64_t samples() const noexcept { return samples_; }
   [[nodiscard]] std::uint64_t overflows() const noexcept { return overflows_; }
@@ -44,8 +44,8 @@ class LatencyHistogram {
   std::array<std::uint64_t, kBins> bins_{};
   std::uint64_t samples_ = 0;
   std::uint64_t overflows_ = 0;
-  TimeNs min_ = 0;
-  TimeNs max_ = 0;
+  Duration min_{0};
+  Duration max_{0};
   long double sum_ = 0;
 };
 

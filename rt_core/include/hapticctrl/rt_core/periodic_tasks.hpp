@@ -37,14 +37,14 @@ class TaskRunners {
   virtual ~TaskRunners() = default;
   /// Releases `role` for `cycle` (its gate, if any, was granted just before). Safe in the cycle.
   HAPTICCTRL_RT virtual void release(TaskRole role, std::uint64_t cycle,
-                                     TimeNs release_time) noexcept = 0;
+                                     TimePoint release_time) noexcept = 0;
   /// True while `role` has not finished the last cycle released to it.
   HAPTICCTRL_RT virtual bool busy(TaskRole role) noexcept = 0;
-  /// Start time of the last cycle released to `role`, -1 if it has not started.
-  HAPTICCTRL_RT virtual TimeNs started_at(TaskRole role) noexcept = 0;
-  /// When `role` finished `cycle` (everything the function does, its outputs included), or -1
-  /// if it has not finished that cycle.
-  HAPTICCTRL_RT virtual TimeNs finished_at(TaskRole role, std::uint64_t cycle) noexcept = 0;
+  /// Start time of the last cycle released to `role`, kNotYet if it has not started.
+  HAPTICCTRL_RT virtual TimePoint started_at(TaskRole role) noexcept = 0;
+  /// When `role` finished `cycle` (everything the function does, its outputs included), or
+  /// kNotYet if it has not finished that cycle.
+  HAPTICCTRL_RT virtual TimePoint finished_at(TaskRole role, std::uint64_t cycle) noexcept = 0;
   /// Stops and joins the runners. Not for the cycle.
   virtual void stop() noexcept = 0;
 };
@@ -56,7 +56,7 @@ struct PeriodicTaskSpec {
   std::uint32_t period_multiple = 1;  ///< released every this many base ticks (>= 1)
   CycleGate* gate = nullptr;          ///< granted each release's cycle first (optional)
   /// Judged this long after the release's scheduled tick (0: 3/4 of the task's period).
-  TimeNs deadline = 0;
+  Duration deadline{0};
   ChronicMissConfig chronic;
 };
 
@@ -66,12 +66,12 @@ enum class TaskState : std::uint8_t { kAdded, kActive, kStopped };
 struct TaskRelease {
   std::uint64_t cycle = 0;  ///< the base tick it was released at (0: none yet)
   TaskRole role = TaskRole::kMain;
-  bool ran = false;      ///< a function was released (false: both busy, or gate held)
-  TimeNs scheduled = 0;  ///< its tick's scheduled time
-  TimeNs released = 0;   ///< when it was released
-  TimeNs started = -1;   ///< the normal function's start, -1 if not started (at the check)
-  TimeNs finished = -1;  ///< the normal function's end, -1 if not by the check
-  TimeNs checked = -1;   ///< when it was judged (-1: not yet)
+  bool ran = false;              ///< a function was released (false: both busy, or gate held)
+  TimePoint scheduled;           ///< its tick's scheduled time
+  TimePoint released;            ///< when it was released
+  TimePoint started = kNotYet;   ///< the normal function's start (kNotYet: not at the check)
+  TimePoint finished = kNotYet;  ///< the normal function's end (kNotYet: not by the check)
+  TimePoint checked = kNotYet;   ///< when it was judged
   MonitorVerdict verdict = MonitorVerdict::kGood;
 };
 
@@ -82,7 +82,7 @@ class PeriodicTasks {
   static constexpr std::size_t kMaxTasks = 8;
 
   /// `base_period`: the CLOCK's tick.
-  explicit PeriodicTasks(TimeNs base_period) noexcept : base_period_(base_period) {}
+  explicit PeriodicTasks(Duration base_period) noexcept : base_period_(base_period) {}
 
   /// Adds a task (state kAdded: not released until activated). Setup: throws
   /// std::invalid_argument for no runners or a multiple of 0, std::length_error beyond kMaxTasks.
@@ -100,10 +100,10 @@ class PeriodicTasks {
 
   /// CLOCK, at base tick `tick` (scheduled at `scheduled`, now `now`): releases every task due
   /// (tick % multiple == 0, or forced).
-  HAPTICCTRL_RT void release_due(std::uint64_t tick, TimeNs scheduled, TimeNs now) noexcept;
+  HAPTICCTRL_RT void release_due(std::uint64_t tick, TimePoint scheduled, TimePoint now) noexcept;
   /// CLOCK, at `now`: judges every release whose deadline has passed. Returns the most severe
   /// verdict (fail-safe, chronic misses, miss, good).
-  HAPTICCTRL_RT MonitorVerdict check_deadlines(TimeNs now) noexcept;
+  HAPTICCTRL_RT MonitorVerdict check_deadlines(TimePoint now) noexcept;
   /// CLOCK: `count` ticks were skipped (a late wake-up). Each is a miss for every active task
   /// released at every tick; a task with a longer period is judged by its next release.
   MonitorVerdict skip(std::uint32_t count) noexcept;
@@ -133,11 +133,12 @@ class PeriodicTasks {
     std::uint64_t degraded_releases = 0;
   };
 
-  HAPTICCTRL_RT void release(Task& task, std::uint64_t tick, TimeNs scheduled, TimeNs now) noexcept;
-  HAPTICCTRL_RT static MonitorVerdict judge(Task& task, TimeNs now) noexcept;
+  HAPTICCTRL_RT void release(Task& task, std::uint64_t tick, TimePoint scheduled,
+                             TimePoint now) noexcept;
+  HAPTICCTRL_RT static MonitorVerdict judge(Task& task, TimePoint now) noexcept;
   HAPTICCTRL_RT static MonitorVerdict worse(MonitorVerdict a, MonitorVerdict b) noexcept;
 
-  TimeNs base_period_;
+  Duration base_period_;
   std::array<Task, kMaxTasks> tasks_;
   std::size_t count_ = 0;
 };

@@ -140,8 +140,8 @@ struct GateOwnedState {
   ClientSample client;            ///< the same, converted for the law
   bool client_valid = false;
   std::uint64_t last_client_sequence = 0;
-  TimeNs last_client_arrival = 0;
-  TimeNs last_client_time = 0;          ///< when the client computed it, our clock (see VprPayload)
+  TimePoint last_client_arrival;
+  TimePoint last_client_time;           ///< when the client computed it, our clock (see VprPayload)
   std::uint32_t contacts_rejected = 0;  ///< contact frames with a contact refused, this session
 
   /// The committed cycle's render memory; each task's law continues from it.
@@ -187,20 +187,20 @@ class ServoTask {
         law_(law) {}
 
   /// Gate section 1 and the computation. Real-time contract: safe in the cycle.
-  HAPTICCTRL_RT StepResult begin(std::uint64_t cycle, TimeNs now, TimeNs dt) noexcept;
+  HAPTICCTRL_RT StepResult begin(std::uint64_t cycle, TimePoint now, Duration dt) noexcept;
   /// Gate section 2: commit. Real-time contract: safe in the cycle.
-  HAPTICCTRL_RT StepResult finish(std::uint64_t cycle, TimeNs now) noexcept;
+  HAPTICCTRL_RT StepResult finish(std::uint64_t cycle, TimePoint now) noexcept;
   /// begin() then finish() with no stall in between.
-  HAPTICCTRL_RT StepResult run(std::uint64_t cycle, TimeNs now, TimeNs dt) noexcept;
+  HAPTICCTRL_RT StepResult run(std::uint64_t cycle, TimePoint now, Duration dt) noexcept;
 
   [[nodiscard]] TaskRole role() const noexcept { return role_; }
 
  private:
-  HAPTICCTRL_RT void gather(std::uint64_t cycle, TimeNs now, TimeNs dt) noexcept;
-  HAPTICCTRL_RT void exchange_client(TimeNs now) noexcept;
+  HAPTICCTRL_RT void gather(std::uint64_t cycle, TimePoint now, Duration dt) noexcept;
+  HAPTICCTRL_RT void exchange_client(TimePoint now) noexcept;
   /// The stiffest contact the device renders, in the client's units (N per client metre).
   [[nodiscard]] HAPTICCTRL_RT double max_contact_stiffness(double speed_factor) const noexcept;
-  HAPTICCTRL_RT void commit(std::uint64_t cycle, TimeNs now) noexcept;
+  HAPTICCTRL_RT void commit(std::uint64_t cycle, TimePoint now) noexcept;
   /// The surface rendered on the handle, into VP in the client's frame and units.
   HAPTICCTRL_RT void publish_surface(const ClientFrame& frame, shm::VpPayload& vp) const noexcept;
 

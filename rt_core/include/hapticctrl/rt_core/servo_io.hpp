@@ -19,20 +19,20 @@ namespace hapticctrl::rt_core {
 /// Everything the law may use for one cycle.
 struct ServoInputs {
   std::uint64_t cycle = 0;
-  TimeNs now = 0;
-  TimeNs dt = 0;
+  TimePoint now;
+  Duration dt{0};
   ArmMeasures measures;
   LogicalState logical;
   ClientSample client;        ///< last valid client sample
   bool client_valid = false;  ///< a valid client sample exists
   /// True age of that sample: now - when the client computed it (network + bridge + waiting,
   /// from the protocol's timing echo; since its arrival for a client without it).
-  TimeNs client_age = 0;
-  TimeNs client_silence = 0;  ///< now - arrival of the newest sample (link freshness)
-  bool new_sample = false;    ///< the sample arrived this cycle
+  Duration client_age{0};
+  Duration client_silence{0};  ///< now - arrival of the newest sample (link freshness)
+  bool new_sample = false;     ///< the sample arrived this cycle
   /// Coupling loop delay measured with that sample: from the core's answer the client had to
   /// this cycle (0: unknown, the law then assumes LawConfig::assumed_loop_delay).
-  TimeNs loop_delay = 0;
+  Duration loop_delay{0};
 };
 
 /// Coupling gains (base frame): linear N/m, N·s/m; angular N·m/rad, N·m·s/rad.
@@ -63,8 +63,8 @@ struct ServoOutputs {
   bool saturated = false;       ///< the coupling was clipped to the force or torque limit
   /// shm::state_bits::joint_bound bits of the joints (and the J2 + J3 sum) in their walls.
   std::uint32_t joint_bounds = 0;
-  CouplingGains gains;    ///< gains in force this cycle (zero when not coupled)
-  TimeNs loop_delay = 0;  ///< loop delay the gains are designed for
+  CouplingGains gains;     ///< gains in force this cycle (zero when not coupled)
+  Duration loop_delay{0};  ///< loop delay the gains are designed for
   /// The coupling is stiffer along `contact_normal` (base frame; its length is the share of the
   /// contact in force, 0..1: fresh and touching; zero: none) by `normal_stiffness` /
   /// `normal_damping` while it pushes the object into the contact (protocol 1.3: a client closes
@@ -81,7 +81,7 @@ struct ServoOutputs {
   double surface_depth = 0.0;
   double surface_force = 0.0;
   double surface_hidden = 0.0;
-  TimeNs contact_age = -1;
+  Duration contact_age{-1};
   double surface_withheld = 0.0;  ///< J this session: what hidden depth kept from the hand
   double force_limit = 0.0;       ///< the coupling's force and torque limits in force
   double torque_limit = 0.0;

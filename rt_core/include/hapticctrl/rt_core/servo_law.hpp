@@ -27,10 +27,11 @@
 namespace hapticctrl::rt_core {
 
 struct LawConfig {
-  TimeNs stale_after = 5 * kNsPerMs;  ///< no new sample for this long: flagged stale
+  Duration stale_after =
+      std::chrono::milliseconds(5);  ///< no new sample for this long: flagged stale
   /// A contact not refreshed for this long fades out over the next contact_fade (as the link).
-  TimeNs contact_fresh = 30 * kNsPerMs;
-  TimeNs contact_fade = 15 * kNsPerMs;
+  Duration contact_fresh = std::chrono::milliseconds(30);
+  Duration contact_fade = std::chrono::milliseconds(15);
   /// The coupling along a contact is at most this share of the contact's stiffness: the loop
   /// through the object and back (its surface, the spring, the delay) keeps a gain below 1 at
   /// any delay (small gain, docs/control.md).
@@ -49,28 +50,29 @@ struct LawConfig {
   double restretch_damper_fade = 1e-3;          ///< m
   double restretch_damper_angular_fade = 0.01;  ///< rad
 
-  TimeNs extrapolate_max = 50 * kNsPerMs;  ///< extrapolation horizon (sample age)
+  Duration extrapolate_max = std::chrono::milliseconds(50);  ///< extrapolation horizon (sample age)
   /// Without a new sample the coupling force is zero by fade_after + fade_duration (45 ms; H1:
   /// 50 ms) and fades no faster than the device's peaks over fade_duration (1 N/ms), and over
   /// shortest_fade at least: a peak force from fade_after on, a smaller one later
   /// (ServoLaw::fade_of).
-  TimeNs fade_after = 10 * kNsPerMs;
-  TimeNs fade_duration = 35 * kNsPerMs;
-  TimeNs shortest_fade = 15 * kNsPerMs;
+  Duration fade_after = std::chrono::milliseconds(10);
+  Duration fade_duration = std::chrono::milliseconds(35);
+  Duration shortest_fade = std::chrono::milliseconds(15);
   double release_rate = 1000.0;  ///< N/s: force change limit while fading, braking or released
   /// Every re-engagement (fresh data after a fade, the end of a brake, a new session, power-on)
   /// gives the handle its coupling back through a ramp this long. The spring restarts relaxed
   /// (re-anchoring), so the ramp only smooths the damper's return: 150 ms until 2026-12-03
   /// (before re-anchoring, a handle that drifted during a 300 ms blackout fell back at 0.16 m/s
   /// with 50 ms).
-  TimeNs engage_duration = 50 * kNsPerMs;
+  Duration engage_duration = std::chrono::milliseconds(50);
   /// The viscous hold of a disengaged coupling lets go over this, and the coupling's damper
   /// comes back with it (J1: within 50 ms, without a step).
-  TimeNs hold_release = 50 * kNsPerMs;
-  TimeNs overspeed_fault_after = 250 * kNsPerMs;  ///< braking this long: kVelocityLimit
-  double brake_release_ratio = 0.8;  ///< the brake lets go below this share of max_speed
+  Duration hold_release = std::chrono::milliseconds(50);
+  Duration overspeed_fault_after =
+      std::chrono::milliseconds(250);  ///< braking this long: kVelocityLimit
+  double brake_release_ratio = 0.8;    ///< the brake lets go below this share of max_speed
   /// Loop delay assumed for a client that does not echo answers (protocol 1.0).
-  TimeNs assumed_loop_delay = 5 * kNsPerMs;
+  Duration assumed_loop_delay = std::chrono::milliseconds(5);
   double joint_damping = 0.02;   ///< N·m·s/rad, always when powered (degraded too)
   double wall_margin = 0.05;     ///< rad before a joint limit where the soft wall starts
   double wall_stiffness = 20.0;  ///< N·m/rad
@@ -87,15 +89,15 @@ struct LawConfig {
 /// wrench (ServoLaw::guard_impedance; docs/control.md).
 struct TravelHistory {
   static constexpr std::size_t kSlots = 128;
-  static constexpr TimeNs kSlot = 4 * kNsPerMs;
+  static constexpr Duration kSlot = std::chrono::milliseconds(4);
   std::array<Vector6d, kSlots> travel{};
   Vector6d now_travel = Vector6d::Zero();
   std::int64_t newest = -1;  ///< the newest slot written (now / kSlot); -1: none
   std::int64_t first = -1;   ///< the first slot written
   /// Adds `twist` * `dt` to the travel and notes it at `now`. Safe in the cycle.
-  HAPTICCTRL_RT void advance(TimeNs now, const Vector6d& twist, double dt) noexcept;
+  HAPTICCTRL_RT void advance(TimePoint now, const Vector6d& twist, double dt) noexcept;
   /// The travel since `ago` before `now` (since the first note if that is older).
-  [[nodiscard]] HAPTICCTRL_RT Vector6d since(TimeNs now, TimeNs ago) const noexcept;
+  [[nodiscard]] HAPTICCTRL_RT Vector6d since(TimePoint now, Duration ago) const noexcept;
 };
 
 /// What the law carries from one cycle to the next about the wrench it rendered. The main and
@@ -109,11 +111,11 @@ struct RenderMemory {
   Vector6d port_wrench = Vector6d::Zero();  ///< rendered at the port (with the guard's damping)
   double observed_energy = 0.0;             ///< J, see observed_energy()
   double engage = 0.0;                      ///< see ServoOutputs::engage
-  TimeNs overspeed = 0;                     ///< how long the handle has been over the limit
+  Duration overspeed{0};                    ///< how long the handle has been over the limit
   bool braking = false;
   std::uint64_t session_id = 0;       ///< the session the coupling is engaged with
-  TimeNs loop_delay = 0;              ///< envelope of the measured loop delay
-  TimeNs design_delay = 0;            ///< loop delay the gains are designed for (in a band)
+  Duration loop_delay{0};             ///< envelope of the measured loop delay
+  Duration design_delay{0};           ///< loop delay the gains are designed for (in a band)
   CouplingGains gains;                ///< gains rendered last cycle (they slew to the design)
   double channel_in = 0.0;            ///< J the coupling put into the channel
   double channel_out = 0.0;           ///< J the channel gave the coupling
@@ -154,7 +156,7 @@ struct RenderMemory {
   };
   HeldContact held;
   static constexpr std::size_t kLoopSamples = 15;
-  std::array<TimeNs, kLoopSamples> loop_samples{};  ///< the newest measured loops (median)
+  std::array<Duration, kLoopSamples> loop_samples{};  ///< the newest measured loops (median)
   std::uint64_t loop_next = 0;
   JointMemory joints;  ///< the joint-space commands' (joint_law.hpp)
 };
@@ -234,7 +236,7 @@ class ServoLaw {
     double stiffness = 0.0;  ///< N/m, base metres
     double damping = 0.0;    ///< N.s/m
     std::uint32_t fresh = 0;
-    TimeNs age = -1;  ///< of the newest fresh contact (our clock); -1: none
+    Duration age{-1};  ///< of the newest fresh contact (our clock); -1 ns: none
   };
   /// Where the client's object is now, as the coupling sees it (base frame).
   struct ObjectImage {
@@ -306,8 +308,8 @@ class ServoLaw {
                                         double dt) noexcept;
   [[nodiscard]] HAPTICCTRL_RT Vector6d restretch_damping(const Vector6d& twist) const noexcept;
   HAPTICCTRL_RT void track_loop_delay(const ServoInputs& in) noexcept;
-  HAPTICCTRL_RT CouplingGains slew_gains(const CouplingGains& target, TimeNs dt) noexcept;
-  [[nodiscard]] HAPTICCTRL_RT double fade_of(TimeNs silence, double peak_share) const noexcept;
+  HAPTICCTRL_RT CouplingGains slew_gains(const CouplingGains& target, Duration dt) noexcept;
+  [[nodiscard]] HAPTICCTRL_RT double fade_of(Duration silence, double peak_share) const noexcept;
   [[nodiscard]] HAPTICCTRL_RT double peak_share(const Vector6d& wrench) const noexcept;
   [[nodiscard]] HAPTICCTRL_RT Vector6d joint_space(const ServoInputs& in, double engage,
                                                    double rate, double dt,

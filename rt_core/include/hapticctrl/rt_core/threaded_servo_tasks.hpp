@@ -26,7 +26,7 @@ class ThreadedServoTasks final : public TaskRunners {
   /// 2026-11-24: under ASan with parallel tests the first 5 cycles at 10 ms missed and the core
   /// failed safe at start). Setup: allocates.
   ThreadedServoTasks(Clock& clock, ServoTask& main_task, ServoTask& degraded_task,
-                     OverrunInjection& overrun, TimeNs period,
+                     OverrunInjection& overrun, Duration period,
                      const ThreadPlacement& main_placement,
                      const ThreadPlacement& degraded_placement);
   ThreadedServoTasks(const ThreadedServoTasks&) = delete;
@@ -34,10 +34,10 @@ class ThreadedServoTasks final : public TaskRunners {
   ~ThreadedServoTasks() override;
 
   HAPTICCTRL_RT void release(TaskRole role, std::uint64_t cycle,
-                             TimeNs release_time) noexcept override;
+                             TimePoint release_time) noexcept override;
   HAPTICCTRL_RT bool busy(TaskRole role) noexcept override;
-  HAPTICCTRL_RT TimeNs started_at(TaskRole role) noexcept override;
-  HAPTICCTRL_RT TimeNs finished_at(TaskRole role, std::uint64_t cycle) noexcept override;
+  HAPTICCTRL_RT TimePoint started_at(TaskRole role) noexcept override;
+  HAPTICCTRL_RT TimePoint finished_at(TaskRole role, std::uint64_t cycle) noexcept override;
   void stop() noexcept override;
 
   /// Whether each thread got the scheduling it asked for (reported by the preflight).
@@ -50,9 +50,9 @@ class ThreadedServoTasks final : public TaskRunners {
     std::atomic<std::uint32_t> release_word{0};
     std::atomic<std::uint64_t> released_cycle{0};
     std::atomic<std::uint64_t> finished_cycle{0};
-    std::atomic<TimeNs> release_time{0};
-    std::atomic<TimeNs> started{-1};
-    std::atomic<TimeNs> finished{-1};  ///< end of `finished_cycle`, stored before it
+    std::atomic<TimePoint> release_time{TimePoint{}};
+    std::atomic<TimePoint> started{kNotYet};
+    std::atomic<TimePoint> finished{kNotYet};  ///< end of `finished_cycle`, stored before it
     std::atomic<bool> placement_ok{false};
     std::atomic<bool> ready{false};  ///< placed, about to wait for the first release
     std::thread thread;
@@ -65,7 +65,7 @@ class ThreadedServoTasks final : public TaskRunners {
 
   Clock* clock_;
   OverrunInjection* overrun_;  ///< taken by the main SERVO after begin()
-  TimeNs period_;
+  Duration period_;
   std::atomic<bool> stopping_{false};
   Worker main_;
   Worker degraded_;

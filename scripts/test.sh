@@ -89,8 +89,8 @@ build_asan() {
 }
 
 build_tsan() {
-  CC=clang CXX=clang++ configure_build build-tsan -DHAPTICCTRL_SANITIZER=thread -DHAPTICCTRL_BUILD_BENCH=OFF \
-    -DCMAKE_BUILD_TYPE=RelWithDebInfo
+  CC=clang CXX=clang++ configure_build build-tsan -DHAPTICCTRL_SANITIZER=thread \
+    -DHAPTICCTRL_BUILD_BENCH=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo
 }
 
 FUZZERS=(decoder arm-model config lcm-hmi web dds-input)  # the decoder first (fuzz_one's share)

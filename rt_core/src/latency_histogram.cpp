@@ -71,7 +71,6 @@ void LatencyHistogram::write_cyclictest_format(std::ostream& out) const {
   }
   const shm::LatencySummary s = summary();
   out << "# Total: " << samples_ << "\n";
-  constexpr std::int64_t kNsPerUs = 1'000;  // cyclictest's unit
   out << "# Min Latencies: " << s.min_ns / kNsPerUs << "\n";
   out << "# Avg Latencies: " << s.avg_ns / kNsPerUs << "\n";
   out << "# Max Latencies: " << s.max_ns / kNsPerUs << "\n";

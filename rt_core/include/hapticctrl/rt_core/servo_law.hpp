@@ -27,8 +27,8 @@
 namespace hapticctrl::rt_core {
 
 struct LawConfig {
-  Duration stale_after =
-      std::chrono::milliseconds(5);  ///< no new sample for this long: flagged stale
+  /// No new sample for this long: flagged stale.
+  Duration stale_after = std::chrono::milliseconds(5);
   /// A contact not refreshed for this long fades out over the next contact_fade (as the link).
   Duration contact_fresh = std::chrono::milliseconds(30);
   Duration contact_fade = std::chrono::milliseconds(15);
@@ -68,9 +68,9 @@ struct LawConfig {
   /// The viscous hold of a disengaged coupling lets go over this, and the coupling's damper
   /// comes back with it (J1: within 50 ms, without a step).
   Duration hold_release = std::chrono::milliseconds(50);
-  Duration overspeed_fault_after =
-      std::chrono::milliseconds(250);  ///< braking this long: kVelocityLimit
-  double brake_release_ratio = 0.8;    ///< the brake lets go below this share of max_speed
+  /// Braking this long: kVelocityLimit.
+  Duration overspeed_fault_after = std::chrono::milliseconds(250);
+  double brake_release_ratio = 0.8;  ///< the brake lets go below this share of max_speed
   /// Loop delay assumed for a client that does not echo answers (protocol 1.0).
   Duration assumed_loop_delay = std::chrono::milliseconds(5);
   double joint_damping = 0.02;   ///< N·m·s/rad, always when powered (degraded too)

@@ -75,11 +75,11 @@ std::vector<double> raw_udp_pingpong(int pings) {
   std::array<std::uint8_t, 90> ping{};
   std::array<std::uint8_t, 512> pong{};
   for (int i = 0; i < pings; ++i) {
-    const std::int64_t t0 = hapticctrl::monotonic_now_ns();
+    const hapticctrl::TimePoint t0 = hapticctrl::MonotonicClock::now();
     client.send_to(ping, echo_at);
     proto::Endpoint from;
     if (client.receive(pong, from, 100ms).status == proto::Received::Status::kDatagram) {
-      rtt.push_back(static_cast<double>(hapticctrl::monotonic_now_ns() - t0) / 1e3);
+      rtt.push_back(hapticctrl::to_seconds(hapticctrl::MonotonicClock::now() - t0) * 1e6);
     }
   }
   running.store(false);
@@ -111,9 +111,9 @@ StreamResult client_loop(std::uint16_t port, double seconds) {
   link.wait_for_answer(0, 1s, s);
   std::uint64_t rtt_samples = link.statistics().rtt_samples;
   std::int64_t last_arrival = 0;
-  const std::int64_t t0 = hapticctrl::monotonic_now_ns();
-  const auto end = t0 + static_cast<std::int64_t>(seconds * 1e9);
-  while (hapticctrl::monotonic_now_ns() < end) {
+  const hapticctrl::TimePoint t0 = hapticctrl::MonotonicClock::now();
+  const hapticctrl::TimePoint end = t0 + hapticctrl::from_seconds(seconds);
+  while (hapticctrl::MonotonicClock::now() < end) {
     if (!link.wait_for_answer(s.cycle, 100ms, s)) {
       continue;
     }
@@ -133,7 +133,7 @@ StreamResult client_loop(std::uint16_t port, double seconds) {
     }
     link.send_wrench({});
   }
-  r.seconds = static_cast<double>(hapticctrl::monotonic_now_ns() - t0) / 1e9;
+  r.seconds = hapticctrl::to_seconds(hapticctrl::MonotonicClock::now() - t0);
   r.stats = link.statistics();
   r.gaps_over_3ms = static_cast<std::size_t>(std::count_if(
       r.interarrival_us.begin(), r.interarrival_us.end(), [](double g) { return g > 3000.0; }));

@@ -36,7 +36,7 @@ int main(int argc, char** argv) {
   int priority = 80;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string opt = argv[i];
-    const int value = std::atoi(argv[i + 1]);
+    const int value = std::stoi(argv[i + 1]);  // throws on a word that is not a number
     if (opt == "--iterations") {
       iterations = std::max(10, value);
     } else if (opt == "--cpu-a") {

@@ -14,7 +14,10 @@ namespace {
 using namespace hapticctrl;
 using namespace hapticctrl::rt_core;
 
-const Vector6d kReady = (Vector6d() << 0, -0.6, 1.2, 0, -0.6, 0).finished();
+/// The arm's ready pose (a function: a static Eigen vector's construction is not noexcept).
+Vector6d ready() {
+  return (Vector6d() << 0, -0.6, 1.2, 0, -0.6, 0).finished();
+}
 
 const ArmDynamics& dynamics() {
   static const ArmDynamics d(load_arm_model(default_arm_model_path()));
@@ -38,8 +41,9 @@ ServoInputs coupled_inputs() {
 
 void BM_ForwardKinematicsAndJacobian(benchmark::State& state) {
   ChainState chain;
+  const Vector6d q = ready();
   for (auto _ : state) {
-    dynamics().forward_kinematics(kReady, chain);
+    dynamics().forward_kinematics(q, chain);
     benchmark::DoNotOptimize(dynamics().jacobian(chain));
   }
 }
@@ -47,7 +51,7 @@ BENCHMARK(BM_ForwardKinematicsAndJacobian);
 
 void BM_MassMatrix(benchmark::State& state) {
   ChainState chain;
-  dynamics().forward_kinematics(kReady, chain);
+  dynamics().forward_kinematics(ready(), chain);
   for (auto _ : state) {
     benchmark::DoNotOptimize(dynamics().mass_matrix(chain));
   }
@@ -57,7 +61,7 @@ BENCHMARK(BM_MassMatrix);
 void BM_ControlLaw(benchmark::State& state) {
   ServoLaw law(dynamics());
   ServoInputs in = coupled_inputs();
-  in.measures.position = kReady;
+  in.measures.position = ready();
   in.measures.supply_on = true;
   ServoOutputs out;
   for (auto _ : state) {
@@ -68,7 +72,7 @@ void BM_ControlLaw(benchmark::State& state) {
 BENCHMARK(BM_ControlLaw);
 
 void BM_SimulatorStep1ms(benchmark::State& state) {
-  ArmSimulator sim(dynamics(), SimulatorOptions{}, kReady);
+  ArmSimulator sim(dynamics(), SimulatorOptions{}, ready());
   const Vector6d torque = dynamics().gravity_torque(sim.chain());
   for (auto _ : state) {
     sim.step(torque, Vector6d::Zero(), 1e-3, false);
@@ -79,7 +83,7 @@ BENCHMARK(BM_SimulatorStep1ms);
 /// One full cycle as the SERVO runs it: measures, law, commands (simulator integration).
 void run_full_cycle(benchmark::State& state, Duration period) {
   auto force = std::make_unique<shm::SeqlockCell<shm::ForcePayload>>();
-  SimulatedArm arm(dynamics(), SimulatorOptions{}, kReady, force.get());
+  SimulatedArm arm(dynamics(), SimulatorOptions{}, ready(), force.get());
   arm.set_supply(true);
   ServoLaw law(dynamics());
   ServoInputs in = coupled_inputs();

@@ -25,13 +25,10 @@ fi
 
 mapfile -t UNITS < <(git ls-files '*.cpp')
 [[ -f $BUILD/compile_commands.json ]] || { echo "lint: no $BUILD/compile_commands.json" >&2; exit 1; }
-# run-clang-tidy parallelises; fall back to a plain loop.
-if command -v run-clang-tidy >/dev/null; then
-  run-clang-tidy -quiet -p "$BUILD" -j "$(nproc)" "${UNITS[@]/#/$PWD/}" >/tmp/hapticctrl-tidy.log 2>&1 ||
-    { grep -E "error:|warning:" /tmp/hapticctrl-tidy.log | sort -u | head -50; exit 1; }
-else
-  clang-tidy -quiet -p "$BUILD" "${UNITS[@]}"
-fi
+# .clang-tidy is written for clang-tidy-22 (scripts/setup.sh installs it); run-clang-tidy
+# parallelises.
+run-clang-tidy-22 -quiet -p "$BUILD" -j "$(nproc)" "${UNITS[@]/#/$PWD/}" >/tmp/hapticctrl-tidy.log 2>&1 ||
+  { grep -E "error:|warning:" /tmp/hapticctrl-tidy.log | sort -u | head -50; exit 1; }
 scripts/check_realtime.py --self-test >/dev/null
 scripts/check_realtime.py --build "$BUILD" .
 echo "lint: clean (${#SOURCES[@]} files formatted, ${#UNITS[@]} units tidy, the real-time contract kept)"

@@ -102,6 +102,7 @@ class Roudi {
 void print_case(PeerTransport& t, ReadMode mode, const PeerBenchConfig& c, const Placement& p,
                 bool first) {
   std::vector<RunResult> latency;
+  latency.reserve(c.repeats);
   for (std::uint32_t i = 0; i < c.repeats; ++i) {
     latency.push_back(run_peers(t, {.mode = mode, .messages = c.messages}, p));
   }

@@ -24,10 +24,8 @@
 namespace hapticctrl::bench {
 namespace {
 
-using hapticctrl::monotonic_now_ns;
-
 constexpr std::uint32_t kMaxMessages = 60'000;
-constexpr std::int64_t kWarmUpLimitNs = 3'000'000'000;
+constexpr Duration kWarmUpLimit = std::chrono::seconds(3);
 
 /// What the two processes write and the parent reads, in one shared anonymous mapping.
 struct Shared {
@@ -65,8 +63,9 @@ void say_error(Shared& shared, const char* what) {
   std::snprintf(shared.error.data(), shared.error.size(), "%s", what);
 }
 
-void sleep_until(std::int64_t t) {
-  timespec ts{static_cast<time_t>(t / 1'000'000'000), static_cast<long>(t % 1'000'000'000)};
+void sleep_until(TimePoint t) {
+  const std::int64_t ns = to_ns(t);
+  timespec ts{static_cast<time_t>(ns / 1'000'000'000), static_cast<long>(ns % 1'000'000'000)};
   while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
   }
 }
@@ -97,29 +96,29 @@ void writer_main(PeerTransport& transport, const RunConfig& config, int cpu, int
   Message m{};
   // Warm-up: until the reader has seen one (a subscription takes effect, a multicast group is
   // joined), message 0 once a millisecond.
-  const std::int64_t warm_until = monotonic_now_ns() + kWarmUpLimitNs;
-  while (!shared.reader_warm.load() && monotonic_now_ns() < warm_until) {
-    m.echo_client_time_ns = monotonic_now_ns();
+  const TimePoint warm_until = MonotonicClock::now() + kWarmUpLimit;
+  while (!shared.reader_warm.load() && MonotonicClock::now() < warm_until) {
+    m.echo_client_time_ns = to_ns(MonotonicClock::now());
     writer->publish(m);
-    sleep_until(monotonic_now_ns() + 1'000'000);
+    sleep_until(MonotonicClock::now() + std::chrono::milliseconds(1));
   }
-  const auto period = static_cast<std::int64_t>(1e9 / config.rate_hz);
-  const std::int64_t start = monotonic_now_ns() + period;
+  const Duration period = from_seconds(1.0 / config.rate_hz);
+  const TimePoint start = MonotonicClock::now() + period;
   const std::uint32_t n = std::min(config.messages, kMaxMessages);
   Phase phase = Phase::kRunning;
   const double cpu_start = own_cpu_seconds();
   for (std::uint32_t i = 0; i < n; ++i) {
-    sleep_until(start + static_cast<std::int64_t>(i) * period);
+    sleep_until(start + i * period);
     if (config.stall_reader) {
       const Phase next = phase_of(i, n);
       signal_reader(shared, phase, next);
       phase = next;
     }
     m.cycle = i + 1;
-    const std::int64_t t0 = monotonic_now_ns();
-    m.echo_client_time_ns = t0;
+    const TimePoint t0 = MonotonicClock::now();
+    m.echo_client_time_ns = to_ns(t0);
     const bool ok = writer->publish(m);
-    shared.publish[i] = monotonic_now_ns() - t0;
+    shared.publish[i] = to_ns(MonotonicClock::now() - t0);
     shared.phase[i] = phase;
     if (!ok) {
       shared.failed_publishes.fetch_add(1);
@@ -135,7 +134,7 @@ struct ReaderCpu {
   bool done = false;
 };
 
-void record(Shared& shared, const Message& m, std::int64_t t0, std::int64_t t1, std::uint32_t last,
+void record(Shared& shared, const Message& m, TimePoint t0, TimePoint t1, std::uint32_t last,
             ReaderCpu& cpu) {
   if (m.cycle == 0) {
     shared.reader_warm.store(true);
@@ -149,12 +148,12 @@ void record(Shared& shared, const Message& m, std::int64_t t0, std::int64_t t1, 
   }
   const std::uint32_t r = shared.read_count.load();
   if (r < kMaxMessages) {
-    shared.read[r] = t1 - t0;
+    shared.read[r] = to_ns(t1 - t0);
     shared.read_count.store(r + 1);
   }
   const std::uint32_t l = shared.latency_count.load();
   if (l < kMaxMessages) {
-    shared.latency[l] = t1 - m.echo_client_time_ns;
+    shared.latency[l] = to_ns(t1) - m.echo_client_time_ns;
     shared.latency_count.store(l + 1);
   }
 }
@@ -174,9 +173,9 @@ void reader_main(PeerTransport& transport, const RunConfig& config, int cpu, int
     if (config.mode == ReadMode::kWake && !reader->wait(std::chrono::milliseconds(50))) {
       continue;
     }
-    const std::int64_t t0 = monotonic_now_ns();
+    const TimePoint t0 = MonotonicClock::now();
     if (reader->read(m)) {
-      record(shared, m, t0, monotonic_now_ns(), last, account);
+      record(shared, m, t0, MonotonicClock::now(), last, account);
     }
   }
   if (!account.done && account.start >= 0.0) {  // the last message never came: up to the stop
@@ -203,11 +202,11 @@ pid_t spawn(Shared& shared, Body body) {
 }
 
 /// Waits for `pid` (bounded); a child that outlives the bound is killed.
-void reap(pid_t pid, std::int64_t bound_ns) {
+void reap(pid_t pid, Duration bound) {
   int status = 0;
-  const std::int64_t until = monotonic_now_ns() + bound_ns;
+  const TimePoint until = MonotonicClock::now() + bound;
   while (waitpid(pid, &status, WNOHANG) == 0) {
-    if (monotonic_now_ns() > until) {
+    if (MonotonicClock::now() > until) {
       kill(pid, SIGKILL);
       waitpid(pid, &status, 0);
       break;
@@ -241,8 +240,8 @@ void collect(const Shared& shared, std::int64_t clock_ns, RunResult& out) {
 std::int64_t clock_read_ns() {
   std::array<std::int64_t, 2001> pairs{};
   for (auto& d : pairs) {
-    const std::int64_t t0 = monotonic_now_ns();
-    d = monotonic_now_ns() - t0;
+    const TimePoint t0 = MonotonicClock::now();
+    d = to_ns(MonotonicClock::now() - t0);
   }
   std::nth_element(pairs.begin(), pairs.begin() + pairs.size() / 2, pairs.end());
   return pairs[pairs.size() / 2];
@@ -271,13 +270,13 @@ RunResult run_peers(PeerTransport& transport, const RunConfig& config, const Pla
   const pid_t writer = spawn(*shared, [&] {
     writer_main(transport, config, placement.writer_cpu, placement.priority, *shared);
   });
-  const auto run_ns = static_cast<std::int64_t>(1e9 * config.messages / config.rate_hz);
-  reap(writer, run_ns + 2 * kWarmUpLimitNs);
+  const Duration run = from_seconds(config.messages / config.rate_hz);
+  reap(writer, run + 2 * kWarmUpLimit);
   shared->stop_reader.store(true);
   if (config.stall_reader) {
     kill(reader, SIGCONT);  // a reader stopped for good would never see the flag
   }
-  reap(reader, 1'000'000'000);
+  reap(reader, std::chrono::seconds(1));
   transport.teardown();
   collect(*shared, clock_read_ns(), result);
   shared->~Shared();

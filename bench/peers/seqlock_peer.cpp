@@ -23,9 +23,9 @@ class SeqlockWriter final : public PeerWriter {
   SeqlockWriter(Cell& cell, bool wake) : cell_(&cell), wake_(wake) {}
   bool publish(const Message& message) override {
     if (wake_) {
-      cell_->publish(message, hapticctrl::monotonic_now_ns());
+      cell_->publish(message, hapticctrl::to_ns(hapticctrl::MonotonicClock::now()));
     } else {
-      cell_->publish_quietly(message, hapticctrl::monotonic_now_ns());
+      cell_->publish_quietly(message, hapticctrl::to_ns(hapticctrl::MonotonicClock::now()));
     }
     return true;  // a seqlock publish cannot fail or wait
   }

@@ -49,17 +49,17 @@ void ChannelPassivity::set_contact_share(double share) noexcept {
 }
 
 void ChannelPassivity::set_loop(double seconds) noexcept {
-  loop_ns_ = std::isfinite(seconds) && seconds > 0.0 ? static_cast<std::int64_t>(seconds * 1e9) : 0;
+  loop_ = std::isfinite(seconds) && seconds > 0.0 ? from_seconds(seconds) : Duration::zero();
 }
 
-double ChannelPassivity::output_ago(std::int64_t now_ns) const noexcept {
+double ChannelPassivity::output_ago(TimePoint now) const noexcept {
   // The newest entry at or before now - loop; before the first entry there was no output (the
   // oldest kept once the ring is full and the loop longer than it).
-  const std::int64_t when = now_ns - loop_ns_;
+  const TimePoint when = now - loop_;
   double found = 0.0;
   for (std::size_t k = 1; k <= std::min(past_count_, past_.size()); ++k) {
     const Past& p = past_[(past_next_ + past_.size() - k) % past_.size()];
-    if (p.at_ns <= when) {
+    if (p.at <= when) {
       return p.out;
     }
     found = p.out;
@@ -100,7 +100,7 @@ Vector6 ChannelPassivity::render(const Vector6& wrench) noexcept {
 }
 
 void ChannelPassivity::on_step(const Vector6& twist, double dt, double held,
-                               std::int64_t now_ns) noexcept {
+                               TimePoint now) noexcept {
   if (!(dt > 0.0) || !std::isfinite(dt)) {
     return;
   }
@@ -119,14 +119,14 @@ void ChannelPassivity::on_step(const Vector6& twist, double dt, double held,
   book_output(power, dt);
   energy_out_ -= damped * dt;
   dissipated_ += damped * dt;
-  past_[past_next_] = {now_ns, energy_out_ + dissipated_};
+  past_[past_next_] = {now, energy_out_ + dissipated_};
   past_next_ = (past_next_ + 1) % past_.size();
   ++past_count_;
   // The controller's report covers the object's motion up to a loop ago (the object's state went
   // out, the controller took it, its answer came back): compared with the output of now, every
   // push into a wall looked like a loop's worth of excess, and the PC chattered the object's
   // wrench between 0 and 12 N at 100 ms one way (J1, 2026-12-03).
-  const double excess = output_ago(now_ns) - dissipated_ - controller_in_;
+  const double excess = output_ago(now) - dissipated_ - controller_in_;
   twist_ = twist;
   alpha_linear_ = 0.0;
   alpha_angular_ = 0.0;

@@ -26,6 +26,7 @@
 #include <array>
 #include <cstdint>
 
+#include "hapticctrl/base/time.hpp"
 #include "hapticctrl/client/types.hpp"
 
 namespace hapticctrl::client {
@@ -48,11 +49,11 @@ class ChannelPassivity {
   // --- VIRTMECH: the object's port --------------------------------------------------------------
   /// The wrench the application gets for the channel's `wrench`: with the PC's damper.
   [[nodiscard]] Vector6 render(const Vector6& wrench) noexcept;
-  /// Accounts the step the application just integrated at `now_ns`: the object moved with
+  /// Accounts the step the application just integrated at `now`: the object moved with
   /// `twist` for `dt` seconds under the wrench render() gave it last. Sets the damper for the
   /// next render(), within what an integration that holds a wrench for `held` seconds bears
   /// (`held` >= dt: the application may integrate several steps with one wrench).
-  void on_step(const Vector6& twist, double dt, double held, std::int64_t now_ns) noexcept;
+  void on_step(const Vector6& twist, double dt, double held, TimePoint now) noexcept;
 
   // --- IMPEDANCE (protocol 1.3): the handle image ----------------------------------------------
   /// Accounts a step of `dt` s during which the application's `wrench` pushed the handle image
@@ -75,15 +76,15 @@ class ChannelPassivity {
 
   /// The object's output (before the PC) as it was, one entry per step.
   struct Past {
-    std::int64_t at_ns = 0;
+    TimePoint at;
     double out = 0.0;
   };
-  [[nodiscard]] double output_ago(std::int64_t now_ns) const noexcept;
+  [[nodiscard]] double output_ago(TimePoint now) const noexcept;
 
   std::array<Past, 1024> past_{};
   std::size_t past_next_ = 0;
   std::size_t past_count_ = 0;
-  std::int64_t loop_ns_ = 0;
+  Duration loop_{};
   double dissipated_ = 0.0;  ///< J the PC took out (energy_out_ is net)
   double mass_ = 0.5;
   double inertia_ = 5e-4;

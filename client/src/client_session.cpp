@@ -22,10 +22,6 @@ std::string version_text(std::uint32_t v) {
          std::to_string(protocol::version_minor(v));
 }
 
-std::int64_t ns_of(std::chrono::milliseconds ms) {
-  return ms.count() * kNsPerMs;
-}
-
 /// The features a client of `version` knows (an older version advertised for compatibility
 /// testing asks only for its own).
 std::uint32_t features_of(std::uint32_t version) {
@@ -71,11 +67,11 @@ std::uint32_t ClientSession::version() const noexcept {
 
 // --- handshake -----------------------------------------------------------------------------
 
-std::optional<hcp_frame> ClientSession::hello_due(std::int64_t now) {
-  if (open_ || now < next_hello_ns_) {
+std::optional<hcp_frame> ClientSession::hello_due(TimePoint now) {
+  if (open_ || now < next_hello_) {
     return std::nullopt;
   }
-  hcp_frame hello = protocol::make_frame(HCP_HELLO, 0, ++hello_sequence_, now);
+  hcp_frame hello = protocol::make_frame(HCP_HELLO, 0, ++hello_sequence_, to_ns(now));
   hello.header.protocol = version();
   hcp_hello& h = hello.body.hcp_body_u.hello;
   h.min_version =
@@ -83,11 +79,11 @@ std::optional<hcp_frame> ClientSession::hello_due(std::int64_t now) {
   h.features = features_of(version());
   h.watchdog_ms = options_.watchdog_ms;
   protocol::set_text(h.client_name, options_.client_name);
-  next_hello_ns_ = now + ns_of(options_.retransmit_after) * 2;
+  next_hello_ = now + options_.retransmit_after * 2;
   return hello;
 }
 
-HandshakeStep ClientSession::on_handshake_frame(const hcp_frame& frame, std::int64_t now) {
+HandshakeStep ClientSession::on_handshake_frame(const hcp_frame& frame, TimePoint now) {
   HandshakeStep step;
   if (frame.body.type == HCP_REFUSE) {
     const hcp_refuse& refusal = frame.body.hcp_body_u.refuse;
@@ -106,9 +102,8 @@ HandshakeStep ClientSession::on_handshake_frame(const hcp_frame& frame, std::int
       last_refusal_code_ =
           refusal.code == HCP_REFUSE_BUSY ? ErrorCode::kBusy : ErrorCode::kNoController;
       // Ask again once the other session may be gone.
-      next_hello_ns_ = now + std::max<std::int64_t>(
-                                 ns_of(options_.retransmit_after),
-                                 static_cast<std::int64_t>(refusal.retry_after_ms) * kNsPerMs);
+      next_hello_ = now + std::max(options_.retransmit_after,
+                                   std::chrono::milliseconds(refusal.retry_after_ms));
     }
     return step;
   }
@@ -127,23 +122,23 @@ HandshakeStep ClientSession::on_handshake_frame(const hcp_frame& frame, std::int
   return step;
 }
 
-void ClientSession::welcome(const hcp_frame& frame, std::int64_t now) noexcept {
+void ClientSession::welcome(const hcp_frame& frame, TimePoint now) noexcept {
   const hcp_welcome& w = frame.body.hcp_body_u.welcome;
   token_ = frame.header.token;
   features_ = w.features;
   watchdog_ms_ = w.watchdog_ms;
-  period_ns_ = w.period_ns;
+  period_ = Duration(w.period_ns);
   controller_version_ = frame.header.protocol;
-  monitor_.set_period(period_ns_);
-  last_heard_ns_ = now;
+  monitor_.set_period(period_);
+  last_heard_ = now;
   open_ = true;
 }
 
-hcp_frame ClientSession::version_refusal(const hcp_frame& welcome, std::int64_t now,
+hcp_frame ClientSession::version_refusal(const hcp_frame& welcome, TimePoint now,
                                          std::string& reason) const {
   reason = "protocol version mismatch: client " + version_text(version()) + ", controller " +
            version_text(welcome.header.protocol);
-  hcp_frame refusal = protocol::make_frame(HCP_REFUSE, welcome.header.token, 1, now);
+  hcp_frame refusal = protocol::make_frame(HCP_REFUSE, welcome.header.token, 1, to_ns(now));
   refusal.header.protocol = version();
   refusal.body.hcp_body_u.refuse.code = HCP_REFUSE_VERSION;
   refusal.body.hcp_body_u.refuse.peer_version = welcome.header.protocol;
@@ -163,12 +158,12 @@ ClientError ClientSession::handshake_timeout() const {
 
 // --- an open session -----------------------------------------------------------------------
 
-Arrival ClientSession::on_frame(const hcp_frame& frame, std::int64_t now) noexcept {
+Arrival ClientSession::on_frame(const hcp_frame& frame, TimePoint now) noexcept {
   if (frame.header.token != token_) {
     monitor_.on_invalid();
     return Arrival::kInvalid;
   }
-  last_heard_ns_ = now;
+  last_heard_ = now;
   switch (frame.body.type) {
     case HCP_ANSWER:
     case HCP_ANSWER_TIMED:
@@ -187,20 +182,20 @@ Arrival ClientSession::on_frame(const hcp_frame& frame, std::int64_t now) noexce
   }
 }
 
-bool ClientSession::on_answer(const hcp_frame& frame, std::int64_t now) noexcept {
+bool ClientSession::on_answer(const hcp_frame& frame, TimePoint now) noexcept {
   const auto& u = frame.body.hcp_body_u;
   const bool coupled = frame.body.type == HCP_ANSWER_COUPLED;
   const bool timed = coupled || frame.body.type == HCP_ANSWER_TIMED;
   const hcp_answer& a =
       coupled ? u.answer_coupled.answer : (timed ? u.answer_timed.answer : u.answer);
-  if (!monitor_.on_answer(frame.header.sequence, now, a.echo_sequence, a.echo_time_ns,
-                          a.control_received)) {
+  if (!monitor_.on_answer(frame.header.sequence, now, a.echo_sequence,
+                          time_point_from_ns(a.echo_time_ns), a.control_received)) {
     return false;  // a duplicate or an answer older than the newest
   }
   StateSnapshot s;
   s.valid = true;
   s.cycle = a.cycle;
-  s.received_ns = now;
+  s.received_ns = to_ns(now);
   s.state_word = a.state_word;
   s.core_state = a.core_state;
   s.stop_reason = a.stop_reason;
@@ -260,19 +255,19 @@ double ClientSession::contact_penetration() const noexcept {
   return contacts_.penetration_along(terms_.contact_normal);
 }
 
-std::optional<hcp_frame> ClientSession::keepalive_due(std::int64_t now) noexcept {
-  const std::int64_t quiet_ns = static_cast<std::int64_t>(watchdog_ms_) * kNsPerMs / 4;
-  if (!options_.keepalive || !open_ || now - last_send_ns_ <= quiet_ns) {
+std::optional<hcp_frame> ClientSession::keepalive_due(TimePoint now) noexcept {
+  const Duration quiet = std::chrono::milliseconds(watchdog_ms_) / 4;
+  if (!options_.keepalive || !open_ || now - last_send_ <= quiet) {
     return std::nullopt;
   }
-  return protocol::make_frame(HCP_KEEPALIVE, token_, next_control_sequence(), now);
+  return protocol::make_frame(HCP_KEEPALIVE, token_, next_control_sequence(), to_ns(now));
 }
 
-bool ClientSession::close_if_silent(std::int64_t now) {
+bool ClientSession::close_if_silent(TimePoint now) {
   // A session whose bridge sends nothing at all (no answer, no refusal) for the answer timeout
   // is over: the bridge was killed, or lost its controller without a word.
-  const std::int64_t limit_ns = ns_of(options_.answer_timeout);
-  if (limit_ns == 0 || !open_ || now - last_heard_ns_ <= limit_ns) {
+  const Duration limit = options_.answer_timeout;
+  if (limit == Duration::zero() || !open_ || now - last_heard_ <= limit) {
     return false;
   }
   close("no answer from the bridge for " + std::to_string(options_.answer_timeout.count()) + " ms");

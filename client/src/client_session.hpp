@@ -53,24 +53,24 @@ class ClientSession {
   // --- handshake ---------------------------------------------------------------------------
   /// The HELLO to send at `now`, when one is due (at once, then every two retransmit periods,
   /// or once a refusal's retry time has passed).
-  std::optional<hcp_frame> hello_due(std::int64_t now);
+  std::optional<hcp_frame> hello_due(TimePoint now);
   /// A frame from the controller's address before the session opened.
-  HandshakeStep on_handshake_frame(const hcp_frame& frame, std::int64_t now);
+  HandshakeStep on_handshake_frame(const hcp_frame& frame, TimePoint now);
   /// The error when the connect timeout passes without a WELCOME (kTimeout, or the last
   /// refusal's code and reason).
   [[nodiscard]] ClientError handshake_timeout() const;
 
   // --- an open session ---------------------------------------------------------------------
   /// A frame from the controller's address (decoded).
-  Arrival on_frame(const hcp_frame& frame, std::int64_t now) noexcept;
+  Arrival on_frame(const hcp_frame& frame, TimePoint now) noexcept;
   /// A datagram that did not decode, or came from another address.
   void on_invalid() noexcept { monitor_.on_invalid(); }
   /// Every frame the shell sent (the keepalive counts the quiet time from it).
-  void on_sent(std::int64_t now) noexcept { last_send_ns_ = now; }
+  void on_sent(TimePoint now) noexcept { last_send_ = now; }
   /// The KEEPALIVE to send when the application has been quiet for a quarter of the watchdog.
-  std::optional<hcp_frame> keepalive_due(std::int64_t now) noexcept;
+  std::optional<hcp_frame> keepalive_due(TimePoint now) noexcept;
   /// Closes the session if the bridge sent nothing for the answer timeout; true if it did.
-  bool close_if_silent(std::int64_t now);
+  bool close_if_silent(TimePoint now);
   /// Marks the session closed for `reason` (no effect if already closed).
   void close(std::string_view reason);
   [[nodiscard]] bool is_open() const noexcept { return open_; }
@@ -81,18 +81,18 @@ class ClientSession {
   /// the echo of the newest answer and the energy the object put into the channel), or nothing
   /// when the session is closed or the rotation is not a unit quaternion.
   std::optional<hcp_frame> object_frame(const Pose7& pose, const Vector6& twist,
-                                        std::int64_t now) noexcept;
-  std::optional<hcp_frame> wrench_frame(const Vector6& wrench, std::int64_t now) noexcept;
+                                        TimePoint now) noexcept;
+  std::optional<hcp_frame> wrench_frame(const Vector6& wrench, TimePoint now) noexcept;
   /// Protocol 1.4 (JOINT_CONTROL): ARTICULAR's joint set points, ARTICULAR_IMPEDANCE's torques;
   /// nothing when the session did not negotiate it, is closed, or a value is out of range.
   std::optional<hcp_frame> joint_target_frame(const Joints6& position, const Joints6& speed,
-                                              std::int64_t now) noexcept;
-  std::optional<hcp_frame> joint_torque_frame(const Joints6& torque, std::int64_t now) noexcept;
+                                              TimePoint now) noexcept;
+  std::optional<hcp_frame> joint_torque_frame(const Joints6& torque, TimePoint now) noexcept;
   /// The object's contacts from now on (protocol 1.3), checked as the controller checks them.
   ContactResult set_contacts(std::span<const Contact> contacts) noexcept;
   /// The next CONTROL_CONTACT to send at `now` after an object state, if one is due (a changed
   /// slot, a slot not sent for 5 ms, or the clearing of every slot); call until none is.
-  std::optional<hcp_frame> contact_frame_due(std::int64_t now) noexcept;
+  std::optional<hcp_frame> contact_frame_due(TimePoint now) noexcept;
   /// One control frame left the socket (statistics).
   void on_control_sent() noexcept { ++control_sent_; }
 
@@ -115,17 +115,17 @@ class ClientSession {
   [[nodiscard]] LinkStatistics statistics() const noexcept;
   [[nodiscard]] std::uint32_t features() const noexcept { return features_; }
   [[nodiscard]] std::uint32_t watchdog_ms() const noexcept { return watchdog_ms_; }
-  [[nodiscard]] std::int64_t controller_period_ns() const noexcept { return period_ns_; }
+  [[nodiscard]] Duration controller_period() const noexcept { return period_; }
   [[nodiscard]] std::uint32_t controller_version() const noexcept { return controller_version_; }
   [[nodiscard]] const std::string& peer_text() const noexcept { return peer_text_; }
   [[nodiscard]] const ConnectOptions& options() const noexcept { return options_; }
 
  private:
   [[nodiscard]] std::uint32_t version() const noexcept;
-  void welcome(const hcp_frame& frame, std::int64_t now) noexcept;
-  [[nodiscard]] hcp_frame version_refusal(const hcp_frame& welcome, std::int64_t now,
+  void welcome(const hcp_frame& frame, TimePoint now) noexcept;
+  [[nodiscard]] hcp_frame version_refusal(const hcp_frame& welcome, TimePoint now,
                                           std::string& reason) const;
-  bool on_answer(const hcp_frame& frame, std::int64_t now) noexcept;
+  bool on_answer(const hcp_frame& frame, TimePoint now) noexcept;
   /// Protocol 1.3: the object's wrench (or an IMPEDANCE client's handle image) in latest_.
   void close_locally() noexcept;
   /// The object's penetration into the contacts set along the controller's contact normal (m).
@@ -133,8 +133,8 @@ class ClientSession {
   [[nodiscard]] bool local() const noexcept {
     return (features_ & HCP_FEATURE_LOCAL_COUPLING) != 0;
   }
-  hcp_frame timed_object_frame(const Pose7& pose, const Vector6& twist, std::int64_t now) noexcept;
-  [[nodiscard]] std::uint32_t answer_echo(std::int64_t now) const noexcept;
+  hcp_frame timed_object_frame(const Pose7& pose, const Vector6& twist, TimePoint now) noexcept;
+  [[nodiscard]] std::uint32_t answer_echo(TimePoint now) const noexcept;
   std::uint32_t next_control_sequence() noexcept { return ++control_sequence_; }
   std::optional<hcp_frame> checked_control(hcp_frame frame) const noexcept;
 
@@ -142,7 +142,7 @@ class ClientSession {
   std::string peer_text_;
 
   // Handshake.
-  std::int64_t next_hello_ns_ = 0;
+  TimePoint next_hello_;
   std::uint32_t hello_sequence_ = 0;
   std::string last_refusal_;
   ErrorCode last_refusal_code_ = ErrorCode::kTimeout;
@@ -154,9 +154,9 @@ class ClientSession {
   std::uint32_t features_ = 0;
   std::uint32_t watchdog_ms_ = 0;
   std::uint32_t controller_version_ = 0;
-  std::int64_t period_ns_ = 0;
-  std::int64_t last_heard_ns_ = 0;  ///< last valid frame from the bridge
-  std::int64_t last_send_ns_ = 0;
+  Duration period_{};
+  TimePoint last_heard_;  ///< last valid frame from the bridge
+  TimePoint last_send_;
 
   std::uint32_t control_sequence_ = 0;
   std::uint32_t reliable_sequence_ = 0;
@@ -167,7 +167,7 @@ class ClientSession {
   LinkMonitor monitor_;
   ChannelPassivity passivity_;
   hcp_coupling_report report_{};  ///< the controller's, from the newest ANSWER_TIMED
-  std::int64_t last_object_send_ns_ = 0;
+  TimePoint last_object_send_ = kNotYet;
   std::uint64_t last_send_cycle_ = 0;  ///< the newest answer's cycle at the last object send
   double time_step_ = 0.0;             ///< the application's declared step (s)
 
@@ -181,7 +181,7 @@ class ClientSession {
   Vector6 object_twist_{};
   bool have_object_ = false;
   Vector6 held_wrench_{};  ///< IMPEDANCE: the wrench sent last
-  std::int64_t last_wrench_send_ns_ = 0;
+  TimePoint last_wrench_send_ = kNotYet;
   double speed_factor_ = 1.0;
   double force_factor_ = 1.0;
   ContactSet contacts_;  ///< protocol 1.3: the object's contacts, sent slot by slot

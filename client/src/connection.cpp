@@ -36,7 +36,7 @@ bool Connection::send_object_state(const Pose7& pose, const Vector6& twist) noex
   std::optional<hcp_frame> frame;
   {
     const std::lock_guard lock(impl_->session_mutex);
-    frame = impl_->session.object_frame(pose, twist, hapticctrl::monotonic_now_ns());
+    frame = impl_->session.object_frame(pose, twist, MonotonicClock::now());
   }
   const bool sent = impl_->send_control(frame);
   if (sent) {
@@ -57,7 +57,7 @@ bool Connection::send_wrench(const Vector6& wrench) noexcept {
   std::optional<hcp_frame> frame;
   {
     const std::lock_guard lock(impl_->session_mutex);
-    frame = impl_->session.wrench_frame(wrench, hapticctrl::monotonic_now_ns());
+    frame = impl_->session.wrench_frame(wrench, MonotonicClock::now());
   }
   const bool sent = impl_->send_control(frame);
   if (sent) {
@@ -70,7 +70,7 @@ bool Connection::send_joint_target(const Joints6& position, const Joints6& speed
   std::optional<hcp_frame> frame;
   {
     const std::lock_guard lock(impl_->session_mutex);
-    frame = impl_->session.joint_target_frame(position, speed, hapticctrl::monotonic_now_ns());
+    frame = impl_->session.joint_target_frame(position, speed, MonotonicClock::now());
   }
   return impl_->send_control(frame);
 }
@@ -79,7 +79,7 @@ bool Connection::send_joint_torque(const Joints6& torque) noexcept {
   std::optional<hcp_frame> frame;
   {
     const std::lock_guard lock(impl_->session_mutex);
-    frame = impl_->session.joint_torque_frame(torque, hapticctrl::monotonic_now_ns());
+    frame = impl_->session.joint_torque_frame(torque, MonotonicClock::now());
   }
   return impl_->send_control(frame);
 }
@@ -132,7 +132,7 @@ std::uint32_t Connection::watchdog_ms() const noexcept {
 }
 std::int64_t Connection::controller_period_ns() const noexcept {
   const std::lock_guard lock(impl_->session_mutex);
-  return impl_->session.controller_period_ns();
+  return to_ns(impl_->session.controller_period());
 }
 std::uint32_t Connection::controller_version() const noexcept {
   const std::lock_guard lock(impl_->session_mutex);

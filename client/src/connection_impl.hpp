@@ -75,7 +75,7 @@ struct Connection::Impl {
     if (!transmit(frame)) {
       return false;
     }
-    session.on_sent(hapticctrl::monotonic_now_ns());
+    session.on_sent(MonotonicClock::now());
     return true;
   }
 
@@ -97,11 +97,10 @@ struct Connection::Impl {
 
   // --- handshake ---------------------------------------------------------------------------
   void handshake() {
-    const std::int64_t deadline =
-        hapticctrl::monotonic_now_ns() + session.options().connect_timeout.count() * 1'000'000;
+    const TimePoint deadline = MonotonicClock::now() + session.options().connect_timeout;
     protocol::FrameBuffer in;  // NOLINT(cppcoreguidelines-pro-type-member-init): receive() fills it
-    while (hapticctrl::monotonic_now_ns() < deadline) {
-      if (const auto hello = session.hello_due(hapticctrl::monotonic_now_ns())) {
+    while (MonotonicClock::now() < deadline) {
+      if (const auto hello = session.hello_due(MonotonicClock::now())) {
         send_locked(*hello);  // no other thread yet
       }
       protocol::Endpoint from;
@@ -113,7 +112,7 @@ struct Connection::Impl {
       if (!frame) {
         continue;
       }
-      HandshakeStep step = session.on_handshake_frame(*frame, hapticctrl::monotonic_now_ns());
+      HandshakeStep step = session.on_handshake_frame(*frame, MonotonicClock::now());
       if (step.reply) {
         send_locked(*step.reply);
       }
@@ -146,7 +145,7 @@ struct Connection::Impl {
 
   Arrival on_frame(const hcp_frame& frame) noexcept {
     const std::lock_guard lock(session_mutex);
-    return session.on_frame(frame, hapticctrl::monotonic_now_ns());
+    return session.on_frame(frame, MonotonicClock::now());
   }
 
   /// Wakes whoever waits for what arrived, runs the periodic function on a new state, then
@@ -157,7 +156,7 @@ struct Connection::Impl {
     {
       const std::lock_guard lock(session_mutex);
       state = session.latest();
-      const std::int64_t now = hapticctrl::monotonic_now_ns();
+      const TimePoint now = MonotonicClock::now();
       if (const auto keepalive = session.keepalive_due(now)) {
         send_locked(*keepalive);
       }
@@ -185,7 +184,7 @@ struct Connection::Impl {
       return false;
     }
     const std::lock_guard lock(session_mutex);
-    session.on_sent(hapticctrl::monotonic_now_ns());
+    session.on_sent(MonotonicClock::now());
     session.on_control_sent();
     return true;
   }
@@ -196,7 +195,7 @@ struct Connection::Impl {
       std::optional<hcp_frame> contact;
       {
         const std::lock_guard lock(session_mutex);
-        contact = session.contact_frame_due(hapticctrl::monotonic_now_ns());
+        contact = session.contact_frame_due(MonotonicClock::now());
       }
       if (!contact || !send_control(contact)) {
         break;
@@ -213,10 +212,10 @@ struct Connection::Impl {
     hcp_frame frame = make();
     const std::uint32_t sequence = frame.header.sequence;
     const ConnectOptions& options = session.options();
-    const auto deadline = hapticctrl::MonotonicClock::now() + options.call_timeout;
+    const auto deadline = MonotonicClock::now() + options.call_timeout;
     int tries = 0;
-    while (hapticctrl::MonotonicClock::now() < deadline) {
-      frame.header.sender_time_ns = hapticctrl::monotonic_now_ns();
+    while (MonotonicClock::now() < deadline) {
+      frame.header.sender_time_ns = to_ns(MonotonicClock::now());
       send_locked(frame);
       ++tries;
       std::optional<AckOutcome> ack;

@@ -61,17 +61,17 @@ ContactResult ContactSet::set(std::span<const Contact> contacts, double max_stif
   return ContactResult::kAccepted;
 }
 
-std::optional<ContactSend> ContactSet::due(std::int64_t now) noexcept {
+std::optional<ContactSend> ContactSet::due(TimePoint now) noexcept {
   if (clear_due_) {
     clear_due_ = false;
     return ContactSend{protocol::pack_contact_slots(0, 0), {}};
   }
   for (std::uint32_t i = 0; i < count_; ++i) {
-    if (!changed_[i] && now - sent_ns_[i] < kRefreshNs) {
+    if (!changed_[i] && now - sent_[i] < kRefresh) {
       continue;
     }
     changed_[i] = false;
-    sent_ns_[i] = now;
+    sent_[i] = now;
     return ContactSend{protocol::pack_contact_slots(i, count_), contacts_[i]};
   }
   return std::nullopt;

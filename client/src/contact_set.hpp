@@ -13,6 +13,7 @@
 #include <optional>
 #include <span>
 
+#include "hapticctrl/base/time.hpp"
 #include "hapticctrl/client/types.hpp"
 #include "hapticctrl/protocol/codec.hpp"
 
@@ -27,14 +28,14 @@ struct ContactSend {
 class ContactSet {
  public:
   /// Contacts are refreshed at least this often.
-  static constexpr std::int64_t kRefreshNs = 5'000'000;
+  static constexpr Duration kRefresh = std::chrono::milliseconds(5);
 
   /// The contacts from now on, each checked (protocol::check_contact) and its stiffness within
   /// `max_stiffness` (N/m; 0: no limit). Nothing changes unless every one is accepted.
   ContactResult set(std::span<const Contact> contacts, double max_stiffness) noexcept;
   /// The next slot to send at `now` (a changed or stale one, or a clear of the last set), if any;
   /// marks it sent.
-  std::optional<ContactSend> due(std::int64_t now) noexcept;
+  std::optional<ContactSend> due(TimePoint now) noexcept;
   /// The deepest penetration (m, >= 0) of the contacts whose normal lies within 25 degrees of
   /// `normal` (any length; a zero vector: 0).
   [[nodiscard]] double penetration_along(const std::array<double, 3>& normal) const noexcept;
@@ -44,7 +45,7 @@ class ContactSet {
   std::array<hcp_contact, kMaxContacts> contacts_{};
   std::uint32_t count_ = 0;
   std::array<bool, kMaxContacts> changed_{};
-  std::array<std::int64_t, kMaxContacts> sent_ns_{};
+  std::array<TimePoint, kMaxContacts> sent_{};
   bool clear_due_ = false;
 };
 

@@ -9,8 +9,8 @@
 
 namespace hapticctrl::client {
 
-bool LinkMonitor::on_answer(std::uint32_t answer_sequence, std::int64_t now_ns,
-                            std::uint32_t echo_sequence, std::int64_t echo_time_ns,
+bool LinkMonitor::on_answer(std::uint32_t answer_sequence, TimePoint now,
+                            std::uint32_t echo_sequence, TimePoint echo_sent,
                             std::uint32_t control_received) noexcept {
   if (have_answer_ && !protocol::sequence_newer(answer_sequence, last_sequence_)) {
     ++stats_.answers_late;
@@ -18,26 +18,26 @@ bool LinkMonitor::on_answer(std::uint32_t answer_sequence, std::int64_t now_ns,
   }
   if (have_answer_) {
     stats_.answers_lost += static_cast<std::uint32_t>(answer_sequence - last_sequence_) - 1U;
-    const double gap_us = static_cast<double>(now_ns - last_arrival_ns_) / 1e3;
+    const double gap_us = to_seconds(now - last_arrival_) * 1e6;
     ++interarrival_count_;
     stats_.interarrival_mean_us +=
         (gap_us - stats_.interarrival_mean_us) / static_cast<double>(interarrival_count_);
     stats_.interarrival_max_us = std::max(stats_.interarrival_max_us, gap_us);
     // RFC 3550 section 6.4.1: J += (|D| - J) / 16, D the deviation from the expected spacing.
-    const double deviation = std::abs(gap_us - static_cast<double>(period_ns_) / 1e3);
+    const double deviation = std::abs(gap_us - to_seconds(period_) * 1e6);
     stats_.jitter_us += (deviation - stats_.jitter_us) / 16.0;
   }
   have_answer_ = true;
   last_sequence_ = answer_sequence;
-  last_arrival_ns_ = now_ns;
+  last_arrival_ = now;
   ++stats_.answers_received;
   stats_.control_received_by_controller = control_received;
 
   // Round trip: the first answer that echoes a new control frame (later ones echo it again).
-  if (echo_time_ns != 0 && (!have_echo_ || echo_sequence != last_echo_)) {
+  if (echo_sent != TimePoint{} && (!have_echo_ || echo_sequence != last_echo_)) {
     have_echo_ = true;
     last_echo_ = echo_sequence;
-    const double rtt_us = static_cast<double>(now_ns - echo_time_ns) / 1e3;
+    const double rtt_us = to_seconds(now - echo_sent) * 1e6;
     if (rtt_us >= 0.0) {
       ++stats_.rtt_samples;
       stats_.rtt_last_us = rtt_us;

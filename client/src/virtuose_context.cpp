@@ -175,21 +175,21 @@ void Context::on_answer(const StateSnapshot& s) noexcept {
     return;
   }
   answers_since_call = 0;
-  const std::int64_t start = hapticctrl::monotonic_now_ns();
+  const TimePoint start = MonotonicClock::now();
   t_in_periodic = this;
   periodic(this, periodic_arg);
   t_in_periodic = nullptr;
-  const std::int64_t took = hapticctrl::monotonic_now_ns() - start;
-  const std::int64_t period = link()->controller_period_ns() * decimation;
+  const Duration took = MonotonicClock::now() - start;
+  const Duration period = Duration(link()->controller_period_ns()) * decimation;
   const std::lock_guard lock(mutex);
   flush_locked("the periodic function's command");
-  if (period > 0 && took > period) {
+  if (period > Duration::zero() && took > period) {
     alarms |= VIRT_ALARM_CALLBACK_OVERRUN;
   }
   if ((flags & DEBUG_LOOP) != 0U) {
     std::fprintf(debug_stream(), "virtuose loop: cycle %llu call %.1f us of a %.1f us period\n",
-                 static_cast<unsigned long long>(s.cycle), static_cast<double>(took) / 1e3,
-                 static_cast<double>(period) / 1e3);
+                 static_cast<unsigned long long>(s.cycle), to_seconds(took) * 1e6,
+                 to_seconds(period) * 1e6);
   }
 }
 

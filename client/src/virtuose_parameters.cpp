@@ -325,17 +325,16 @@ int virtSetPowerOn(VirtContext VC, int power) {
   }
   // The acknowledgement says the bridge passed it on; return once the controller did it (a getter
   // then reports it), or say why not.
-  using hapticctrl::monotonic_now_ns;
+  using hapticctrl::MonotonicClock;
   StateSnapshot s = link->snapshot();
-  const std::int64_t deadline =
-      hapticctrl::monotonic_now_ns() + std::chrono::nanoseconds(kEffectTimeout).count();
+  const hapticctrl::TimePoint deadline = MonotonicClock::now() + kEffectTimeout;
   while (s.powered() != on) {
     if (on && s.emergency_stop()) {
       return fail(VC, VIRT_E_CONTROLLER_REFUSED,
                   "virtSetPowerOn: the emergency stop is latched (reset it first)");
     }
-    const std::int64_t left = deadline - hapticctrl::monotonic_now_ns();
-    if (left <= 0 || !link->wait_for_answer(s.cycle, std::chrono::nanoseconds(left), s)) {
+    const hapticctrl::Duration left = deadline - MonotonicClock::now();
+    if (left <= hapticctrl::Duration::zero() || !link->wait_for_answer(s.cycle, left, s)) {
       return fail(VC, VIRT_E_TIME_OUT, "virtSetPowerOn: the controller did not switch the power");
     }
   }

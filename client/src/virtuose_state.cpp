@@ -119,7 +119,8 @@ int virtGetTimeLastUpdate(VirtContext VC, unsigned int* time) {
   if (!s.valid) {
     return fail(VC, VIRT_E_TIME_OUT, "virtGetTimeLastUpdate: no answer from the controller yet");
   }
-  const std::int64_t us = (hapticctrl::monotonic_now_ns() - s.received_ns) / 1000;
+  const std::int64_t us =
+      (hapticctrl::to_ns(hapticctrl::MonotonicClock::now()) - s.received_ns) / 1000;
   *time = static_cast<unsigned int>(std::clamp<std::int64_t>(us, 0, 0xFFFFFFFF));
   return 0;
 }

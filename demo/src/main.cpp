@@ -37,8 +37,6 @@ namespace client = hapticctrl::client;
 namespace demo = hapticctrl::demo;
 namespace program = hapticctrl::program;
 using Clock = hapticctrl::MonotonicClock;
-using hapticctrl::kNsPerUs;
-using hapticctrl::monotonic_now_ns;
 
 std::atomic<bool> g_stop{false};
 void on_signal(int /*sig*/) {
@@ -257,10 +255,9 @@ class DemoRun {
       (void)c_->send_object_state(scene_->pose(), scene_->twist());
     }
     ++steps_;
-    if (const std::int64_t now_us = monotonic_now_ns() / kNsPerUs;
-        scene_out_ && scene_out_->due(now_us * 1000)) {
-      (void)scene_out_->publish(
-          demo::to_scene_message(*scene_, applied_, c_->statistics(), steps_, now_us));
+    if (const hapticctrl::TimePoint now = Clock::now(); scene_out_ && scene_out_->due(now)) {
+      (void)scene_out_->publish(demo::to_scene_message(*scene_, applied_, c_->statistics(), steps_,
+                                                       hapticctrl::to_ns(now) / 1000));
     }
     if (log_.is_open()) {
       demo::write_log_row(log_, t, s_, *scene_, applied_);

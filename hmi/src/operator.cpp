@@ -82,7 +82,7 @@ Operator::Operator(const std::string& instance, bool want_force) {
 
 void Operator::send(shm::CtrlCode code) {
   const auto deadline = hapticctrl::MonotonicClock::now() + 100ms;
-  while (segment_->ctrl_writer().send(code, 0, monotonic_now_ns()) !=
+  while (segment_->ctrl_writer().send(code, 0, to_ns(MonotonicClock::now())) !=
          shm::CtrlSendStatus::kQueued) {
     if (hapticctrl::MonotonicClock::now() >= deadline) {
       throw HmiError("the controller's command queue stays full: is hapticctrl-core stalled?");
@@ -109,16 +109,15 @@ bool Operator::request_force(const shm::Vector6& wrench) {
   return force_available() && slew_.set_target(wrench);
 }
 
-void Operator::tick(std::int64_t now_ns) {
+void Operator::tick(TimePoint now) {
   // A caller that paused (a stalled terminal) resumes with one bounded step, not a jump.
-  const double dt = last_tick_ns_ == 0
-                        ? 0.0
-                        : std::min(static_cast<double>(now_ns - last_tick_ns_) / 1e9, kMaxTickStep);
-  last_tick_ns_ = now_ns;
+  const double dt =
+      last_tick_ == kNotYet ? 0.0 : std::min(to_seconds(now - last_tick_), kMaxTickStep);
+  last_tick_ = now;
   const bool moved = force_available() && slew_.step(dt);
   if (moved || (force_available() && hand_changed_)) {
     segment_->writable<shm::RegionId::kForce>().publish_quietly(
-        shm::ForcePayload{slew_.applied(), hand_}, now_ns);
+        shm::ForcePayload{slew_.applied(), hand_}, to_ns(now));
     hand_changed_ = false;
   }
 }
@@ -128,20 +127,20 @@ void Operator::release_hand() {
     return;
   }
   const shm::HandGrip held = hand_;
-  const std::int64_t start = monotonic_now_ns();
-  for (double since = 0.0; since < HandMotion::kGripRamp;
-       since = static_cast<double>(monotonic_now_ns() - start) / 1e9) {
-    const double grip = 1.0 - since / HandMotion::kGripRamp;
+  const TimePoint start = MonotonicClock::now();
+  const TimePoint end = start + from_seconds(HandMotion::kGripRamp);
+  for (TimePoint now = start; now < end; now = MonotonicClock::now()) {
+    const double grip = 1.0 - to_seconds(now - start) / HandMotion::kGripRamp;
     shm::HandGrip g = held;
     g.anchor_velocity = {};
     g.stiffness *= grip;
     g.damping *= grip;
     (void)set_hand(g);  // within the held grip's range
-    tick(monotonic_now_ns());
+    tick(MonotonicClock::now());
     std::this_thread::sleep_for(kPoll);
   }
   (void)set_hand({});
-  tick(monotonic_now_ns());
+  tick(MonotonicClock::now());
 }
 
 bool Operator::set_hand(const shm::HandGrip& hand) {
@@ -157,15 +156,15 @@ void Operator::settle_force() {
   // Bounded: the rate limit sets the time; 2 s more covers any scheduling delay.
   const auto deadline = hapticctrl::MonotonicClock::now() +
                         std::chrono::duration<double>(slew_.time_to_settle()) + 2s;
-  tick(monotonic_now_ns());
+  tick(MonotonicClock::now());
   while (!slew_.settled() && hapticctrl::MonotonicClock::now() < deadline) {
     std::this_thread::sleep_for(kPoll);
-    tick(monotonic_now_ns());
+    tick(MonotonicClock::now());
   }
 }
 
 ControllerStatus Operator::status() const {
-  return read_status(*segment_, monotonic_now_ns());
+  return read_status(*segment_, MonotonicClock::now());
 }
 
 bool Operator::controller_alive() const {

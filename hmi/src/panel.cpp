@@ -18,8 +18,8 @@
 namespace hapticctrl::hmi {
 namespace {
 
-constexpr int kKeyPollMs = 2;                    // force ramp ticks at up to 500 Hz
-constexpr std::int64_t kRedrawNs = 100'000'000;  // 10 Hz: a human rate
+constexpr int kKeyPollMs = 2;                                 // force ramp ticks at up to 500 Hz
+constexpr Duration kRedraw = std::chrono::milliseconds(100);  // 10 Hz: a human rate
 constexpr std::size_t kEventLines = 6;
 constexpr std::array<const char*, 6> kAxisNames{"fx", "fy", "fz", "tx", "ty", "tz"};
 constexpr std::array<const char*, 5> kCommandTypes{"none", "IMPEDANCE", "VIRTMECH", "ARTICULAR",
@@ -252,8 +252,8 @@ bool controller_available(const std::string& instance) {
 PanelEnd wait_after_ending(const Operator& op, const PanelView& view, bool offer_restart) {
   const std::string banner = ending_banner(op.status());
   const std::string& instance = op.segment().instance();
-  constexpr std::int64_t kLookEveryNs = 500'000'000;
-  std::int64_t next_look = monotonic_now_ns() + kLookEveryNs;
+  constexpr Duration kLookEvery = std::chrono::milliseconds(500);
+  TimePoint next_look = MonotonicClock::now() + kLookEvery;
   erase();
   badge(0, 0, banner.c_str(), true);
   line(2, "%s", "the motors are off; a new controller starts powered off");
@@ -274,8 +274,8 @@ PanelEnd wait_after_ending(const Operator& op, const PanelView& view, bool offer
     if (offer_restart && (key == 'R' || key == 'r')) {
       return PanelEnd::kRestartRequested;
     }
-    if (monotonic_now_ns() >= next_look) {
-      next_look += kLookEveryNs;
+    if (MonotonicClock::now() >= next_look) {
+      next_look += kLookEvery;
       if (controller_available(instance)) {
         return PanelEnd::kControllerReplaced;
       }
@@ -296,15 +296,15 @@ PanelEnd run_panel(Operator& op, bool offer_restart) {
   bool controller_gone = false;
   {
     CursesSession curses;
-    std::int64_t next_draw = 0;
+    TimePoint next_draw{};
     view.previous = op.status();
     while (keys.on_key(getch(), view)) {
-      const std::int64_t now = monotonic_now_ns();
+      const TimePoint now = MonotonicClock::now();
       op.tick(now);
       if (now < next_draw) {
         continue;
       }
-      next_draw = now + kRedrawNs;
+      next_draw = now + kRedraw;
       events.poll([&](const shm::Event& e) {
         view.events.push_back("cycle " + std::to_string(e.cycle) + ": " + shm::describe_event(e));
         if (view.events.size() > kEventLines) {

@@ -64,17 +64,17 @@ PlayResult play_sequence(Operator& op, const WrenchSequence& sequence, std::ostr
   // Paced by VP, which the core publishes with a wake-up every cycle (position is published
   // quietly, without one), right after position.
   const auto& vp = op.segment().region<shm::RegionId::kVp>();
-  const std::int64_t start = monotonic_now_ns();
-  const std::int64_t end = start + static_cast<std::int64_t>(sequence.duration() * 1e9);
+  const TimePoint start = MonotonicClock::now();
+  const TimePoint end = start + from_seconds(sequence.duration());
   std::uint64_t last_cycle = 0;
   // The last pass plays the sequence's last sample: t is held at the end once it is reached (a
   // pass that began just before the end once stopped the player at 0.79997 s of 0.8, CI
   // 2026-12-02).
   for (bool last = false; !last;) {
     (void)vp.wait_for_publish(vp.sequence_word(), std::chrono::milliseconds(20));
-    const std::int64_t now = monotonic_now_ns();
+    const TimePoint now = MonotonicClock::now();
     last = now >= end;
-    const double t = last ? sequence.duration() : static_cast<double>(now - start) / 1e9;
+    const double t = last ? sequence.duration() : to_seconds(now - start);
     const shm::Vector6 requested = sequence.at(t);
     (void)op.request_force(requested);  // validated at load: cannot be refused
     if (motion) {

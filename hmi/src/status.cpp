@@ -56,13 +56,13 @@ double ControllerStatus::client_age_ms() const noexcept {
   if (!client_connected() || !vpr_ok || vpr.session_id == 0) {
     return -1.0;
   }
-  return static_cast<double>(read_ns - vpr.received_time_ns) / 1e6;
+  return to_seconds(read_at - time_point_from_ns(vpr.received_time_ns)) * 1e3;
 }
 
-ControllerStatus read_status(const shm::Segment& segment, std::int64_t now_ns) {
+ControllerStatus read_status(const shm::Segment& segment, TimePoint now) {
   ControllerStatus s;
   s.instance = segment.instance();
-  s.read_ns = now_ns;
+  s.read_at = now;
   s.position_ok = segment.region<shm::RegionId::kPosition>().read(s.position).ok();
   s.vp_ok = segment.region<shm::RegionId::kVp>().read(s.vp).ok();
   s.telemetry_ok = segment.region<shm::RegionId::kTelemetry>().read(s.telemetry).ok();

@@ -59,6 +59,8 @@ void read_peer(const std::string& peer, shm::LinkStatsPayload& s) {
     s.peer_port = port <= 65535 ? static_cast<std::uint32_t>(port) : 0;
     s.peer_ipv4 = ntohl(a.s_addr);
   } catch (const std::exception&) {  // not a number: no peer
+    s.peer_port = 0;
+    s.peer_ipv4 = 0;
   }
 }
 

@@ -43,11 +43,6 @@ void on_signal(int /*sig*/) {
   g_stop.store(true);
 }
 
-std::int64_t now_ns() {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch())
-      .count();
-}
-
 std::int64_t thread_cpu_ns() {
   timespec t{};
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
@@ -55,9 +50,9 @@ std::int64_t thread_cpu_ns() {
 }
 
 /// After a stall, at most this much world time is run at once; the rest is dropped.
-constexpr std::int64_t kMaxCatchUpNs = 50'000'000;
+constexpr hapticctrl::Duration kMaxCatchUp = std::chrono::milliseconds(50);
 /// With no answer for this long the world pauses (the controller holds the handle meanwhile).
-constexpr std::int64_t kSilentAfterNs = 50'000'000;
+constexpr hapticctrl::Duration kSilentAfter = std::chrono::milliseconds(50);
 /// The first connection retries this long (a crashed client holds the session until the
 /// bridge's 3 s watchdog frees it); reconnections retry until the run's time is up.
 constexpr std::chrono::seconds kFirstConnectPatience{10};
@@ -67,7 +62,7 @@ class MujocoRun {
   explicit MujocoRun(const mj::MujocoOptions& o)
       : o_(o),
         world_(o.model_path, o.body, o.timestep_s),
-        steps_(static_cast<std::int64_t>(std::llround(world_.timestep() * 1e9)), kMaxCatchUpNs),
+        steps_(hapticctrl::Duration(std::llround(world_.timestep() * 1e9)), kMaxCatchUp),
         start_(Clock::now()) {
     if (!o.headless && isatty(STDIN_FILENO) != 0) {
       keyboard_.emplace();
@@ -168,7 +163,7 @@ class MujocoRun {
                    "client's power-on: waiting for the operator to power the arm on (the "
                    "panel's p, or hapticctrl-hmi power-on)\n");
     }
-    std::int64_t last_answer = now_ns();
+    hapticctrl::TimePoint last_answer = Clock::now();
     steps_.start(last_answer);
     if (!stepping_since_) {
       stepping_since_ = Clock::now();
@@ -184,16 +179,16 @@ class MujocoRun {
         quit_ = true;
         break;
       }
-      const auto wait = std::chrono::nanoseconds(
-          std::clamp<std::int64_t>(steps_.next_due_ns() - now_ns(), 0, kSilentAfterNs));
+      const auto wait =
+          std::clamp(steps_.next_due() - Clock::now(), hapticctrl::Duration::zero(), kSilentAfter);
       const bool answered = c_->wait_for_answer(s_.cycle, wait, s_);
       if (!c_->is_open() || s_.session_over()) {
         ended_ = s_.ending();
         break;
       }
-      const std::int64_t now = now_ns();
+      const hapticctrl::TimePoint now = Clock::now();
       last_answer = answered ? now : last_answer;
-      if (now - last_answer > kSilentAfterNs) {
+      if (now - last_answer > kSilentAfter) {
         steps_.pause(now);
         continue;
       }
@@ -238,11 +233,11 @@ class MujocoRun {
 
   /// The scene for the web view, at --world-rate.
   void publish_world_when_due() {
-    const std::int64_t now = now_ns();
+    const hapticctrl::TimePoint now = Clock::now();
     if (!world_out_ || !world_out_->due(now)) {
       return;
     }
-    const mj::WorldRun run{steps_.run(), steps_per_second(), now / 1000};
+    const mj::WorldRun run{steps_.run(), steps_per_second(), hapticctrl::to_ns(now) / 1000};
     (void)world_out_->publish(mj::to_world_message(
         world_, grasp_, std::span(contacts_out_.data(), contacts_count_), run));
   }

@@ -71,9 +71,12 @@ void LatencyHistogram::write_cyclictest_format(std::ostream& out) const {
   }
   const shm::LatencySummary s = summary();
   out << "# Total: " << samples_ << "\n";
-  out << "# Min Latencies: " << s.min_ns / kNsPerUs << "\n";
-  out << "# Avg Latencies: " << s.avg_ns / kNsPerUs << "\n";
-  out << "# Max Latencies: " << s.max_ns / kNsPerUs << "\n";
+  const auto us = [](std::int64_t ns) {  // cyclictest's unit
+    return std::chrono::duration_cast<std::chrono::microseconds>(Duration(ns)).count();
+  };
+  out << "# Min Latencies: " << us(s.min_ns) << "\n";
+  out << "# Avg Latencies: " << us(s.avg_ns) << "\n";
+  out << "# Max Latencies: " << us(s.max_ns) << "\n";
   out << "# Histogram Overflows: " << overflows_ << "\n";
 }
 

@@ -250,7 +250,7 @@ int run_core(const CoreConfig& config) {
   }
   segment.close();  // fail-safe step 5: release the regions
   if (config.json) {
-    std::cout << telemetry_json(final_figures) << std::endl;
+    std::cout << telemetry_json(final_figures) << '\n' << std::flush;
   }
   if (result.fail_safe) {
     std::cerr << "hapticctrl-core: FAIL-SAFE after cycle " << final_figures.cycle << ": "

@@ -169,7 +169,7 @@ void ServoTask::publish_surface(const ClientFrame& frame, shm::VpPayload& vp) co
   vp.surface_force = o.surface_force;
   vp.surface_hidden = o.surface_hidden * frame.speed_factor;
   vp.surface_withheld = o.surface_withheld;
-  vp.contact_age_ns = to_ns(o.contact_age);
+  vp.contact_age_ns = o.contact_age ? to_ns(*o.contact_age) : -1;  // the region's "none"
 }
 
 StepResult ServoTask::begin(std::uint64_t cycle, TimePoint now, Duration dt) noexcept {

@@ -259,7 +259,7 @@ void ServoLaw::start_outputs(const ServoInputs& in, const Vector6d& q,
   out.surface_depth = 0.0;
   out.surface_force = 0.0;
   out.surface_hidden = 0.0;
-  out.contact_age = Duration{-1};
+  out.contact_age.reset();
   out.surface_withheld = memory_.surface_withheld;
   set_limits(in.client, out);
 }

@@ -80,7 +80,7 @@ ServoLaw::Surface ServoLaw::reported_surface(const ServoInputs& in, const Client
     }
     ++best.fresh;
     const Duration age = in.now - contact.received;
-    best.age = best.age < Duration{0} ? age : std::min(best.age, age);
+    best.age = best.age ? std::min(*best.age, age) : age;
     const Vector3d normal =
         (to_base * Vector3d(contact.normal[0], contact.normal[1], contact.normal[2])).normalized();
     const Vector3d point =

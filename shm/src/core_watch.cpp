@@ -17,7 +17,8 @@ CoreWatch::Wake CoreWatch::wait() {
   }
   const SegmentHeader& header = segment_->header();
   last_cycle_ = header.heartbeat_cycle.load(std::memory_order_acquire);
-  age_at_loss_ns_ = monotonic_now_ns() - header.heartbeat_ns.load(std::memory_order_acquire);
+  age_at_loss_ = MonotonicClock::now() -
+                 time_point_from_ns(header.heartbeat_ns.load(std::memory_order_acquire));
   stop_reason_ = header.stop_reason.load(std::memory_order_acquire);
   if (stop_reason_ == static_cast<std::uint32_t>(StopReason::kNone)) {
     stop_reason_ = static_cast<std::uint32_t>(StopReason::kCoreLost);

@@ -10,6 +10,7 @@
 #include <array>
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 
 #include "hapticctrl/shm/error.hpp"
@@ -26,8 +27,14 @@ LockRecord read_lock_record(int fd) {
   const ssize_t got = pread(fd, text.data(), text.size() - 1, 0);
   LockRecord record;
   if (got > 0) {
-    unsigned long long generation = 0;
-    if (std::sscanf(text.data(), "%ld %llu", &record.pid, &generation) == 2) {
+    // "PID GENERATION": both whole numbers, or the record is not one (a torn or foreign file).
+    char* end = nullptr;
+    errno = 0;
+    const long pid = std::strtol(text.data(), &end, 10);
+    const char* rest = end;
+    const unsigned long long generation = std::strtoull(rest, &end, 10);
+    if (errno == 0 && rest != text.data() && end != rest && *rest == ' ') {
+      record.pid = pid;
       record.generation = generation;
     }
   }

@@ -34,7 +34,7 @@ RemoteCommands::RemoteCommands(const RemoteCommandSettings& settings, CtrlWriter
                                SeqlockCell<ForcePayload>* force) noexcept
     : settings_(settings), ctrl_(ctrl), force_(force), slew_(settings.force_limits) {}
 
-void RemoteCommands::command(CtrlCode code, std::int64_t now_ns) noexcept {
+void RemoteCommands::command(CtrlCode code, TimePoint now) noexcept {
   if (code == CtrlCode::kNone) {
     counters_.commands_invalid.fetch_add(1, std::memory_order_relaxed);
     return;
@@ -43,14 +43,14 @@ void RemoteCommands::command(CtrlCode code, std::int64_t now_ns) noexcept {
     counters_.commands_refused.fetch_add(1, std::memory_order_relaxed);
     return;
   }
-  if (ctrl_ == nullptr || ctrl_->send(code, 0, now_ns) != CtrlSendStatus::kQueued) {
+  if (ctrl_ == nullptr || ctrl_->send(code, 0, to_ns(now)) != CtrlSendStatus::kQueued) {
     counters_.commands_queue_full.fetch_add(1, std::memory_order_relaxed);
     return;
   }
   counters_.commands_applied.fetch_add(1, std::memory_order_relaxed);
 }
 
-void RemoteCommands::force(const Vector6& requested, std::int64_t now_ns) noexcept {
+void RemoteCommands::force(const Vector6& requested, TimePoint now) noexcept {
   if (!settings_.allow_remote_commands) {
     counters_.forces_refused.fetch_add(1, std::memory_order_relaxed);
     return;
@@ -59,22 +59,22 @@ void RemoteCommands::force(const Vector6& requested, std::int64_t now_ns) noexce
     counters_.forces_invalid.fetch_add(1, std::memory_order_relaxed);
     return;
   }
-  last_force_ns_ = now_ns;
+  last_force_ = now;
   force_active_ = true;
   counters_.forces_accepted.fetch_add(1, std::memory_order_relaxed);
 }
 
-void RemoteCommands::tick(std::int64_t now_ns) noexcept {
-  const double dt = ticked_ ? static_cast<double>(now_ns - last_tick_ns_) / 1e9 : 0.0;
-  last_tick_ns_ = now_ns;
+void RemoteCommands::tick(TimePoint now) noexcept {
+  const double dt = ticked_ ? to_seconds(now - last_tick_) : 0.0;
+  last_tick_ = now;
   ticked_ = true;
-  if (force_active_ && now_ns - last_force_ns_ > settings_.force_timeout_ns) {
+  if (force_active_ && now - last_force_ > settings_.force_timeout) {
     slew_.set_target({});  // the sender went quiet: let go, at the same bounded rate
     force_active_ = false;
     counters_.force_timeouts.fetch_add(1, std::memory_order_relaxed);
   }
   if (slew_.step(dt) && force_ != nullptr) {
-    force_->publish_quietly(ForcePayload{slew_.applied()}, now_ns);
+    force_->publish_quietly(ForcePayload{slew_.applied()}, to_ns(now));
   }
 }
 

@@ -9,20 +9,25 @@
 namespace hapticctrl::netem {
 namespace {
 
-constexpr TimeNs kMs = 1'000'000;
+using namespace std::chrono_literals;
+
+/// The moment `t` after the clock's origin.
+TimePoint at(Duration t) {
+  return TimePoint{t};
+}
 
 TEST(Impairment, DelaysEveryDatagramAndKeepsTheirOrder) {
   LinkModel m;
-  m.delay = 5 * kMs;
-  m.jitter = 2 * kMs;
+  m.delay = 5ms;
+  m.jitter = 2ms;
   Impairment link(m, 3);
-  TimeNs last = 0;
+  TimePoint last{};
   for (int i = 0; i < 1000; ++i) {
-    const TimeNs now = i * kMs / 4;  // 4 kHz: jitter would reorder
-    const Verdict v = link.on_datagram(now, now);
+    const Duration now = i * 250us;  // 4 kHz: jitter would reorder
+    const Verdict v = link.on_datagram(at(now), now);
     ASSERT_EQ(v.fate, Verdict::Fate::kDeliver);
-    EXPECT_GE(v.deliver_at, now + 3 * kMs);
-    EXPECT_LE(v.deliver_at, std::max(last, now + 7 * kMs));
+    EXPECT_GE(v.deliver_at, at(now + 3ms));
+    EXPECT_LE(v.deliver_at, std::max(last, at(now + 7ms)));
     EXPECT_GE(v.deliver_at, last) << "first in, first out";
     last = v.deliver_at;
   }
@@ -30,14 +35,14 @@ TEST(Impairment, DelaysEveryDatagramAndKeepsTheirOrder) {
 
 TEST(Impairment, ReorderingIsAllowedOnlyWhenAsked) {
   LinkModel m;
-  m.delay = 5 * kMs;
-  m.jitter = 2 * kMs;
+  m.delay = 5ms;
+  m.jitter = 2ms;
   m.reorder = true;
   Impairment link(m, 3);
   int reordered = 0;
-  TimeNs last = 0;
+  TimePoint last{};
   for (int i = 0; i < 1000; ++i) {
-    const Verdict v = link.on_datagram(i * kMs / 4, i * kMs / 4);
+    const Verdict v = link.on_datagram(at(i * 250us), i * 250us);
     reordered += v.deliver_at < last ? 1 : 0;
     last = v.deliver_at;
   }
@@ -55,7 +60,7 @@ TEST(Impairment, LosesTheAskedShareAndInBurstsWhenAsked) {
     bool previous_lost = false;
     constexpr int kN = 200'000;
     for (int i = 0; i < kN; ++i) {
-      const bool l = link.on_datagram(i, i).fate == Verdict::Fate::kLost;
+      const bool l = link.on_datagram(at(Duration(i)), Duration(i)).fate == Verdict::Fate::kLost;
       lost += l ? 1 : 0;
       runs += l && !previous_lost ? 1 : 0;
       previous_lost = l;
@@ -70,14 +75,14 @@ TEST(Impairment, BlackoutsDropEverythingScheduledOrSwitched) {
   LinkModel m;
   m.blackouts.push_back(LinkModel::parse_blackout("1:0.3"));
   Impairment link(m, 1);
-  EXPECT_EQ(link.on_datagram(0, 999 * kMs).fate, Verdict::Fate::kDeliver);
-  EXPECT_EQ(link.on_datagram(0, 1000 * kMs).fate, Verdict::Fate::kBlackout);
-  EXPECT_EQ(link.on_datagram(0, 1299 * kMs).fate, Verdict::Fate::kBlackout);
-  EXPECT_EQ(link.on_datagram(0, 1300 * kMs).fate, Verdict::Fate::kDeliver);
+  EXPECT_EQ(link.on_datagram(at(0ms), 999ms).fate, Verdict::Fate::kDeliver);
+  EXPECT_EQ(link.on_datagram(at(0ms), 1000ms).fate, Verdict::Fate::kBlackout);
+  EXPECT_EQ(link.on_datagram(at(0ms), 1299ms).fate, Verdict::Fate::kBlackout);
+  EXPECT_EQ(link.on_datagram(at(0ms), 1300ms).fate, Verdict::Fate::kDeliver);
   link.set_manual_blackout(true);
-  EXPECT_EQ(link.on_datagram(0, 5000 * kMs).fate, Verdict::Fate::kBlackout);
+  EXPECT_EQ(link.on_datagram(at(0ms), 5000ms).fate, Verdict::Fate::kBlackout);
   link.set_manual_blackout(false);
-  EXPECT_EQ(link.on_datagram(0, 5000 * kMs).fate, Verdict::Fate::kDeliver);
+  EXPECT_EQ(link.on_datagram(at(0ms), 5000ms).fate, Verdict::Fate::kDeliver);
 }
 
 TEST(Impairment, BadModelsAreRefusedWithTheirReason) {

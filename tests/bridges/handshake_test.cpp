@@ -12,6 +12,8 @@
 namespace hapticctrl::udp_bridge {
 namespace {
 
+using namespace std::chrono_literals;
+
 using Kind = HelloVerdict::Kind;
 using testing::HasSubstr;
 
@@ -37,12 +39,11 @@ TEST(Handshake, AHelloOpensASessionOnlyWithAControllerAndNoOtherSession) {
 
 TEST(Handshake, ASecondClientRetriesWhenTheSessionsWatchdogWouldExpire) {
   const SessionView busy{42, kFirst, 0, 0};
-  const HelloVerdict v = judge_hello(hello(), kSecond, {busy, true, 700 * kNsPerMs, 3000});
+  const HelloVerdict v = judge_hello(hello(), kSecond, {busy, true, 700ms, 3000});
   EXPECT_EQ(v.kind, Kind::kRefuse);
   EXPECT_EQ(v.code, HCP_REFUSE_BUSY);
   EXPECT_EQ(v.retry_ms, 2300U);
-  EXPECT_EQ(judge_hello(hello(), kSecond, {busy, true, 5000 * kNsPerMs, 3000}).retry_ms, 1U)
-      << "at least 1 ms";
+  EXPECT_EQ(judge_hello(hello(), kSecond, {busy, true, 5s, 3000}).retry_ms, 1U) << "at least 1 ms";
   EXPECT_EQ(judge_hello(hello(), kFirst, {busy, true}).kind, Kind::kWelcomeAgain)
       << "the session's own client: its WELCOME was lost";
 }

@@ -13,7 +13,7 @@
 namespace hapticctrl::lcm_bridge {
 namespace {
 
-constexpr std::int64_t kMs = 1'000'000;
+using namespace std::chrono_literals;
 using Command = hapticctrl_lcm::hmi_command_t;
 
 template <typename M>
@@ -61,13 +61,13 @@ TEST_F(HmiTest, WithoutRemoteCommandsOnlyTheEmergencyStopActs) {
            Command::POWER_ON, Command::POWER_OFF, Command::EMERGENCY_RESET, Command::STOP,
            Command::EMERGENCY_STOP}) {
     const auto b = command(c);
-    hmi.on_command(b.data(), b.size(), 0);
+    hmi.on_command(b.data(), b.size(), TimePoint{});
   }
   EXPECT_EQ(controller.drain(), std::vector<shm::CtrlCode>{shm::CtrlCode::kEmergencyStop});
   EXPECT_EQ(hmi.counters().commands_refused.load(), 4U);
   EXPECT_EQ(hmi.counters().commands_applied.load(), 1U);
   const auto f = force(5.0);
-  hmi.on_force(f.data(), f.size(), 0);
+  hmi.on_force(f.data(), f.size(), TimePoint{});
   EXPECT_EQ(hmi.counters().forces_refused.load(), 1U);
 }
 
@@ -77,7 +77,7 @@ TEST_F(HmiTest, RemoteCommandsReachCtrlInOrder) {
            Command::POWER_ON, Command::EMERGENCY_STOP, Command::EMERGENCY_RESET, Command::POWER_OFF,
            Command::STOP}) {
     const auto b = command(c);
-    hmi.on_command(b.data(), b.size(), 0);
+    hmi.on_command(b.data(), b.size(), TimePoint{});
   }
   EXPECT_EQ(controller.drain(),
             (std::vector<shm::CtrlCode>{shm::CtrlCode::kPowerOn, shm::CtrlCode::kEmergencyStop,
@@ -88,13 +88,13 @@ TEST_F(HmiTest, RemoteCommandsReachCtrlInOrder) {
 TEST_F(HmiTest, MalformedAndUnknownMessagesAreCountedAndIgnored) {
   HmiInput hmi = make(true);
   const std::vector<std::uint8_t> junk{1, 2, 3, 4, 5, 6, 7, 8, 9};
-  hmi.on_command(junk.data(), junk.size(), 0);
-  hmi.on_force(junk.data(), junk.size(), 0);
+  hmi.on_command(junk.data(), junk.size(), TimePoint{});
+  hmi.on_force(junk.data(), junk.size(), TimePoint{});
   auto truncated = command(Command::POWER_ON);
   truncated.resize(truncated.size() - 2);
-  hmi.on_command(truncated.data(), truncated.size(), 0);
+  hmi.on_command(truncated.data(), truncated.size(), TimePoint{});
   const auto unknown = command(42);
-  hmi.on_command(unknown.data(), unknown.size(), 0);
+  hmi.on_command(unknown.data(), unknown.size(), TimePoint{});
   EXPECT_EQ(hmi.counters().malformed.load(), 3U);
   EXPECT_EQ(hmi.counters().commands_invalid.load(), 1U);
   EXPECT_TRUE(controller.drain().empty());
@@ -109,11 +109,11 @@ TEST_F(HmiTest, StringLengthsThatLcmWouldMisreadAreMalformed) {
     for (std::size_t i = 0; i < 4; ++i) {
       bad[length_at + i] = static_cast<std::uint8_t>(length >> (24 - 8 * i));
     }
-    hmi.on_force(bad.data(), bad.size(), 0);
+    hmi.on_force(bad.data(), bad.size(), TimePoint{});
   }
   auto unterminated = command(Command::EMERGENCY_STOP);
   unterminated.back() = 'x';
-  hmi.on_command(unterminated.data(), unterminated.size(), 0);
+  hmi.on_command(unterminated.data(), unterminated.size(), TimePoint{});
   EXPECT_EQ(hmi.counters().malformed.load(), 6U);
   EXPECT_TRUE(controller.drain().empty());
   EXPECT_EQ(applied_force(), shm::Vector6{});
@@ -123,9 +123,9 @@ TEST_F(HmiTest, AForceMessageReachesTheForceRegionThroughTheSharedRule) {
   // The rule itself (limits, rate, decay) is shm::RemoteCommands' and tested there.
   HmiInput hmi = make(true);
   const auto f = force(2.0);
-  hmi.tick(0);
-  hmi.on_force(f.data(), f.size(), 0);
-  hmi.tick(100 * kMs);
+  hmi.tick(TimePoint{});
+  hmi.on_force(f.data(), f.size(), TimePoint{});
+  hmi.tick(TimePoint{100ms});
   EXPECT_NEAR(applied_force()[0], 2.0, 1e-9);
   EXPECT_EQ(hmi.counters().forces_accepted.load(), 1U);
 }

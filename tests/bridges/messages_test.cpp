@@ -34,7 +34,7 @@ TEST(Messages, CouplingCarriesLinkQuality) {
   vp.channel_energy_in = 0.25;
   vp.channel_energy_out = 1.5;
   vpr.client_energy_in = 1.75;
-  const auto m = to_coupling(vp, vpr, t, 3'500'000, 0);
+  const auto m = to_coupling(vp, vpr, t, TimePoint{std::chrono::microseconds(3500)}, 0);
   EXPECT_DOUBLE_EQ(m.sample_age_ms, 7.5);
   EXPECT_DOUBLE_EQ(m.loop_delay_ms, 12.0);
   EXPECT_DOUBLE_EQ(m.link_delay_ms, 5.0);
@@ -63,7 +63,7 @@ TEST(Messages, CouplingCarriesTheSurfaceRenderedOnTheHandle) {
   vp.surface_hidden = 0.002;
   vp.surface_withheld = 0.004;
   vp.contact_age_ns = 3'000'000;
-  auto m = to_coupling(vp, shm::VprPayload{}, shm::TelemetryPayload{}, 0, 0);
+  auto m = to_coupling(vp, shm::VprPayload{}, shm::TelemetryPayload{}, TimePoint{}, 0);
   EXPECT_EQ(m.contacts, 2);
   EXPECT_EQ(m.surface_point[0], 0.5);
   EXPECT_EQ(m.surface_normal[0], -1.0);
@@ -73,7 +73,7 @@ TEST(Messages, CouplingCarriesTheSurfaceRenderedOnTheHandle) {
   EXPECT_EQ(m.surface_withheld, 0.004);
   EXPECT_DOUBLE_EQ(m.contact_age_ms, 3.0);
   vp.contact_age_ns = -1;
-  m = to_coupling(vp, shm::VprPayload{}, shm::TelemetryPayload{}, 0, 0);
+  m = to_coupling(vp, shm::VprPayload{}, shm::TelemetryPayload{}, TimePoint{}, 0);
   EXPECT_EQ(m.contact_age_ms, -1.0) << "no contact in force";
 }
 
@@ -87,7 +87,7 @@ TEST(Messages, CouplingCarriesEveryFieldOfVpAndVprButTheseListed) {
   const shm::VprPayload vpr;
   const shm::TelemetryPayload t;
   const auto vp_uncarried = test::uncarried<shm::VpPayload>(
-      [&](const shm::VpPayload& vp) { return encoded(to_coupling(vp, vpr, t, 0, 0)); });
+      [&](const shm::VpPayload& vp) { return encoded(to_coupling(vp, vpr, t, TimePoint{}, 0)); });
   EXPECT_THAT(vp_uncarried,
               testing::UnorderedElementsAreArray(std::vector<std::string>{
                   // the core's echo of the client's own figures: the client's statistics
@@ -109,7 +109,7 @@ TEST(Messages, CouplingCarriesEveryFieldOfVpAndVprButTheseListed) {
   const shm::VpPayload vp;
   const auto carried = test::carried<shm::VprPayload>([&](shm::VprPayload r) {
     r.session_id = r.session_id != 0 ? r.session_id : 1;
-    return encoded(to_coupling(vp, r, t, 0, 0));
+    return encoded(to_coupling(vp, r, t, TimePoint{}, 0));
   });
   EXPECT_THAT(carried,
               testing::UnorderedElementsAreArray(std::vector<std::string>{
@@ -127,7 +127,8 @@ TEST(Messages, EventsAreDescribed) {
   e.kind = shm::EventKind::kCoreState;
   e.code = static_cast<std::uint32_t>(shm::CoreState::kFailSafe);
   e.value = static_cast<std::uint64_t>(shm::StopReason::kConsecutiveMisses);
-  const auto m = to_event(e, 2, e.time_ns + 3'000'000, 1'700'000'000'000'000);
+  const auto m = to_event(e, 2, time_point_from_ns(e.time_ns) + std::chrono::milliseconds(3),
+                          1'700'000'000'000'000);
   EXPECT_EQ(m.utime, 1'700'000'000'000'000 - 3'000) << "when the core recorded it, wall clock";
   EXPECT_EQ(m.kind, "core_state");
   EXPECT_EQ(m.text, "fail-safe: 5 consecutive deadline misses");

@@ -12,6 +12,7 @@ namespace {
 using protocol::Endpoint;
 using protocol::FrameBuffer;
 using test::SessionTest;
+using namespace std::chrono_literals;
 
 TEST_F(SessionTest, AnswersGoToTheSessionWithTheNegotiatedFeatures) {
   shm::VpPayload vp;
@@ -20,10 +21,10 @@ TEST_F(SessionTest, AnswersGoToTheSessionWithTheNegotiatedFeatures) {
   vp.joint_position[0] = 0.5;
   FrameBuffer out{};
   Endpoint to;
-  EXPECT_EQ(session.answer(vp, 0, out, to), 0U);  // no session, no answer
+  EXPECT_EQ(session.answer(vp, TimePoint{}, out, to), 0U);  // no session, no answer
   client.hello(protocol::kVersion, HCP_FEATURE_LINK_STATS);
   client.send_object(0.1F);
-  const std::size_t n = session.answer(vp, 0, out, to);
+  const std::size_t n = session.answer(vp, TimePoint{}, out, to);
   ASSERT_GT(n, 0U);
   EXPECT_EQ(to, client.from);
   hcp_frame a;
@@ -44,8 +45,8 @@ TEST_F(SessionTest, AnswersAndLinkStatsCarryTheLinkAsTheBridgeMeasuresIt) {
   FrameBuffer out{};
   Endpoint to;
   ASSERT_GT(session.answer(vp, client.now, out, to), 0U);  // answer 500 leaves at `now`
-  client.now += 4 * test::kMs;  // the state computed from it; the client held it 1 ms
-  client.feed(client.bytes(client.timed_object(500, 1 * test::kMs, 0)));
+  client.now += 4ms;  // the state computed from it; the client held it 1 ms
+  client.feed(client.bytes(client.timed_object(500, 1ms, 0)));
   const shm::VprPayload vpr = controller.vpr_now();
   ASSERT_GT(vpr.link_delay_ns, 0);
 
@@ -67,8 +68,8 @@ TEST_F(SessionTest, AnswersAndLinkStatsCarryTheLinkAsTheBridgeMeasuresIt) {
   EXPECT_EQ(stats.link_loss_ppm, vpr.link_loss_ppm);
 
   // A new session starts from no link figures.
-  client.feed(
-      client.bytes(protocol::make_frame(HCP_BYE, client.token, ++client.param_seq, client.now)));
+  client.feed(client.bytes(
+      protocol::make_frame(HCP_BYE, client.token, ++client.param_seq, to_ns(client.now))));
   client.hello(protocol::kVersion, HCP_FEATURE_LINK_STATS | HCP_FEATURE_TIMING);
   session.fill_stats(stats);
   EXPECT_EQ(stats.link_delay_ns, 0);

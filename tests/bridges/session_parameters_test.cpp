@@ -14,7 +14,7 @@ namespace hapticctrl::udp_bridge {
 namespace {
 
 using protocol::FrameBuffer;
-using test::kMs;
+using namespace std::chrono_literals;
 using test::SessionTest;
 
 TEST_F(SessionTest, EveryParameterReachesVprOrCtrl) {
@@ -62,7 +62,7 @@ TEST_F(SessionTest, EveryParameterReachesVprOrCtrl) {
   f.body.hcp_body_u.param.hcp_param_u.watchdog_ms = 300;
   apply(f);
   test::expect_reference_parameters(controller.vpr_now());
-  EXPECT_FALSE(session.check_watchdog(client.now + 250 * kMs));
+  EXPECT_FALSE(session.check_watchdog(client.now + 250ms));
   // 1.2: the frames in single precision land in the same fields.
   f = client.param(HCP_P_BASE_FRAME_SP);
   f.body.hcp_body_u.param.hcp_param_u.base_frame_sp[0] = 0.25F;

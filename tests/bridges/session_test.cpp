@@ -27,7 +27,7 @@ using shm::LinkDrop;
 
 using test::Client;
 using test::Controller;
-using test::kMs;
+using namespace std::chrono_literals;
 using test::SessionTest;
 
 TEST_F(SessionTest, HelloOpensASessionWithTheBridgesTokenAndPublishesIt) {
@@ -67,7 +67,7 @@ TEST_F(SessionTest, AHelloWithOutOfRangeValuesIsRefusedAsABadRequest) {
 }
 
 TEST_F(SessionTest, HelloWithoutAControllerIsRefused) {
-  session.set_controller(nullptr, 0);
+  session.set_controller(nullptr, TimePoint{});
   client.hello();
   ASSERT_EQ(client.reply.body.type, HCP_REFUSE);
   EXPECT_EQ(client.reply.body.hcp_body_u.refuse.code, HCP_REFUSE_NO_CONTROLLER);
@@ -77,14 +77,14 @@ TEST_F(SessionTest, ASecondClientIsBusyUntilTheFirstFallsSilent) {
   client.hello();
   Client other{&session};
   other.from = Endpoint::resolve("127.0.0.1", 40001);
-  other.now = client.now + 30 * kMs;
+  other.now = client.now + 30ms;
   other.hello();
   ASSERT_EQ(other.reply.body.type, HCP_REFUSE);
   EXPECT_EQ(other.reply.body.hcp_body_u.refuse.code, HCP_REFUSE_BUSY);
   EXPECT_EQ(other.reply.body.hcp_body_u.refuse.retry_after_ms, 70U);
   EXPECT_EQ(session.counters().refused_busy.load(), 1U);
-  EXPECT_TRUE(session.check_watchdog(client.now + 101 * kMs));
-  other.now = client.now + 102 * kMs;
+  EXPECT_TRUE(session.check_watchdog(client.now + 101ms));
+  other.now = client.now + 102ms;
   other.hello();
   EXPECT_EQ(other.reply.body.type, HCP_WELCOME);
   EXPECT_EQ(controller.vpr_now().session_id, 2U);
@@ -118,7 +118,7 @@ TEST_F(SessionTest, ANewerClientThatStillSpeaksOursIsAcceptedWithTheCommonFeatur
   older.from = Endpoint::resolve("127.0.0.1", 40002);
   FrameBuffer notice{};
   Endpoint to;
-  ASSERT_GT(session.close(0, "test", notice, to), 0U);
+  ASSERT_GT(session.close(TimePoint{}, "test", notice, to), 0U);
   older.hello(protocol::make_version(1, 0), HCP_FEATURE_JOINT_STATE);
   EXPECT_EQ(older.reply.body.hcp_body_u.welcome.features, HCP_FEATURE_JOINT_STATE);
 }
@@ -136,11 +136,11 @@ TEST_F(SessionTest, ControlFramesReachVprAndKeepalivesOnlyFeedTheWatchdog) {
   EXPECT_DOUBLE_EQ(v.impedance_wrench[2], -3.0);
   EXPECT_EQ(v.client_time_ns, 5);
   const std::uint64_t publishes = controller.vpr_publishes();
-  client.now += 90 * kMs;
+  client.now += 90ms;
   client.feed(client.bytes(
-      protocol::make_frame(HCP_KEEPALIVE, client.token, ++client.control_seq, client.now)));
+      protocol::make_frame(HCP_KEEPALIVE, client.token, ++client.control_seq, to_ns(client.now))));
   EXPECT_EQ(controller.vpr_publishes(), publishes);  // the core keeps judging data freshness
-  EXPECT_FALSE(session.check_watchdog(client.now + 90 * kMs));
+  EXPECT_FALSE(session.check_watchdog(client.now + 90ms));
   EXPECT_EQ(session.counters().control_accepted.load(), 2U);
 }
 
@@ -196,7 +196,7 @@ TEST_F(SessionTest, BadInputsAreDroppedCountedAndLeaveTheSessionUnharmed) {
   session.on_oversized();
   EXPECT_EQ(controller.vpr_publishes(), publishes);  // nothing bad reached the controller
 
-  client.now += 50 * kMs;
+  client.now += 50ms;
   client.control_seq = 5;
   client.send_object(0.3F);  // the session still works
   EXPECT_FLOAT_EQ(static_cast<float>(controller.vpr_now().object_pose[0]), 0.3F);
@@ -209,8 +209,8 @@ TEST_F(SessionTest, BadInputsAreDroppedCountedAndLeaveTheSessionUnharmed) {
 TEST_F(SessionTest, TheWatchdogClosesASilentSessionAndTheCoreSeesNoSession) {
   client.hello();
   client.send_object(0.1F);
-  EXPECT_FALSE(session.check_watchdog(client.now + 100 * kMs));
-  EXPECT_TRUE(session.check_watchdog(client.now + 101 * kMs));
+  EXPECT_FALSE(session.check_watchdog(client.now + 100ms));
+  EXPECT_TRUE(session.check_watchdog(client.now + 101ms));
   EXPECT_EQ(controller.vpr_now().session_id, 0U);
   EXPECT_EQ(session.counters().watchdog_expiries.load(), 1U);
   client.send_object(0.2F);  // the old token is worthless now
@@ -219,7 +219,8 @@ TEST_F(SessionTest, TheWatchdogClosesASilentSessionAndTheCoreSeesNoSession) {
 
 TEST_F(SessionTest, ByeIsAcknowledgedAndEndsTheSession) {
   client.hello();
-  hcp_frame bye = protocol::make_frame(HCP_BYE, client.token, ++client.param_seq, client.now);
+  hcp_frame bye =
+      protocol::make_frame(HCP_BYE, client.token, ++client.param_seq, to_ns(client.now));
   client.feed(client.bytes(bye));
   ASSERT_EQ(client.reply.body.type, HCP_ACK);
   EXPECT_EQ(client.reply.header.token, client.token);
@@ -251,21 +252,21 @@ TEST_F(SessionTest, ALocalCouplingSessionGetsAnswersCoupledAndSendsTimedWrenches
   EXPECT_EQ(l.contacts, 1U);
 
   // An IMPEDANCE wrench with its echo and energy: a new sample, dated like an object state.
-  client.now += 4 * kMs;
+  client.now += 4ms;
   hcp_frame w = protocol::make_frame(HCP_CONTROL_WRENCH_TIMED, client.token, ++client.control_seq,
-                                     client.now);
+                                     to_ns(client.now));
   w.body.hcp_body_u.wrench_timed.wrench[0] = -8.0F;
-  w.body.hcp_body_u.wrench_timed.answer_echo = protocol::pack_answer_echo(700, 1 * kMs, true);
+  w.body.hcp_body_u.wrench_timed.answer_echo = protocol::pack_answer_echo(700, to_ns(1ms), true);
   w.body.hcp_body_u.wrench_timed.energy_in = 1000U;
   client.feed(client.bytes(w));
   const shm::VprPayload after_wrench = controller.vpr_now();
   EXPECT_EQ(after_wrench.impedance_wrench[0], -8.0);
   EXPECT_EQ(after_wrench.echo_cycle, 700U);
-  EXPECT_EQ(after_wrench.sample_time_ns, client.now - 3 * kMs / 2);
+  EXPECT_EQ(after_wrench.sample_time_ns, to_ns(client.now - 1500us));
 
   // A contact: its slot and the count, the object's pose with it; the sample stays the same.
-  hcp_frame c =
-      protocol::make_frame(HCP_CONTROL_CONTACT, client.token, ++client.control_seq, client.now);
+  hcp_frame c = protocol::make_frame(HCP_CONTROL_CONTACT, client.token, ++client.control_seq,
+                                     to_ns(client.now));
   c.body.hcp_body_u.contact.slots = protocol::pack_contact_slots(1, 2);
   hcp_contact& k = c.body.hcp_body_u.contact.contact;
   k.point[0] = 0.6F;
@@ -282,11 +283,11 @@ TEST_F(SessionTest, ALocalCouplingSessionGetsAnswersCoupledAndSendsTimedWrenches
   EXPECT_EQ(after_contact.contact_frames, after_wrench.contact_frames + 1);
   EXPECT_EQ(after_contact.contacts[1].stiffness, 1500.0);
   EXPECT_NEAR(after_contact.contacts[1].distance, -0.001, 1e-9);
-  EXPECT_EQ(after_contact.contacts[1].received_time_ns, client.now);
+  EXPECT_EQ(after_contact.contacts[1].received_time_ns, to_ns(client.now));
   EXPECT_EQ(after_contact.contacts[0].stiffness, 0.0) << "slot 0 not sent yet";
   // Count 0 clears every slot.
-  hcp_frame clear =
-      protocol::make_frame(HCP_CONTROL_CONTACT, client.token, ++client.control_seq, client.now);
+  hcp_frame clear = protocol::make_frame(HCP_CONTROL_CONTACT, client.token, ++client.control_seq,
+                                         to_ns(client.now));
   clear.body.hcp_body_u.contact.slots = protocol::pack_contact_slots(0, 0);
   client.feed(client.bytes(clear));
   EXPECT_EQ(controller.vpr_now().contact_count, 0U);
@@ -296,10 +297,10 @@ TEST_F(SessionTest, ALocalCouplingSessionGetsAnswersCoupledAndSendsTimedWrenches
 TEST_F(SessionTest, TimedWrenchesAndContactsFromASessionWithoutLocalCouplingAreDropped) {
   client.hello(protocol::kVersion, HCP_FEATURE_TIMING);
   hcp_frame w = protocol::make_frame(HCP_CONTROL_WRENCH_TIMED, client.token, ++client.control_seq,
-                                     client.now);
+                                     to_ns(client.now));
   client.feed(client.bytes(w));
-  hcp_frame c =
-      protocol::make_frame(HCP_CONTROL_CONTACT, client.token, ++client.control_seq, client.now);
+  hcp_frame c = protocol::make_frame(HCP_CONTROL_CONTACT, client.token, ++client.control_seq,
+                                     to_ns(client.now));
   client.feed(client.bytes(c));
   EXPECT_EQ(session.counters().dropped_for(LinkDrop::kToken), 2U);
   EXPECT_EQ(controller.vpr_now().flags & shm::vpr_flags::kLocalCoupling, 0U);
@@ -327,7 +328,7 @@ TEST_F(SessionTest, LocalCouplingWithoutTimingIsNotGranted) {
 
 TEST_F(SessionTest, TimedObjectsFromASessionWithoutTimingAreDropped) {
   client.hello(protocol::kVersion, HCP_FEATURE_LINK_STATS);
-  client.feed(client.bytes(client.timed_object(1, 0, 0)));
+  client.feed(client.bytes(client.timed_object(1, 0ns, 0)));
   EXPECT_EQ(session.counters().dropped_for(LinkDrop::kToken), 1U);
   EXPECT_EQ(session.counters().control_accepted.load(), 0U);
 }
@@ -335,7 +336,7 @@ TEST_F(SessionTest, TimedObjectsFromASessionWithoutTimingAreDropped) {
 TEST_F(SessionTest, ClosingTellsTheClientWhyWithItsToken) {
   FrameBuffer notice{};
   Endpoint to;
-  EXPECT_EQ(session.close(0, "the controller stopped", notice, to), 0U);  // no session
+  EXPECT_EQ(session.close(TimePoint{}, "the controller stopped", notice, to), 0U);  // no session
   client.hello();
   const std::size_t n = session.close(client.now, "the controller stopped", notice, to);
   ASSERT_GT(n, 0U);
@@ -353,7 +354,7 @@ TEST(SessionSecurity, ASourceOffTheAllowListIsDroppedUndecodedAndCounted) {
   test::InMemoryController controller;
   Session session({100, kMaxWatchdogMs, ClientAllowList({Ipv4Network::parse("127.0.0.2")}), {}},
                   [] { return std::uint64_t{7}; });
-  session.set_controller(&controller.ports, 0);
+  session.set_controller(&controller.ports, TimePoint{});
   Client stranger{&session};  // 127.0.0.1
   stranger.hello();
   EXPECT_FALSE(stranger.replied);
@@ -368,7 +369,7 @@ TEST(SessionSecurity, ASourceOffTheAllowListIsDroppedUndecodedAndCounted) {
 TEST(SessionSecurity, AHandshakeFloodIsAnsweredOnlyAtItsRate) {
   test::InMemoryController controller;
   Session session({100, kMaxWatchdogMs, {}, {10.0, 4.0}}, [] { return std::uint64_t{7}; });
-  session.set_controller(&controller.ports, 0);
+  session.set_controller(&controller.ports, TimePoint{});
   Client flood{&session};
   int answered = 0;
   for (int i = 0; i < 100; ++i) {
@@ -383,14 +384,14 @@ TEST(SessionSecurity, AClientCannotHoldAnIdleSessionBeyondTheDefaultNorAskForMor
   // H3: one HELLO asking for a 60 s watchdog held the session for 60 s.
   test::InMemoryController controller;
   Session session({100, 500, {}, {}}, [] { return std::uint64_t{7}; });
-  session.set_controller(&controller.ports, 0);
+  session.set_controller(&controller.ports, TimePoint{});
   Client greedy{&session};
   greedy.asked_watchdog_ms = 60'000;
   greedy.hello();
   ASSERT_EQ(greedy.reply.body.type, HCP_WELCOME);
   EXPECT_EQ(greedy.reply.body.hcp_body_u.welcome.watchdog_ms, 500U) << "capped";
-  EXPECT_FALSE(session.check_watchdog(greedy.now + 100 * kMs));
-  EXPECT_TRUE(session.check_watchdog(greedy.now + 101 * kMs)) << "idle: the default holds";
+  EXPECT_FALSE(session.check_watchdog(greedy.now + 100ms));
+  EXPECT_TRUE(session.check_watchdog(greedy.now + 101ms)) << "idle: the default holds";
 }
 
 }  // namespace

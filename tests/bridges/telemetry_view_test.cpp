@@ -12,7 +12,12 @@ namespace hapticctrl::web_bridge {
 namespace {
 
 using Json = nlohmann::json;
-constexpr std::int64_t kMs = 1'000'000;
+using namespace std::chrono_literals;
+
+/// The moment `t` after the clock's origin.
+TimePoint at(Duration t) {
+  return TimePoint{t};
+}
 
 hapticctrl_lcm::cycle_stats_t stats_at(std::int64_t cycle, std::int64_t misses) {
   hapticctrl_lcm::cycle_stats_t s{};
@@ -42,8 +47,8 @@ TEST(TelemetryView, FrameCarriesTheLatestArmStateAndItsAge) {
   arm.joint_position[1] = -0.6;
   arm.handle_pose[6] = 1.0;
   arm.rendered_wrench[2] = -3.5;
-  view.on_arm_state(arm, 1000 * kMs);
-  const Json f = Json::parse(view.next_frame(1010 * kMs));
+  view.on_arm_state(arm, at(1000ms));
+  const Json f = Json::parse(view.next_frame(at(1010ms)));
   EXPECT_EQ(f["type"], "state");
   EXPECT_EQ(f["arm"]["cycle"], 42);
   EXPECT_EQ(f["arm"]["joint_position"][1], -0.6);
@@ -55,23 +60,23 @@ TEST(TelemetryView, FrameCarriesTheLatestArmStateAndItsAge) {
 
 TEST(TelemetryView, AControllerWithoutArmStateForHalfASecondIsSilent) {
   TelemetryView view;
-  EXPECT_TRUE(Json::parse(view.next_frame(0))["controller_silent"].get<bool>());
-  view.on_arm_state({}, 100 * kMs);
-  EXPECT_FALSE(Json::parse(view.next_frame(599 * kMs))["controller_silent"].get<bool>());
-  EXPECT_TRUE(Json::parse(view.next_frame(600 * kMs))["controller_silent"].get<bool>());
+  EXPECT_TRUE(Json::parse(view.next_frame(TimePoint{}))["controller_silent"].get<bool>());
+  view.on_arm_state({}, at(100ms));
+  EXPECT_FALSE(Json::parse(view.next_frame(at(599ms)))["controller_silent"].get<bool>());
+  EXPECT_TRUE(Json::parse(view.next_frame(at(600ms)))["controller_silent"].get<bool>());
 }
 
 TEST(TelemetryView, StatisticsAndEventsGoOutOnceEach) {
   TelemetryView view;
-  view.on_cycle_stats(stats_at(1000, 0), 0);
-  view.on_cycle_stats(stats_at(1100, 2), 100 * kMs);
+  view.on_cycle_stats(stats_at(1000, 0), at(0ms));
+  view.on_cycle_stats(stats_at(1100, 2), at(100ms));
   hapticctrl_lcm::event_t e{};
   e.utime = 1'700'000'000'123'456;  // when the core recorded it: the page's banner says so
   e.index = 3;
   e.kind = "power";
   e.text = "power on";
-  view.on_event(e, 100 * kMs);
-  const Json first = Json::parse(view.next_frame(110 * kMs));
+  view.on_event(e, at(100ms));
+  const Json first = Json::parse(view.next_frame(at(110ms)));
   ASSERT_TRUE(first.contains("stats"));
   EXPECT_EQ(first["stats"]["core_state_name"], "running");
   EXPECT_EQ(first["stats"]["interval"]["cycles"], 100);
@@ -80,7 +85,7 @@ TEST(TelemetryView, StatisticsAndEventsGoOutOnceEach) {
   ASSERT_EQ(first["events"].size(), 1U);
   EXPECT_EQ(first["events"][0]["text"], "power on");
   EXPECT_EQ(first["events"][0]["utime"], 1'700'000'000'123'456);
-  const Json second = Json::parse(view.next_frame(120 * kMs));
+  const Json second = Json::parse(view.next_frame(at(120ms)));
   EXPECT_FALSE(second.contains("stats"));
   EXPECT_TRUE(second["events"].empty());
   const Json history = Json::parse(view.history_frame());
@@ -92,9 +97,9 @@ TEST(TelemetryView, KeepsTheLastEventsOnly) {
   for (int i = 1; i <= 5; ++i) {
     hapticctrl_lcm::event_t e{};
     e.index = i;
-    view.on_event(e, 0);
+    view.on_event(e, TimePoint{});
   }
-  const Json f = Json::parse(view.next_frame(0));
+  const Json f = Json::parse(view.next_frame(TimePoint{}));
   ASSERT_EQ(f["events"].size(), 3U);
   EXPECT_EQ(f["events"][0]["index"], 3);
   EXPECT_EQ(f["events"][2]["index"], 5);
@@ -104,8 +109,8 @@ TEST(TelemetryView, InvalidUtf8FromTheBusIsReplacedNotThrown) {
   TelemetryView view;
   hapticctrl_lcm::event_t e{};
   e.text = "bad \xff\xfe bytes";
-  view.on_event(e, 0);
-  EXPECT_TRUE(Json::accept(view.next_frame(0)));
+  view.on_event(e, TimePoint{});
+  EXPECT_TRUE(Json::accept(view.next_frame(TimePoint{})));
 }
 
 TEST(StatsInterval, CountsTheDifferenceAndTheWorstBucket) {
@@ -176,8 +181,8 @@ TEST(TelemetryView, AWorldGoesOutWithItsGeomsAndContactsUpToItsCounts) {
   w.contact_count = 1;
   w.contacts[0].normal[2] = 1.0;
   w.contacts[0].distance = -0.002;
-  view.on_world(w, 10 * kMs);
-  const Json f = Json::parse(view.next_frame(25 * kMs));
+  view.on_world(w, at(10ms));
+  const Json f = Json::parse(view.next_frame(at(25ms)));
   EXPECT_DOUBLE_EQ(f["age_ms"]["world"].get<double>(), 15.0);
   const Json& world = f["world"];
   EXPECT_EQ(world["steps"], 12);
@@ -201,8 +206,8 @@ TEST(WorldCounts, CountsBeyondTheArraysAreRefusedAndNotShown) {
     w.contact_count = contacts;
     EXPECT_FALSE(world_counts_sound(w)) << geoms << " " << total << " " << contacts;
     TelemetryView view;
-    view.on_world(w, 0);
-    EXPECT_TRUE(Json::parse(view.next_frame(0))["world"].is_null());
+    view.on_world(w, TimePoint{});
+    EXPECT_TRUE(Json::parse(view.next_frame(TimePoint{}))["world"].is_null());
   }
   w.geom_count = w.geoms_total = 128;
   w.contact_count = 8;

@@ -17,7 +17,7 @@ namespace {
 using namespace std::chrono_literals;
 
 using test::answer;
-using test::kMs;
+using test::at;
 using test::kToken;
 using test::open_session;
 using test::options;
@@ -49,41 +49,41 @@ hcp_param watchdog_param(std::uint32_t ms) {
 
 TEST(ClientSession, HelloIsDueAtOnceThenEveryTwoRetransmitPeriods) {
   ClientSession s(options(), "127.0.0.1:5125");
-  const auto first = s.hello_due(0);
+  const auto first = s.hello_due(at(0ms));
   ASSERT_TRUE(first.has_value());
   EXPECT_EQ(first->body.type, HCP_HELLO);
   EXPECT_EQ(first->header.protocol, protocol::kVersion);
   EXPECT_EQ(first->body.hcp_body_u.hello.features, protocol::kAllFeatures);
-  EXPECT_FALSE(s.hello_due(39 * kMs).has_value());
-  const auto second = s.hello_due(40 * kMs);
+  EXPECT_FALSE(s.hello_due(at(39ms)).has_value());
+  const auto second = s.hello_due(at(40ms));
   ASSERT_TRUE(second.has_value());
   EXPECT_EQ(second->header.sequence, first->header.sequence + 1);
 }
 
 TEST(ClientSession, AWelcomeOpensTheSessionOnTheControllersTerms) {
   ClientSession s(options(), "127.0.0.1:5125");
-  (void)s.hello_due(0);
-  const HandshakeStep step = s.on_handshake_frame(welcome(), 5 * kMs);
+  (void)s.hello_due(at(0ms));
+  const HandshakeStep step = s.on_handshake_frame(welcome(), at(5ms));
   EXPECT_TRUE(step.welcomed);
   EXPECT_FALSE(step.reply.has_value());
   EXPECT_FALSE(step.fail.has_value());
   EXPECT_TRUE(s.is_open());
   EXPECT_EQ(s.features(), protocol::kAllFeatures);
   EXPECT_EQ(s.watchdog_ms(), 400U);
-  EXPECT_EQ(s.controller_period_ns(), kMs);
+  EXPECT_EQ(s.controller_period(), 1ms);
   EXPECT_EQ(s.controller_version(), protocol::kVersion);
-  EXPECT_FALSE(s.hello_due(100 * kMs).has_value()) << "no HELLO once open";
+  EXPECT_FALSE(s.hello_due(at(100ms)).has_value()) << "no HELLO once open";
 }
 
 TEST(ClientSession, ABusyControllerIsAskedAgainAfterItsRetryTimeAndTheTimeoutSaysWhy) {
   ClientSession s(options(), "127.0.0.1:5125");
-  (void)s.hello_due(0);
+  (void)s.hello_due(at(0ms));
   const HandshakeStep step =
-      s.on_handshake_frame(refusal(HCP_REFUSE_BUSY, 100, "another client holds the arm"), kMs);
+      s.on_handshake_frame(refusal(HCP_REFUSE_BUSY, 100, "another client holds the arm"), at(1ms));
   EXPECT_FALSE(step.welcomed);
   EXPECT_FALSE(step.fail.has_value()) << "busy is worth asking again";
-  EXPECT_FALSE(s.hello_due(100 * kMs).has_value());
-  EXPECT_TRUE(s.hello_due(101 * kMs).has_value());
+  EXPECT_FALSE(s.hello_due(at(100ms)).has_value());
+  EXPECT_TRUE(s.hello_due(at(101ms)).has_value());
   const ClientError e = s.handshake_timeout();
   EXPECT_EQ(e.code(), ErrorCode::kBusy);
   EXPECT_THAT(e.what(), testing::HasSubstr("another client holds the arm"));
@@ -91,8 +91,9 @@ TEST(ClientSession, ABusyControllerIsAskedAgainAfterItsRetryTimeAndTheTimeoutSay
 
 TEST(ClientSession, AVersionRefusalFailsAtOnceNamingBothVersions) {
   ClientSession s(options(), "127.0.0.1:5125");
-  (void)s.hello_due(0);
-  const HandshakeStep step = s.on_handshake_frame(refusal(HCP_REFUSE_VERSION, 0, "too old"), kMs);
+  (void)s.hello_due(at(0ms));
+  const HandshakeStep step =
+      s.on_handshake_frame(refusal(HCP_REFUSE_VERSION, 0, "too old"), at(1ms));
   ASSERT_TRUE(step.fail.has_value());
   EXPECT_EQ(step.fail->code(), ErrorCode::kVersion);
   const std::string what = step.fail->what();
@@ -102,8 +103,8 @@ TEST(ClientSession, AVersionRefusalFailsAtOnceNamingBothVersions) {
 
 TEST(ClientSession, AWelcomeOfAnotherMajorVersionIsRefusedBack) {
   ClientSession s(options(), "127.0.0.1:5125");
-  (void)s.hello_due(0);
-  const HandshakeStep step = s.on_handshake_frame(welcome(protocol::make_version(9, 0)), kMs);
+  (void)s.hello_due(at(0ms));
+  const HandshakeStep step = s.on_handshake_frame(welcome(protocol::make_version(9, 0)), at(1ms));
   EXPECT_FALSE(step.welcomed);
   ASSERT_TRUE(step.reply.has_value()) << "the controller is told why";
   EXPECT_EQ(step.reply->body.type, HCP_REFUSE);
@@ -123,13 +124,13 @@ TEST(ClientSession, SilenceDuringTheHandshakeAsksWhetherTheBridgeRuns) {
 
 TEST(ClientSession, AnswersBecomeTheLatestStateAndOlderOnesAreIgnored) {
   ClientSession s = open_session();
-  EXPECT_EQ(s.on_frame(answer(1, 100), 2 * kMs), Arrival::kAnswer);
-  EXPECT_EQ(s.on_frame(answer(2, 101), 3 * kMs), Arrival::kAnswer);
-  EXPECT_EQ(s.on_frame(answer(1, 100), 4 * kMs), Arrival::kIgnored) << "late: not newer";
+  EXPECT_EQ(s.on_frame(answer(1, 100), at(2ms)), Arrival::kAnswer);
+  EXPECT_EQ(s.on_frame(answer(2, 101), at(3ms)), Arrival::kAnswer);
+  EXPECT_EQ(s.on_frame(answer(1, 100), at(4ms)), Arrival::kIgnored) << "late: not newer";
   const StateSnapshot& latest = s.latest();
   EXPECT_TRUE(latest.valid);
   EXPECT_EQ(latest.cycle, 101U);
-  EXPECT_EQ(latest.received_ns, 3 * kMs);
+  EXPECT_EQ(latest.received_ns, to_ns(3ms));
   EXPECT_DOUBLE_EQ(latest.handle_pose[6], 1.0);
   EXPECT_EQ(s.statistics().answers_late, 1U);
 }
@@ -138,7 +139,7 @@ TEST(ClientSession, AFrameOfAnotherSessionIsCountedAndChangesNothing) {
   ClientSession s = open_session();
   hcp_frame stranger = answer(1, 100);
   stranger.header.token = kToken + 1;
-  EXPECT_EQ(s.on_frame(stranger, kMs), Arrival::kInvalid);
+  EXPECT_EQ(s.on_frame(stranger, at(1ms)), Arrival::kInvalid);
   s.on_invalid();  // and a datagram that did not decode
   EXPECT_FALSE(s.latest().valid);
   EXPECT_EQ(s.statistics().frames_invalid, 2U);
@@ -148,7 +149,7 @@ TEST(ClientSession, TheBridgesRefusalClosesTheSessionAndEveryCallSaysWhy) {
   ClientSession s = open_session();
   hcp_frame end = refusal(HCP_REFUSE_NO_CONTROLLER, 0, "the controller stopped");
   end.header.token = kToken;
-  EXPECT_EQ(s.on_frame(end, kMs), Arrival::kClosed);
+  EXPECT_EQ(s.on_frame(end, at(1ms)), Arrival::kClosed);
   EXPECT_FALSE(s.is_open());
   try {
     (void)s.param_frame(watchdog_param(100), "set_watchdog");
@@ -157,29 +158,29 @@ TEST(ClientSession, TheBridgesRefusalClosesTheSessionAndEveryCallSaysWhy) {
     EXPECT_EQ(e.code(), ErrorCode::kClosed);
     EXPECT_STREQ(e.what(), "set_watchdog: the session is closed (the controller stopped)");
   }
-  EXPECT_FALSE(s.object_frame({0, 0, 0, 0, 0, 0, 1}, {}, 2 * kMs).has_value());
-  EXPECT_FALSE(s.wrench_frame({}, 2 * kMs).has_value());
-  EXPECT_FALSE(s.keepalive_due(1000 * kMs).has_value());
+  EXPECT_FALSE(s.object_frame({0, 0, 0, 0, 0, 0, 1}, {}, at(2ms)).has_value());
+  EXPECT_FALSE(s.wrench_frame({}, at(2ms)).has_value());
+  EXPECT_FALSE(s.keepalive_due(at(1000ms)).has_value());
 }
 
 TEST(ClientSession, ABridgeSilentForTheAnswerTimeoutEndsTheSession) {
   ClientSession s = open_session();
-  EXPECT_EQ(s.on_frame(answer(1, 1), 100 * kMs), Arrival::kAnswer);
-  EXPECT_FALSE(s.close_if_silent(400 * kMs)) << "300 ms since the last frame: not yet";
-  EXPECT_TRUE(s.close_if_silent(401 * kMs));
+  EXPECT_EQ(s.on_frame(answer(1, 1), at(100ms)), Arrival::kAnswer);
+  EXPECT_FALSE(s.close_if_silent(at(400ms))) << "300 ms since the last frame: not yet";
+  EXPECT_TRUE(s.close_if_silent(at(401ms)));
   EXPECT_EQ(s.closed_reason(), "no answer from the bridge for 300 ms");
-  EXPECT_FALSE(s.close_if_silent(900 * kMs)) << "closed once";
+  EXPECT_FALSE(s.close_if_silent(at(900ms))) << "closed once";
 }
 
 TEST(ClientSession, AKeepaliveIsDueAfterAQuarterOfTheWatchdogWithoutSending) {
   ClientSession s = open_session();  // watchdog 400 ms
-  EXPECT_FALSE(s.keepalive_due(100 * kMs).has_value());
-  const auto keepalive = s.keepalive_due(101 * kMs);
+  EXPECT_FALSE(s.keepalive_due(at(100ms)).has_value());
+  const auto keepalive = s.keepalive_due(at(101ms));
   ASSERT_TRUE(keepalive.has_value());
   EXPECT_EQ(keepalive->body.type, HCP_KEEPALIVE);
   EXPECT_EQ(keepalive->header.token, kToken);
-  s.on_sent(101 * kMs);
-  EXPECT_FALSE(s.keepalive_due(150 * kMs).has_value()) << "the quiet time counts from a send";
+  s.on_sent(at(101ms));
+  EXPECT_FALSE(s.keepalive_due(at(150ms)).has_value()) << "the quiet time counts from a send";
 }
 
 TEST(ClientSession, AnAppliedWatchdogSetsTheKeepaliveInterval) {
@@ -190,7 +191,7 @@ TEST(ClientSession, AnAppliedWatchdogSetsTheKeepaliveInterval) {
   EXPECT_EQ(s.watchdog_ms(), 400U) << "not before the controller acknowledged it";
   s.on_param_applied(f.body.hcp_body_u.param);
   EXPECT_EQ(s.watchdog_ms(), 100U);
-  EXPECT_TRUE(s.keepalive_due(26 * kMs).has_value());
+  EXPECT_TRUE(s.keepalive_due(at(26ms)).has_value());
 }
 
 TEST(ClientSession, AcknowledgementsAreMatchedToTheirFrameAndTakenOnce) {
@@ -198,7 +199,7 @@ TEST(ClientSession, AcknowledgementsAreMatchedToTheirFrameAndTakenOnce) {
   const hcp_frame first = s.param_frame(watchdog_param(100), "set_watchdog");
   const hcp_frame second = s.param_frame(watchdog_param(200), "set_watchdog");
   EXPECT_EQ(second.header.sequence, first.header.sequence + 1);
-  EXPECT_EQ(s.on_frame(ack(second.header.sequence, HCP_ACK_REJECTED, "out of range"), kMs),
+  EXPECT_EQ(s.on_frame(ack(second.header.sequence, HCP_ACK_REJECTED, "out of range"), at(1ms)),
             Arrival::kAck);
   EXPECT_FALSE(s.take_ack(first.header.sequence).has_value()) << "not this frame's";
   const auto outcome = s.take_ack(second.header.sequence);

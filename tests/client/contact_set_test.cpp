@@ -58,7 +58,7 @@ TEST(ContactSet, SendsEachChangedSlotOnceThenRefreshesEvery5Ms) {
   ContactSet set;
   const std::array<Contact, 2> two{floor_contact(-0.002), wall_contact()};
   ASSERT_EQ(set.set(two, 0.0), ContactResult::kAccepted);
-  const std::int64_t t0 = 1'000'000'000;
+  const TimePoint t0{std::chrono::seconds(1)};
   const std::optional<ContactSend> first = set.due(t0);
   const std::optional<ContactSend> second = set.due(t0);
   ASSERT_TRUE(first && second);
@@ -66,35 +66,35 @@ TEST(ContactSet, SendsEachChangedSlotOnceThenRefreshesEvery5Ms) {
   EXPECT_EQ(slots_of(*second).slot, 1U);
   EXPECT_EQ(slots_of(*second).count, 2U);
   EXPECT_FLOAT_EQ(second->contact.normal[0], 1.0F);
-  EXPECT_FALSE(set.due(t0 + 1'000'000));  // nothing changed, not yet stale
+  EXPECT_FALSE(set.due(t0 + std::chrono::milliseconds(1)));  // nothing changed, not yet stale
 
   // The same contacts again change nothing; a changed one goes out at once.
   ASSERT_EQ(set.set(two, 0.0), ContactResult::kAccepted);
-  EXPECT_FALSE(set.due(t0 + 2'000'000));
+  EXPECT_FALSE(set.due(t0 + std::chrono::milliseconds(2)));
   const std::array<Contact, 2> deeper{floor_contact(-0.003), wall_contact()};
   ASSERT_EQ(set.set(deeper, 0.0), ContactResult::kAccepted);
-  const std::optional<ContactSend> changed = set.due(t0 + 2'000'000);
+  const std::optional<ContactSend> changed = set.due(t0 + std::chrono::milliseconds(2));
   ASSERT_TRUE(changed);
   EXPECT_EQ(slots_of(*changed).slot, 0U);
-  EXPECT_FALSE(set.due(t0 + 2'000'000));
+  EXPECT_FALSE(set.due(t0 + std::chrono::milliseconds(2)));
 
   // Slot 1 was last sent at t0: stale 5 ms later, slot 0 (sent at +2 ms) not yet.
-  const std::optional<ContactSend> refresh = set.due(t0 + ContactSet::kRefreshNs);
+  const std::optional<ContactSend> refresh = set.due(t0 + ContactSet::kRefresh);
   ASSERT_TRUE(refresh);
   EXPECT_EQ(slots_of(*refresh).slot, 1U);
-  EXPECT_FALSE(set.due(t0 + ContactSet::kRefreshNs));
+  EXPECT_FALSE(set.due(t0 + ContactSet::kRefresh));
 }
 
 TEST(ContactSet, TakingTheLastContactAwaySendsOneClear) {
   ContactSet set;
   const std::array<Contact, 1> one{floor_contact(-0.002)};
   ASSERT_EQ(set.set(one, 0.0), ContactResult::kAccepted);
-  ASSERT_TRUE(set.due(0));
+  ASSERT_TRUE(set.due(TimePoint{std::chrono::milliseconds(0)}));
   ASSERT_EQ(set.set({}, 0.0), ContactResult::kAccepted);
-  const std::optional<ContactSend> clear = set.due(1);
+  const std::optional<ContactSend> clear = set.due(TimePoint{std::chrono::milliseconds(1)});
   ASSERT_TRUE(clear);
   EXPECT_EQ(slots_of(*clear).count, 0U);
-  EXPECT_FALSE(set.due(100'000'000));  // nothing left to refresh
+  EXPECT_FALSE(set.due(TimePoint{std::chrono::milliseconds(100)}));  // nothing left to refresh
 }
 
 TEST(ContactSet, PenetrationCountsContactsAlongTheNormalOnly) {

@@ -7,15 +7,20 @@
 namespace hapticctrl::client {
 namespace {
 
-constexpr std::int64_t kMs = 1'000'000;
+using namespace std::chrono_literals;
+
+/// The moment `t` after the clock's origin (the origin itself: no echo).
+TimePoint at(Duration t) {
+  return TimePoint{t};
+}
 
 TEST(LinkMonitor, CountsLossFromSequenceGapsAndDropsLateAnswers) {
   LinkMonitor m;
-  m.set_period(kMs);
-  EXPECT_TRUE(m.on_answer(1, 1 * kMs, 0, 0, 0));
-  EXPECT_TRUE(m.on_answer(2, 2 * kMs, 0, 0, 0));
-  EXPECT_TRUE(m.on_answer(5, 5 * kMs, 0, 0, 0));   // 3 and 4 lost
-  EXPECT_FALSE(m.on_answer(4, 5 * kMs, 0, 0, 0));  // arrives late: dropped
+  m.set_period(1ms);
+  EXPECT_TRUE(m.on_answer(1, at(1ms), 0, at(0ms), 0));
+  EXPECT_TRUE(m.on_answer(2, at(2ms), 0, at(0ms), 0));
+  EXPECT_TRUE(m.on_answer(5, at(5ms), 0, at(0ms), 0));   // 3 and 4 lost
+  EXPECT_FALSE(m.on_answer(4, at(5ms), 0, at(0ms), 0));  // arrives late: dropped
   const LinkStatistics s = m.statistics(7);
   EXPECT_EQ(s.answers_received, 3U);
   EXPECT_EQ(s.answers_lost, 2U);
@@ -26,9 +31,9 @@ TEST(LinkMonitor, CountsLossFromSequenceGapsAndDropsLateAnswers) {
 
 TEST(LinkMonitor, RoundTripFromTheFirstEchoOfEachControlFrame) {
   LinkMonitor m;
-  m.on_answer(1, 10 * kMs, 7, 9 * kMs, 1);  // control 7 sent at 9 ms: 1 ms round trip
-  m.on_answer(2, 11 * kMs, 7, 9 * kMs, 1);  // the same echo again: not a new sample
-  m.on_answer(3, 12 * kMs, 8, 11 * kMs + kMs / 2, 2);
+  m.on_answer(1, at(10ms), 7, at(9ms), 1);  // control 7 sent at 9 ms: 1 ms round trip
+  m.on_answer(2, at(11ms), 7, at(9ms), 1);  // the same echo again: not a new sample
+  m.on_answer(3, at(12ms), 8, at(11500us), 2);
   const LinkStatistics s = m.statistics(0);
   EXPECT_EQ(s.rtt_samples, 2U);
   EXPECT_DOUBLE_EQ(s.rtt_last_us, 500.0);
@@ -39,19 +44,19 @@ TEST(LinkMonitor, RoundTripFromTheFirstEchoOfEachControlFrame) {
 
 TEST(LinkMonitor, JitterFollowsRfc3550) {
   LinkMonitor m;
-  m.set_period(kMs);
-  m.on_answer(1, 0, 0, 0, 0);
-  m.on_answer(2, 2 * kMs, 0, 0, 0);  // 1 ms late: J = 1000/16
+  m.set_period(1ms);
+  m.on_answer(1, at(0ms), 0, at(0ms), 0);
+  m.on_answer(2, at(2ms), 0, at(0ms), 0);  // 1 ms late: J = 1000/16
   EXPECT_DOUBLE_EQ(m.statistics(0).jitter_us, 62.5);
-  m.on_answer(3, 3 * kMs, 0, 0, 0);  // on time: J -= J/16
+  m.on_answer(3, at(3ms), 0, at(0ms), 0);  // on time: J -= J/16
   EXPECT_DOUBLE_EQ(m.statistics(0).jitter_us, 62.5 - 62.5 / 16.0);
   EXPECT_DOUBLE_EQ(m.statistics(0).interarrival_mean_us, 1500.0);
 }
 
 TEST(LinkMonitor, SequenceWrapIsNotLoss) {
   LinkMonitor m;
-  m.on_answer(0xFFFFFFFFU, 0, 0, 0, 0);
-  EXPECT_TRUE(m.on_answer(0, kMs, 0, 0, 0));
+  m.on_answer(0xFFFFFFFFU, at(0ms), 0, at(0ms), 0);
+  EXPECT_TRUE(m.on_answer(0, at(1ms), 0, at(0ms), 0));
   EXPECT_EQ(m.statistics(0).answers_lost, 0U);
 }
 

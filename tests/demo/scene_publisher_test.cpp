@@ -14,7 +14,7 @@
 namespace hapticctrl::demo {
 namespace {
 
-constexpr std::int64_t kMs = 1'000'000;
+using namespace std::chrono_literals;
 
 SphereScene touching_scene() {
   SceneConfig config;
@@ -52,12 +52,12 @@ TEST(SceneMessage, CarriesTheSpheresTheContactAndTheLink) {
 
 TEST(ScenePublisher, IsDueOncePerPeriodAndNeverBursts) {
   ScenePublisher p("memq://", "t", 10.0);  // every 100 ms
-  EXPECT_TRUE(p.due(1000 * kMs));
-  EXPECT_FALSE(p.due(1050 * kMs));
-  EXPECT_TRUE(p.due(1100 * kMs));
-  EXPECT_TRUE(p.due(2000 * kMs));   // after a stall: one now...
-  EXPECT_FALSE(p.due(2050 * kMs));  // ...and the next a period later, not a catch-up burst
-  EXPECT_TRUE(p.due(2100 * kMs));
+  EXPECT_TRUE(p.due(TimePoint{1000ms}));
+  EXPECT_FALSE(p.due(TimePoint{1050ms}));
+  EXPECT_TRUE(p.due(TimePoint{1100ms}));
+  EXPECT_TRUE(p.due(TimePoint{2000ms}));   // after a stall: one now...
+  EXPECT_FALSE(p.due(TimePoint{2050ms}));  // ...and the next a period later, not a catch-up burst
+  EXPECT_TRUE(p.due(TimePoint{2100ms}));
 }
 
 TEST(ScenePublisher, PublishesOnTheInstancesSceneChannel) {

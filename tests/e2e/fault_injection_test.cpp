@@ -200,7 +200,7 @@ TEST(FaultInjection, SoftRealTimeProcessesKilledAtRandomMomentsComeBackWithoutAF
         player->signal(SIGKILL);
         player->wait(5s);
         start_player(player, stack, sequence);
-        const std::int64_t restarted_at = hapticctrl::monotonic_now_ns();
+        const std::int64_t restarted_at = hapticctrl::to_ns(hapticctrl::MonotonicClock::now());
         EXPECT_TRUE(ControllerStack::eventually([&] {
           return watch.last_force_sample_ns() > restarted_at;
         })) << "the new player writes the operator force: "
@@ -257,7 +257,7 @@ TEST(FaultInjection, AKilledCoreIsToldToClientAndLcmWithinMillisecondsAndTheNext
         << lcm->err();
     const std::size_t events_before = monitor.events_copy().size();
 
-    const std::int64_t killed_at = hapticctrl::monotonic_now_ns();
+    const std::int64_t killed_at = hapticctrl::to_ns(hapticctrl::MonotonicClock::now());
     stack.core().signal(SIGKILL);
     stack.core().wait(5s);
     ASSERT_TRUE(ControllerStack::eventually([&] { return !c.is_open(); }, 2s));

@@ -54,11 +54,11 @@ TEST(SharedMemoryAbuse,
   sample.session_id = 1;
   sample.command_type = static_cast<std::uint32_t>(shm::CommandType::kImpedance);
   sample.impedance_wrench[0] = std::nan("");
-  vpr.publish(sample, hapticctrl::monotonic_now_ns());
+  vpr.publish(sample, hapticctrl::to_ns(hapticctrl::MonotonicClock::now()));
   EXPECT_TRUE(ControllerStack::eventually([&] { return stack.telemetry().vpr_rejected == 1; }));
   sample.impedance_wrench[0] = 0.0;
   sample.base_frame = {0, 0, 0, 0, 0, 0, 3};
-  vpr.publish(sample, hapticctrl::monotonic_now_ns());
+  vpr.publish(sample, hapticctrl::to_ns(hapticctrl::MonotonicClock::now()));
   EXPECT_TRUE(ControllerStack::eventually([&] { return stack.telemetry().vpr_rejected == 2; }));
 
   // A wrench of 1e9 N, kept fresh for half a second: saturated to the device's peak, reached no
@@ -69,7 +69,7 @@ TEST(SharedMemoryAbuse,
   double strongest = 0.0;
   for (int i = 0; i < 50; ++i) {
     ++sample.client_sequence;  // a new sample each time (the same one again is a silent link)
-    vpr.publish(sample, hapticctrl::monotonic_now_ns());
+    vpr.publish(sample, hapticctrl::to_ns(hapticctrl::MonotonicClock::now()));
     const shm::PositionPayload p = stack.position();
     strongest = std::max(
         strongest, std::hypot(p.rendered_wrench[0], p.rendered_wrench[1], p.rendered_wrench[2]));
@@ -94,15 +94,18 @@ TEST(SharedMemoryAbuse,
 
   // Operator forces that are not a number or beyond 100 N: refused and counted; the simulated
   // hand keeps pushing with the last acceptable one (none here).
-  force.publish(shm::ForcePayload{{std::nan(""), 0, 0, 0, 0, 0}}, hapticctrl::monotonic_now_ns());
+  force.publish(shm::ForcePayload{{std::nan(""), 0, 0, 0, 0, 0}},
+                hapticctrl::to_ns(hapticctrl::MonotonicClock::now()));
   EXPECT_TRUE(ControllerStack::eventually([&] { return stack.telemetry().force_rejected == 1; }));
-  force.publish(shm::ForcePayload{{1e6, 0, 0, 0, 0, 0}}, hapticctrl::monotonic_now_ns());
+  force.publish(shm::ForcePayload{{1e6, 0, 0, 0, 0, 0}},
+                hapticctrl::to_ns(hapticctrl::MonotonicClock::now()));
   EXPECT_TRUE(ControllerStack::eventually([&] { return stack.telemetry().force_rejected == 2; }));
   EXPECT_EQ(stack.position().operator_wrench, shm::Vector6{});
 
   // An acceptable wrench written at once, skipping the ramp its writers promise (H3: it went
   // 0 -> 173 N in one cycle before): the core takes it to the handle at 500 N/s at most.
-  force.publish(shm::ForcePayload{{100, 100, 100, 0, 0, 0}}, hapticctrl::monotonic_now_ns());
+  force.publish(shm::ForcePayload{{100, 100, 100, 0, 0, 0}},
+                hapticctrl::to_ns(hapticctrl::MonotonicClock::now()));
   double largest_step = 0.0;
   std::uint64_t last_cycle = 0;
   shm::Vector6 last{};
@@ -119,7 +122,7 @@ TEST(SharedMemoryAbuse,
   const double per_cycle = 500.0 * kPeriodUs * 1e-6;
   EXPECT_LE(largest_step, per_cycle + 1e-9) << "N per cycle";
   EXPECT_GT(last[0], 5.0) << "and it does arrive";
-  force.publish(shm::ForcePayload{}, hapticctrl::monotonic_now_ns());
+  force.publish(shm::ForcePayload{}, hapticctrl::to_ns(hapticctrl::MonotonicClock::now()));
 
   watch.stop();
   EXPECT_LE(watch.largest_coupling_excess(), kRounding);

@@ -27,7 +27,7 @@ struct Harness {
       std::make_unique<shm::SeqlockCell<shm::ForcePayload>>();
   shm::RemoteCommands remote{shm::RemoteCommandSettings{true, {}, 200'000'000}, &controller.writer,
                              force.get()};
-  std::int64_t now = 0;
+  hapticctrl::TimePoint now{};
 };
 
 }  // namespace
@@ -38,7 +38,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return 0;
   }
   // First byte: which topic, and how far the clock moves (up to 127 ms).
-  h.now += static_cast<std::int64_t>(data[0] >> 1U) * 1'000'000;
+  h.now += std::chrono::milliseconds(data[0] >> 1U);
   if ((data[0] & 1U) != 0) {
     // A string as DDS delivers it: NUL-terminated, any bytes before (a NUL inside ends it).
     std::string text(reinterpret_cast<const char*>(data + 1), size - 1);

@@ -23,7 +23,7 @@ struct Harness {
   // The golden tests' token, so that seeds and mutations can carry a valid one.
   hapticctrl::udp_bridge::Session session{{100}, [] { return 0x0102030405060708ULL; }};
   Endpoint peer = Endpoint::resolve("127.0.0.1", 40000);
-  std::int64_t now = 0;
+  hapticctrl::TimePoint now{};
 
   Harness() { session.set_controller(&controller.ports, 0); }
 };
@@ -42,7 +42,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   hcp_frame frame;
   (void)hapticctrl::protocol::decode(bytes, frame);
   FrameBuffer reply{};
-  h.now += 1'000'000;
+  h.now += std::chrono::milliseconds(1);
   (void)h.session.on_datagram(bytes, h.peer, h.now, reply);
   h.session.check_watchdog(h.now);
   h.controller.drain();

@@ -21,7 +21,7 @@ struct Harness {
   std::unique_ptr<shm::SeqlockCell<shm::ForcePayload>> force =
       std::make_unique<shm::SeqlockCell<shm::ForcePayload>>();
   lb::HmiInput input{lb::HmiSettings{true}, &controller.writer, force.get()};
-  std::int64_t now = 0;
+  hapticctrl::TimePoint now{};
 };
 
 }  // namespace
@@ -32,7 +32,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return 0;
   }
   // First byte: which channel, and how far the clock moves (up to 255 ms).
-  h.now += static_cast<std::int64_t>(data[0]) * 1'000'000;
+  h.now += std::chrono::milliseconds(data[0]);
   if ((data[0] & 1U) != 0) {
     h.input.on_command(data + 1, size - 1, h.now);
   } else {

@@ -44,8 +44,8 @@ void bus_event(const std::uint8_t* data, std::size_t size) {
     return;  // a wrong fingerprint: refused by LCM itself
   }
   wb::TelemetryView view;
-  view.on_event(e, 0);
-  if (!nlohmann::json::accept(view.next_frame(0))) {
+  view.on_event(e, hapticctrl::TimePoint{});
+  if (!nlohmann::json::accept(view.next_frame(hapticctrl::TimePoint{}))) {
     std::abort();
   }
 }
@@ -56,8 +56,8 @@ void bus_world(const std::uint8_t* data, std::size_t size) {
     return;  // counted as malformed by the bridge's LCM input
   }
   wb::TelemetryView view;
-  view.on_world(w, 0);
-  if (!nlohmann::json::accept(view.next_frame(0))) {
+  view.on_world(w, hapticctrl::TimePoint{});
+  if (!nlohmann::json::accept(view.next_frame(hapticctrl::TimePoint{}))) {
     std::abort();
   }
 }

@@ -21,7 +21,7 @@ ControllerStatus connected(std::uint64_t cycle, std::uint64_t control_frames) {
   s.link.peer_port = 40000;
   s.link.control_accepted = control_frames;
   s.vpr.session_id = 7;
-  s.read_ns = 5'000'000;
+  s.read_at = TimePoint{std::chrono::milliseconds(5)};
   s.vpr.received_time_ns = 4'000'000;
   return s;
 }

@@ -8,16 +8,21 @@
 namespace hapticctrl::mujoco {
 namespace {
 
-constexpr std::int64_t kMs = 1'000'000;
+using namespace std::chrono_literals;
+
+/// The moment `t` after the clock's origin.
+TimePoint at(Duration t) {
+  return TimePoint{t};
+}
 
 TEST(RealTimeSteps, OneStepPerTimeStepOfTheClock) {
-  RealTimeSteps s(kMs, 50 * kMs);
-  s.start(0);
-  EXPECT_EQ(s.due(kMs / 2), 0U);
-  EXPECT_EQ(s.next_due_ns(), kMs);
+  RealTimeSteps s(1ms, 50ms);
+  s.start(at(0ns));
+  EXPECT_EQ(s.due(at(500us)), 0U);
+  EXPECT_EQ(s.next_due(), at(1ms));
   std::uint64_t total = 0;
-  for (std::int64_t t = kMs; t <= 1000 * kMs; t += kMs) {
-    total += s.due(t);
+  for (Duration t = 1ms; t <= 1s; t += 1ms) {
+    total += s.due(at(t));
   }
   EXPECT_EQ(total, 1000U);
   EXPECT_EQ(s.run(), 1000U);
@@ -26,46 +31,46 @@ TEST(RealTimeSteps, OneStepPerTimeStepOfTheClock) {
 }
 
 TEST(RealTimeSteps, ALateWakeUpRunsTheMissedStepsAtOnce) {
-  RealTimeSteps s(kMs, 50 * kMs);
-  s.start(0);
-  EXPECT_EQ(s.due(7 * kMs + 10), 7U);
+  RealTimeSteps s(1ms, 50ms);
+  s.start(at(0ns));
+  EXPECT_EQ(s.due(at(7ms + 10ns)), 7U);
   EXPECT_EQ(s.catch_ups(), 1U);
-  EXPECT_EQ(s.next_due_ns(), 8 * kMs);
+  EXPECT_EQ(s.next_due(), at(8ms));
 }
 
 TEST(RealTimeSteps, AStallBeyondTheCatchUpBoundIsDroppedAndCounted) {
-  RealTimeSteps s(kMs, 50 * kMs);
-  s.start(0);
-  EXPECT_EQ(s.due(200 * kMs), 50U);
+  RealTimeSteps s(1ms, 50ms);
+  s.start(at(0ns));
+  EXPECT_EQ(s.due(at(200ms)), 50U);
   EXPECT_EQ(s.dropped(), 150U);
-  EXPECT_EQ(s.due(201 * kMs), 1U) << "the clock goes on from the stall, not behind it";
+  EXPECT_EQ(s.due(at(201ms)), 1U) << "the clock goes on from the stall, not behind it";
   EXPECT_EQ(s.run() + s.dropped() + s.paused(), 201U);
 }
 
 TEST(RealTimeSteps, ASilentLinkPausesTheWorld) {
-  RealTimeSteps s(kMs, 50 * kMs);
-  s.start(0);
-  (void)s.due(10 * kMs);
-  s.pause(100 * kMs);
+  RealTimeSteps s(1ms, 50ms);
+  s.start(at(0ns));
+  (void)s.due(at(10ms));
+  s.pause(at(100ms));
   EXPECT_EQ(s.paused(), 90U);
-  EXPECT_EQ(s.due(101 * kMs), 1U);
+  EXPECT_EQ(s.due(at(101ms)), 1U);
   EXPECT_EQ(s.run() + s.dropped() + s.paused(), 101U);
 }
 
 TEST(RealTimeSteps, ARestartBeginsAtTheNewStartAndAClockGoingBackOwesNothing) {
-  RealTimeSteps s(kMs, 50 * kMs);
-  s.start(1000 * kMs);
-  EXPECT_EQ(s.due(999 * kMs), 0U);
-  EXPECT_EQ(s.due(1003 * kMs), 3U);
-  s.start(5000 * kMs);
-  EXPECT_EQ(s.due(5002 * kMs), 2U);
+  RealTimeSteps s(1ms, 50ms);
+  s.start(at(1000ms));
+  EXPECT_EQ(s.due(at(999ms)), 0U);
+  EXPECT_EQ(s.due(at(1003ms)), 3U);
+  s.start(at(5000ms));
+  EXPECT_EQ(s.due(at(5002ms)), 2U);
   EXPECT_EQ(s.run(), 5U);
 }
 
 TEST(RealTimeSteps, DegenerateArgumentsStillStepOneAtATime) {
-  RealTimeSteps s(0, 0);
-  s.start(0);
-  EXPECT_EQ(s.due(10), 1U);
+  RealTimeSteps s(0ns, 0ns);
+  s.start(at(0ns));
+  EXPECT_EQ(s.due(at(10ns)), 1U);
   EXPECT_EQ(s.dropped(), 9U);
 }
 

@@ -11,7 +11,12 @@
 namespace hapticctrl::shm {
 namespace {
 
-constexpr std::int64_t kMs = 1'000'000;
+using namespace std::chrono_literals;
+
+/// The moment `t` after the clock's origin.
+TimePoint at(Duration t) {
+  return TimePoint{t};
+}
 
 struct RemoteCommandsTest : ::testing::Test {
   std::unique_ptr<CtrlRegion> ctrl = std::make_unique<CtrlRegion>();
@@ -44,11 +49,11 @@ TEST_F(RemoteCommandsTest, WithoutRemoteCommandsOnlyTheEmergencyStopIsApplied) {
   RemoteCommands remote = make(false);
   for (const CtrlCode c : {CtrlCode::kPowerOn, CtrlCode::kPowerOff, CtrlCode::kEmergencyReset,
                            CtrlCode::kStop, CtrlCode::kEmergencyStop}) {
-    remote.command(c, 0);
+    remote.command(c, at(0ms));
   }
-  remote.force({5, 0, 0, 0, 0, 0}, 0);
-  remote.tick(0);
-  remote.tick(100 * kMs);
+  remote.force({5, 0, 0, 0, 0, 0}, at(0ms));
+  remote.tick(at(0ms));
+  remote.tick(at(100ms));
   EXPECT_EQ(drain(), std::vector<CtrlCode>{CtrlCode::kEmergencyStop});
   EXPECT_EQ(remote.counters().commands_refused.load(), 4U);
   EXPECT_EQ(remote.counters().commands_applied.load(), 1U);
@@ -67,22 +72,22 @@ TEST(RemoteCommandsAttach, TheForceRegionIsClaimedOnlyWithRemoteCommands) {
 
 TEST_F(RemoteCommandsTest, UnknownCommandsAndMissingRegionsAreCounted) {
   RemoteCommands remote = make(true);
-  remote.command(CtrlCode::kNone, 0);
+  remote.command(CtrlCode::kNone, at(0ms));
   remote.malformed();
   EXPECT_EQ(remote.counters().commands_invalid.load(), 1U);
   EXPECT_EQ(remote.counters().malformed.load(), 1U);
   RemoteCommands without_regions(RemoteCommandSettings{true}, nullptr, nullptr);
-  without_regions.command(CtrlCode::kEmergencyStop, 0);
-  without_regions.force({1, 0, 0, 0, 0, 0}, 0);
-  without_regions.tick(10 * kMs);  // nowhere to publish: nothing breaks
+  without_regions.command(CtrlCode::kEmergencyStop, at(0ms));
+  without_regions.force({1, 0, 0, 0, 0, 0}, at(0ms));
+  without_regions.tick(at(10ms));  // nowhere to publish: nothing breaks
   EXPECT_EQ(without_regions.counters().commands_queue_full.load(), 1U);
   EXPECT_TRUE(drain().empty());
 }
 
 TEST_F(RemoteCommandsTest, TheCountersReadAsJsonMembers) {
   RemoteCommands remote = make(false);
-  remote.command(CtrlCode::kPowerOn, 0);
-  remote.command(CtrlCode::kEmergencyStop, 0);
+  remote.command(CtrlCode::kPowerOn, at(0ms));
+  remote.command(CtrlCode::kEmergencyStop, at(0ms));
   remote.malformed();
   EXPECT_EQ(counters_json(remote.counters()),
             "\"commands_applied\":1,\"commands_refused\":1,\"commands_invalid\":0,"
@@ -94,31 +99,31 @@ TEST_F(RemoteCommandsTest, OutOfRangeOrNonFiniteForcesAreRefused) {
   RemoteCommands remote = make(true);
   for (const double bad :
        {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(), 100.5}) {
-    remote.force({bad, 0, 0, 0, 0, 0}, 0);
+    remote.force({bad, 0, 0, 0, 0, 0}, at(0ms));
   }
-  remote.force({1, 0, 0, 0, 0, 10.5}, 0);
+  remote.force({1, 0, 0, 0, 0, 10.5}, at(0ms));
   EXPECT_EQ(remote.counters().forces_invalid.load(), 4U);
-  remote.tick(1 * kMs);
-  remote.tick(100 * kMs);
+  remote.tick(at(1ms));
+  remote.tick(at(100ms));
   EXPECT_EQ(applied_force(), Vector6{});
 }
 
 TEST_F(RemoteCommandsTest, ForceIsRateLimitedAndDecaysWhenRequestsStop) {
   RemoteCommands remote = make(true);
   const Vector6 f{20, 0, 0, 0, 0, 0};
-  remote.tick(0);
-  remote.force(f, 0);
-  remote.tick(10 * kMs);  // 500 N/s: at most 5 N after 10 ms
+  remote.tick(at(0ms));
+  remote.force(f, at(0ms));
+  remote.tick(at(10ms));  // 500 N/s: at most 5 N after 10 ms
   EXPECT_NEAR(applied_force()[0], 5.0, 1e-9);
   for (std::int64_t t = 20; t <= 100; t += 10) {
-    remote.force(f, t * kMs);
-    remote.tick(t * kMs);
+    remote.force(f, at(std::chrono::milliseconds(t)));
+    remote.tick(at(std::chrono::milliseconds(t)));
   }
   EXPECT_NEAR(applied_force()[0], 20.0, 1e-9);
-  remote.tick(301 * kMs);  // silent for more than 200 ms: let go at the same rate
+  remote.tick(at(301ms));  // silent for more than 200 ms: let go at the same rate
   EXPECT_EQ(remote.counters().force_timeouts.load(), 1U);
   EXPECT_GE(applied_force()[0], 0.0);
-  remote.tick(400 * kMs);
+  remote.tick(at(400ms));
   EXPECT_EQ(applied_force()[0], 0.0);
 }
 

@@ -13,7 +13,10 @@ namespace hapticctrl::client::test {
 
 using namespace std::chrono_literals;
 
-inline constexpr std::int64_t kMs = 1'000'000;
+/// The moment `t` after the clock's origin.
+inline TimePoint at(Duration t) {
+  return TimePoint{t};
+}
 inline constexpr std::uint64_t kToken = 0x1234'5678'9abc'def0ULL;
 
 inline ConnectOptions options() {
@@ -29,7 +32,7 @@ inline hcp_frame welcome(std::uint32_t version = protocol::kVersion) {
   w.header.protocol = version;
   w.body.hcp_body_u.welcome.features = protocol::kAllFeatures;
   w.body.hcp_body_u.welcome.watchdog_ms = 400;
-  w.body.hcp_body_u.welcome.period_ns = kMs;
+  w.body.hcp_body_u.welcome.period_ns = to_ns(1ms);
   return w;
 }
 
@@ -46,9 +49,9 @@ inline hcp_frame answer(std::uint32_t sequence, std::uint64_t cycle) {
 /// A session welcomed at t = 0.
 inline ClientSession open_session() {
   ClientSession s(options(), "127.0.0.1:5125");
-  EXPECT_TRUE(s.hello_due(0).has_value());
-  EXPECT_TRUE(s.on_handshake_frame(welcome(), 0).welcomed);
-  s.on_sent(0);
+  EXPECT_TRUE(s.hello_due(at(0ms)).has_value());
+  EXPECT_TRUE(s.on_handshake_frame(welcome(), at(0ms)).welcomed);
+  s.on_sent(at(0ms));
   return s;
 }
 

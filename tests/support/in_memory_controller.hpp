@@ -20,7 +20,7 @@ struct InMemoryController {
   shm::CtrlWriter writer{ctrl->slots[0], acks->slots[0], 0};
   std::unique_ptr<std::atomic<std::uint64_t>> cycle =
       std::make_unique<std::atomic<std::uint64_t>>(0);  ///< the core's heartbeat
-  udp_bridge::ControllerPorts ports{vpr.get(), &writer, 1'000'000, cycle.get()};
+  udp_bridge::ControllerPorts ports{vpr.get(), &writer, std::chrono::milliseconds(1), cycle.get()};
 
   /// The last VPr sample (default-constructed if none was published).
   [[nodiscard]] shm::VprPayload vpr_now() const {

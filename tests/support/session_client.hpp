@@ -19,7 +19,7 @@ using protocol::Endpoint;
 using protocol::FrameBuffer;
 using udp_bridge::Session;
 
-inline constexpr std::int64_t kMs = 1'000'000;
+using namespace std::chrono_literals;
 
 using Controller = InMemoryController;
 
@@ -30,7 +30,7 @@ struct Client {
   std::uint64_t token = 0;
   std::uint32_t control_seq = 0;
   std::uint32_t param_seq = 0;
-  std::int64_t now = 1000 * kMs;
+  TimePoint now{1s};
   hcp_frame reply{};
   bool replied = false;
   std::uint32_t asked_watchdog_ms = 0;  ///< in the HELLO (0: the bridge's default)
@@ -50,7 +50,7 @@ struct Client {
   }
   void hello(std::uint32_t version = protocol::kVersion,
              std::uint32_t features = protocol::kAllFeatures, std::uint32_t min_version = 0) {
-    hcp_frame f = protocol::make_frame(HCP_HELLO, 0, 1, now);
+    hcp_frame f = protocol::make_frame(HCP_HELLO, 0, 1, to_ns(now));
     f.header.protocol = version;
     f.body.hcp_body_u.hello.min_version = min_version != 0 ? min_version : version;
     f.body.hcp_body_u.hello.features = features;
@@ -61,22 +61,21 @@ struct Client {
     }
   }
   hcp_frame object(float x) {
-    hcp_frame f = protocol::make_frame(HCP_CONTROL_OBJECT, token, ++control_seq, now);
+    hcp_frame f = protocol::make_frame(HCP_CONTROL_OBJECT, token, ++control_seq, to_ns(now));
     f.body.hcp_body_u.object.pose[0] = x;
     f.body.hcp_body_u.object.pose[6] = 1.0F;
     return f;
   }
   void send_object(float x) { feed(bytes(object(x))); }
-  /// A CONTROL_OBJECT_TIMED frame echoing answer `answer_cycle`, held `hold_ns` by the client.
-  hcp_frame timed_object(std::uint64_t answer_cycle, std::int64_t hold_ns,
-                         std::uint32_t energy_uj) {
-    hcp_frame f = protocol::test::timed_object_frame(token, ++control_seq, now, answer_cycle,
-                                                     hold_ns, energy_uj);
+  /// A CONTROL_OBJECT_TIMED frame echoing answer `answer_cycle`, held `hold` by the client.
+  hcp_frame timed_object(std::uint64_t answer_cycle, Duration hold, std::uint32_t energy_uj) {
+    hcp_frame f = protocol::test::timed_object_frame(token, ++control_seq, to_ns(now), answer_cycle,
+                                                     to_ns(hold), energy_uj);
     f.body.hcp_body_u.timed.position[0] = 0.3F;
     return f;
   }
   hcp_frame param(hcp_param_id id) {
-    hcp_frame f = protocol::make_frame(HCP_PARAM, token, ++param_seq, now);
+    hcp_frame f = protocol::make_frame(HCP_PARAM, token, ++param_seq, to_ns(now));
     f.body.hcp_body_u.param.id = id;
     return f;
   }
@@ -88,7 +87,7 @@ struct SessionTest : ::testing::Test {
   Session session{{100}, [this] { return next_token++; }};
   Client client{&session};
 
-  void SetUp() override { session.set_controller(&controller.ports, 0); }
+  void SetUp() override { session.set_controller(&controller.ports, TimePoint{}); }
   std::uint64_t dropped(shm::LinkDrop why) { return session.counters().dropped_for(why); }
 };
 

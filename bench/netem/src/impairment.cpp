@@ -28,7 +28,9 @@ double seconds_of(const std::string& text, const std::string& whole) {
 }  // namespace
 
 void LinkModel::validate() const {
-  if (delay < 0 || jitter < 0 || delay > 10'000'000'000 || jitter > 10'000'000'000) {
+  constexpr Duration kLongest = std::chrono::seconds(10);
+  if (delay < Duration::zero() || jitter < Duration::zero() || delay > kLongest ||
+      jitter > kLongest) {
     throw std::invalid_argument("delay and jitter must be 0..10 s");
   }
   if (!std::isfinite(loss) || loss < 0.0 || loss > 1.0) {
@@ -38,7 +40,7 @@ void LinkModel::validate() const {
     throw std::invalid_argument("burst must be a mean length of 1 to 1e6 datagrams");
   }
   for (const Blackout& b : blackouts) {
-    if (b.start < 0 || b.duration <= 0) {
+    if (b.start < Duration::zero() || b.duration <= Duration::zero()) {
       throw std::invalid_argument("a blackout needs a start >= 0 and a duration > 0");
     }
   }
@@ -50,9 +52,9 @@ Blackout LinkModel::parse_blackout(const std::string& text) {
     throw std::invalid_argument("blackout '" + text + "': expected AT:DURATION in seconds");
   }
   Blackout b;
-  b.start = static_cast<TimeNs>(seconds_of(text.substr(0, colon), text) * 1e9);
-  b.duration = static_cast<TimeNs>(seconds_of(text.substr(colon + 1), text) * 1e9);
-  if (b.duration <= 0) {
+  b.start = from_seconds(seconds_of(text.substr(0, colon), text));
+  b.duration = from_seconds(seconds_of(text.substr(colon + 1), text));
+  if (b.duration <= Duration::zero()) {
     throw std::invalid_argument("blackout '" + text + "': the duration must be > 0");
   }
   return b;
@@ -66,7 +68,7 @@ Impairment::Impairment(const LinkModel& model, std::uint64_t seed) : model_(mode
   enter_burst_ = model_.loss >= 1.0 ? 1.0 : model_.loss * leave_burst_ / (1.0 - model_.loss);
 }
 
-bool Impairment::in_blackout(TimeNs since_start) const noexcept {
+bool Impairment::in_blackout(Duration since_start) const noexcept {
   if (manual_blackout_) {
     return true;
   }
@@ -86,7 +88,7 @@ bool Impairment::lose() noexcept {
   return bad_state_;
 }
 
-Verdict Impairment::on_datagram(TimeNs now, TimeNs since_start) {
+Verdict Impairment::on_datagram(TimePoint now, Duration since_start) {
   Verdict v;
   if (in_blackout(since_start)) {
     v.fate = Verdict::Fate::kBlackout;
@@ -96,11 +98,12 @@ Verdict Impairment::on_datagram(TimeNs now, TimeNs since_start) {
     v.fate = Verdict::Fate::kLost;
     return v;
   }
-  TimeNs delay = model_.delay;
-  if (model_.jitter > 0) {
+  Duration delay = model_.delay;
+  if (model_.jitter > Duration::zero()) {
     const double u = unit_(random_) * 2.0 - 1.0;
-    delay =
-        std::max<TimeNs>(0, delay + static_cast<TimeNs>(u * static_cast<double>(model_.jitter)));
+    const Duration shift(
+        static_cast<Duration::rep>(u * static_cast<double>(model_.jitter.count())));
+    delay = std::max(Duration::zero(), delay + shift);
   }
   v.deliver_at = now + delay;
   if (!model_.reorder) {

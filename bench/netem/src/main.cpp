@@ -37,7 +37,9 @@
 
 namespace {
 
-using hapticctrl::TimeNs;
+using hapticctrl::Duration;
+using hapticctrl::MonotonicClock;
+using hapticctrl::TimePoint;
 using hapticctrl::netem::Impairment;
 using hapticctrl::netem::LinkModel;
 using hapticctrl::netem::Verdict;
@@ -68,11 +70,12 @@ constexpr const char* kDescription =
     "alike). Clients send to --listen instead of the bridge. SIGUSR1 switches a blackout on and "
     "off; SIGINT/SIGTERM end it.";
 
-/// A time in milliseconds within [0, 10 s], as nanoseconds.
+/// A time in milliseconds within [0, 10 s].
 std::function<void(const std::string&)> milliseconds_into(const std::string& option,
-                                                          TimeNs& target) {
+                                                          Duration& target) {
   return [option, &target](const std::string& v) {
-    target = static_cast<TimeNs>(hapticctrl::program::number_in(option, v, 0.0, 10000.0) * 1e6);
+    target =
+        hapticctrl::from_seconds(hapticctrl::program::number_in(option, v, 0.0, 10000.0) / 1e3);
   };
 }
 
@@ -156,7 +159,7 @@ struct Counters {
 };
 
 struct Pending {
-  TimeNs at = 0;
+  TimePoint at;
   std::uint64_t order = 0;
   std::size_t direction = 0;  ///< 0: client -> bridge, 1: bridge -> client
   std::uint16_t size = 0;
@@ -192,11 +195,12 @@ class Relay {
   }
 
   void run() {
-    const TimeNs start = hapticctrl::monotonic_now_ns();
-    const TimeNs end =
-        options_.duration_s > 0 ? start + static_cast<TimeNs>(options_.duration_s * 1e9) : 0;
+    const TimePoint start = MonotonicClock::now();
+    const TimePoint end = options_.duration_s > 0
+                              ? start + hapticctrl::from_seconds(options_.duration_s)
+                              : TimePoint::max();
     int toggles_seen = 0;
-    while (!g_stop.load() && (end == 0 || hapticctrl::monotonic_now_ns() < end)) {
+    while (!g_stop.load() && MonotonicClock::now() < end) {
       const int toggles = g_toggles.load();
       if (toggles != toggles_seen) {
         toggles_seen = toggles;
@@ -206,10 +210,10 @@ class Relay {
         std::fprintf(stderr, "hapticctrl-netem: blackout %s\n", toggles % 2 == 1 ? "on" : "off");
       }
       wait_for_traffic();
-      const TimeNs now = hapticctrl::monotonic_now_ns();
+      const TimePoint now = MonotonicClock::now();
       receive(front_, 0, now, now - start);
       receive(back_, 1, now, now - start);
-      deliver_due(hapticctrl::monotonic_now_ns());
+      deliver_due(MonotonicClock::now());
     }
   }
 
@@ -232,16 +236,15 @@ class Relay {
  private:
   void wait_for_traffic() {
     std::array<pollfd, 2> fds{pollfd{front_, POLLIN, 0}, pollfd{back_, POLLIN, 0}};
-    TimeNs wait = 10'000'000;  // wake at least every 10 ms for signals and the duration
+    Duration wait = std::chrono::milliseconds(10);  // wake every 10 ms: signals, the end
     if (!queue_.empty()) {
-      wait = std::clamp<TimeNs>(queue_.top().at - hapticctrl::monotonic_now_ns(), 0, wait);
+      wait = std::clamp(queue_.top().at - MonotonicClock::now(), Duration::zero(), wait);
     }
-    const timespec ts{static_cast<time_t>(wait / 1'000'000'000),
-                      static_cast<long>(wait % 1'000'000'000)};
+    const timespec ts{0, static_cast<long>(wait.count())};  // < 1 s
     ppoll(fds.data(), fds.size(), &ts, nullptr);
   }
 
-  void receive(int fd, std::size_t direction, TimeNs now, TimeNs since_start) {
+  void receive(int fd, std::size_t direction, TimePoint now, Duration since_start) {
     for (;;) {
       Pending p;
       sockaddr_in from{};
@@ -281,7 +284,7 @@ class Relay {
     }
   }
 
-  void deliver_due(TimeNs now) {
+  void deliver_due(TimePoint now) {
     while (!queue_.empty() && queue_.top().at <= now) {
       const Pending& p = queue_.top();
       const bool to_bridge = p.direction == 0;

@@ -22,7 +22,9 @@
 namespace {
 
 namespace r2 = hapticctrl::ros2types;
-using hapticctrl::monotonic_now_ns;
+using hapticctrl::Duration;
+using hapticctrl::MonotonicClock;
+using hapticctrl::TimePoint;
 
 struct ListenConfig {
   std::string ros_namespace = "/hapticctrl/default";
@@ -62,22 +64,20 @@ void declare(hapticctrl::program::Options& o, ListenConfig& c) {
 /// Arrivals on one topic: count, first and last arrival, and each sample's age at arrival.
 struct Arrivals {
   std::uint64_t count = 0;
-  std::int64_t first_ns = 0;
-  std::int64_t last_ns = 0;
+  TimePoint first;
+  TimePoint last;
   std::string frame;
   std::vector<double> age_us;
 
-  void saw(const std_msgs_msg_dds__Header_& h, std::int64_t now) {
-    first_ns = count++ == 0 ? now : first_ns;
-    last_ns = now;
+  void saw(const std_msgs_msg_dds__Header_& h, TimePoint now) {
+    first = count++ == 0 ? now : first;
+    last = now;
     frame = h.frame_id_ != nullptr ? h.frame_id_ : "";
     const std::int64_t stamp = std::int64_t{h.stamp_.sec_} * 1'000'000'000 + h.stamp_.nanosec_;
-    age_us.push_back(static_cast<double>(now - stamp) * 1e-3);
+    age_us.push_back(static_cast<double>(hapticctrl::to_ns(now) - stamp) * 1e-3);
   }
   [[nodiscard]] double rate_hz() const {
-    return count > 1
-               ? static_cast<double>(count - 1) * 1e9 / static_cast<double>(last_ns - first_ns)
-               : 0.0;
+    return count > 1 ? static_cast<double>(count - 1) / hapticctrl::to_seconds(last - first) : 0.0;
   }
   [[nodiscard]] double age_quantile(double q) const {
     if (age_us.empty()) {
@@ -102,12 +102,12 @@ void print_wrench(const char* name, const geometry_msgs_msg_dds__Wrench_& w) {
               w.force_.z_, w.torque_.x_, w.torque_.y_, w.torque_.z_);
 }
 
-/// Whether `writer` has a matched reader within `timeout_ns` (a reliable sample sent before
+/// Whether `writer` has a matched reader within `timeout` (a reliable sample sent before
 /// discovery finished would reach nobody).
-bool matched(dds_entity_t writer, std::int64_t timeout_ns) {
-  const std::int64_t until = monotonic_now_ns() + timeout_ns;
+bool matched(dds_entity_t writer, Duration timeout) {
+  const TimePoint until = MonotonicClock::now() + timeout;
   dds_publication_matched_status_t status{};
-  while (monotonic_now_ns() < until) {
+  while (MonotonicClock::now() < until) {
     if (dds_get_publication_matched_status(writer, &status) == 0 && status.current_count > 0) {
       return true;
     }
@@ -138,7 +138,7 @@ int listen(const ListenConfig& c) {
       p.writer(geometry_msgs_msg_dds__WrenchStamped__desc,
                r2::dds_topic(ns, t::kOperatorWrenchCommand), commands.get());
   bool command_sent = false;
-  if (!c.command.empty() && matched(command_w, 3'000'000'000)) {
+  if (!c.command.empty() && matched(command_w, std::chrono::seconds(3))) {
     std::string text = c.command;
     std_msgs_msg_dds__String_ m{text.data()};
     command_sent = dds_write(command_w, &m) == 0;
@@ -155,10 +155,10 @@ int listen(const ListenConfig& c) {
   std::vector<std::string> joint_names;
   std::string diag_text;
   int diag_level = -1;
-  const std::int64_t end = monotonic_now_ns() + static_cast<std::int64_t>(c.duration_s * 1e9);
-  std::int64_t next_wrench = 0;
-  while (monotonic_now_ns() < end) {
-    const std::int64_t now = monotonic_now_ns();
+  const TimePoint end = MonotonicClock::now() + hapticctrl::from_seconds(c.duration_s);
+  TimePoint next_wrench{};
+  while (MonotonicClock::now() < end) {
+    const TimePoint now = MonotonicClock::now();
     r2::take_each<geometry_msgs_msg_dds__PoseStamped_>(pose_r, [&](const auto& m) {
       pose.saw(m.header_, now);
       last_pose = m;
@@ -189,10 +189,10 @@ int listen(const ListenConfig& c) {
       }
     });
     if (c.wrench.size() == 6 && now >= next_wrench) {
-      next_wrench = now + 10'000'000;
+      next_wrench = now + std::chrono::milliseconds(10);
       geometry_msgs_msg_dds__WrenchStamped_ w{};
       std::string frame = r2::base_frame(ns);
-      w.header_ = {r2::stamp_of(now), frame.data()};
+      w.header_ = {r2::stamp_of(hapticctrl::to_ns(now)), frame.data()};
       w.wrench_ = {{c.wrench[0], c.wrench[1], c.wrench[2]},
                    {c.wrench[3], c.wrench[4], c.wrench[5]}};
       dds_write(wrench_w, &w);

@@ -34,7 +34,9 @@ namespace {
 
 namespace shm = hapticctrl::shm;
 namespace db = hapticctrl::dds_bridge;
-using hapticctrl::monotonic_now_ns;
+using hapticctrl::Duration;
+using hapticctrl::MonotonicClock;
+using hapticctrl::TimePoint;
 using hapticctrl::dds_bridge::DdsBridgeConfig;
 using hapticctrl::dds_bridge::Endpoints;
 
@@ -60,12 +62,13 @@ struct Publisher {
   Publisher(const DdsBridgeConfig& config, const std::string& frame)
       : arm(frame),
         diagnostics("hapticctrl-core", config.instance, frame),
-        arm_every_ns(config.rate_hz > 0.0 ? static_cast<std::int64_t>(1e9 / config.rate_hz) : 0),
-        diagnostics_every_ns(static_cast<std::int64_t>(1e9 / config.diagnostics_rate_hz)) {}
+        arm_every(config.rate_hz > 0.0 ? hapticctrl::from_seconds(1.0 / config.rate_hz)
+                                       : Duration{}),
+        diagnostics_every(hapticctrl::from_seconds(1.0 / config.diagnostics_rate_hz)) {}
   db::ArmMessages arm;
   db::DiagnosticsMessage diagnostics;
-  std::int64_t arm_every_ns;
-  std::int64_t diagnostics_every_ns;
+  Duration arm_every;
+  Duration diagnostics_every;
 };
 
 /// Writes what is due after each controller cycle, until `running` clears or the core is gone
@@ -73,16 +76,17 @@ struct Publisher {
 void publish_loop(const shm::Segment& seg, const Endpoints& ep, Publisher& pub,
                   const std::atomic<bool>& running, std::atomic<bool>& core_gone,
                   PublishCounters& counters) {
-  std::int64_t next_arm = 0;
-  std::int64_t next_diagnostics = 0;
+  TimePoint next_arm{};
+  TimePoint next_diagnostics{};
   shm::CoreWatch watch(seg);
   shm::TelemetryPayload telemetry;
   while (running.load(std::memory_order_relaxed)) {
     const shm::CoreWatch::Wake wake = watch.wait();
-    const std::int64_t now = monotonic_now_ns();
+    const TimePoint now = MonotonicClock::now();
     if (wake == shm::CoreWatch::Wake::kCycle && now >= next_arm) {
-      next_arm =
-          pub.arm_every_ns == 0 ? 0 : std::max(next_arm + pub.arm_every_ns, now - pub.arm_every_ns);
+      next_arm = pub.arm_every == Duration{}
+                     ? TimePoint{}
+                     : std::max(next_arm + pub.arm_every, now - pub.arm_every);
       shm::PositionPayload position;
       const shm::ReadResult r = seg.region<shm::RegionId::kPosition>().read(position);
       if (r.ok()) {
@@ -96,9 +100,10 @@ void publish_loop(const shm::Segment& seg, const Endpoints& ep, Publisher& pub,
     }
     const bool gone = wake == shm::CoreWatch::Wake::kCoreGone;
     if (now >= next_diagnostics || gone) {
-      next_diagnostics = now + pub.diagnostics_every_ns;
+      next_diagnostics = now + pub.diagnostics_every;
       const shm::ReadResult r = seg.region<shm::RegionId::kTelemetry>().read(telemetry);
-      pub.diagnostics.fill(telemetry, !gone, r.ok() && !gone ? r.publish_time_ns : now);
+      pub.diagnostics.fill(telemetry, !gone,
+                           r.ok() && !gone ? r.publish_time_ns : hapticctrl::to_ns(now));
       write(ep.diagnostics, &pub.diagnostics.array, counters);
       counters.diagnostics.fetch_add(1, std::memory_order_relaxed);
     }
@@ -111,10 +116,10 @@ void publish_loop(const shm::Segment& seg, const Endpoints& ep, Publisher& pub,
   }
 }
 
-/// Serves one controller until it goes away, the bridge is told to stop, or `end_ns` passes.
+/// Serves one controller until it goes away, the bridge is told to stop, or `end` passes.
 /// Returns the counters of the commands this attachment applied.
 std::string run_attached(shm::Segment& seg, const Endpoints& ep, Publisher& pub,
-                         dds_entity_t waitset, const DdsBridgeConfig& config, std::int64_t end_ns,
+                         dds_entity_t waitset, const DdsBridgeConfig& config, TimePoint end,
                          PublishCounters& counters) {
   shm::RemoteCommandSettings settings;
   settings.allow_remote_commands = config.allow_remote_commands;
@@ -126,13 +131,13 @@ std::string run_attached(shm::Segment& seg, const Endpoints& ep, Publisher& pub,
   std::thread publisher([&] { publish_loop(seg, ep, pub, publishing, core_gone, counters); });
   while (!g_stop.load() && !core_gone.load()) {
     dds_waitset_wait(waitset, nullptr, 0, DDS_MSECS(2));
-    const std::int64_t now = monotonic_now_ns();
+    const TimePoint now = MonotonicClock::now();
     hapticctrl::ros2types::take_each<std_msgs_msg_dds__String_>(
         ep.command, [&](const auto& m) { remote.command(db::command_of(m), now); });
     hapticctrl::ros2types::take_each<geometry_msgs_msg_dds__WrenchStamped_>(
         ep.operator_wrench_command, [&](const auto& m) { remote.force(db::wrench_of(m), now); });
     remote.tick(now);
-    if (end_ns != 0 && now >= end_ns) {
+    if (now >= end) {
       g_stop.store(true);
     }
   }
@@ -150,10 +155,9 @@ int run(const DdsBridgeConfig& config) {
   Publisher pub(config, hapticctrl::ros2types::base_frame(config.ros_namespace));
   PublishCounters counters;
   std::string commands_json = "\"commands_applied\":0";
-  const std::int64_t end_ns =
-      config.duration_s > 0.0
-          ? monotonic_now_ns() + static_cast<std::int64_t>(config.duration_s * 1e9)
-          : 0;
+  const TimePoint end = config.duration_s > 0.0
+                            ? MonotonicClock::now() + hapticctrl::from_seconds(config.duration_s)
+                            : TimePoint::max();
   std::fprintf(stderr,
                "hapticctrl-dds: instance '%s', DDS domain %u, ROS 2 namespace %s, remote "
                "commands %s\n",
@@ -165,7 +169,7 @@ int run(const DdsBridgeConfig& config) {
         config.instance, shm::RemoteCommands::attach_options(config.allow_remote_commands));
     if (seg) {
       said_waiting = false;
-      commands_json = run_attached(*seg, ep, pub, waitset, config, end_ns, counters);
+      commands_json = run_attached(*seg, ep, pub, waitset, config, end, counters);
       continue;
     }
     if (!said_waiting) {
@@ -174,7 +178,7 @@ int run(const DdsBridgeConfig& config) {
       said_waiting = true;
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    if (end_ns != 0 && monotonic_now_ns() >= end_ns) {
+    if (MonotonicClock::now() >= end) {
       g_stop.store(true);
     }
   }

@@ -51,7 +51,7 @@ bool last_string_is_sound(const void* data, std::size_t size) noexcept {
 
 }  // namespace
 
-void HmiInput::on_command(const void* data, std::size_t size, std::int64_t now_ns) noexcept {
+void HmiInput::on_command(const void* data, std::size_t size, TimePoint now) noexcept {
   Command m{};
   try {
     if (!last_string_is_sound<Command>(data, size) ||
@@ -63,10 +63,10 @@ void HmiInput::on_command(const void* data, std::size_t size, std::int64_t now_n
     remote_.malformed();
     return;
   }
-  remote_.command(ctrl_code_of(m.command), now_ns);
+  remote_.command(ctrl_code_of(m.command), now);
 }
 
-void HmiInput::on_force(const void* data, std::size_t size, std::int64_t now_ns) noexcept {
+void HmiInput::on_force(const void* data, std::size_t size, TimePoint now) noexcept {
   hapticctrl_lcm::hmi_force_t m{};
   try {
     if (!last_string_is_sound<hapticctrl_lcm::hmi_force_t>(data, size) ||
@@ -80,7 +80,7 @@ void HmiInput::on_force(const void* data, std::size_t size, std::int64_t now_ns)
   }
   shm::Vector6 requested{};
   std::copy_n(m.wrench, 6, requested.begin());
-  remote_.force(requested, now_ns);
+  remote_.force(requested, now);
 }
 
 }  // namespace hapticctrl::lcm_bridge

@@ -27,7 +27,9 @@
 
 namespace {
 
-using hapticctrl::monotonic_now_ns;
+using hapticctrl::Duration;
+using hapticctrl::MonotonicClock;
+using hapticctrl::TimePoint;
 using hapticctrl::lcm_bridge::Channels;
 using hapticctrl::lcm_bridge::HmiInput;
 using hapticctrl::lcm_bridge::LcmBridgeConfig;
@@ -40,8 +42,9 @@ void on_signal(int /*sig*/) {
   g_stop.store(true);
 }
 
-std::int64_t utime_of(std::int64_t ns) {
-  return ns / 1000;
+/// LCM's utime of a moment on the monotonic clock (microseconds).
+std::int64_t utime_of(TimePoint t) {
+  return hapticctrl::to_ns(t) / 1000;
 }
 
 std::int64_t wall_now_us() {
@@ -58,10 +61,10 @@ struct PublishCounters {
 };
 
 /// The bridge's own event (index 0: not from the core's sequence) when the core is gone.
-hapticctrl_lcm::event_t core_gone_event(const shm::CoreWatch& watch, std::int64_t now) {
+hapticctrl_lcm::event_t core_gone_event(const shm::CoreWatch& watch, TimePoint now) {
   const shm::Event e{0,
                      watch.last_cycle(),
-                     now,
+                     hapticctrl::to_ns(now),
                      shm::EventKind::kCoreState,
                      static_cast<std::uint32_t>(shm::CoreState::kStopped),
                      watch.stop_reason()};
@@ -69,7 +72,7 @@ hapticctrl_lcm::event_t core_gone_event(const shm::CoreWatch& watch, std::int64_
   char noticed[96];  // NOLINT(*-avoid-c-arrays)
   std::snprintf(noticed, sizeof noticed,
                 " (noticed by the LCM bridge %.1f ms after its last heartbeat)",
-                static_cast<double>(watch.heartbeat_age_at_loss_ns()) * 1e-6);
+                hapticctrl::to_seconds(watch.heartbeat_age_at_loss()) * 1e3);
   m.text += noticed;
   return m;
 }
@@ -81,16 +84,16 @@ void publish_loop(const shm::Segment& seg, lcm::LCM& lcm, const Channels& ch,
                   std::atomic<bool>& core_gone, PublishCounters& counters) {
   const auto& vp_cell = seg.region<shm::RegionId::kVp>();
   shm::EventReader events(seg.region<shm::RegionId::kEvents>(), true);
-  const auto arm_every_ns =
-      config.arm_rate_hz > 0.0 ? static_cast<std::int64_t>(1e9 / config.arm_rate_hz) : 0;
-  const auto stats_every_ns = static_cast<std::int64_t>(1e9 / config.stats_rate_hz);
-  std::int64_t next_arm = 0;
-  std::int64_t next_stats = 0;
+  const Duration arm_every =
+      config.arm_rate_hz > 0.0 ? hapticctrl::from_seconds(1.0 / config.arm_rate_hz) : Duration{};
+  const Duration stats_every = hapticctrl::from_seconds(1.0 / config.stats_rate_hz);
+  TimePoint next_arm{};
+  TimePoint next_stats{};
   std::uint64_t lost_reported = 0;
   shm::CoreWatch watch(seg);
   while (running.load(std::memory_order_relaxed)) {
     const shm::CoreWatch::Wake wake = watch.wait();
-    const std::int64_t now = monotonic_now_ns();
+    const TimePoint now = MonotonicClock::now();
     // Arm state after a cycle only (a silent 2 ms wake of the watch is no new state); statistics
     // by the clock; the regions are read only for what is due.
     const bool arm_due = wake == shm::CoreWatch::Wake::kCycle && now >= next_arm;
@@ -106,7 +109,8 @@ void publish_loop(const shm::Segment& seg, lcm::LCM& lcm, const Channels& ch,
       shm::VprPayload vpr;  // never written: no client yet, and its defaults say so
       if (seg.region<shm::RegionId::kPosition>().read(position).ok() && vp_cell.read(vp).ok() &&
           seg.region<shm::RegionId::kVpr>().read(vpr).status != shm::ReadStatus::kTorn) {
-        next_arm = arm_every_ns == 0 ? 0 : std::max(next_arm + arm_every_ns, now - arm_every_ns);
+        next_arm =
+            arm_every == Duration{} ? TimePoint{} : std::max(next_arm + arm_every, now - arm_every);
         auto arm = lcmtypes::to_arm_state(position, utime_of(now));
         lcm.publish(ch.arm_state, &arm);
         auto coupling = lb::to_coupling(vp, vpr, telemetry, now, utime_of(now));
@@ -115,7 +119,7 @@ void publish_loop(const shm::Segment& seg, lcm::LCM& lcm, const Channels& ch,
       }
     }
     if (stats_due && telemetry_ok) {
-      next_stats = now + stats_every_ns;
+      next_stats = now + stats_every;
       auto stats = lcmtypes::to_cycle_stats(telemetry, utime_of(now));
       lcm.publish(ch.cycle_stats, &stats);
       counters.cycle_stats.fetch_add(1, std::memory_order_relaxed);
@@ -126,7 +130,7 @@ void publish_loop(const shm::Segment& seg, lcm::LCM& lcm, const Channels& ch,
       }
     }
     events.poll([&](const shm::Event& e) {
-      auto m = lb::to_event(e, events.lost() - lost_reported, monotonic_now_ns(), wall_now_us());
+      auto m = lb::to_event(e, events.lost() - lost_reported, MonotonicClock::now(), wall_now_us());
       lost_reported = events.lost();
       lcm.publish(ch.events, &m);
       counters.events.fetch_add(1, std::memory_order_relaxed);
@@ -144,22 +148,22 @@ void publish_loop(const shm::Segment& seg, lcm::LCM& lcm, const Channels& ch,
   }
 }
 
-/// Serves one controller until it goes away, the bridge is told to stop, or `end_ns` passes.
+/// Serves one controller until it goes away, the bridge is told to stop, or `end` passes.
 void run_attached(shm::Segment& seg, lcm::LCM& lcm, const Channels& ch,
-                  const LcmBridgeConfig& config, std::int64_t end_ns, PublishCounters& counters,
+                  const LcmBridgeConfig& config, TimePoint end, PublishCounters& counters,
                   lb::HmiSettings& settings, std::string& hmi_json) {
   HmiInput hmi(settings, &seg.ctrl_writer(),
                settings.allow_remote_commands ? &seg.writable<shm::RegionId::kForce>() : nullptr);
   auto command_sub = lcm.subscribeFunction(
       ch.hmi_command,
       +[](const lcm::ReceiveBuffer* rbuf, const std::string& /*channel*/, HmiInput* input) {
-        input->on_command(rbuf->data, rbuf->data_size, monotonic_now_ns());
+        input->on_command(rbuf->data, rbuf->data_size, MonotonicClock::now());
       },
       &hmi);
   auto force_sub = lcm.subscribeFunction(
       ch.hmi_force,
       +[](const lcm::ReceiveBuffer* rbuf, const std::string& /*channel*/, HmiInput* input) {
-        input->on_force(rbuf->data, rbuf->data_size, monotonic_now_ns());
+        input->on_force(rbuf->data, rbuf->data_size, MonotonicClock::now());
       },
       &hmi);
   std::atomic<bool> publishing{true};
@@ -168,9 +172,9 @@ void run_attached(shm::Segment& seg, lcm::LCM& lcm, const Channels& ch,
       [&] { publish_loop(seg, lcm, ch, config, publishing, core_gone, counters); });
   while (!g_stop.load() && !core_gone.load()) {
     lcm.handleTimeout(2);
-    const std::int64_t now = monotonic_now_ns();
+    const TimePoint now = MonotonicClock::now();
     hmi.tick(now);
-    if (end_ns != 0 && now >= end_ns) {
+    if (now >= end) {
       g_stop.store(true);
     }
   }
@@ -191,10 +195,9 @@ int run(const LcmBridgeConfig& config) {
   settings.allow_remote_commands = config.allow_remote_commands;
   PublishCounters counters;
   std::string hmi_json = "\"commands_applied\":0";
-  const std::int64_t end_ns =
-      config.duration_s > 0.0
-          ? monotonic_now_ns() + static_cast<std::int64_t>(config.duration_s * 1e9)
-          : 0;
+  const TimePoint end = config.duration_s > 0.0
+                            ? MonotonicClock::now() + hapticctrl::from_seconds(config.duration_s)
+                            : TimePoint::max();
   std::fprintf(stderr, "hapticctrl-lcm: instance '%s' on %s, channels %s.*, remote commands %s\n",
                config.instance.c_str(), config.lcm_url.c_str(),
                ("hapticctrl." + config.instance).c_str(),
@@ -205,7 +208,7 @@ int run(const LcmBridgeConfig& config) {
         config.instance, shm::RemoteCommands::attach_options(config.allow_remote_commands));
     if (seg) {
       said_waiting = false;
-      run_attached(*seg, lcm, ch, config, end_ns, counters, settings, hmi_json);
+      run_attached(*seg, lcm, ch, config, end, counters, settings, hmi_json);
       continue;
     }
     if (!said_waiting) {
@@ -214,7 +217,7 @@ int run(const LcmBridgeConfig& config) {
       said_waiting = true;
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    if (end_ns != 0 && monotonic_now_ns() >= end_ns) {
+    if (MonotonicClock::now() >= end) {
       g_stop.store(true);
     }
   }

@@ -16,7 +16,7 @@ void copy(const From& from, To (&to)[N]) {  // NOLINT(*-avoid-c-arrays): lcm-gen
 }  // namespace
 
 hapticctrl_lcm::coupling_t to_coupling(const shm::VpPayload& vp, const shm::VprPayload& vpr,
-                                       const shm::TelemetryPayload& t, std::int64_t now_ns,
+                                       const shm::TelemetryPayload& t, TimePoint now,
                                        std::int64_t utime) {
   hapticctrl_lcm::coupling_t m{};
   m.utime = utime;
@@ -30,7 +30,7 @@ hapticctrl_lcm::coupling_t to_coupling(const shm::VpPayload& vp, const shm::VprP
   copy(vp.client_handle_pose, m.client_handle_pose);
   m.client_sequence = static_cast<std::int64_t>(vp.echo_client_sequence);
   m.client_age_ms =
-      vpr.session_id != 0 ? static_cast<double>(now_ns - vpr.received_time_ns) / 1e6 : 0.0;
+      vpr.session_id != 0 ? to_seconds(now - time_point_from_ns(vpr.received_time_ns)) * 1e3 : 0.0;
   m.client_stale = (vp.state_word & shm::state_bits::kClientStale) != 0 ? 1 : 0;
   m.vpr_stale_cycles = static_cast<std::int64_t>(t.vpr_stale);
   m.sample_age_ms = static_cast<double>(vp.sample_age_ns) / 1e6;
@@ -55,9 +55,9 @@ hapticctrl_lcm::coupling_t to_coupling(const shm::VpPayload& vp, const shm::VprP
 }
 
 hapticctrl_lcm::event_t to_event(const shm::Event& e, std::uint64_t lost_before,
-                                 std::int64_t monotonic_now_ns, std::int64_t wall_now_us) {
+                                 TimePoint monotonic_now, std::int64_t wall_now_us) {
   hapticctrl_lcm::event_t m{};
-  m.utime = wall_now_us - (monotonic_now_ns - e.time_ns) / 1000;
+  m.utime = wall_now_us - (to_ns(monotonic_now) - e.time_ns) / 1000;
   m.index = static_cast<std::int64_t>(e.index);
   m.cycle = static_cast<std::int64_t>(e.cycle);
   m.time_ns = e.time_ns;

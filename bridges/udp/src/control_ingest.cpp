@@ -18,7 +18,7 @@ bool ControlIngest::admit(std::uint32_t sequence) noexcept {
     return false;
   }
   if (have_sequence_) {
-    const auto step = static_cast<std::uint32_t>(sequence - last_sequence_);
+    const std::uint32_t step = sequence - last_sequence_;  // modulo 2^32
     sequence_high_ += step;
     link_.add_arrival(step - 1);
   } else {
@@ -29,7 +29,7 @@ bool ControlIngest::admit(std::uint32_t sequence) noexcept {
   return true;
 }
 
-void ControlIngest::take(const hcp_frame& in, TimeNs now, shm::VprPayload& vpr) noexcept {
+void ControlIngest::take(const hcp_frame& in, TimePoint now, shm::VprPayload& vpr) noexcept {
   if (in.body.type == HCP_CONTROL_CONTACT) {
     take_contact(in.body.hcp_body_u.contact, now, vpr);  // a contact is not a new object sample
   } else {
@@ -48,7 +48,7 @@ void mark_joint_command(shm::CommandType frame_mode, shm::VprPayload& vpr) noexc
 
 }  // namespace
 
-void ControlIngest::take_sample(const hcp_frame& in, TimeNs now, shm::VprPayload& vpr) noexcept {
+void ControlIngest::take_sample(const hcp_frame& in, TimePoint now, shm::VprPayload& vpr) noexcept {
   vpr.sample_time_ns = 0;
   vpr.echo_cycle = 0;
   const hcp_body& b = in.body;
@@ -79,14 +79,14 @@ void ControlIngest::take_sample(const hcp_frame& in, TimeNs now, shm::VprPayload
       break;
   }
   const LinkFigures figures = link();
-  vpr.link_delay_ns = figures.delay_ns;
-  vpr.link_jitter_ns = figures.jitter_ns;
+  vpr.link_delay_ns = to_ns(figures.delay);
+  vpr.link_jitter_ns = to_ns(figures.jitter);
   vpr.link_loss_ppm = figures.loss_ppm;
   vpr.client_sequence = sequence_high_;
   vpr.client_time_ns = in.header.sender_time_ns;
 }
 
-void ControlIngest::take_contact(const hcp_control_contact& c, TimeNs now,
+void ControlIngest::take_contact(const hcp_control_contact& c, TimePoint now,
                                  shm::VprPayload& vpr) noexcept {
   // The decoder checked the slot word and the values (values.cpp).
   const protocol::ContactSlots slots = protocol::contact_slots(c.slots);
@@ -110,13 +110,13 @@ void ControlIngest::take_contact(const hcp_control_contact& c, TimeNs now,
   to.object_pose = vpr.command_type == static_cast<std::uint32_t>(shm::CommandType::kImpedance)
                        ? shm::Pose7{0, 0, 0, 0, 0, 0, 1}
                        : vpr.object_pose;
-  to.received_time_ns = now;
+  to.received_time_ns = to_ns(now);
   const SampleTiming timing =
       LinkEstimator::time_sample(protocol::unpack_answer_echo(c.answer_echo), *answers_, now);
-  to.sample_time_ns = timing.measured ? timing.sample_time : 0;
+  to.sample_time_ns = timing.measured ? to_ns(timing.sample_time) : 0;
 }
 
-void ControlIngest::take_timed_object(const hcp_control_object_timed& o, TimeNs now,
+void ControlIngest::take_timed_object(const hcp_control_object_timed& o, TimePoint now,
                                       shm::VprPayload& vpr) noexcept {
   // The decoder checked the packed rotation (values.cpp): it unpacks.
   const protocol::Quaternion q = protocol::unpack_rotation({o.rotation[0], o.rotation[1]})
@@ -130,8 +130,8 @@ void ControlIngest::take_timed_object(const hcp_control_object_timed& o, TimeNs 
   take_timing(o.answer_echo, o.energy_in, now, vpr);
 }
 
-void ControlIngest::take_timing(std::uint32_t answer_echo, std::uint32_t energy_in_uj, TimeNs now,
-                                shm::VprPayload& vpr) noexcept {
+void ControlIngest::take_timing(std::uint32_t answer_echo, std::uint32_t energy_in_uj,
+                                TimePoint now, shm::VprPayload& vpr) noexcept {
   // The client's cumulative energy, modulo 2^32 uJ: add up the differences, but not one that is
   // not physical (kMaxEnergyStepUj).
   const std::uint32_t step_uj = energy_in_uj - energy_in_last_;
@@ -145,7 +145,7 @@ void ControlIngest::take_timing(std::uint32_t answer_echo, std::uint32_t energy_
       LinkEstimator::time_sample(protocol::unpack_answer_echo(answer_echo), *answers_, now);
   link_.add(timing);
   if (timing.measured) {
-    vpr.sample_time_ns = timing.sample_time;
+    vpr.sample_time_ns = to_ns(timing.sample_time);
     vpr.echo_cycle = timing.echo_cycle;
   }
 }

@@ -38,9 +38,9 @@ HelloVerdict judge_hello(const hcp_frame& hello, const protocol::Endpoint& from,
     if (from == state.session.peer) {
       return HelloVerdict{HelloVerdict::Kind::kWelcomeAgain};
     }
-    const TimeNs silent_ms = state.silent_ns / kNsPerMs;
-    const auto retry = static_cast<std::uint32_t>(
-        std::max<TimeNs>(1, static_cast<TimeNs>(state.watchdog_ms) - silent_ms));
+    const auto silent_ms = std::chrono::duration_cast<std::chrono::milliseconds>(state.silent);
+    const auto retry = static_cast<std::uint32_t>(std::max<std::int64_t>(
+        1, static_cast<std::int64_t>(state.watchdog_ms) - silent_ms.count()));
     return refusal(HCP_REFUSE_BUSY, retry,
                    "busy: another client session is active on this controller");
   }

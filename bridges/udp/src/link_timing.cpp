@@ -15,18 +15,18 @@ constexpr double kLossGain = 1.0 / 256.0;
 
 }  // namespace
 
-void AnswerLog::record(std::uint64_t cycle, TimeNs sent) noexcept {
+void AnswerLog::record(std::uint64_t cycle, TimePoint sent) noexcept {
   // Without fences (ThreadSanitizer does not model them): the entry's cycle is cleared before
   // the time changes and set after it, all release; a reader that saw the new time sees the
   // cleared or the new cycle on its second look, never the old one.
   Entry& e = entries_[cycle % kSize];
   e.cycle.store(0, std::memory_order_release);
-  e.sent.store(sent, std::memory_order_release);
+  e.sent_ns.store(to_ns(sent), std::memory_order_release);
   e.cycle.store(cycle, std::memory_order_release);
   newest_.store(cycle, std::memory_order_release);
 }
 
-bool AnswerLog::sent_time(std::uint64_t cycle, TimeNs& sent) const noexcept {
+bool AnswerLog::sent_time(std::uint64_t cycle, TimePoint& sent) const noexcept {
   if (cycle == 0) {
     return false;
   }
@@ -34,29 +34,29 @@ bool AnswerLog::sent_time(std::uint64_t cycle, TimeNs& sent) const noexcept {
   if (e.cycle.load(std::memory_order_acquire) != cycle) {
     return false;
   }
-  const TimeNs t = e.sent.load(std::memory_order_acquire);
+  const std::int64_t t = e.sent_ns.load(std::memory_order_acquire);
   if (e.cycle.load(std::memory_order_acquire) != cycle) {
     return false;  // overwritten while read
   }
-  sent = t;
+  sent = time_point_from_ns(t);
   return true;
 }
 
 SampleTiming LinkEstimator::time_sample(const protocol::AnswerEcho& echo, const AnswerLog& log,
-                                        TimeNs arrival) noexcept {
+                                        TimePoint arrival) noexcept {
   SampleTiming s;
   if (!echo.valid) {
     return s;
   }
   const std::uint64_t cycle = protocol::expand_cycle(echo.cycle_low, log.newest());
-  TimeNs sent = 0;
+  TimePoint sent;
   if (!log.sent_time(cycle, sent) || arrival < sent) {
     return s;
   }
   s.measured = true;
   s.echo_cycle = cycle;
   // A client that claims a longer hold than the whole round trip lies or rounds: never below 0.
-  s.round_trip = std::max<TimeNs>(0, arrival - sent - echo.hold_ns);
+  s.round_trip = std::max(Duration::zero(), arrival - sent - Duration(echo.hold_ns));
   s.sample_time = arrival - s.round_trip / 2;
   return s;
 }
@@ -65,7 +65,7 @@ void LinkEstimator::add(const SampleTiming& sample) noexcept {
   if (!sample.measured) {
     return;
   }
-  const double one_way = static_cast<double>(sample.round_trip) / 2.0;
+  const double one_way = static_cast<double>(to_ns(sample.round_trip)) / 2.0;
   if (!have_delay_) {
     have_delay_ = true;
     delay_ = one_way;

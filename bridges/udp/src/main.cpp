@@ -32,6 +32,8 @@
 
 namespace {
 
+using hapticctrl::MonotonicClock;
+using hapticctrl::TimePoint;
 using hapticctrl::protocol::Endpoint;
 using hapticctrl::protocol::FrameBuffer;
 using hapticctrl::protocol::Received;
@@ -69,13 +71,13 @@ bool send_counted(UdpSocket& socket, Session& session, std::span<const std::uint
 /// `keep_serving(now)`, until it returns false or the bridge is told to stop. (2 ms bounds how
 /// late the loss of the core is told to the client; idle, it costs 500 wake-ups a second.)
 template <typename KeepServing>
-void serve(UdpSocket& socket, Session& session, std::int64_t end_ns, KeepServing keep_serving) {
+void serve(UdpSocket& socket, Session& session, TimePoint end, KeepServing keep_serving) {
   FrameBuffer in{};
   FrameBuffer reply{};
   while (!g_stop.load()) {
     Endpoint from;
     const Received r = socket.receive(in, from, std::chrono::milliseconds(2));
-    const std::int64_t now = hapticctrl::monotonic_now_ns();
+    const TimePoint now = MonotonicClock::now();
     if (r.status == Received::Status::kDatagram) {
       const std::size_t n = session.on_datagram({in.data(), r.size}, from, now, reply);
       if (n != 0) {
@@ -85,7 +87,7 @@ void serve(UdpSocket& socket, Session& session, std::int64_t end_ns, KeepServing
       session.on_oversized();
     }
     session.check_watchdog(now);
-    if (end_ns != 0 && now >= end_ns) {
+    if (now >= end) {
       g_stop.store(true);
     }
     if (!keep_serving(now)) {
@@ -97,7 +99,7 @@ void serve(UdpSocket& socket, Session& session, std::int64_t end_ns, KeepServing
 void send_answer(UdpSocket& socket, Session& session, const shm::VpPayload& sample) {
   FrameBuffer out{};
   Endpoint to;
-  const std::size_t n = session.answer(sample, hapticctrl::monotonic_now_ns(), out, to);
+  const std::size_t n = session.answer(sample, MonotonicClock::now(), out, to);
   if (n != 0 && send_counted(socket, session, {out.data(), n}, to)) {
     session.counters().answers_sent.fetch_add(1, std::memory_order_relaxed);
   }
@@ -124,7 +126,7 @@ void answer_cycles(const shm::Segment& segment, UdpSocket& socket, Session& sess
                    "after its last heartbeat)\n",
                    segment.instance().c_str(), static_cast<unsigned long long>(watch.last_cycle()),
                    shm::stop_reason_name(watch.stop_reason()),
-                   static_cast<double>(watch.heartbeat_age_at_loss_ns()) * 1e-6);
+                   hapticctrl::to_seconds(watch.heartbeat_age_at_loss()) * 1e3);
       end_reason.store(watch.stop_reason());
       core_lost.store(true);
       return;
@@ -162,12 +164,12 @@ void keep_lost_black_box(const shm::Segment& segment, const std::string& state_d
 /// Serves one controller until it goes away (or the bridge stops). Returns the reason it went
 /// (shm::StopReason; 0 while it runs on).
 std::uint32_t run_attached(shm::Segment& segment, UdpSocket& socket, Session& session,
-                           std::int64_t end_ns) {
-  hapticctrl::udp_bridge::ControllerPorts ports{&segment.writable<shm::RegionId::kVpr>(),
-                                                &segment.ctrl_writer(), segment.header().period_ns,
-                                                &segment.header().heartbeat_cycle};
+                           TimePoint end) {
+  hapticctrl::udp_bridge::ControllerPorts ports{
+      &segment.writable<shm::RegionId::kVpr>(), &segment.ctrl_writer(),
+      hapticctrl::Duration(segment.header().period_ns), &segment.header().heartbeat_cycle};
   auto& stats = segment.writable<shm::RegionId::kLinkStats>();
-  session.set_controller(&ports, hapticctrl::monotonic_now_ns());
+  session.set_controller(&ports, MonotonicClock::now());
 
   std::atomic<bool> answering{true};
   std::atomic<bool> core_lost{false};
@@ -175,13 +177,13 @@ std::uint32_t run_attached(shm::Segment& segment, UdpSocket& socket, Session& se
   std::thread answers(
       [&] { answer_cycles(segment, socket, session, answering, core_lost, end_reason); });
 
-  std::int64_t next_stats = 0;
-  serve(socket, session, end_ns, [&](std::int64_t now) {
+  TimePoint next_stats{};
+  serve(socket, session, end, [&](TimePoint now) {
     if (now >= next_stats) {
-      next_stats = now + 100'000'000;
+      next_stats = now + std::chrono::milliseconds(100);
       shm::LinkStatsPayload s;
       session.fill_stats(s);
-      stats.publish_quietly(s, now);
+      stats.publish_quietly(s, hapticctrl::to_ns(now));
     }
     return !core_lost.load();
   });
@@ -192,14 +194,14 @@ std::uint32_t run_attached(shm::Segment& segment, UdpSocket& socket, Session& se
   const char* why = g_stop.load() ? "the bridge is shutting down"
                     : lost        ? "the controller was lost (killed or crashed)"
                                   : "the controller stopped";
-  const std::size_t n = session.close(hapticctrl::monotonic_now_ns(), why, notice, to);
+  const std::size_t n = session.close(MonotonicClock::now(), why, notice, to);
   if (n != 0) {
     socket.send_to({notice.data(), n}, to);
   }
-  session.set_controller(nullptr, hapticctrl::monotonic_now_ns());
+  session.set_controller(nullptr, MonotonicClock::now());
   shm::LinkStatsPayload s;
   session.fill_stats(s);
-  stats.publish_quietly(s, hapticctrl::monotonic_now_ns());
+  stats.publish_quietly(s, hapticctrl::to_ns(MonotonicClock::now()));
   answering.store(false);
   answers.join();
   if (!g_stop.load()) {
@@ -263,10 +265,9 @@ int run(const BridgeConfig& config) {
                    {config.hello_rate, config.hello_rate, kTotalHellos * config.hello_rate,
                     kTotalHellos * config.hello_rate / 2.0}},
                   random_token);
-  const std::int64_t end_ns =
-      config.duration_s > 0.0
-          ? hapticctrl::monotonic_now_ns() + static_cast<std::int64_t>(config.duration_s * 1e9)
-          : 0;
+  const TimePoint end = config.duration_s > 0.0
+                            ? MonotonicClock::now() + hapticctrl::from_seconds(config.duration_s)
+                            : TimePoint::max();
   bool said_waiting = false;
   while (!g_stop.load()) {
     std::optional<shm::Segment> segment = shm::Segment::try_attach(
@@ -274,7 +275,7 @@ int run(const BridgeConfig& config) {
         shm::AttachOptions{{shm::RegionId::kVpr, shm::RegionId::kLinkStats}, /*ctrl_writer=*/true});
     if (segment) {
       said_waiting = false;
-      if (run_attached(*segment, socket, session, end_ns) ==
+      if (run_attached(*segment, socket, session, end) ==
           static_cast<std::uint32_t>(shm::StopReason::kCoreLost)) {
         keep_lost_black_box(*segment, config.state_dir);
       }
@@ -286,8 +287,8 @@ int run(const BridgeConfig& config) {
       said_waiting = true;
     }
     // Serve (refusing HELLOs) for 100 ms, then try to attach again.
-    const std::int64_t retry_at = hapticctrl::monotonic_now_ns() + 100'000'000;
-    serve(socket, session, end_ns, [retry_at](std::int64_t now) { return now < retry_at; });
+    const TimePoint retry_at = MonotonicClock::now() + std::chrono::milliseconds(100);
+    serve(socket, session, end, [retry_at](TimePoint now) { return now < retry_at; });
   }
   if (config.json) {
     print_json(session);

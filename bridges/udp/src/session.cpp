@@ -50,7 +50,7 @@ Session::Session(SessionSettings settings, std::function<std::uint64_t()> random
   view_.publish_quietly(session_, 0);
 }
 
-void Session::set_controller(const ControllerPorts* ports, TimeNs now) noexcept {
+void Session::set_controller(const ControllerPorts* ports, TimePoint now) noexcept {
   if (session_.token != 0) {
     end_session(now);
   }
@@ -64,7 +64,7 @@ void Session::on_oversized() noexcept {
 }
 
 std::size_t Session::on_datagram(std::span<const std::uint8_t> bytes,
-                                 const protocol::Endpoint& from, TimeNs now,
+                                 const protocol::Endpoint& from, TimePoint now,
                                  std::span<std::uint8_t> reply) noexcept {
   counters_.frames_in.fetch_add(1, std::memory_order_relaxed);
   const std::uint32_t source = ntohl(from.address.sin_addr.s_addr);
@@ -140,7 +140,7 @@ std::size_t Session::on_datagram(std::span<const std::uint8_t> bytes,
   return 0;
 }
 
-std::size_t Session::on_hello(const hcp_frame& in, const protocol::Endpoint& from, TimeNs now,
+std::size_t Session::on_hello(const hcp_frame& in, const protocol::Endpoint& from, TimePoint now,
                               std::span<std::uint8_t> reply) noexcept {
   const HelloVerdict verdict =
       judge_hello(in, from, {session_, have_controller_, now - last_heard_, watchdog_ms_});
@@ -162,7 +162,7 @@ std::size_t Session::on_hello(const hcp_frame& in, const protocol::Endpoint& fro
   return refuse(verdict.code, in.header.protocol, verdict.retry_ms, verdict.reason, now, reply);
 }
 
-void Session::open(const hcp_frame& hello, const protocol::Endpoint& from, TimeNs now) noexcept {
+void Session::open(const hcp_frame& hello, const protocol::Endpoint& from, TimePoint now) noexcept {
   std::uint64_t token = 0;
   while (token == 0) {
     token = random_token_();
@@ -190,14 +190,14 @@ void Session::open(const hcp_frame& hello, const protocol::Endpoint& from, TimeN
   counters_.sessions_opened.fetch_add(1, std::memory_order_relaxed);
 }
 
-void Session::end_session(TimeNs now) noexcept {
+void Session::end_session(TimePoint now) noexcept {
   session_ = SessionView{};
   publish_view();
   vpr_ = fresh_vpr(0);  // session 0: the core renders nothing and ramps any wrench out
   publish_vpr(now);
 }
 
-std::size_t Session::close(TimeNs now, std::string_view why, std::span<std::uint8_t> notice,
+std::size_t Session::close(TimePoint now, std::string_view why, std::span<std::uint8_t> notice,
                            protocol::Endpoint& to) noexcept {
   if (session_.token == 0) {
     return 0;
@@ -209,11 +209,11 @@ std::size_t Session::close(TimeNs now, std::string_view why, std::span<std::uint
   return n;
 }
 
-bool Session::check_watchdog(TimeNs now) noexcept {
+bool Session::check_watchdog(TimePoint now) noexcept {
   // A session that sent nothing since its HELLO is held no longer than the default.
   const std::uint32_t limit_ms =
       engaged_ ? watchdog_ms_ : std::min(watchdog_ms_, settings_.default_watchdog_ms);
-  if (session_.token == 0 || now - last_heard_ <= static_cast<TimeNs>(limit_ms) * kNsPerMs) {
+  if (session_.token == 0 || now - last_heard_ <= std::chrono::milliseconds(limit_ms)) {
     return false;
   }
   counters_.watchdog_expiries.fetch_add(1, std::memory_order_relaxed);
@@ -221,7 +221,7 @@ bool Session::check_watchdog(TimeNs now) noexcept {
   return true;
 }
 
-void Session::on_control(const hcp_frame& in, TimeNs now) noexcept {
+void Session::on_control(const hcp_frame& in, TimePoint now) noexcept {
   if (!ingest_.admit(in.header.sequence)) {
     counters_.drop(LinkDrop::kSequence);
     return;
@@ -232,14 +232,14 @@ void Session::on_control(const hcp_frame& in, TimeNs now) noexcept {
     return;  // feeds the watchdog only: the core keeps judging the freshness of client data
   }
   ingest_.take(in, now, vpr_);
-  link_view_.publish_quietly(ingest_.link(), now);
+  link_view_.publish_quietly(ingest_.link(), to_ns(now));
   publish_vpr(now);
   ++control_received_;
   control_received_shared_.store(control_received_, std::memory_order_relaxed);
   counters_.control_accepted.fetch_add(1, std::memory_order_relaxed);
 }
 
-std::size_t Session::on_bye(const hcp_frame& in, TimeNs now,
+std::size_t Session::on_bye(const hcp_frame& in, TimePoint now,
                             std::span<std::uint8_t> reply) noexcept {
   const std::size_t n = ack(ParamAck{in.header.sequence, HCP_ACK_OK}, now, reply);  // session token
   counters_.sessions_closed.fetch_add(1, std::memory_order_relaxed);
@@ -248,9 +248,9 @@ std::size_t Session::on_bye(const hcp_frame& in, TimeNs now,
 }
 
 std::size_t Session::refuse(hcp_refuse_code code, std::uint32_t peer_version,
-                            std::uint32_t retry_ms, std::string_view reason, TimeNs now,
+                            std::uint32_t retry_ms, std::string_view reason, TimePoint now,
                             std::span<std::uint8_t> reply, std::uint64_t token) noexcept {
-  hcp_frame out = protocol::make_frame(HCP_REFUSE, token, ++reply_sequence_, now);
+  hcp_frame out = protocol::make_frame(HCP_REFUSE, token, ++reply_sequence_, to_ns(now));
   hcp_refuse& r = out.body.hcp_body_u.refuse;
   r.code = code;
   r.peer_version = peer_version;
@@ -259,22 +259,22 @@ std::size_t Session::refuse(hcp_refuse_code code, std::uint32_t peer_version,
   return protocol::encode(out, reply);
 }
 
-std::size_t Session::welcome(TimeNs now, std::span<std::uint8_t> reply) noexcept {
-  hcp_frame out = protocol::make_frame(HCP_WELCOME, session_.token, ++reply_sequence_, now);
+std::size_t Session::welcome(TimePoint now, std::span<std::uint8_t> reply) noexcept {
+  hcp_frame out = protocol::make_frame(HCP_WELCOME, session_.token, ++reply_sequence_, to_ns(now));
   hcp_welcome& w = out.body.hcp_body_u.welcome;
   w.features = session_.features;
   w.watchdog_ms = watchdog_ms_;
-  w.period_ns = ports_.period_ns;
+  w.period_ns = to_ns(ports_.period);
   w.cycle = ports_.heartbeat_cycle != nullptr
                 ? ports_.heartbeat_cycle->load(std::memory_order_acquire)
                 : 0;
   return protocol::encode(out, reply);
 }
 
-void Session::publish_vpr(TimeNs now) noexcept {
+void Session::publish_vpr(TimePoint now) noexcept {
   if (ports_.vpr != nullptr) {
-    vpr_.received_time_ns = now;
-    ports_.vpr->publish_quietly(vpr_, now);  // the core polls VPr once per cycle
+    vpr_.received_time_ns = to_ns(now);
+    ports_.vpr->publish_quietly(vpr_, to_ns(now));  // the core polls VPr once per cycle
   }
 }
 

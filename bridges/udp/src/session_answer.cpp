@@ -15,15 +15,15 @@ void fill_report(const shm::VpPayload& vp, const LinkFigures& link,
   c.energy_in = vp.channel_energy_in;
   c.sample_age_s = static_cast<double>(vp.sample_age_ns) * 1e-9;
   c.loop_delay_s = static_cast<double>(vp.loop_delay_ns) * 1e-9;
-  c.link_delay_s = static_cast<double>(link.delay_ns) * 1e-9;
-  c.link_jitter_s = static_cast<double>(link.jitter_ns) * 1e-9;
+  c.link_delay_s = to_seconds(link.delay);
+  c.link_jitter_s = to_seconds(link.jitter);
   c.link_loss = static_cast<double>(link.loss_ppm) * 1e-6;
   protocol::to_wire(vp.gains, c.gains);
 }
 
 }  // namespace
 
-std::size_t Session::answer(const shm::VpPayload& vp, TimeNs now, std::span<std::uint8_t> out,
+std::size_t Session::answer(const shm::VpPayload& vp, TimePoint now, std::span<std::uint8_t> out,
                             protocol::Endpoint& to) noexcept {
   SessionView view;
   if (!view_.read(view).ok() || view.token == 0) {
@@ -34,7 +34,7 @@ std::size_t Session::answer(const shm::VpPayload& vp, TimeNs now, std::span<std:
   const bool timed = (view.features & HCP_FEATURE_TIMING) != 0;
   const bool coupled = timed && (view.features & HCP_FEATURE_LOCAL_COUPLING) != 0;
   const hcp_frame_type type = coupled ? HCP_ANSWER_COUPLED : timed ? HCP_ANSWER_TIMED : HCP_ANSWER;
-  hcp_frame f = protocol::make_frame(type, view.token, ++answer_sequence_, now);
+  hcp_frame f = protocol::make_frame(type, view.token, ++answer_sequence_, to_ns(now));
   auto& u = f.body.hcp_body_u;
   hcp_answer& a = coupled ? u.answer_coupled.answer : (timed ? u.answer_timed.answer : u.answer);
   if (timed) {
@@ -96,8 +96,8 @@ void Session::fill_stats(shm::LinkStatsPayload& out) const noexcept {
     out.dropped[i] = get(counters_.dropped[i]);
   }
   const LinkFigures link = session_.token != 0 ? ingest_.link() : LinkFigures{};
-  out.link_delay_ns = link.delay_ns;
-  out.link_jitter_ns = link.jitter_ns;
+  out.link_delay_ns = to_ns(link.delay);
+  out.link_jitter_ns = to_ns(link.jitter);
   out.link_loss_ppm = link.loss_ppm;
 }
 

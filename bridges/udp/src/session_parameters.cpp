@@ -10,7 +10,7 @@ namespace hapticctrl::udp_bridge {
 
 using shm::LinkDrop;
 
-std::size_t Session::on_param(const hcp_frame& in, bool values_ok, TimeNs now,
+std::size_t Session::on_param(const hcp_frame& in, bool values_ok, TimePoint now,
                               std::span<std::uint8_t> reply) noexcept {
   const std::uint32_t seq = in.header.sequence;
   last_heard_ = now;
@@ -41,21 +41,23 @@ std::size_t Session::on_param(const hcp_frame& in, bool values_ok, TimeNs now,
   return ack(result, now, reply);
 }
 
-ParamAck Session::take_param(const hcp_param& param, std::uint32_t sequence, TimeNs now) noexcept {
+ParamAck Session::take_param(const hcp_param& param, std::uint32_t sequence,
+                             TimePoint now) noexcept {
   const ParamEffect effect = apply_param(param, settings_.max_watchdog_ms, vpr_, watchdog_ms_);
   if (effect.ctrl == shm::CtrlCode::kNone) {
     publish_vpr(now);
   } else if (ports_.ctrl == nullptr ||
-             ports_.ctrl->send(effect.ctrl, effect.ctrl_arg, now) != shm::CtrlSendStatus::kQueued) {
+             ports_.ctrl->send(effect.ctrl, effect.ctrl_arg, to_ns(now)) !=
+                 shm::CtrlSendStatus::kQueued) {
     return {sequence, HCP_ACK_RETRY};
   }
   counters_.params_applied.fetch_add(1, std::memory_order_relaxed);
   return {sequence, HCP_ACK_OK};
 }
 
-std::size_t Session::ack(const ParamAck& result, TimeNs now,
+std::size_t Session::ack(const ParamAck& result, TimePoint now,
                          std::span<std::uint8_t> reply) noexcept {
-  hcp_frame out = protocol::make_frame(HCP_ACK, session_.token, ++reply_sequence_, now);
+  hcp_frame out = protocol::make_frame(HCP_ACK, session_.token, ++reply_sequence_, to_ns(now));
   hcp_ack& a = out.body.hcp_body_u.ack;
   a.acked_sequence = result.sequence;
   a.status = result.status;

@@ -28,7 +28,8 @@
 namespace {
 
 namespace wb = hapticctrl::web_bridge;
-using hapticctrl::monotonic_now_ns;
+using hapticctrl::MonotonicClock;
+using hapticctrl::TimePoint;
 using hapticctrl::lcmtypes::Channels;
 
 std::atomic<bool> g_stop{false};
@@ -111,7 +112,7 @@ class TelemetryInput {
   /// refuses, is counted as malformed and dropped.
   template <typename Message>
   void deliver(const lcm::ReceiveBuffer* rbuf,
-               void (wb::TelemetryView::*to_view)(const Message&, std::int64_t),
+               void (wb::TelemetryView::*to_view)(const Message&, TimePoint),
                bool (*sound)(const Message&) = nullptr) {
     Message m{};
     bool decoded = false;
@@ -125,7 +126,7 @@ class TelemetryInput {
       return;
     }
     received_.fetch_add(1, std::memory_order_relaxed);
-    (view_.*to_view)(m, monotonic_now_ns());
+    (view_.*to_view)(m, MonotonicClock::now());
   }
 
   wb::TelemetryView& view_;
@@ -150,7 +151,7 @@ class BridgeHandler final : public wb::PageHandler {
   }
 
   std::string on_message(wb::PageSession& page, std::string_view text) override {
-    return gateway_.handle(page, text, monotonic_now_ns());
+    return gateway_.handle(page, text, MonotonicClock::now());
   }
 
   std::string model() override { return model_; }
@@ -183,7 +184,7 @@ class BridgeHandler final : public wb::PageHandler {
 /// Pushes a state frame to every page at the configured rate until told to stop.
 void push_loop(wb::TelemetryView& view, wb::WebServer& server, double rate_hz,
                const std::atomic<bool>& running) {
-  const auto period = std::chrono::nanoseconds(static_cast<std::int64_t>(1e9 / rate_hz));
+  const auto period = hapticctrl::from_seconds(1.0 / rate_hz);
   auto next = hapticctrl::MonotonicClock::now();
   while (running.load()) {
     next += period;
@@ -192,7 +193,7 @@ void push_loop(wb::TelemetryView& view, wb::WebServer& server, double rate_hz,
       next = now + period;  // after a stall: the next slot, never a burst
     }
     std::this_thread::sleep_until(next);
-    const std::string frame = view.next_frame(monotonic_now_ns());
+    const std::string frame = view.next_frame(MonotonicClock::now());
     if (server.pages() > 0) {
       server.broadcast(frame);
     }
@@ -229,11 +230,10 @@ int run(const wb::WebConfig& config) {
                config.allow_remote_commands ? "enabled" : "disabled (emergency stop only)");
   std::atomic<bool> running{true};
   std::thread pusher([&] { push_loop(view, server, config.push_rate_hz, running); });
-  const std::int64_t end_ns =
-      config.duration_s > 0.0
-          ? monotonic_now_ns() + static_cast<std::int64_t>(config.duration_s * 1e9)
-          : 0;
-  while (!g_stop.load() && (end_ns == 0 || monotonic_now_ns() < end_ns)) {
+  const TimePoint end = config.duration_s > 0.0
+                            ? MonotonicClock::now() + hapticctrl::from_seconds(config.duration_s)
+                            : TimePoint::max();
+  while (!g_stop.load() && MonotonicClock::now() < end) {
     lcm.handleTimeout(50);
   }
   running.store(false);

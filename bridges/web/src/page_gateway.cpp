@@ -14,12 +14,12 @@ void count(std::atomic<std::uint64_t>& counter) noexcept {
 
 }  // namespace
 
-std::string PageGateway::handle(PageSession& page, std::string_view text, std::int64_t now_ns) {
+std::string PageGateway::handle(PageSession& page, std::string_view text, TimePoint now) {
   PageRequest request = parse_page_request(text, allow_remote_commands_);
   switch (request.kind) {
     case PageRequestKind::kCommand:
     case PageRequestKind::kForce:
-      return forward(page, request, now_ns);
+      return forward(page, request, now);
     case PageRequestKind::kRefused:
       count(counters_.refused);
       break;
@@ -33,10 +33,9 @@ std::string PageGateway::handle(PageSession& page, std::string_view text, std::i
   return reply_json(request);
 }
 
-std::string PageGateway::forward(PageSession& page, const PageRequest& request,
-                                 std::int64_t now_ns) {
+std::string PageGateway::forward(PageSession& page, const PageRequest& request, TimePoint now) {
   const bool force = request.kind == PageRequestKind::kForce;
-  if (force && page.sent_force && now_ns - page.last_force_ns < kMinForceIntervalNs) {
+  if (force && page.sent_force && now - page.last_force < kMinForceInterval) {
     count(counters_.rate_limited);
     return {};  // the next one, a few ms later, carries the same intent
   }
@@ -44,15 +43,15 @@ std::string PageGateway::forward(PageSession& page, const PageRequest& request,
   bool sent = false;
   if (force) {
     hapticctrl_lcm::hmi_force_t m{};
-    m.utime = now_ns / 1000;
+    m.utime = to_ns(now) / 1000;
     std::copy(request.wrench.begin(), request.wrench.end(), m.wrench);
     m.origin = origin;
     sent = publisher_.publish(m);
-    page.last_force_ns = now_ns;
+    page.last_force = now;
     page.sent_force = true;
   } else {
     hapticctrl_lcm::hmi_command_t m{};
-    m.utime = now_ns / 1000;
+    m.utime = to_ns(now) / 1000;
     m.command = request.command;
     m.origin = origin;
     sent = publisher_.publish(m);

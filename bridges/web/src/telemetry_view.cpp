@@ -187,19 +187,19 @@ bool event_strings_sound(const void* data, std::size_t size) noexcept {
 
 TelemetryView::TelemetryView(std::size_t event_history) : event_history_(event_history) {}
 
-void TelemetryView::on_arm_state(const hapticctrl_lcm::arm_state_t& m, std::int64_t now_ns) {
+void TelemetryView::on_arm_state(const hapticctrl_lcm::arm_state_t& m, TimePoint now) {
   const std::lock_guard lock(mutex_);
   arm_ = m;
-  received_[kArm] = {now_ns, true};
+  received_[kArm] = {now, true};
 }
 
-void TelemetryView::on_coupling(const hapticctrl_lcm::coupling_t& m, std::int64_t now_ns) {
+void TelemetryView::on_coupling(const hapticctrl_lcm::coupling_t& m, TimePoint now) {
   const std::lock_guard lock(mutex_);
   coupling_ = m;
-  received_[kCoupling] = {now_ns, true};
+  received_[kCoupling] = {now, true};
 }
 
-void TelemetryView::on_cycle_stats(const hapticctrl_lcm::cycle_stats_t& m, std::int64_t now_ns) {
+void TelemetryView::on_cycle_stats(const hapticctrl_lcm::cycle_stats_t& m, TimePoint now) {
   const std::lock_guard lock(mutex_);
   if (stats_) {
     const StatsInterval step = interval_between(*stats_, m);
@@ -207,44 +207,44 @@ void TelemetryView::on_cycle_stats(const hapticctrl_lcm::cycle_stats_t& m, std::
   }
   stats_ = m;
   stats_fresh_ = true;
-  received_[kStats] = {now_ns, true};
+  received_[kStats] = {now, true};
 }
 
-void TelemetryView::on_event(const hapticctrl_lcm::event_t& m, std::int64_t now_ns) {
+void TelemetryView::on_event(const hapticctrl_lcm::event_t& m, TimePoint now) {
   const std::lock_guard lock(mutex_);
   events_.push_back(m);
   if (events_.size() > event_history_) {
     events_.pop_front();
   }
   events_unsent_ = std::min(events_unsent_ + 1, events_.size());
-  received_[kEvents] = {now_ns, true};
+  received_[kEvents] = {now, true};
 }
 
-void TelemetryView::on_scene(const hapticctrl_lcm::scene_t& m, std::int64_t now_ns) {
+void TelemetryView::on_scene(const hapticctrl_lcm::scene_t& m, TimePoint now) {
   const std::lock_guard lock(mutex_);
   scene_ = m;
-  received_[kScene] = {now_ns, true};
+  received_[kScene] = {now, true};
 }
 
-void TelemetryView::on_world(const hapticctrl_lcm::world_t& m, std::int64_t now_ns) {
+void TelemetryView::on_world(const hapticctrl_lcm::world_t& m, TimePoint now) {
   if (!world_counts_sound(m)) {
     return;  // the LCM input counts it as malformed before it gets here
   }
   const std::lock_guard lock(mutex_);
   world_ = m;
-  received_[kWorld] = {now_ns, true};
+  received_[kWorld] = {now, true};
 }
 
-std::string TelemetryView::next_frame(std::int64_t now_ns) {
+std::string TelemetryView::next_frame(TimePoint now) {
   const std::lock_guard lock(mutex_);
   static constexpr const char* kNames[] = {"arm", "coupling", "stats", "events", "scene", "world"};
   Json age = Json::object();
   for (std::size_t i = 0; i < received_.size(); ++i) {
-    age[kNames[i]] = received_[i].any ? Json(static_cast<double>(now_ns - received_[i].at_ns) / 1e6)
-                                      : Json(nullptr);
+    age[kNames[i]] =
+        received_[i].any ? Json(to_seconds(now - received_[i].at) * 1e3) : Json(nullptr);
   }
   Json frame{{"type", "state"}, {"age_ms", age}};
-  const bool arm_live = received_[kArm].any && now_ns - received_[kArm].at_ns < kSilentAfterNs;
+  const bool arm_live = received_[kArm].any && now - received_[kArm].at < kSilentAfter;
   frame["controller_silent"] = !arm_live;
   frame["arm"] = arm_ ? arm_json(*arm_) : Json(nullptr);
   frame["coupling"] = coupling_ ? coupling_json(*coupling_) : Json(nullptr);

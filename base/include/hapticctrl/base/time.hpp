@@ -2,12 +2,12 @@
 /// @file time.hpp
 /// The one time base of the project: CLOCK_MONOTONIC. A moment on it is a TimePoint and a span a
 /// Duration (std::chrono's checked types: a moment and a span do not mix, nor a span and a bare
-/// number); the shared memory's and the wire's timestamps are nanosecond counts on the same
-/// clock (to_ns, time_point_from_ns). The rooms that have not moved to the checked types yet
-/// carry TimeNs, that count (docs/architecture.md, the vocabulary).
+/// number), in every room; the shared memory's fields, the wire's timestamps and the client
+/// library's public API carry nanosecond counts on the same clock (to_ns, time_point_from_ns at
+/// those edges only; docs/architecture.md, the vocabulary).
 ///
-/// Real-time contract: now() and monotonic_now_ns() are one vDSO call (no syscall on x86-64),
-/// allocate nothing; safe in the cycle.
+/// Real-time contract: MonotonicClock::now() is one vDSO call (no syscall on x86-64), allocates
+/// nothing; safe in the cycle.
 
 #include <time.h>
 
@@ -17,14 +17,6 @@
 #include "hapticctrl/base/realtime.hpp"
 
 namespace hapticctrl {
-
-/// A moment on CLOCK_MONOTONIC, or a span, in nanoseconds: the regions' and the frames' form, and
-/// the rooms' that have not moved to TimePoint and Duration yet.
-using TimeNs = std::int64_t;
-
-inline constexpr TimeNs kNsPerUs = 1'000;
-inline constexpr TimeNs kNsPerMs = 1'000'000;
-inline constexpr TimeNs kNsPerS = 1'000'000'000;
 
 /// CLOCK_MONOTONIC as a std::chrono clock (a steady clock; on Linux the same clock as
 /// std::chrono::steady_clock, named here so that no room picks another).
@@ -38,7 +30,7 @@ struct MonotonicClock {
   HAPTICCTRL_RT static time_point now() noexcept {
     timespec ts{};
     clock_gettime(CLOCK_MONOTONIC, &ts);
-    return time_point(duration(static_cast<TimeNs>(ts.tv_sec) * kNsPerS + ts.tv_nsec));
+    return time_point(std::chrono::seconds(ts.tv_sec) + duration(ts.tv_nsec));
   }
 };
 
@@ -64,10 +56,9 @@ inline constexpr TimePoint kNotYet = TimePoint::min();
 [[nodiscard]] HAPTICCTRL_RT constexpr double to_seconds(Duration span) noexcept {
   return std::chrono::duration<double>(span).count();
 }
-
-/// MonotonicClock::now() as a TimeNs.
-HAPTICCTRL_RT inline TimeNs monotonic_now_ns() noexcept {
-  return MonotonicClock::now().time_since_epoch().count();
+/// A span given in seconds (an option's, a scene's), to the nanosecond below.
+[[nodiscard]] HAPTICCTRL_RT constexpr Duration from_seconds(double seconds) noexcept {
+  return std::chrono::duration_cast<Duration>(std::chrono::duration<double>(seconds));
 }
 
 }  // namespace hapticctrl

@@ -47,8 +47,8 @@ class Operator {
   /// out of range / non-finite (ForceLimits), or force not available.
   bool request_force(const shm::Vector6& wrench);
   /// Moves the applied wrench towards the request and publishes it; call periodically
-  /// (every few ms). `now_ns` is CLOCK_MONOTONIC.
-  void tick(std::int64_t now_ns);
+  /// (every few ms).
+  void tick(TimePoint now);
   /// Ticks until the applied wrench reaches the request (bounded by the rate limit).
   void settle_force();
   /// Sets the simulated hand on the handle (shm::HandGrip; stiffness and damping 0: none),
@@ -74,7 +74,7 @@ class Operator {
   shm::ForceSlew slew_;
   shm::HandGrip hand_{};
   bool hand_changed_ = false;
-  std::int64_t last_tick_ns_ = 0;
+  TimePoint last_tick_ = kNotYet;
 };
 
 }  // namespace hapticctrl::hmi

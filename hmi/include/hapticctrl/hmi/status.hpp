@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <string>
 
+#include "hapticctrl/base/time.hpp"
 #include "hapticctrl/shm/payloads.hpp"
 #include "hapticctrl/shm/segment.hpp"
 
@@ -15,7 +16,7 @@ namespace hapticctrl::hmi {
 /// written, or torn three times) keeps its defaults and its `*_ok` flag says so.
 struct ControllerStatus {
   std::string instance;
-  std::int64_t read_ns = 0;  ///< CLOCK_MONOTONIC of the reading
+  TimePoint read_at;  ///< when it was read
   bool position_ok = false;
   bool vp_ok = false;
   bool telemetry_ok = false;
@@ -40,8 +41,8 @@ struct ControllerStatus {
   [[nodiscard]] double client_age_ms() const noexcept;
 };
 
-/// Takes one reading. `now_ns` is CLOCK_MONOTONIC (the regions' publish clock).
-[[nodiscard]] ControllerStatus read_status(const shm::Segment& segment, std::int64_t now_ns);
+/// Takes one reading at `now` (MonotonicClock: the regions' publish clock).
+[[nodiscard]] ControllerStatus read_status(const shm::Segment& segment, TimePoint now);
 
 /// Client frames the controller received per cycle between two readings: 1.0 when the client
 /// sends every cycle; the shortfall is the loss the controller sees. Negative when unknown (no

@@ -12,6 +12,8 @@
 #include <string>
 #include <utility>
 
+#include "hapticctrl/base/time.hpp"
+
 namespace hapticctrl::lcmtypes {
 
 template <class Message>
@@ -23,20 +25,20 @@ class PacedPublisher {
                  const std::string& what)
       : lcm_(std::make_unique<lcm::LCM>(url)),
         channel_(std::move(channel)),
-        period_ns_(static_cast<std::int64_t>(1e9 / rate_hz)) {
+        period_(from_seconds(1.0 / rate_hz)) {
     if (!lcm_->good()) {
       throw std::runtime_error("cannot open LCM on '" + url + "' to publish " + what +
                                " (--no-lcm runs without it)");
     }
   }
 
-  /// Whether a message is due at `now_ns` (monotonic); a true answer books the next slot, a
-  /// period later (a period from now after a stall: never a burst to catch up). Cycle-safe.
-  [[nodiscard]] bool due(std::int64_t now_ns) noexcept {
-    if (now_ns < next_ns_) {
+  /// Whether a message is due at `now`; a true answer books the next slot, a period later (a
+  /// period from now after a stall: never a burst to catch up). Cycle-safe.
+  [[nodiscard]] bool due(TimePoint now) noexcept {
+    if (now < next_) {
       return false;
     }
-    next_ns_ = next_ns_ + period_ns_ > now_ns ? next_ns_ + period_ns_ : now_ns + period_ns_;
+    next_ = next_ + period_ > now ? next_ + period_ : now + period_;
     return true;
   }
   /// Publishes one message (one UDP send). Returns false when LCM refused it.
@@ -46,8 +48,8 @@ class PacedPublisher {
  private:
   std::unique_ptr<lcm::LCM> lcm_;
   std::string channel_;
-  std::int64_t period_ns_;
-  std::int64_t next_ns_ = 0;
+  Duration period_;
+  TimePoint next_;
 };
 
 }  // namespace hapticctrl::lcmtypes

@@ -7,22 +7,24 @@
 /// body is not left to fall out of the hand for a link that may come back.
 #include <cstdint>
 
+#include "hapticctrl/base/time.hpp"
+
 namespace hapticctrl::mujoco {
 
 class RealTimeSteps {
  public:
-  /// `step_ns` > 0; `max_catch_up_ns`: the most world time run at once after a stall.
-  RealTimeSteps(std::int64_t step_ns, std::int64_t max_catch_up_ns) noexcept;
+  /// `step` > 0; `max_catch_up`: the most world time run at once after a stall.
+  RealTimeSteps(Duration step, Duration max_catch_up) noexcept;
 
   /// The world's time starts now.
-  void start(std::int64_t now_ns) noexcept;
+  void start(TimePoint now) noexcept;
   /// How many steps to run now (0 if none is due yet); the steps beyond the catch-up bound are
   /// dropped and counted. Counts the returned steps as run.
-  [[nodiscard]] std::uint64_t due(std::int64_t now_ns) noexcept;
+  [[nodiscard]] std::uint64_t due(TimePoint now) noexcept;
   /// The link is silent: the time since the last step is not the world's (counted as paused).
-  void pause(std::int64_t now_ns) noexcept;
+  void pause(TimePoint now) noexcept;
   /// When the next step is due.
-  [[nodiscard]] std::int64_t next_due_ns() const noexcept;
+  [[nodiscard]] TimePoint next_due() const noexcept;
 
   [[nodiscard]] std::uint64_t run() const noexcept { return run_; }
   [[nodiscard]] std::uint64_t dropped() const noexcept { return dropped_; }
@@ -32,11 +34,11 @@ class RealTimeSteps {
 
  private:
   /// Steps the wall clock has made due since the start, counted run, dropped or paused.
-  [[nodiscard]] std::uint64_t owed(std::int64_t now_ns) const noexcept;
+  [[nodiscard]] std::uint64_t owed(TimePoint now) const noexcept;
 
-  std::int64_t step_ns_;
+  Duration step_;
   std::uint64_t max_catch_up_;
-  std::int64_t origin_ns_ = 0;
+  TimePoint origin_;
   std::uint64_t accounted_ = 0;  ///< run + dropped + paused
   std::uint64_t run_ = 0;
   std::uint64_t dropped_ = 0;

@@ -7,6 +7,7 @@
 /// Real-time contract: plain fixed-size structs; client_frame_of is safe in the cycle.
 
 #include <cstdint>
+#include <optional>
 
 #include "hapticctrl/base/realtime.hpp"
 #include "hapticctrl/rt_core/arm_dynamics.hpp"
@@ -81,9 +82,9 @@ struct ServoOutputs {
   double surface_depth = 0.0;
   double surface_force = 0.0;
   double surface_hidden = 0.0;
-  Duration contact_age{-1};
-  double surface_withheld = 0.0;  ///< J this session: what hidden depth kept from the hand
-  double force_limit = 0.0;       ///< the coupling's force and torque limits in force
+  std::optional<Duration> contact_age;  ///< of the newest fresh contact; none: no contact
+  double surface_withheld = 0.0;        ///< J this session: what hidden depth kept from the hand
+  double force_limit = 0.0;             ///< the coupling's force and torque limits in force
   double torque_limit = 0.0;
   /// Two-port passivity, the core's end of the channel (J since the session began).
   double channel_energy_in = 0.0;

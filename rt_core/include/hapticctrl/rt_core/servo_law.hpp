@@ -15,6 +15,7 @@
 /// the coupling from the last sample, extrapolated and faded as it ages.
 
 #include <cstdint>
+#include <optional>
 
 #include "hapticctrl/base/realtime.hpp"
 #include "hapticctrl/rt_core/arm_dynamics.hpp"
@@ -236,7 +237,7 @@ class ServoLaw {
     double stiffness = 0.0;  ///< N/m, base metres
     double damping = 0.0;    ///< N.s/m
     std::uint32_t fresh = 0;
-    Duration age{-1};  ///< of the newest fresh contact (our clock); -1 ns: none
+    std::optional<Duration> age;  ///< of the newest fresh contact (our clock); none: no contact
   };
   /// Where the client's object is now, as the coupling sees it (base frame).
   struct ObjectImage {

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdint>
 
+#include "hapticctrl/base/time.hpp"
 #include "hapticctrl/shm/segment.hpp"
 
 namespace hapticctrl::shm {
@@ -34,7 +35,7 @@ class CoreWatch {
 
   /// How old the core's last heartbeat was when kCoreGone was returned [ns]: the time from the
   /// core's last cycle to this process noticing the loss.
-  [[nodiscard]] std::int64_t heartbeat_age_at_loss_ns() const noexcept { return age_at_loss_ns_; }
+  [[nodiscard]] Duration heartbeat_age_at_loss() const noexcept { return age_at_loss_; }
   /// The core's last heartbeat cycle, as seen when the loss was noticed.
   [[nodiscard]] std::uint64_t last_cycle() const noexcept { return last_cycle_; }
   /// Why the core ended (StopReason), as seen when kCoreGone was returned: the reason it
@@ -45,7 +46,7 @@ class CoreWatch {
  private:
   const Segment* segment_;
   std::chrono::nanoseconds poll_;
-  std::int64_t age_at_loss_ns_ = 0;
+  Duration age_at_loss_{};
   std::uint64_t last_cycle_ = 0;
   std::uint32_t stop_reason_ = 0;
 };

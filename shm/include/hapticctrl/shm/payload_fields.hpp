@@ -45,7 +45,7 @@ struct Field {
   const char* name;   ///< as in the struct
   const char* unit;   ///< SI unit ("" for a count, an index or a bit word); "ipv4": an address
   const char* frame;  ///< "base", "client", "joint" or "" (not spatial)
-  PartNames parts{};  ///< component names of an array field (empty: indexed from 0)
+  PartNames parts;    ///< component names of an array field (empty: indexed from 0)
 };
 
 /// The payload types with a table (and the structs nested in them).

@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <string>
 
+#include "hapticctrl/base/time.hpp"
 #include "hapticctrl/shm/ctrl.hpp"
 #include "hapticctrl/shm/force_slew.hpp"
 #include "hapticctrl/shm/payloads.hpp"
@@ -26,8 +27,8 @@ namespace hapticctrl::shm {
 
 struct RemoteCommandSettings {
   bool allow_remote_commands = false;
-  ForceLimits force_limits;                     ///< magnitude and rate of the applied wrench
-  std::int64_t force_timeout_ns = 200'000'000;  ///< no request for that long: decay to zero
+  ForceLimits force_limits;  ///< magnitude and rate of the applied wrench
+  Duration force_timeout = std::chrono::milliseconds(200);  ///< no request: decay to zero
 };
 
 struct RemoteCommandCounters {
@@ -59,14 +60,14 @@ class RemoteCommands {
                  SeqlockCell<ForcePayload>* force) noexcept;
 
   /// One command; kNone stands for a command the transport did not recognise.
-  void command(CtrlCode code, std::int64_t now_ns) noexcept;
+  void command(CtrlCode code, TimePoint now) noexcept;
   /// One requested operator wrench (base frame, N and N.m).
-  void force(const Vector6& requested, std::int64_t now_ns) noexcept;
+  void force(const Vector6& requested, TimePoint now) noexcept;
   /// A message the transport could not decode.
   void malformed() noexcept { counters_.malformed.fetch_add(1, std::memory_order_relaxed); }
   /// Moves the applied wrench towards the request (or zero once stale) and publishes it; call
   /// every few milliseconds.
-  void tick(std::int64_t now_ns) noexcept;
+  void tick(TimePoint now) noexcept;
 
   [[nodiscard]] const RemoteCommandCounters& counters() const noexcept { return counters_; }
   [[nodiscard]] const Vector6& applied() const noexcept { return slew_.applied(); }
@@ -76,8 +77,8 @@ class RemoteCommands {
   CtrlWriter* ctrl_;
   SeqlockCell<ForcePayload>* force_;
   ForceSlew slew_;
-  std::int64_t last_force_ns_ = 0;
-  std::int64_t last_tick_ns_ = 0;
+  TimePoint last_force_;
+  TimePoint last_tick_;
   bool ticked_ = false;
   bool force_active_ = false;
   RemoteCommandCounters counters_;

@@ -19,14 +19,14 @@ namespace hapticctrl::netem {
 
 /// One window of total outage, relative to the relay's start.
 struct Blackout {
-  TimeNs start = 0;
-  TimeNs duration = 0;
+  Duration start{};
+  Duration duration{};
 };
 
 /// What one direction of the link does to datagrams (the relay applies it to both directions).
 struct LinkModel {
-  TimeNs delay = 0;      ///< one-way delay added to every datagram
-  TimeNs jitter = 0;     ///< each datagram's delay varies uniformly within ±jitter (never < 0)
+  Duration delay{};      ///< one-way delay added to every datagram
+  Duration jitter{};     ///< each datagram's delay varies uniformly within ±jitter (never < 0)
   double loss = 0.0;     ///< long-run fraction of datagrams lost, 0..1
   double burst = 1.0;    ///< mean length of a loss burst, in datagrams (1: independent losses)
   bool reorder = false;  ///< let jitter reorder datagrams (false: first in, first out)
@@ -42,7 +42,7 @@ struct LinkModel {
 struct Verdict {
   enum class Fate : std::uint8_t { kDeliver, kLost, kBlackout };
   Fate fate = Fate::kDeliver;
-  TimeNs deliver_at = 0;  ///< when to send it on (kDeliver)
+  TimePoint deliver_at;  ///< when to send it on (kDeliver)
 };
 
 /// One direction of the link: its loss state and the order of its deliveries.
@@ -51,12 +51,12 @@ class Impairment {
   Impairment(const LinkModel& model, std::uint64_t seed);
 
   /// The fate of a datagram that arrived at `now` (`since_start` after the relay started).
-  Verdict on_datagram(TimeNs now, TimeNs since_start);
+  Verdict on_datagram(TimePoint now, Duration since_start);
 
   /// Switches a manual blackout on or off (the relay's SIGUSR1).
   void set_manual_blackout(bool on) noexcept { manual_blackout_ = on; }
   [[nodiscard]] bool manual_blackout() const noexcept { return manual_blackout_; }
-  [[nodiscard]] bool in_blackout(TimeNs since_start) const noexcept;
+  [[nodiscard]] bool in_blackout(Duration since_start) const noexcept;
 
  private:
   bool lose() noexcept;
@@ -68,7 +68,7 @@ class Impairment {
   double enter_burst_ = 0.0;
   double leave_burst_ = 1.0;
   bool manual_blackout_ = false;
-  TimeNs last_delivery_ = 0;
+  TimePoint last_delivery_;
 };
 
 }  // namespace hapticctrl::netem

@@ -28,11 +28,11 @@ class HmiInput {
       : remote_(settings, ctrl, force) {}
 
   /// One encoded hmi_command_t.
-  void on_command(const void* data, std::size_t size, std::int64_t now_ns) noexcept;
+  void on_command(const void* data, std::size_t size, TimePoint now) noexcept;
   /// One encoded hmi_force_t.
-  void on_force(const void* data, std::size_t size, std::int64_t now_ns) noexcept;
+  void on_force(const void* data, std::size_t size, TimePoint now) noexcept;
   /// Moves the applied wrench towards the request (or zero once stale) and publishes it.
-  void tick(std::int64_t now_ns) noexcept { remote_.tick(now_ns); }
+  void tick(TimePoint now) noexcept { remote_.tick(now); }
 
   [[nodiscard]] const shm::RemoteCommandCounters& counters() const noexcept {
     return remote_.counters();

@@ -18,8 +18,8 @@ namespace hapticctrl::udp_bridge {
 
 /// The client link as this bridge measures it.
 struct LinkFigures {
-  std::int64_t delay_ns = 0;
-  std::int64_t jitter_ns = 0;
+  Duration delay{};
+  Duration jitter{};
   std::uint32_t loss_ppm = 0;
   std::uint32_t pad = 0;
 };
@@ -36,18 +36,18 @@ class ControlIngest {
   [[nodiscard]] bool admit(std::uint32_t sequence) noexcept;
   /// The content of an admitted control frame (not KEEPALIVE) into `vpr`: a sample (object,
   /// wrench, joints) with its sequence, timing and the link's figures, or a contact slot.
-  void take(const hcp_frame& in, TimeNs now, shm::VprPayload& vpr) noexcept;
+  void take(const hcp_frame& in, TimePoint now, shm::VprPayload& vpr) noexcept;
   [[nodiscard]] LinkFigures link() const noexcept {
     return {link_.delay(), link_.jitter(), link_.loss_ppm(), 0};
   }
 
  private:
-  void take_sample(const hcp_frame& in, TimeNs now, shm::VprPayload& vpr) noexcept;
-  void take_timed_object(const hcp_control_object_timed& o, TimeNs now,
+  void take_sample(const hcp_frame& in, TimePoint now, shm::VprPayload& vpr) noexcept;
+  void take_timed_object(const hcp_control_object_timed& o, TimePoint now,
                          shm::VprPayload& vpr) noexcept;
-  void take_timing(std::uint32_t answer_echo, std::uint32_t energy_in_uj, TimeNs now,
+  void take_timing(std::uint32_t answer_echo, std::uint32_t energy_in_uj, TimePoint now,
                    shm::VprPayload& vpr) noexcept;
-  void take_contact(const hcp_control_contact& c, TimeNs now, shm::VprPayload& vpr) noexcept;
+  void take_contact(const hcp_control_contact& c, TimePoint now, shm::VprPayload& vpr) noexcept;
 
   /// A difference beyond 4 J in one frame (35 N at 100 m/s for 1 ms is 3.5 J) is not physical.
   static constexpr std::uint32_t kMaxEnergyStepUj = 4'000'000;

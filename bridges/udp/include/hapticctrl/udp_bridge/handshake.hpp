@@ -39,7 +39,7 @@ struct HelloVerdict {
 struct GateState {
   const SessionView& session;
   bool have_controller = false;
-  TimeNs silent_ns = 0;  ///< since the session's client was last heard
+  Duration silent{};  ///< since the session's client was last heard
   std::uint32_t watchdog_ms = 0;
 };
 

@@ -9,6 +9,8 @@
 #include <array>
 #include <cstdint>
 
+#include "hapticctrl/base/time.hpp"
+
 namespace hapticctrl::udp_bridge {
 
 struct HelloLimits {
@@ -29,23 +31,23 @@ class HelloLimiter {
   explicit HelloLimiter(HelloLimits limits = {}) noexcept
       : limits_(limits), total_tokens_(limits.total_burst) {}
 
-  /// Whether a HELLO from `ipv4` at `now_ns` may be answered (spends a token if so).
+  /// Whether a HELLO from `ipv4` at `now` may be answered (spends a token if so).
   /// Real-time contract: noexcept, allocation-free, no syscall.
-  bool admit(std::uint32_t ipv4, std::int64_t now_ns) noexcept;
+  bool admit(std::uint32_t ipv4, TimePoint now) noexcept;
 
  private:
   struct Source {
     std::uint32_t ipv4 = 0;
     bool used = false;
     double tokens = 0.0;
-    std::int64_t last_ns = 0;
+    TimePoint last;
   };
-  Source& source_of(std::uint32_t ipv4, std::int64_t now_ns) noexcept;
+  Source& source_of(std::uint32_t ipv4, TimePoint now) noexcept;
 
   HelloLimits limits_;
   std::array<Source, kSources> sources_{};
   double total_tokens_;  ///< starts with the full total burst
-  std::int64_t total_last_ns_ = 0;
+  TimePoint total_last_;
 };
 
 }  // namespace hapticctrl::udp_bridge

@@ -35,7 +35,7 @@ namespace hapticctrl::udp_bridge {
 struct ControllerPorts {
   shm::SeqlockCell<shm::VprPayload>* vpr = nullptr;
   shm::CtrlWriter* ctrl = nullptr;
-  std::int64_t period_ns = 0;
+  Duration period{};  ///< the core's cycle (WELCOME.period_ns)
   /// The core's heartbeat cycle (the segment header's): WELCOME.cycle. Null: 0 is sent.
   const std::atomic<std::uint64_t>* heartbeat_cycle = nullptr;
 };
@@ -94,29 +94,29 @@ class Session {
 
   /// Connects the session to a running controller (or, with nullptr ports, to none: HELLO is
   /// then refused with NO_CONTROLLER). Closing an active session publishes "no session" first.
-  void set_controller(const ControllerPorts* ports, TimeNs now) noexcept;
+  void set_controller(const ControllerPorts* ports, TimePoint now) noexcept;
 
   /// Handles one datagram from `from`. Writes at most one reply frame into `reply` and returns
   /// its length (0: nothing to send); the reply always goes back to `from`.
   std::size_t on_datagram(std::span<const std::uint8_t> bytes, const protocol::Endpoint& from,
-                          TimeNs now, std::span<std::uint8_t> reply) noexcept;
+                          TimePoint now, std::span<std::uint8_t> reply) noexcept;
 
   /// Counts a datagram that did not fit the receive buffer.
   void on_oversized() noexcept;
 
   /// Closes the session if the client has been silent longer than its watchdog.
   /// Returns true if it did.
-  bool check_watchdog(TimeNs now) noexcept;
+  bool check_watchdog(TimePoint now) noexcept;
 
   /// Closes the session (bridge shutdown or controller gone); the core then ramps out. When
   /// there was one, writes a REFUSE telling its client why into `notice` (returns its length)
   /// and its address into `to`.
-  std::size_t close(TimeNs now, std::string_view why, std::span<std::uint8_t> notice,
+  std::size_t close(TimePoint now, std::string_view why, std::span<std::uint8_t> notice,
                     protocol::Endpoint& to) noexcept;
 
   /// Answer side: encodes the answer frame for one VP sample into `out`; returns its length
   /// and the destination, or 0 when there is no session.
-  std::size_t answer(const shm::VpPayload& vp, TimeNs now, std::span<std::uint8_t> out,
+  std::size_t answer(const shm::VpPayload& vp, TimePoint now, std::span<std::uint8_t> out,
                      protocol::Endpoint& to) noexcept;
 
   [[nodiscard]] LinkCounters& counters() noexcept { return counters_; }
@@ -125,22 +125,22 @@ class Session {
   void fill_stats(shm::LinkStatsPayload& out) const noexcept;
 
  private:
-  std::size_t on_hello(const hcp_frame& in, const protocol::Endpoint& from, TimeNs now,
+  std::size_t on_hello(const hcp_frame& in, const protocol::Endpoint& from, TimePoint now,
                        std::span<std::uint8_t> reply) noexcept;
-  std::size_t on_param(const hcp_frame& in, bool values_ok, TimeNs now,
+  std::size_t on_param(const hcp_frame& in, bool values_ok, TimePoint now,
                        std::span<std::uint8_t> reply) noexcept;
   /// A valid PARAM of the session with a new sequence: its ACK (applied, rejected or RETRY).
-  ParamAck take_param(const hcp_param& param, std::uint32_t sequence, TimeNs now) noexcept;
-  std::size_t on_bye(const hcp_frame& in, TimeNs now, std::span<std::uint8_t> reply) noexcept;
-  void on_control(const hcp_frame& in, TimeNs now) noexcept;
+  ParamAck take_param(const hcp_param& param, std::uint32_t sequence, TimePoint now) noexcept;
+  std::size_t on_bye(const hcp_frame& in, TimePoint now, std::span<std::uint8_t> reply) noexcept;
+  void on_control(const hcp_frame& in, TimePoint now) noexcept;
   std::size_t refuse(hcp_refuse_code code, std::uint32_t peer_version, std::uint32_t retry_ms,
-                     std::string_view reason, TimeNs now, std::span<std::uint8_t> reply,
+                     std::string_view reason, TimePoint now, std::span<std::uint8_t> reply,
                      std::uint64_t token = 0) noexcept;
-  std::size_t ack(const ParamAck& a, TimeNs now, std::span<std::uint8_t> reply) noexcept;
-  std::size_t welcome(TimeNs now, std::span<std::uint8_t> reply) noexcept;
-  void open(const hcp_frame& hello, const protocol::Endpoint& from, TimeNs now) noexcept;
-  void end_session(TimeNs now) noexcept;
-  void publish_vpr(TimeNs now) noexcept;
+  std::size_t ack(const ParamAck& a, TimePoint now, std::span<std::uint8_t> reply) noexcept;
+  std::size_t welcome(TimePoint now, std::span<std::uint8_t> reply) noexcept;
+  void open(const hcp_frame& hello, const protocol::Endpoint& from, TimePoint now) noexcept;
+  void end_session(TimePoint now) noexcept;
+  void publish_vpr(TimePoint now) noexcept;
   void publish_view() noexcept;
 
   SessionSettings settings_;
@@ -152,7 +152,7 @@ class Session {
   SessionView session_{};
   std::uint64_t session_number_ = 0;
   std::uint32_t watchdog_ms_ = 0;
-  TimeNs last_heard_ = 0;
+  TimePoint last_heard_;
   bool engaged_ = false;  ///< a control or parameter frame since the HELLO
   std::uint32_t reply_sequence_ = 0;
   std::uint32_t control_received_ = 0;

@@ -11,6 +11,7 @@
 #include <string>
 #include <string_view>
 
+#include "hapticctrl/base/time.hpp"
 #include "hapticctrl/web_bridge/page_request.hpp"
 #include "hapticctrl_lcm/hmi_command_t.hpp"
 #include "hapticctrl_lcm/hmi_force_t.hpp"
@@ -19,7 +20,7 @@ namespace hapticctrl::web_bridge {
 
 /// A page sends its sliders' wrench at 20 Hz while they are off zero; the LCM bridge lets the
 /// force decay after 200 ms of silence. Faster than 100 Hz is a broken or hostile page.
-inline constexpr std::int64_t kMinForceIntervalNs = 10'000'000;
+inline constexpr Duration kMinForceInterval = std::chrono::milliseconds(10);
 
 /// Where accepted requests go (LCM in the web bridge, a recorder in tests).
 class HmiPublisher {
@@ -33,7 +34,7 @@ class HmiPublisher {
 /// One page's connection state.
 struct PageSession {
   std::string peer;  ///< "address:port", for the message's origin field and the log
-  std::int64_t last_force_ns = 0;
+  TimePoint last_force;
   bool sent_force = false;
 };
 
@@ -52,14 +53,14 @@ class PageGateway {
   PageGateway(HmiPublisher& publisher, bool allow_remote_commands) noexcept
       : publisher_(publisher), allow_remote_commands_(allow_remote_commands) {}
 
-  /// Handles one text message of `page` at `now_ns` (monotonic); returns the reply for the page
+  /// Handles one text message of `page` at `now`; returns the reply for the page
   /// (empty for forwarded forces, which the page sends 20 times a second).
-  [[nodiscard]] std::string handle(PageSession& page, std::string_view text, std::int64_t now_ns);
+  [[nodiscard]] std::string handle(PageSession& page, std::string_view text, TimePoint now);
   [[nodiscard]] bool allow_remote_commands() const noexcept { return allow_remote_commands_; }
   [[nodiscard]] const GatewayCounters& counters() const noexcept { return counters_; }
 
  private:
-  std::string forward(PageSession& page, const PageRequest& request, std::int64_t now_ns);
+  std::string forward(PageSession& page, const PageRequest& request, TimePoint now);
 
   HmiPublisher& publisher_;
   bool allow_remote_commands_;

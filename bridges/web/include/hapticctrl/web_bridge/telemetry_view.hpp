@@ -14,6 +14,7 @@
 #include <optional>
 #include <string>
 
+#include "hapticctrl/base/time.hpp"
 #include "hapticctrl_lcm/arm_state_t.hpp"
 #include "hapticctrl_lcm/coupling_t.hpp"
 #include "hapticctrl_lcm/cycle_stats_t.hpp"
@@ -25,7 +26,7 @@ namespace hapticctrl::web_bridge {
 
 /// Messages older than this make the page say the controller is silent (arm state comes at
 /// 100 Hz by default, statistics at 10 Hz).
-inline constexpr std::int64_t kSilentAfterNs = 500'000'000;
+inline constexpr Duration kSilentAfter = std::chrono::milliseconds(500);
 
 /// What happened between two cycle_stats messages, from the differences of their counters.
 struct StatsInterval {
@@ -57,25 +58,25 @@ class TelemetryView {
  public:
   explicit TelemetryView(std::size_t event_history = 20);
 
-  void on_arm_state(const hapticctrl_lcm::arm_state_t& m, std::int64_t now_ns);
-  void on_coupling(const hapticctrl_lcm::coupling_t& m, std::int64_t now_ns);
-  void on_cycle_stats(const hapticctrl_lcm::cycle_stats_t& m, std::int64_t now_ns);
-  void on_event(const hapticctrl_lcm::event_t& m, std::int64_t now_ns);
-  void on_scene(const hapticctrl_lcm::scene_t& m, std::int64_t now_ns);
+  void on_arm_state(const hapticctrl_lcm::arm_state_t& m, TimePoint now);
+  void on_coupling(const hapticctrl_lcm::coupling_t& m, TimePoint now);
+  void on_cycle_stats(const hapticctrl_lcm::cycle_stats_t& m, TimePoint now);
+  void on_event(const hapticctrl_lcm::event_t& m, TimePoint now);
+  void on_scene(const hapticctrl_lcm::scene_t& m, TimePoint now);
   /// A physics engine client's world (hapticctrl-mujoco); counts checked by world_counts_sound.
-  void on_world(const hapticctrl_lcm::world_t& m, std::int64_t now_ns);
+  void on_world(const hapticctrl_lcm::world_t& m, TimePoint now);
 
   /// The next state frame: the latest arm state, coupling, scene and world, each message's age,
   /// and
   /// the statistics and events that arrived since the previous frame (so plots get each sample
   /// once). {"type":"state",...}; docs/web.md lists the fields.
-  [[nodiscard]] std::string next_frame(std::int64_t now_ns);
+  [[nodiscard]] std::string next_frame(TimePoint now);
   /// {"type":"history","events":[...]}: the recent events, for a page that just connected.
   [[nodiscard]] std::string history_frame() const;
 
  private:
   struct Received {
-    std::int64_t at_ns = 0;
+    TimePoint at;
     bool any = false;
   };
 

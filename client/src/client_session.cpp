@@ -256,7 +256,7 @@ double ClientSession::contact_penetration() const noexcept {
 }
 
 std::optional<hcp_frame> ClientSession::keepalive_due(TimePoint now) noexcept {
-  const Duration quiet = std::chrono::milliseconds(watchdog_ms_) / 4;
+  const Duration quiet = Duration(std::chrono::milliseconds(watchdog_ms_)) / 4;
   if (!options_.keepalive || !open_ || now - last_send_ <= quiet) {
     return std::nullopt;
   }

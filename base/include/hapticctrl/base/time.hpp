@@ -56,9 +56,10 @@ inline constexpr TimePoint kNotYet = TimePoint::min();
 [[nodiscard]] HAPTICCTRL_RT constexpr double to_seconds(Duration span) noexcept {
   return std::chrono::duration<double>(span).count();
 }
-/// A span given in seconds (an option's, a scene's), to the nanosecond below.
+/// A span given in seconds (an option's, a scene's), to the nearest nanosecond (a cast cuts an
+/// option's 33.3 ms, 33.3 / 1e3 s = 33299999.999999996 ns in binary, to 33299999 ns).
 [[nodiscard]] HAPTICCTRL_RT constexpr Duration from_seconds(double seconds) noexcept {
-  return std::chrono::duration_cast<Duration>(std::chrono::duration<double>(seconds));
+  return std::chrono::round<Duration>(std::chrono::duration<double>(seconds));
 }
 
 }  // namespace hapticctrl

@@ -59,14 +59,15 @@ ServoLaw::Stiffening ServoLaw::contact_stiffening(const ServoInputs& in, const C
     const Vector3d normal =
         (to_base * Vector3d(contact.normal[0], contact.normal[1], contact.normal[2])).normalized();
     // The gap now: as reported, less how far the object's reported position moved towards the
-    // surface since (neither the extrapolation over the sample's age nor the channel PC's drift
-    // is a motion of the object: with them the contact flickered in and out of its band).
+    // surface since, that is against the normal, along which the surface pushes it (neither the
+    // extrapolation over the sample's age nor the channel PC's drift is a motion of the object:
+    // with them the contact flickered in and out of its band).
     const Vector3d at_report =
         to_base *
         (Vector3d(contact.object_pose[0], contact.object_pose[1], contact.object_pose[2]) -
          frame.origin) /
         frame.speed_factor;
-    const double gap = contact.distance / frame.speed_factor - (reported - at_report).dot(normal);
+    const double gap = contact.distance / frame.speed_factor + (reported - at_report).dot(normal);
     const double touching = std::clamp((kTouchBand - gap) / kTouchBand, 0.0, 1.0);
     // The surface's stiffness in the coupling's units (the client's force per base metre).
     const double surface = contact.stiffness * frame.speed_factor;

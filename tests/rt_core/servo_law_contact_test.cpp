@@ -67,6 +67,27 @@ TEST(ServoLawContact, TheHandFeelsTheContactAtItsStiffnessAndTheObjectAStifferCo
   EXPECT_LE(*out.contact_age, 1ms);
 }
 
+TEST(ServoLawContact, AContactOlderThanItsObjectsStateCountsTheObjectsTravelOntoTheSurface) {
+  // The client reported its object 3 mm short of a wall (beyond the 1 mm touch band); its next
+  // state carries the object 3 mm on, onto the wall, before its next contact frame: the gap is
+  // the reported 3 mm less that travel, and the coupling is stiffened along the wall. (Until
+  // 2026-12-07 the travel was added: the gap read 6 mm and the coupling stayed soft.)
+  ServoLaw law(default_dynamics());
+  ServoInputs in = slow_link_coupling(0.0);
+  in.client.contact_count = 1;
+  in.client.contacts[0] = wall_at(in.client.object_pose, 1600.0, in.now);
+  in.client.contacts[0].distance = 0.003;
+  ServoOutputs out = run(law, in, 2);
+  EXPECT_EQ(out.normal_stiffness, 0.0) << "3 mm short of the wall: no contact in force";
+  in.client.object_pose[0] += 0.003;  // along +x, against the wall's normal: onto it
+  out = run(law, in, 10);             // within the contact's 30 ms of freshness
+  EXPECT_GT(out.normal_stiffness, 0.0) << "on the wall: the coupling stiffened along it";
+  EXPECT_NEAR(out.contact_normal.x(), -1.0, 1e-9);
+  in.client.object_pose[0] -= 0.006;  // 3 mm back from where it was reported: 6 mm short
+  out = run(law, in, 2);
+  EXPECT_EQ(out.normal_stiffness, 0.0) << "moving away from the wall is no contact";
+}
+
 TEST(ServoLawContact, TheWallsStiffnessIsFeltWhateverTheLoopAndBoundedByTheDevice) {
   // A 5000 N/m wall is rendered at the device's 2000 N/m, at any loop delay.
   for (const Duration loop : {Duration{2ms}, Duration{200ms}}) {

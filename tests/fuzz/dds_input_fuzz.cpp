@@ -25,9 +25,9 @@ struct Harness {
   hapticctrl::test::InMemoryController controller;
   std::unique_ptr<shm::SeqlockCell<shm::ForcePayload>> force =
       std::make_unique<shm::SeqlockCell<shm::ForcePayload>>();
-  shm::RemoteCommands remote{shm::RemoteCommandSettings{true, {}, 200'000'000}, &controller.writer,
-                             force.get()};
-  hapticctrl::TimePoint now{};
+  shm::RemoteCommands remote{shm::RemoteCommandSettings{true, {}, std::chrono::milliseconds(200)},
+                             &controller.writer, force.get()};
+  hapticctrl::TimePoint now;
 };
 
 }  // namespace

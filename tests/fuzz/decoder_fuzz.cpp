@@ -23,9 +23,9 @@ struct Harness {
   // The golden tests' token, so that seeds and mutations can carry a valid one.
   hapticctrl::udp_bridge::Session session{{100}, [] { return 0x0102030405060708ULL; }};
   Endpoint peer = Endpoint::resolve("127.0.0.1", 40000);
-  hapticctrl::TimePoint now{};
+  hapticctrl::TimePoint now;
 
-  Harness() { session.set_controller(&controller.ports, 0); }
+  Harness() { session.set_controller(&controller.ports, hapticctrl::TimePoint{}); }
 };
 
 }  // namespace

@@ -21,7 +21,7 @@ struct Harness {
   std::unique_ptr<shm::SeqlockCell<shm::ForcePayload>> force =
       std::make_unique<shm::SeqlockCell<shm::ForcePayload>>();
   lb::HmiInput input{lb::HmiSettings{true}, &controller.writer, force.get()};
-  hapticctrl::TimePoint now{};
+  hapticctrl::TimePoint now;
 };
 
 }  // namespace

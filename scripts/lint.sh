@@ -27,10 +27,16 @@ mapfile -t UNITS < <(git ls-files '*.cpp')
 [[ -f $BUILD/compile_commands.json ]] || { echo "lint: no $BUILD/compile_commands.json" >&2; exit 1; }
 # .clang-tidy is written for clang-tidy-22 (scripts/setup.sh installs it); run-clang-tidy
 # parallelises.
-command -v run-clang-tidy-22 >/dev/null ||
-  { echo "lint: run-clang-tidy-22 not found (scripts/setup.sh installs clang-tidy-22)" >&2; exit 1; }
-run-clang-tidy-22 -quiet -p "$BUILD" -j "$(nproc)" "${UNITS[@]/#/$PWD/}" >/tmp/hapticctrl-tidy.log 2>&1 ||
-  { grep -E "error:|warning:" /tmp/hapticctrl-tidy.log | sort -u | head -50; exit 1; }
+if ! command -v run-clang-tidy-22 >/dev/null; then
+  echo "lint: run-clang-tidy-22 not found (scripts/setup.sh installs clang-tidy-22)" >&2
+  exit 1
+fi
+TIDY_LOG=/tmp/hapticctrl-tidy.log
+if ! run-clang-tidy-22 -quiet -p "$BUILD" -j "$(nproc)" "${UNITS[@]/#/$PWD/}" \
+  >"$TIDY_LOG" 2>&1; then
+  grep -E "error:|warning:" "$TIDY_LOG" | sort -u | head -50
+  exit 1
+fi
 scripts/check_realtime.py --self-test >/dev/null
 scripts/check_realtime.py --build "$BUILD" .
 echo "lint: clean (${#SOURCES[@]} files formatted, ${#UNITS[@]} units tidy, the real-time contract kept)"

@@ -37,5 +37,14 @@ TEST(TimeEdges, SecondsBecomeTheNearestNanosecond) {
   EXPECT_EQ(from_seconds(-2.5e-9), -2ns) << "a half: to the even nanosecond";
 }
 
+TEST(TimeEdges, AProgramsDurationEndsThatLongFromNowOrNever) {
+  const TimePoint before = MonotonicClock::now();
+  const TimePoint end = end_after(2.0);
+  EXPECT_GE(end - before, 2s);
+  EXPECT_LT(end - before, 3s);
+  EXPECT_EQ(end_after(0.0), TimePoint::max()) << "0: run until told to stop";
+  EXPECT_EQ(end_after(-1.0), TimePoint::max());
+}
+
 }  // namespace
 }  // namespace hapticctrl

@@ -196,9 +196,7 @@ class Relay {
 
   void run() {
     const TimePoint start = MonotonicClock::now();
-    const TimePoint end = options_.duration_s > 0
-                              ? start + hapticctrl::from_seconds(options_.duration_s)
-                              : TimePoint::max();
+    const TimePoint end = hapticctrl::end_after(options_.duration_s);
     int toggles_seen = 0;
     while (!g_stop.load() && MonotonicClock::now() < end) {
       const int toggles = g_toggles.load();

@@ -155,9 +155,7 @@ int run(const DdsBridgeConfig& config) {
   Publisher pub(config, hapticctrl::ros2types::base_frame(config.ros_namespace));
   PublishCounters counters;
   std::string commands_json = "\"commands_applied\":0";
-  const TimePoint end = config.duration_s > 0.0
-                            ? MonotonicClock::now() + hapticctrl::from_seconds(config.duration_s)
-                            : TimePoint::max();
+  const TimePoint end = hapticctrl::end_after(config.duration_s);
   std::fprintf(stderr,
                "hapticctrl-dds: instance '%s', DDS domain %u, ROS 2 namespace %s, remote "
                "commands %s\n",

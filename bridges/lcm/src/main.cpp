@@ -195,9 +195,7 @@ int run(const LcmBridgeConfig& config) {
   settings.allow_remote_commands = config.allow_remote_commands;
   PublishCounters counters;
   std::string hmi_json = "\"commands_applied\":0";
-  const TimePoint end = config.duration_s > 0.0
-                            ? MonotonicClock::now() + hapticctrl::from_seconds(config.duration_s)
-                            : TimePoint::max();
+  const TimePoint end = hapticctrl::end_after(config.duration_s);
   std::fprintf(stderr, "hapticctrl-lcm: instance '%s' on %s, channels %s.*, remote commands %s\n",
                config.instance.c_str(), config.lcm_url.c_str(),
                ("hapticctrl." + config.instance).c_str(),

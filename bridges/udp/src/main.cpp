@@ -265,9 +265,7 @@ int run(const BridgeConfig& config) {
                    {config.hello_rate, config.hello_rate, kTotalHellos * config.hello_rate,
                     kTotalHellos * config.hello_rate / 2.0}},
                   random_token);
-  const TimePoint end = config.duration_s > 0.0
-                            ? MonotonicClock::now() + hapticctrl::from_seconds(config.duration_s)
-                            : TimePoint::max();
+  const TimePoint end = hapticctrl::end_after(config.duration_s);
   bool said_waiting = false;
   while (!g_stop.load()) {
     std::optional<shm::Segment> segment = shm::Segment::try_attach(

@@ -230,9 +230,7 @@ int run(const wb::WebConfig& config) {
                config.allow_remote_commands ? "enabled" : "disabled (emergency stop only)");
   std::atomic<bool> running{true};
   std::thread pusher([&] { push_loop(view, server, config.push_rate_hz, running); });
-  const TimePoint end = config.duration_s > 0.0
-                            ? MonotonicClock::now() + hapticctrl::from_seconds(config.duration_s)
-                            : TimePoint::max();
+  const TimePoint end = hapticctrl::end_after(config.duration_s);
   while (!g_stop.load() && MonotonicClock::now() < end) {
     lcm.handleTimeout(50);
   }

@@ -62,4 +62,10 @@ inline constexpr TimePoint kNotYet = TimePoint::min();
   return std::chrono::round<Duration>(std::chrono::duration<double>(seconds));
 }
 
+/// When a program run for `seconds` (its --duration) ends: that long from now, or never
+/// (TimePoint::max()) for 0 or less. Reads the clock: not for the cycle.
+[[nodiscard]] inline TimePoint end_after(double seconds) noexcept {
+  return seconds > 0.0 ? MonotonicClock::now() + from_seconds(seconds) : TimePoint::max();
+}
+
 }  // namespace hapticctrl

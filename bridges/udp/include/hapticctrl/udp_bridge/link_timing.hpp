@@ -59,16 +59,15 @@ class LinkEstimator {
   void add_arrival(std::uint32_t lost) noexcept;
   void reset() noexcept { *this = LinkEstimator{}; }
 
-  [[nodiscard]] Duration delay() const noexcept { return round_to_ns(delay_); }
-  [[nodiscard]] Duration jitter() const noexcept { return round_to_ns(jitter_); }
+  [[nodiscard]] Duration delay() const noexcept { return whole_ns(delay_); }
+  [[nodiscard]] Duration jitter() const noexcept { return whole_ns(jitter_); }
   [[nodiscard]] std::uint32_t loss_ppm() const noexcept {
     return static_cast<std::uint32_t>(loss_ * 1e6);
   }
 
  private:
-  static Duration round_to_ns(double ns) noexcept {
-    return Duration(static_cast<Duration::rep>(ns));
-  }
+  /// The whole nanoseconds of an average (the fraction dropped, as the wire's count does).
+  static Duration whole_ns(double ns) noexcept { return Duration(static_cast<Duration::rep>(ns)); }
 
   bool have_delay_ = false;
   double delay_ = 0.0;  ///< ns, as jitter_ and last_one_way_

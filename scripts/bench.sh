@@ -33,9 +33,9 @@
 #   default about 130 minutes (8 s per latency run, 15 s per link run, 14 coupling cases of
 #   ~90 s, 48 contact cases of ~70 s, 16 local-model cases of ~110 s, 10 minutes at rest, 10
 #   MuJoCo runs of 20 s);
-#   --long: 60 s and 120 s latency and link runs; --smoke: 1 s runs, 2 coupling, 2 contact and
-#   2 local-model cases with 8 s of hand motion, 20 s at rest (checks the pipeline, not the
-#   machine).
+#   --long: 60 s and 120 s latency and link runs; --smoke: 1 s runs, 1 coupling, 2 contact
+#   (VIRTMECH and IMPEDANCE) and 1 local-model case with 8 s of hand motion, 20 s at rest (checks
+#   the pipeline, not the machine).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 OUT=bench-report BUILD=build LAT_S=8 LINK_S=15 MIN_TIME=0.2 PINGS=20000 SMOKE=

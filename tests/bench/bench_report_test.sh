@@ -54,7 +54,7 @@ for name in ("BM_SeqlockRead", "BM_EncodeAnswer", "BM_DecodeAnswer", "BM_FullCyc
     assert r["micro_ns"].get(name, 0) > 0, f"micro-benchmark {name} missing"
 assert len(r["requirements"]) == 4 and all(isinstance(q["met"], bool) for q in r["requirements"])
 cases = json.load(open(os.path.join(out, "coupling.json"), encoding="utf-8"))
-assert len(cases) == 2, f"the smoke run has two coupling cases, not {len(cases)}"
+assert len(cases) == 1, f"the smoke run has one coupling case, not {len(cases)}"
 for c in cases:
     # The core runs in benchmark mode: every case is judged, with the stalls it rode through.
     assert c["judged"], c
@@ -72,9 +72,9 @@ for c in walls:
     for key in ("push_speed", "felt_n", "saturated_cycles", "port_energy_j", "core_excess_j",
                 "client_excess_j", "meets_j1", "stalls_ridden"):
         assert c.get(key) is not None, (key, c)
-# Local contact models (J2): both smoke cases, every run judged and every figure measured.
+# Local contact models (J2): the smoke case, every run judged and every figure measured.
 local = json.load(open(os.path.join(out, "local.json"), encoding="utf-8"))
-assert sorted(c["delay_ms"] for c in local) == [10, 100], local
+assert [c["delay_ms"] for c in local] == [100], local
 for c in local:
     assert all(c["judged"].values()), c
     for key in ("k_ratio", "pen10_mm", "jump_step_n", "jump_energy_j", "mu", "blackout_min_n",

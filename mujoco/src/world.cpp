@@ -115,6 +115,12 @@ World::World(const std::string& path, const std::string& body, double timestep)
   for (int g = first; g >= 0 && g < first + e.model->body_geomnum[e.body]; ++g) {
     e.margin.push_back(e.model->geom_margin[g]);
   }
+  for (int p = 0; p < e.model->npair; ++p) {
+    if (e.model->geom_bodyid[e.model->pair_geom1[p]] == e.body ||
+        e.model->geom_bodyid[e.model->pair_geom2[p]] == e.body) {
+      e.pair_margins.emplace_back(p, e.model->pair_margin[p]);
+    }
+  }
   e.grips = grips_of(e.model, e.body);
   e.mesh_boxes = mesh_boxes_of(e.model);
   e.drawn_geoms = drawn_geoms_of(e.model);
@@ -190,6 +196,9 @@ void World::set_report_distance(double distance) noexcept {
   const int first = e.model->body_geomadr[e.body];
   for (std::size_t i = 0; i < e.margin.size(); ++i) {
     e.report_model->geom_margin[first + static_cast<int>(i)] = e.margin[i] + d;
+  }
+  for (const auto& [pair, margin] : e.pair_margins) {
+    e.report_model->pair_margin[pair] = margin + d;
   }
 }
 

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 #include "hapticctrl/mujoco/world.hpp"
@@ -35,7 +36,10 @@ struct World::Engine {
   mjModel* report_model = nullptr;
   mjData* report_data = nullptr;
   std::vector<double> margin;  ///< the body's geoms' own margin
-  std::vector<int> grips;      ///< adhesion actuators on the body
+  /// The scene's explicit pairs (<contact><pair>) with one of the body's geoms, and each one's
+  /// own margin: MuJoCo takes a pair's margin from the pair, not from its geoms.
+  std::vector<std::pair<int, double>> pair_margins;
+  std::vector<int> grips;  ///< adhesion actuators on the body
   /// Each mesh's bounding box in its geom's frame (centre, half-sizes), found once at load.
   std::vector<std::array<double, 6>> mesh_boxes;
   std::size_t drawn_geoms = 0;  ///< the geoms a view draws, counted once at load

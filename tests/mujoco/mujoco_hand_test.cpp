@@ -71,7 +71,10 @@ class HandRun {
         log_("/tmp/hapticctrl-" + tag + "-" + std::to_string(getpid()) + ".csv") {
     ControllerStack stack("mj-" + tag + std::to_string(attempt), kPeriodUs, {},
                           {"--benchmark-mode"});
-    Relay relay(stack.port(), {"--delay-ms", std::to_string(delay_ms)});
+    const Relay relay(stack.port(),
+                      delay_ms > 0
+                          ? std::vector<std::string>{"--delay-ms", std::to_string(delay_ms)}
+                          : std::vector<std::string>{});
     EXPECT_TRUE(stack.ready()) << stack.diagnostics();
     SpawnedProcess mujoco(HAPTICCTRL_MUJOCO_BINARY,
                           {"--model", kScenes + "/" + scene + ".xml", "--server",
@@ -244,12 +247,11 @@ class BlockPush : public ::testing::TestWithParam<int> {};
 
 TEST_P(BlockPush, TheHandPushesTheToolIntoTheBlockAndTheBlockSlidesAlongTheTable) {
   // The operator's hand (30 N/m, 3 N.s/m: an arm that follows the push) pushes 6 N along +x from
-  // 0 to 1 s and holds it to 9 s; the tool drags over the table, meets the red block 2.5 cm
+  // 0 to 1 s and holds it to 9 s; the tool slides over the table, meets the red block 2.5 cm
   // ahead and pushes it until the handle meets the workspace's wall, and the handle rests (81 mm,
-  // 2026-12-06). Through a delay the tool lags its handle by the coupling's stretch against the
-  // table's friction (1.6 cm at 20 ms one way), and the block's surface, rendered for the handle
-  // where the tool's centre would touch it, holds the handle short of the block: 0 mm at 20 ms,
-  // 1.3 or 65 mm at 5 ms (docs/mujoco.md, Not yet): not judged here until that is solved.
+  // 2026-12-06). Through 5 and 20 ms one way the block now slides as far (80-81 mm, 2026-12-07)
+  // but turns away from the tool, 9-22 mm aside (docs/mujoco.md, Not yet): not judged here until
+  // that is solved, and the straight push is not loosened for it.
   const int delay_ms = GetParam();
   const std::string name = "block_push_" + std::to_string(delay_ms) + "ms";
   with_retries(name, [&](int attempt) {

@@ -126,6 +126,27 @@ TEST(World, ContactsWithinTheReportDistanceAreFoundWithoutChangingThePhysics) {
   }
 }
 
+TEST(World, ContactsOfTheScenesOwnPairsAreFoundWithinTheReportDistanceToo) {
+  // The floor meets the box only through an explicit <pair> (the box's contype leaves it out of
+  // MuJoCo's dynamic pairs), whose margin is the pair's own, not its geoms'.
+  const TempModel model(R"(<mujoco><worldbody>
+      <geom name="floor" type="plane" size="1 1 0.1"/>
+      <body name="box" pos="0 0 0.03"><freejoint/>
+        <geom name="box" type="box" size="0.01 0.01 0.01" mass="0.1" contype="2"
+              conaffinity="2"/>
+      </body></worldbody>
+      <contact><pair geom1="box" geom2="floor" condim="1"/></contact></mujoco>)");
+  World w(model.path(), "box", 0.0);
+  std::array<EngineContact, 16> found{};
+  EXPECT_EQ(w.contacts(found), 0U) << "2 cm above the floor";
+  w.set_report_distance(0.05);
+  const std::size_t n = w.contacts(found);
+  ASSERT_GE(n, 1U) << "the floor is within 5 cm, through the pair";
+  for (std::size_t i = 0; i < n; ++i) {
+    EXPECT_NEAR(found[i].distance, 0.02, 1e-9) << "corner " << i;
+  }
+}
+
 TEST(World, TheWrenchActsAtTheBodysOriginAndANonFiniteOneAsNothing) {
   World w(kTestBox, "", 0.0);
   const client::Vector6 lift{0, 0, 0.5 * kG + 5.0, 0, 0, 0};  // 10 m/s^2 up, no turn

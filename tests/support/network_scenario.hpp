@@ -38,10 +38,15 @@ inline constexpr double kReleaseStep =
     1.0 * kPeriodUs / 1000.0 < 1.0 ? 1.0 : 1.0 * kPeriodUs / 1000.0;
 inline constexpr int kAttempts = 3;
 
-/// hapticctrl-netem in front of a bridge.
+/// hapticctrl-netem in front of a bridge. With an impairment, the attempt's link is the test's
+/// own: stale client samples are then its delay and losses, not the machine starving the client
+/// (without this a test through a 5 or 20 ms link counted every failure as the machine's and
+/// could not fail, 2026-12-07).
 class Relay {
  public:
   Relay(std::uint16_t bridge_port, const std::vector<std::string>& impairment) {
+    attempt_disturbance().link_impaired =
+        attempt_disturbance().link_impaired || !impairment.empty();
     std::vector<std::string> args{"--to", "127.0.0.1:" + std::to_string(bridge_port), "--json"};
     args.insert(args.end(), impairment.begin(), impairment.end());
     process_.emplace(HAPTICCTRL_NETEM_BINARY, args);
@@ -70,7 +75,6 @@ struct Scenario {
   explicit Scenario(const std::string& tag, const std::vector<std::string>& impairment,
                     const std::vector<std::string>& demo_extra = {"--gravity"})
       : stack(tag, kPeriodUs, {}, {"--benchmark-mode"}), relay(stack.port(), impairment) {
-    attempt_disturbance().link_impaired = !impairment.empty();
     if (stack.ready() && relay.port() != 0) {
       std::vector<std::string> args{"--server", "127.0.0.1:" + std::to_string(relay.port()),
                                     "--headless", "--no-lcm", "--json"};

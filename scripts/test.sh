@@ -62,8 +62,8 @@ run_tests() {  # dir, ctest label regex, ctest attempts[, label regex left out]
   if [[ -r /proc/sys/vm/mmap_rnd_bits && $(cat /proc/sys/vm/mmap_rnd_bits) -gt 28 ]]; then
     runner=(setarch "$(uname -m)" -R)
   fi
-  if ! (cd "$dir" && "${runner[@]}" ctest --output-on-failure -j "$JOBS" -L "$labels" "${left_out[@]}" \
-    --timeout 600 --repeat until-pass:"$attempts"); then
+  if ! (cd "$dir" && "${runner[@]}" ctest --output-on-failure -j "$JOBS" -L "$labels" \
+    "${left_out[@]}" --timeout 600 --repeat until-pass:"$attempts"); then
     # A long log is often read from its end: say there why each failed test failed.
     python3 "$ROOT/scripts/why_tests_failed.py" "$dir"
     return 1

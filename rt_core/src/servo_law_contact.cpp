@@ -40,11 +40,8 @@ ServoLaw::Stiffening ServoLaw::contact_stiffening(const ServoInputs& in, const C
   // 1 at any delay as long as the coupling along the surface's normal stays well below K: there
   // the coupling may be as stiff as contact_share * K and the device allow, whatever the delay
   // (small gain; the free-mass bound of derive_gains() is about the directions the object is
-  // free in). One normal: of the contacts most in force, the one the handle presses the object
-  // into most, then the stiffest; a client that closes its object's side mirrors it (protocol
-  // 1.3). (The stiffest alone took the table under a tool pushed along it into a block: the
-  // push then had the free-mass coupling only, too soft at 5 ms one way to slide the block, which
-  // moved 12 mm in 2 of 3 runs, J3, 2026-12-07.)
+  // free in). One normal, the stiffest contact's: a client that closes its object's side mirrors
+  // it (protocol 1.3).
   const ArmLimits& lim = dynamics_->model().limits;
   const ClientSample& c = in.client;
   const Matrix3d to_base = frame.rotation.conjugate().toRotationMatrix();
@@ -78,14 +75,10 @@ ServoLaw::Stiffening ServoLaw::contact_stiffening(const ServoInputs& in, const C
         weight * touching *
         std::max(0.0,
                  std::min(lim.max_stiffness_linear, config_.contact_share * surface) - g.k_linear);
-    const double press = (reported - chain_.handle_position).dot(normal);
-    const double share = weight * touching;
-    if (share > best.share ||
-        (share == best.share &&
-         (press > best.press || (press == best.press && stiffness > best.stiffness)))) {
+    if (weight * touching > best.share ||
+        (weight * touching == best.share && stiffness > best.stiffness)) {
       best.normal = normal;
-      best.share = share;
-      best.press = press;
+      best.share = weight * touching;
       best.weight = weight;
       best.stiffness = stiffness;
       best.object_stiffness =

@@ -88,25 +88,6 @@ TEST(ServoLawContact, AContactOlderThanItsObjectsStateCountsTheObjectsTravelOnto
   EXPECT_EQ(out.normal_stiffness, 0.0) << "moving away from the wall is no contact";
 }
 
-TEST(ServoLawContact, OfTwoContactsInForceTheOneTheHandlePressesTheObjectIntoIsStiffened) {
-  // An object resting on a stiffer floor is pushed along it into a wall: the coupling is
-  // stiffened along the wall's normal, where the handle presses the object, not along the
-  // floor's. (The stiffest alone took the table under a tool pushed along it into a block, whose
-  // push then had the free-mass coupling only: J3, 2026-12-07.)
-  ServoLaw law(default_dynamics());
-  ServoInputs in = slow_link_coupling(0.0);
-  in.client.contact_count = 2;
-  in.client.contacts[0] = wall_at(in.client.object_pose, 3000.0, in.now);
-  in.client.contacts[0].normal = {0.0, 0.0, 1.0};  // the floor under the object
-  in.client.contacts[1] = wall_at(in.client.object_pose, 1600.0, in.now);
-  run_on_contacts(law, in, 300);
-  press_along_x(law, in, 0.005);
-  const ServoOutputs out = run_on_contacts(law, in, 300);
-  EXPECT_EQ(out.contacts, 2U);
-  EXPECT_NEAR(out.contact_normal.x(), -1.0, 1e-9) << "the wall the object is pressed into";
-  EXPECT_NEAR(out.normal_stiffness, 1600.0 - out.gains.k_linear, 1e-6);
-}
-
 TEST(ServoLawContact, TheWallsStiffnessIsFeltWhateverTheLoopAndBoundedByTheDevice) {
   // A 5000 N/m wall is rendered at the device's 2000 N/m, at any loop delay.
   for (const Duration loop : {Duration{2ms}, Duration{200ms}}) {

@@ -15,7 +15,6 @@
 /// the coupling from the last sample, extrapolated and faded as it ages.
 
 #include <cstdint>
-#include <limits>
 #include <optional>
 
 #include "hapticctrl/base/realtime.hpp"
@@ -259,9 +258,6 @@ class ServoLaw {
     /// the object is pressed into its surface with the force the hand feels (J2).
     double object_stiffness = 0.0;
     double penetration = 0.0;  ///< the object's into its surface now (m, base)
-    /// How far the handle is behind the object along the normal (m, base; > 0: it presses the
-    /// object into the surface).
-    double press = -std::numeric_limits<double>::infinity();
     std::uint32_t fresh = 0;
   };
   /// Every output of the cycle set to its value before the coupling is rendered (none of it).

@@ -40,7 +40,7 @@ fi
 # 10.1 s and 6.7 s, measured 2026-12-02), which is most of the time of the three builds.
 LINES_ONLY=(-DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG"
   -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG")
-# LLVM's linker: some 500 executables are linked in the four builds, each in well under half of
+# LLVM's linker: about 410 executables are linked in the four builds, each in well under half of
 # ld.bfd's time (an ASan test program 0.35 s against 0.87 s, the core 0.31 against 0.87; all 174
 # programs of the plain build 44.9 CPU-s against 72.4; 2026-12-07).
 LLD=(-DCMAKE_EXE_LINKER_FLAGS=-fuse-ld=lld -DCMAKE_SHARED_LINKER_FLAGS=-fuse-ld=lld
@@ -77,13 +77,13 @@ run_tests() {  # dir, ctest label regex, ctest attempts[, label regex left out]
 # tests they get only the CPU the tests leave, and a test's thread that wakes preempts them.
 BACKGROUND_PID=""
 LOGS=""
+as_minutes() { printf '%d:%02d' $(($1 / 60)) $(($1 % 60)); }  # seconds as minutes:seconds
 background_step() {  # name, command...: runs it, its output in $LOGS/name.log, its status in .rc
   local name=$1 start=$SECONDS
   shift
   "$@" >"$LOGS/$name.log" 2>&1
   echo $? >"$LOGS/$name.rc"
-  echo "ran from $((start / 60)):$(printf %02d $((start % 60))) to $((SECONDS / 60)):$(printf %02d \
-    $((SECONDS % 60)))" >"$LOGS/$name.when"
+  echo "ran from $(as_minutes "$start") to $(as_minutes "$SECONDS")" >"$LOGS/$name.when"
 }
 
 # The sanitizer builds use clang: its front end, where the tests' compile time goes (parsing and

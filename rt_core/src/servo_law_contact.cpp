@@ -24,16 +24,6 @@ using law_math::clamp_norm;
 /// faster motion away along a hidden stretch or depth is the handle being carried (m/s).
 constexpr double kCreepSpeed = 0.02;
 
-/// A contact whose normal is within about 18 degrees of last cycle's stiffened one is that
-/// contact (a box's contact points share a normal; a pushed block turns a few degrees a second).
-constexpr double kSameContact = 0.95;
-
-/// The stiffened contact keeps the stiffening until the handle presses another this much deeper
-/// (m; 8 N at the device's 2000 N/m): a peg's presses into its hole's floor and walls cross.
-/// With 1 mm the peg's handle at 20 ms still rang at 42 mm/s in 1 of 5 runs; with 4 mm in none
-/// of 9, and the table's block at 5 ms slid straight (J3, 2026-12-07).
-constexpr double kKeepMargin = 4e-3;
-
 /// How fast a hidden stretch or depth comes back: `speed` less the handle's own speed away
 /// along it (`leaving`, m/s) beyond the creep, never below zero.
 HAPTICCTRL_RT double return_speed(double speed, double leaving) noexcept {
@@ -50,14 +40,8 @@ ServoLaw::Stiffening ServoLaw::contact_stiffening(const ServoInputs& in, const C
   // 1 at any delay as long as the coupling along the surface's normal stays well below K: there
   // the coupling may be as stiff as contact_share * K and the device allow, whatever the delay
   // (small gain; the free-mass bound of derive_gains() is about the directions the object is
-  // free in). One normal: of the contacts most in force, the one the handle presses the object
-  // into most, the one stiffened last cycle counted kKeepMargin deeper, then the stiffest; a
-  // client that closes its object's side mirrors it (protocol 1.3). (The stiffest alone took
-  // the table under a tool pushed along it into a block, where the two tie at the device's
-  // clamp: the push then had the free-mass coupling only, too soft at 5 ms one way to slide the
-  // block, 12 mm in 2 of 3 runs. The press alone flipped between a peg's hole floor and walls,
-  // whose presses cross: the handle at 20 ms moved at 31-44 mm/s in 3 of 9 runs. J3,
-  // 2026-12-07.)
+  // free in). One normal, the stiffest contact's: a client that closes its object's side mirrors
+  // it (protocol 1.3).
   const ArmLimits& lim = dynamics_->model().limits;
   const ClientSample& c = in.client;
   const Matrix3d to_base = frame.rotation.conjugate().toRotationMatrix();
@@ -91,16 +75,10 @@ ServoLaw::Stiffening ServoLaw::contact_stiffening(const ServoInputs& in, const C
         weight * touching *
         std::max(0.0,
                  std::min(lim.max_stiffness_linear, config_.contact_share * surface) - g.k_linear);
-    const double share = weight * touching;
-    const double press = (reported - chain_.handle_position).dot(normal);
-    const double ranked =
-        press + (normal.dot(memory_.stiffened) > kSameContact ? kKeepMargin : 0.0);
-    if (share > best.share ||
-        (share == best.share &&
-         (ranked > best.ranked || (ranked == best.ranked && stiffness > best.stiffness)))) {
+    if (weight * touching > best.share ||
+        (weight * touching == best.share && stiffness > best.stiffness)) {
       best.normal = normal;
-      best.share = share;
-      best.ranked = ranked;
+      best.share = weight * touching;
       best.weight = weight;
       best.stiffness = stiffness;
       best.object_stiffness =

@@ -111,7 +111,6 @@ ServoLaw::Coupling ServoLaw::client_wrench(const ServoInputs& in, const ClientFr
   const Stiffening stiff =
       contact_stiffening(in, frame, image.position - image.ahead - memory_.drift.head<3>(), g);
   out.contacts = stiff.fresh;
-  memory_.stiffened = stiff.share > 0.0 ? stiff.normal : Vector3d::Zero();
   image.position -= stiff.share * image.ahead.dot(stiff.normal) * stiff.normal;
   Vector6d stretch;
   stretch << image.position - chain.handle_position,

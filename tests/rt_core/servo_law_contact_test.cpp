@@ -20,7 +20,6 @@ using test::default_dynamics;
 using test::ForceTrace;
 using test::impedance_on_surface;
 using test::kReady;
-using test::press_along;
 using test::press_along_x;
 using test::run;
 using test::run_on_contacts;
@@ -87,51 +86,6 @@ TEST(ServoLawContact, AContactOlderThanItsObjectsStateCountsTheObjectsTravelOnto
   in.client.object_pose[0] -= 0.006;  // 3 mm back from where it was reported: 6 mm short
   out = run(law, in, 2);
   EXPECT_EQ(out.normal_stiffness, 0.0) << "moving away from the wall is no contact";
-}
-
-/// An object resting on a floor stiffer (3000 N/m) than the wall (1600 N/m) it is beside.
-ServoInputs on_a_floor_beside_a_wall() {
-  ServoInputs in = slow_link_coupling(0.0);
-  in.client.contact_count = 2;
-  in.client.contacts[0] = wall_at(in.client.object_pose, 3000.0, in.now);
-  in.client.contacts[0].normal = {0.0, 0.0, 1.0};  // the floor under the object
-  in.client.contacts[1] = wall_at(in.client.object_pose, 1600.0, in.now);
-  return in;
-}
-
-TEST(ServoLawContact, OfTwoContactsInForceTheOneTheHandlePressesTheObjectIntoIsStiffened) {
-  // Pushed along the floor into the wall, the coupling is stiffened along the wall's normal,
-  // where the handle presses the object, not along the stiffer floor's. (The stiffest alone took
-  // the table under a tool pushed along it into a block, whose push then had the free-mass
-  // coupling only: J3, 2026-12-07.)
-  ServoLaw law(default_dynamics());
-  ServoInputs in = on_a_floor_beside_a_wall();
-  run_on_contacts(law, in, 300);
-  press_along_x(law, in, 0.005);
-  const ServoOutputs out = run_on_contacts(law, in, 300);
-  EXPECT_EQ(out.contacts, 2U);
-  EXPECT_NEAR(out.contact_normal.x(), -1.0, 1e-9) << "the wall the object is pressed into";
-  EXPECT_NEAR(out.normal_stiffness, 1600.0 - out.gains.k_linear, 1e-6);
-}
-
-TEST(ServoLawContact, TheStiffenedContactIsKeptWhileTheHandlePressesIntoItThenLeft) {
-  // Pressed 5 mm into the wall and then 5.5 mm down into the floor, the wall stays stiffened
-  // although the floor is pressed a little deeper (a choice that follows the deeper press flipped
-  // between a peg's hole floor and walls, and the handle at 20 ms rang at 31-44 mm/s: J3,
-  // 2026-12-07); once the handle leaves the wall, the floor is stiffened.
-  ServoLaw law(default_dynamics());
-  ServoInputs in = on_a_floor_beside_a_wall();
-  run_on_contacts(law, in, 300);
-  press_along_x(law, in, 0.005);
-  press_along(law, in, Vector3d(0.0, 0.0, -0.0055));
-  ServoOutputs out = run_on_contacts(law, in, 300);
-  EXPECT_NEAR(out.contact_normal.x(), -1.0, 1e-9) << "kept while pressed";
-  press_along_x(law, in, -0.01);
-  out = run_on_contacts(law, in, 300);
-  EXPECT_NEAR(out.contact_normal.z(), 1.0, 1e-9) << "the floor, once the wall is left";
-  const double device = default_dynamics().model().limits.max_stiffness_linear;
-  EXPECT_NEAR(out.normal_stiffness, std::min(device, 3000.0) - out.gains.k_linear, 1e-6)
-      << "the floor's stiffness, clamped to the device";
 }
 
 TEST(ServoLawContact, TheWallsStiffnessIsFeltWhateverTheLoopAndBoundedByTheDevice) {

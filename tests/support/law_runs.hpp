@@ -1,7 +1,7 @@
 #pragma once
 // Test support of the servo law's contact and surface tests: a wall at the object, cycles run
 // with the clock advancing (and the contacts refreshed as a client sending them does), a hand
-// pressing along a direction, a trace of the force along x, and an IMPEDANCE client on a surface.
+// pressing along x, a trace of the force along x, and an IMPEDANCE client on a surface.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -49,29 +49,23 @@ inline ServoOutputs run_on_contacts(ServoLaw& law, ServoInputs& in, int cycles) 
   return out;
 }
 
-/// Moves the handle by `move` (base frame) through the Jacobian, in steps of at most 0.5 mm of
-/// one cycle each with the contacts refreshed (a hand pressing at 0.5 m/s at most), and returns
-/// how far it went along `move` (forward kinematics). The measured velocity stays zero: no
-/// damping is in the figures.
-inline double press_along(ServoLaw& law, ServoInputs& in, const rt_core::Vector3d& move) {
-  const rt_core::Vector3d start = chain_at(in.measures.position).handle_position;
-  const int steps = std::max(1, static_cast<int>(std::ceil(move.norm() / 5e-4)));
+/// Moves the handle `dx` along x through the Jacobian, in steps of at most 0.5 mm of one cycle
+/// each with the contacts refreshed (a hand pressing at 0.5 m/s at most), and returns how far it
+/// went (forward kinematics). The measured velocity stays zero: no damping is in the figures.
+inline double press_along_x(ServoLaw& law, ServoInputs& in, double dx) {
+  const double start = chain_at(in.measures.position).handle_position.x();
+  const int steps = std::max(1, static_cast<int>(std::ceil(std::abs(dx) / 5e-4)));
   for (int k = 0; k < steps; ++k) {
     const rt_core::Matrix6d jacobian = default_dynamics().jacobian(chain_at(in.measures.position));
-    rt_core::Vector6d step = rt_core::Vector6d::Zero();
-    step.head<3>() = move / steps;
-    in.measures.position += jacobian.colPivHouseholderQr().solve(step);
+    rt_core::Vector6d move = rt_core::Vector6d::Zero();
+    move.x() = dx / steps;
+    in.measures.position += jacobian.colPivHouseholderQr().solve(move);
     for (std::size_t i = 0; i < in.client.contact_count; ++i) {
       in.client.contacts[i].received = in.now + in.dt;
     }
     run(law, in, 1);
   }
-  return (chain_at(in.measures.position).handle_position - start).dot(move.normalized());
-}
-
-/// press_along() along x, `dx` (negative: back).
-inline double press_along_x(ServoLaw& law, ServoInputs& in, double dx) {
-  return std::copysign(press_along(law, in, rt_core::Vector3d(dx, 0.0, 0.0)), dx);
+  return chain_at(in.measures.position).handle_position.x() - start;
 }
 
 /// The handle's force along x over cycles of 1 ms: its extremes and largest step per cycle.

@@ -15,7 +15,6 @@
 /// the coupling from the last sample, extrapolated and faded as it ages.
 
 #include <cstdint>
-#include <limits>
 #include <optional>
 
 #include "hapticctrl/base/realtime.hpp"
@@ -157,10 +156,6 @@ struct RenderMemory {
     }
   };
   HeldContact held;
-  /// The normal the coupling was stiffened along last cycle (base frame; zero: none): that
-  /// contact keeps the stiffening until the handle presses the object into another one clearly
-  /// deeper (ServoLaw::contact_stiffening).
-  Vector3d stiffened = Vector3d::Zero();
   static constexpr std::size_t kLoopSamples = 15;
   std::array<Duration, kLoopSamples> loop_samples{};  ///< the newest measured loops (median)
   std::uint64_t loop_next = 0;
@@ -263,9 +258,6 @@ class ServoLaw {
     /// the object is pressed into its surface with the force the hand feels (J2).
     double object_stiffness = 0.0;
     double penetration = 0.0;  ///< the object's into its surface now (m, base)
-    /// How far the handle is behind the object along the normal (m, base; > 0: it presses the
-    /// object into the surface), plus the margin that keeps last cycle's choice.
-    double ranked = -std::numeric_limits<double>::infinity();
     std::uint32_t fresh = 0;
   };
   /// Every output of the cycle set to its value before the coupling is rendered (none of it).

@@ -80,20 +80,29 @@ ServoLaw::Coupling ServoLaw::client_wrench(const ServoInputs& in, const ClientFr
     // of the client's own push out of it and its friction (which come a loop late: a 2000 N/m
     // wall the client rendered moved at 31-689 mm/s from 1 ms one way and gave way from 5 ms,
     // J1 2026-12-03).
-    const Surface surface = local_surface(in, frame, chain, twist, false, coupling, out);
-    if (surface.share > 0.0) {
-      // The client's push out of the surface and along it (its friction) is the surface's,
-      // rendered here; a push into it stays the client's.
-      const Vector3d& n = surface.normal;
+    const Surfaces surfaces = local_surfaces(in, frame, chain, twist, false, coupling, out);
+    if (surfaces.count > 0 && surfaces.list[surfaces.strongest].share > 0.0) {
+      // The client's push out of the strongest surface and along it (its friction) is the
+      // surface's, rendered here; a push into it stays the client's ...
+      const Surface& top = surfaces.list[surfaces.strongest];
+      const Vector3d& n = top.normal;
       const double client_into = std::min(0.0, coupling.spring.head<3>().dot(n));
       coupling.spring.head<3>() =
-          (1.0 - surface.share) * coupling.spring.head<3>() + surface.share * client_into * n;
-      coupling.local.head<3>() = (surface.force * n + surface.friction) * scale;
-      out.contact_normal = n * surface.share;
-      out.normal_stiffness = surface.stiffness;
-      out.normal_damping = surface.damping;
+          (1.0 - top.share) * coupling.spring.head<3>() + top.share * client_into * n;
+      // ... and so is its push out of every other surface in force.
+      for (std::size_t i = 0; i < surfaces.count; ++i) {
+        const Surface& s = surfaces.list[i];
+        if (i != surfaces.strongest) {
+          const double out_of = std::max(0.0, coupling.spring.head<3>().dot(s.normal));
+          coupling.spring.head<3>() -= s.share * out_of * s.normal;
+        }
+      }
+      out.contact_normal = n * top.share;
+      out.normal_stiffness = top.stiffness;
+      out.normal_damping = top.damping;
     }
-    out.contacts = surface.fresh;
+    coupling.local.head<3>() = surfaces.push * scale;
+    out.contacts = surfaces.fresh;
     coupling.spring *= scale;
     return coupling;
   }
@@ -151,23 +160,19 @@ ServoLaw::Coupling ServoLaw::client_wrench(const ServoInputs& in, const ClientFr
   coupling.object_damper = coupling.damper * scale;
   coupling.spring *= scale;
   coupling.damper *= scale;
-  // ... and the hand the surface the object touches, rendered here at the surface's stiffness
-  // with no delay in its loop, in place of the coupling's force (along the normal and along the
-  // surface, where the friction proxy acts) while the surface pushes. Through the coupling
+  // ... and the hand the surfaces the object touches, rendered here at their stiffness with no
+  // delay in their loop, in place of the coupling's force (along the normal and along the
+  // surface, where the friction proxy acts) while a surface pushes. Through the coupling
   // stiffened to half the surface's stiffness, the demo's 2000 N/m wall and fixed sphere were
   // felt at 667 N/m at 10 and 20 ms one way; so, at 2000 N/m (J2 end-to-end test, 2026-12-04).
   // The object's own motion along the normal (held by its surface) does not come back to the
   // hand: with the coupling's pull into the surface kept, an object the wall had kicked away
   // during a 0.5 s blackout came back deeper than the handle and pulled it in (the felt 5 N fell
   // to 2 N, then rose to 7.4 N in steps of 1.3 N per cycle; 10 ms one way, 2026-12-05).
-  const Surface surface = local_surface(in, frame, chain, twist, true, coupling, out);
-  if (surface.share > 0.0) {
-    const Vector3d& n = surface.normal;
-    const double in_force = std::clamp(surface.force / (surface.stiffness * 5e-4), 0.0, 1.0);
-    coupling.spring.head<3>() *= 1.0 - in_force;
-    coupling.damper.head<3>() *= 1.0 - in_force;
-    coupling.local.head<3>() = (surface.force * n + surface.friction) * scale;
-  }
+  const Surfaces surfaces = local_surfaces(in, frame, chain, twist, true, coupling, out);
+  coupling.spring.head<3>() *= 1.0 - surfaces.in_force;
+  coupling.damper.head<3>() *= 1.0 - surfaces.in_force;
+  coupling.local.head<3>() = surfaces.push * scale;
   out.coupled = true;
   return coupling;
 }

@@ -1,6 +1,6 @@
 // The surfaces the servo law renders on the handle (J2): a contact the client reports becomes a
 // plane for the handle's point, rendered at the servo rate from where the handle is now
-// (ServoLaw::local_surface, reported_surface, render_surface); docs/control.md.
+// (ServoLaw::local_surfaces, reported_surfaces, render_surfaces); docs/control.md.
 #include <algorithm>
 #include <cmath>
 
@@ -20,37 +20,82 @@ using law_contacts::kTouchBand;
 /// it goes (sliding 1 cm at 5 N with mu 0.6 dissipates 30 mJ).
 constexpr double kSurfaceBudgetBound = 2e-4;
 
+/// Contacts whose normals agree this well are one plane (8 degrees): the deepest of them.
+constexpr double kSameSurface = 0.99;
+/// A surface continues last cycle's plane whose normal is nearest, within 25 degrees (a contact
+/// that rolls over a curved object turns its normal by a fraction of that in a cycle).
+constexpr double kFollowedSurface = 0.9;
+
 }  // namespace
 
-ServoLaw::Surface ServoLaw::local_surface(const ServoInputs& in, const ClientFrame& frame,
-                                          const ChainState& chain, const Vector6d& twist,
-                                          bool on_object, Coupling& coupling,
-                                          ServoOutputs& out) noexcept {
-  Surface surface = reported_surface(in, frame, chain, on_object);
-  render_surface(surface, chain, twist, to_seconds(in.dt));
-  const RenderMemory& m = memory_;
-  out.surface_withheld = m.surface_withheld;
-  out.contact_age = surface.age;
-  if (m.on_surface) {
-    out.surface_normal = surface.normal;
-    out.surface_point = m.surface_point;
-    out.surface_depth = (m.surface_point - chain.handle_position).dot(surface.normal);
-    out.surface_force = surface.force * frame.force_factor;
-    out.surface_hidden = m.surface_hidden;
+void ServoLaw::add_surface(Surfaces& found, const Surface& s) noexcept {
+  for (std::size_t j = 0; j < found.count; ++j) {
+    if (found.list[j].normal.dot(s.normal) > kSameSurface) {
+      if (s.depth > found.list[j].depth) {
+        found.list[j] = s;
+      }
+      return;
+    }
   }
-  if (surface.weight > 0.0) {
-    coupling.contact_in_force = true;
-    coupling.contact_whole = surface.weight >= 1.0;
-    coupling.contact_local = true;
-    coupling.contact = {surface.normal, surface.point - memory_.surface_hidden * surface.normal,
-                        0.0, surface.stiffness * frame.force_factor};
+  if (found.count < found.list.size()) {
+    found.list[found.count++] = s;
+    return;
   }
-  return surface;
+  auto shallowest = std::min_element(
+      found.list.begin(), found.list.end(),
+      [](const Surface& a, const Surface& b) { return a.depth < b.depth; });
+  if (s.depth > shallowest->depth) {
+    *shallowest = s;
+  }
 }
 
-ServoLaw::Surface ServoLaw::reported_surface(const ServoInputs& in, const ClientFrame& frame,
-                                             const ChainState& chain,
-                                             bool on_object) const noexcept {
+ServoLaw::Surfaces ServoLaw::local_surfaces(const ServoInputs& in, const ClientFrame& frame,
+                                            const ChainState& chain, const Vector6d& twist,
+                                            bool on_object, Coupling& coupling,
+                                            ServoOutputs& out) noexcept {
+  Surfaces found = reported_surfaces(in, frame, chain, on_object);
+  render_surfaces(found, chain, twist, to_seconds(in.dt));
+  out.surface_withheld = memory_.surface_withheld;
+  out.contact_age = found.age;
+  for (std::size_t i = 0; i < found.count; ++i) {
+    const Surface& s = found.list[i];
+    found.push += s.force * s.normal + s.friction;
+    // The coupling gives way to a surface over its first 0.5 mm of force.
+    found.in_force = std::max(found.in_force, s.stiffness > 0.0
+                                                  ? std::clamp(s.force / (s.stiffness * 5e-4),
+                                                               0.0, 1.0)
+                                                  : 0.0);
+    if (s.force > found.list[found.strongest].force) {
+      found.strongest = i;
+    }
+  }
+  if (found.count == 0) {
+    return found;
+  }
+  const Surface& top = found.list[found.strongest];
+  double hidden = 0.0;
+  if (top.slot < RenderMemory::kSurfaces && top.share > 0.0 && top.depth > 0.0) {
+    const RenderMemory::SurfaceMemory& m = memory_.surfaces[top.slot];
+    hidden = m.hidden;
+    out.surface_normal = top.normal;
+    out.surface_point = m.point;
+    out.surface_depth = (m.point - chain.handle_position).dot(top.normal);
+    out.surface_force = top.force * frame.force_factor;
+    out.surface_hidden = m.hidden;
+  }
+  if (top.weight > 0.0) {
+    coupling.contact_in_force = true;
+    coupling.contact_whole = top.weight >= 1.0;
+    coupling.contact_local = true;
+    coupling.contact = {top.normal, top.point - hidden * top.normal, 0.0,
+                        top.stiffness * frame.force_factor};
+  }
+  return found;
+}
+
+ServoLaw::Surfaces ServoLaw::reported_surfaces(const ServoInputs& in, const ClientFrame& frame,
+                                               const ChainState& chain,
+                                               bool on_object) const noexcept {
   // A contact the client reports (protocol 1.3) is a plane for the handle's point, rendered at
   // the servo rate from the handle's position now: a wall with no delay inside its loop, whose
   // stiffness is bounded by the device only (K_max ~ 2(b+B)/T with the device's stable damping
@@ -60,8 +105,9 @@ ServoLaw::Surface ServoLaw::reported_surface(const ServoInputs& in, const Client
   // way, 71 N/m at 20 ms, J2). An IMPEDANCE client's `point` is where its handle's point meets
   // the surface. A VIRTMECH client's is on its object: the surface passes through point -
   // distance * normal, and the handle, which the coupling holds at the object, meets it where
-  // the object's centre did, `distance` beyond the object's reported position. One surface, the
-  // deepest; unilateral (it never pulls).
+  // the object's centre did, `distance` beyond the object's reported position. Contacts along
+  // one normal are one plane, the deepest of them (a box on a table: four contacts, one plane);
+  // unilateral (it never pulls).
   const ArmLimits& lim = dynamics_->model().limits;
   const ClientSample& c = in.client;
   const Matrix3d to_base = frame.rotation.conjugate().toRotationMatrix();
@@ -70,59 +116,107 @@ ServoLaw::Surface ServoLaw::reported_surface(const ServoInputs& in, const Client
                            ? std::min(lim.max_stiffness_linear, config_.surface_bound_share * 2.0 *
                                                                     lim.max_damping_linear / period)
                            : lim.max_stiffness_linear;
-  Surface best;
-  double deepest = -std::numeric_limits<double>::infinity();
+  Surfaces found;
   for (std::size_t i = 0; i < std::min<std::size_t>(c.contact_count, c.contacts.size()); ++i) {
     const ClientContact& contact = c.contacts[i];
     const double weight = contact_weight(in.now - contact.received, config_);
     if (!(contact.stiffness > 0.0) || weight <= 0.0) {
       continue;
     }
-    ++best.fresh;
+    ++found.fresh;
     const Duration age = in.now - contact.received;
-    best.age = best.age ? std::min(*best.age, age) : age;
-    const Vector3d normal =
+    found.age = found.age ? std::min(*found.age, age) : age;
+    Surface s;
+    s.normal =
         (to_base * Vector3d(contact.normal[0], contact.normal[1], contact.normal[2])).normalized();
-    const Vector3d point =
-        on_object ? Vector3d(to_base *
-                                 (Vector3d(contact.object_pose[0], contact.object_pose[1],
-                                           contact.object_pose[2]) -
-                                  frame.origin) /
-                                 frame.speed_factor -
-                             contact.distance / frame.speed_factor * normal)
-                  : Vector3d(to_base *
-                             (Vector3d(contact.point[0], contact.point[1], contact.point[2]) -
-                              frame.origin) /
-                             frame.speed_factor);
-    const double depth = (point - chain.handle_position).dot(normal);
-    if (depth <= deepest) {
-      continue;
-    }
-    deepest = depth;
-    best.normal = normal;
-    best.depth = depth;
-    best.point = point;
-    best.weight = weight;
-    best.share = weight * std::clamp((kTouchBand + depth) / kTouchBand, 0.0, 1.0);
-    best.stiffness = std::min(bound, contact.stiffness * frame.speed_factor);
-    best.damping = lim.max_damping_linear;
-    best.friction_static = contact.friction[0];
-    best.friction_dynamic = std::min(contact.friction[1], contact.friction[0]);
+    s.point = on_object ? Vector3d(to_base *
+                                       (Vector3d(contact.object_pose[0], contact.object_pose[1],
+                                                 contact.object_pose[2]) -
+                                        frame.origin) /
+                                       frame.speed_factor -
+                                   contact.distance / frame.speed_factor * s.normal)
+                        : Vector3d(to_base *
+                                   (Vector3d(contact.point[0], contact.point[1], contact.point[2]) -
+                                    frame.origin) /
+                                   frame.speed_factor);
+    s.depth = (s.point - chain.handle_position).dot(s.normal);
+    s.weight = weight;
+    s.share = weight * std::clamp((kTouchBand + s.depth) / kTouchBand, 0.0, 1.0);
+    s.stiffness = std::min(bound, contact.stiffness * frame.speed_factor);
+    s.damping = lim.max_damping_linear;
+    s.friction_static = contact.friction[0];
+    s.friction_dynamic = std::min(contact.friction[1], contact.friction[0]);
+    add_surface(found, s);
   }
-  return best;
+  std::sort(found.list.begin(), found.list.begin() + static_cast<std::ptrdiff_t>(found.count),
+            [](const Surface& a, const Surface& b) { return a.depth > b.depth; });
+  return found;
 }
 
-void ServoLaw::render_surface(Surface& surface, const ChainState& chain, const Vector6d& twist,
-                              double dt) noexcept {
-  RenderMemory& m = memory_;
-  const Vector3d& handle = chain.handle_position;
-  const double reported = surface.share > 0.0 ? surface.depth : 0.0;
-  if (reported <= 0.0) {
-    m.on_surface = false;
-    m.surface_hidden = 0.0;
-    m.surface_budget = 0.0;
-    return;
+void ServoLaw::render_surfaces(Surfaces& surfaces, const ChainState& chain, const Vector6d& twist,
+                               double dt) noexcept {
+  constexpr std::size_t kNone = RenderMemory::kSurfaces;
+  std::array<bool, RenderMemory::kSurfaces> taken{};
+  // Each surface keeps the slot whose plane it continues (the nearest normal) ...
+  for (std::size_t i = 0; i < surfaces.count; ++i) {
+    Surface& s = surfaces.list[i];
+    double nearest = kFollowedSurface;
+    for (std::size_t j = 0; j < kNone; ++j) {
+      const RenderMemory::SurfaceMemory& m = memory_.surfaces[j];
+      if (m.on && !taken[j] && m.normal.dot(s.normal) > nearest) {
+        nearest = m.normal.dot(s.normal);
+        s.slot = j;
+      }
+    }
+    if (s.slot != kNone) {
+      taken[s.slot] = true;
+    }
   }
+  // ... a new one takes a free slot, and the slots no surface continues are forgotten.
+  for (std::size_t i = 0; i < surfaces.count; ++i) {
+    Surface& s = surfaces.list[i];
+    for (std::size_t j = 0; s.slot == kNone && j < kNone; ++j) {
+      if (!taken[j]) {
+        s.slot = j;
+        taken[j] = true;
+        memory_.surfaces[j] = RenderMemory::SurfaceMemory{};
+      }
+    }
+  }
+  for (std::size_t j = 0; j < kNone; ++j) {
+    if (!taken[j]) {
+      memory_.surfaces[j] = RenderMemory::SurfaceMemory{};
+    }
+  }
+  // Together no stiffer than the sampled-data bound 2 B / T (each is at most half of it): two
+  // surfaces at any angle pass whole, three at acute angles share it. Counted on their shares,
+  // which come in over the touch band, so that a surface coming into force steps nothing.
+  double together = 0.0;
+  for (std::size_t i = 0; i < surfaces.count; ++i) {
+    together += surfaces.list[i].share * surfaces.list[i].stiffness;
+  }
+  const double bound = dt > 0.0 ? 2.0 * dynamics_->model().limits.max_damping_linear / dt : 0.0;
+  const double scale = together > bound && bound > 0.0 ? bound / together : 1.0;
+  for (std::size_t i = 0; i < surfaces.count; ++i) {
+    Surface& s = surfaces.list[i];
+    s.stiffness *= scale;
+    s.damping *= scale;
+    RenderMemory::SurfaceMemory& m = memory_.surfaces[s.slot];
+    if (s.share > 0.0 && s.depth > 0.0) {
+      render_surface(s, m, chain, twist, dt);
+    } else {
+      // Not in force: rendered last cycle where it is reported, so that a handle that moves
+      // into it meets it there (and a report that then comes toward the handle is a model
+      // update, held back as one).
+      m = RenderMemory::SurfaceMemory{true, 0.0, s.point, s.normal, 0.0, chain.handle_position};
+    }
+  }
+}
+
+void ServoLaw::render_surface(Surface& surface, RenderMemory::SurfaceMemory& m,
+                              const ChainState& chain, const Vector6d& twist, double dt) noexcept {
+  const Vector3d& handle = chain.handle_position;
+  const double reported = surface.depth;  // > 0: render_surfaces renders surfaces in force
   const Vector3d& n = surface.normal;
   const Vector3d v = twist.head<3>();
   // Passive model updates (the hazard of model-mediated teleoperation: a plane that moves or
@@ -135,20 +229,20 @@ void ServoLaw::render_surface(Surface& surface, const ChainState& chain, const V
   // the hand still presses on it (hidden, the 10 N a hand pressed on a held surface fell to
   // nothing as it came back).
   double before = 0.0;
-  if (m.on_surface) {
-    before = (m.surface_point - handle).dot(m.surface_normal);
+  if (m.on) {
+    before = (m.point - handle).dot(m.normal);
   } else {
-    const RenderMemory::HeldContact& h = m.held;
+    const RenderMemory::HeldContact& h = memory_.held;
     before = h.contact_stiffness > 0.0 && h.normal.dot(n) > 0.99 ? h.depth_at(handle) : 0.0;
-    m.on_surface = true;
-    m.surface_budget = 0.0;
+    m.on = true;
+    m.budget = 0.0;
     m.friction_anchor = handle;
   }
   double rendered = std::clamp(before, 0.0, reported);
-  if (const double grew = reported - rendered - m.surface_hidden; grew > 1e-9) {
+  if (const double grew = reported - rendered - m.hidden; grew > 1e-9) {
     ++counters_.surface_updates_held;
     // The spring energy the update would have put in at once, had the plane come with it.
-    m.surface_withheld += surface.weight * surface.stiffness * grew * (rendered + 0.5 * grew);
+    memory_.surface_withheld += surface.weight * surface.stiffness * grew * (rendered + 0.5 * grew);
   }
   // What is hidden comes back (at restretch_speed at most) only as far as the energy the
   // surface dissipated pays for the spring energy it adds (TDPA's budget, Ryu & Hannaford
@@ -158,13 +252,13 @@ void ServoLaw::render_surface(Surface& surface, const ChainState& chain, const V
   if (hidden > 0.0) {
     const double step = std::min(hidden, config_.restretch_speed * dt);
     const double cost = surface.weight * surface.stiffness * (rendered + 0.5 * step);
-    const double back = cost > 0.0 ? std::min(step, m.surface_budget / cost) : step;
+    const double back = cost > 0.0 ? std::min(step, m.budget / cost) : step;
     rendered += back;
-    m.surface_budget = std::max(0.0, m.surface_budget - back * cost);
+    m.budget = std::max(0.0, m.budget - back * cost);
   }
-  m.surface_hidden = reported - rendered;
-  m.surface_point = handle + rendered * n;
-  m.surface_normal = n;
+  m.hidden = reported - rendered;
+  m.point = handle + rendered * n;
+  m.normal = n;
   // The damper comes in over the first half millimetre, so that touching is not a step.
   const double engaged = std::clamp(rendered / 5e-4, 0.0, 1.0);
   const double spring = surface.stiffness * rendered;
@@ -179,7 +273,7 @@ void ServoLaw::render_surface(Surface& surface, const ChainState& chain, const V
   // the wall jumped 5 mm into a handle held still, for pushing it 0.5 mm back out (2.3 mJ out
   // of the port, 2000 N/m, 2026-12-05).
   const auto bank = [&m](double dissipated) {
-    m.surface_budget = std::min(m.surface_budget + dissipated, kSurfaceBudgetBound);
+    m.budget = std::min(m.budget + dissipated, kSurfaceBudgetBound);
   };
   if (spring - damper > 0.0) {
     bank(surface.weight * engaged * surface.damping * v.dot(n) * v.dot(n) * dt);

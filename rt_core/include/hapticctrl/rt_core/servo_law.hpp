@@ -14,6 +14,7 @@
 /// runs the same law (`degraded` is reported, not treated apart): a missed cycle keeps rendering
 /// the coupling from the last sample, extrapolated and faded as it ages.
 
+#include <array>
 #include <cstdint>
 #include <optional>
 
@@ -128,18 +129,24 @@ struct RenderMemory {
   bool anchored = false;
   Vector6d stretch = Vector6d::Zero();
   /// A reported surface rendered at the servo rate (J1 for IMPEDANCE, J2 for VIRTMECH), while
-  /// `on_surface`: the plane as rendered last cycle (through `surface_point`, along
-  /// `surface_normal`, base frame), which a model update never moves toward the handle; what
-  /// the report is deeper than that plane is `surface_hidden` (m), given back only from
-  /// `surface_budget` (J), the energy the surface's damper and friction dissipated; and where
-  /// the handle sticks to it (the friction proxy).
-  bool on_surface = false;
-  double surface_hidden = 0.0;
-  Vector3d surface_point = Vector3d::Zero();
-  Vector3d surface_normal = Vector3d::Zero();
-  double surface_budget = 0.0;
+  /// `on`: the plane as rendered last cycle (through `point`, along `normal`, base frame), which
+  /// a model update never moves toward the handle; what the report is deeper than that plane is
+  /// `hidden` (m), given back only from `budget` (J), the energy the surface's damper and
+  /// friction dissipated; and where the handle sticks to it (the friction proxy).
+  struct SurfaceMemory {
+    bool on = false;
+    double hidden = 0.0;
+    Vector3d point = Vector3d::Zero();
+    Vector3d normal = Vector3d::Zero();
+    double budget = 0.0;
+    Vector3d friction_anchor = Vector3d::Zero();
+  };
+  /// Every surface in force is rendered at once, each in a slot of its own that follows it from
+  /// cycle to cycle by its normal (a peg on the floor of its hole and against its wall: rendering
+  /// the deepest alone dropped the floor when the wall became the deeper, J3 2026-12-07).
+  static constexpr std::size_t kSurfaces = 3;
+  std::array<SurfaceMemory, kSurfaces> surfaces{};
   double surface_withheld = 0.0;  ///< J this session (ServoOutputs::surface_withheld)
-  Vector3d friction_anchor = Vector3d::Zero();
   /// The contact the coupling rendered last on a fresh link, wholly engaged: rendered for the
   /// handle while the link is silent (ServoLaw::held_contact_force), as the surface the hand
   /// last felt (J1: without it a hand pushing 5 N into a 3000 N/m wall went 30 cm through it in
@@ -236,8 +243,19 @@ class ServoLaw {
     double friction_dynamic = 0.0;
     double stiffness = 0.0;  ///< N/m, base metres
     double damping = 0.0;    ///< N.s/m
+    /// The memory slot it is rendered in (render_surfaces); kSurfaces: not rendered.
+    std::size_t slot = RenderMemory::kSurfaces;
+  };
+  /// The surfaces the client reports, one per direction (contacts whose normals agree within
+  /// kSameSurface are one plane, the deepest of them), the deepest kSurfaces of them first.
+  struct Surfaces {
+    std::array<Surface, RenderMemory::kSurfaces> list{};
+    std::size_t count = 0;
     std::uint32_t fresh = 0;
     std::optional<Duration> age;  ///< of the newest fresh contact (our clock); none: no contact
+    std::size_t strongest = 0;    ///< the one that pushes most (the deepest when none pushes)
+    Vector3d push = Vector3d::Zero();  ///< all of them together: their forces and friction
+    double in_force = 0.0;  ///< the largest share of a surface in force (over its first 0.5 mm)
   };
   /// Where the client's object is now, as the coupling sees it (base frame).
   struct ObjectImage {
@@ -282,21 +300,30 @@ class ServoLaw {
                                                             const ClientFrame& frame,
                                                             const Vector3d& reported,
                                                             const CouplingGains& g) const noexcept;
-  /// The deepest fresh surface the client reports, for the handle's point: an IMPEDANCE
-  /// client's contact is where its handle's point meets the surface; a VIRTMECH client's
-  /// (`on_object`) is on its object, which the coupling holds at the handle, so the handle's
-  /// point is the handle's position offset as the contact point was from the object.
-  [[nodiscard]] HAPTICCTRL_RT Surface reported_surface(const ServoInputs& in,
-                                                       const ClientFrame& frame,
-                                                       const ChainState& chain,
-                                                       bool on_object) const noexcept;
-  HAPTICCTRL_RT void render_surface(Surface& surface, const ChainState& chain,
-                                    const Vector6d& twist, double dt) noexcept;
-  /// The reported surface rendered for the handle, noted in `coupling` as its contact.
-  HAPTICCTRL_RT Surface local_surface(const ServoInputs& in, const ClientFrame& frame,
-                                      const ChainState& chain, const Vector6d& twist,
-                                      bool on_object, Coupling& coupling,
-                                      ServoOutputs& out) noexcept;
+  /// The fresh surfaces the client reports, for the handle's point: an IMPEDANCE client's
+  /// contact is where its handle's point meets the surface; a VIRTMECH client's (`on_object`) is
+  /// on its object, which the coupling holds at the handle, so the handle's point is the
+  /// handle's position offset as the contact point was from the object.
+  [[nodiscard]] HAPTICCTRL_RT Surfaces reported_surfaces(const ServoInputs& in,
+                                                         const ClientFrame& frame,
+                                                         const ChainState& chain,
+                                                         bool on_object) const noexcept;
+  /// Adds `s` to the surfaces found: merged into the one it shares its normal with (the deeper
+  /// stays), or added, or in place of the shallowest when they are full and it is deeper.
+  HAPTICCTRL_RT static void add_surface(Surfaces& found, const Surface& s) noexcept;
+  /// Renders every reported surface in force, each in the memory slot that follows it, and
+  /// forgets the slots of the rest; bounds their stiffness together (the sum, by 2 B / T).
+  HAPTICCTRL_RT void render_surfaces(Surfaces& surfaces, const ChainState& chain,
+                                     const Vector6d& twist, double dt) noexcept;
+  HAPTICCTRL_RT void render_surface(Surface& surface, RenderMemory::SurfaceMemory& m,
+                                    const ChainState& chain, const Vector6d& twist,
+                                    double dt) noexcept;
+  /// The reported surfaces rendered for the handle, the strongest noted in `coupling` as its
+  /// contact.
+  HAPTICCTRL_RT Surfaces local_surfaces(const ServoInputs& in, const ClientFrame& frame,
+                                        const ChainState& chain, const Vector6d& twist,
+                                        bool on_object, Coupling& coupling,
+                                        ServoOutputs& out) noexcept;
   /// Notes the contact in force while the link is fresh and the coupling whole (or forgets it
   /// when none is), for held_contact_force.
   HAPTICCTRL_RT void hold_contact(const ServoInputs& in, const Coupling& coupling,

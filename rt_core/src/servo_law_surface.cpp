@@ -41,9 +41,9 @@ void ServoLaw::add_surface(Surfaces& found, const Surface& s) noexcept {
     found.list[found.count++] = s;
     return;
   }
-  auto shallowest = std::min_element(
-      found.list.begin(), found.list.end(),
-      [](const Surface& a, const Surface& b) { return a.depth < b.depth; });
+  auto shallowest =
+      std::min_element(found.list.begin(), found.list.end(),
+                       [](const Surface& a, const Surface& b) { return a.depth < b.depth; });
   if (s.depth > shallowest->depth) {
     *shallowest = s;
   }
@@ -61,10 +61,9 @@ ServoLaw::Surfaces ServoLaw::local_surfaces(const ServoInputs& in, const ClientF
     const Surface& s = found.list[i];
     found.push += s.force * s.normal + s.friction;
     // The coupling gives way to a surface over its first 0.5 mm of force.
-    found.in_force = std::max(found.in_force, s.stiffness > 0.0
-                                                  ? std::clamp(s.force / (s.stiffness * 5e-4),
-                                                               0.0, 1.0)
-                                                  : 0.0);
+    if (s.stiffness > 0.0) {
+      found.in_force = std::max(found.in_force, std::min(1.0, s.force / (s.stiffness * 5e-4)));
+    }
     if (s.force > found.list[found.strongest].force) {
       found.strongest = i;
     }

@@ -170,7 +170,7 @@ TEST(ServoLawSurface, ContactsAlongOneNormalAreOnePlaneTheDeepest) {
   ServoInputs in = impedance_client();
   add_plane(in, Vector3d(-1.0, 0.0, 0.0), 0.0);
   add_plane(in, Vector3d(-1.0, 0.0, 0.0), -0.001);  // 1 mm further on
-  add_plane(in, Vector3d(-1.0, 0.001, 0.0), 0.0);  // its normal 0.06 degrees off
+  add_plane(in, Vector3d(-1.0, 0.001, 0.0), 0.0);   // its normal 0.06 degrees off
   run_on_contacts(law, in, 100);
   const double d = press_along_x(law, in, 0.005);
   EXPECT_NEAR(run_on_contacts(law, in, 200).rendered_wrench.x(), -2000.0 * d, 0.05);

@@ -8,7 +8,9 @@
 #include <fstream>
 #include <optional>
 #include <sstream>
+#include <string>
 #include <thread>
+#include <utility>
 
 #include "hapticctrl/shm/rendezvous.hpp"
 #include "hapticctrl/shm/segment.hpp"
@@ -134,11 +136,22 @@ std::vector<std::string> last_csv_record(const std::string& path) {
   return fields;
 }
 
+/// A file removed when the test's scope ends (after the processes declared after it).
+struct RemovedAtEnd {
+  std::string path;
+  explicit RemovedAtEnd(std::string p) : path(std::move(p)) {}
+  ~RemovedAtEnd() { std::remove(path.c_str()); }
+  RemovedAtEnd(const RemovedAtEnd&) = delete;
+  RemovedAtEnd& operator=(const RemovedAtEnd&) = delete;
+};
+
 TEST(CoreProcess, AFiftyMillisecondSigstopLeavesABlackBoxThatEndsWithTheStall) {
   // H5: a fail-safe caused by a stall (a late wake-up skipping slots) used to leave a black box
   // that ended with a normal cycle. 50 ms at a 5 ms period: 10 slots.
   for (int attempt = 0; attempt < 3; ++attempt) {
     const std::string instance = test::unique_instance("sigstop");
+    // The core fails safe here on purpose, so it leaves its restart marker: removed after it.
+    const RemovedAtEnd marker(shm::creator_runtime_directory() + "/hapticctrl-running." + instance);
     SpawnedProcess core(HAPTICCTRL_CORE_BINARY,
                         {"--instance", instance, "--period-us", "5000", "--rt", "ignore"});
     ASSERT_TRUE(attach_when_ready(instance, false).has_value()) << core.err();

@@ -73,7 +73,7 @@ ServoLaw::Surfaces ServoLaw::local_surfaces(const ServoInputs& in, const ClientF
   }
   const Surface& top = found.list[found.strongest];
   double hidden = 0.0;
-  if (top.slot < RenderMemory::kSurfaces && top.share > 0.0 && top.depth > 0.0) {
+  if (top.pressed()) {
     const RenderMemory::SurfaceMemory& m = memory_.surfaces[top.slot];
     hidden = m.hidden;
     out.surface_normal = top.normal;
@@ -201,7 +201,7 @@ void ServoLaw::render_surfaces(Surfaces& surfaces, const ChainState& chain, cons
     s.stiffness *= scale;
     s.damping *= scale;
     RenderMemory::SurfaceMemory& m = memory_.surfaces[s.slot];
-    if (s.share > 0.0 && s.depth > 0.0) {
+    if (s.pressed()) {
       render_surface(s, m, chain, twist, dt);
     } else {
       // Not in force: rendered last cycle where it is reported, so that a handle that moves

@@ -34,6 +34,16 @@ void add_plane(ServoInputs& in, const Vector3d& normal, double depth) {
   c.friction = {0.0, 0.0};
 }
 
+/// The force along x over `cycles` cycles of a hand held still that felt `felt` before them.
+ForceTrace held_still(ServoLaw& law, ServoInputs& in, double felt, int cycles) {
+  ForceTrace trace;
+  trace.add(felt, true);
+  for (int k = 0; k < cycles; ++k) {
+    trace.add(run_on_contacts(law, in, 1).rendered_wrench.x(), false);
+  }
+  return trace;
+}
+
 /// An IMPEDANCE client that reports no surface yet and pushes nothing.
 ServoInputs impedance_client() {
   ServoInputs in = impedance_on_surface(0.0, 0.0);
@@ -94,11 +104,7 @@ TEST(ServoLawSurface, APlaneThatJumpsIntoTheHandleStepsNothingAndOneThatLeavesLe
   const double depth = press_along_x(law, in, 0.005);
   ASSERT_NEAR(run_on_contacts(law, in, 200).rendered_wrench.x(), -2000.0 * depth, 0.05);
   in.client.contacts[0].point[0] -= 0.005;  // 5 mm into the handle
-  ForceTrace trace;
-  trace.add(-2000.0 * depth, true);
-  for (int k = 0; k < 300; ++k) {
-    trace.add(run_on_contacts(law, in, 1).rendered_wrench.x(), false);
-  }
+  const ForceTrace trace = held_still(law, in, -2000.0 * depth, 300);
   EXPECT_LT(trace.largest_step, 1.0) << "N per 1 ms cycle";
   EXPECT_NEAR(trace.least, -2000.0 * depth, 0.05) << "the still hand feels what it felt";
   EXPECT_NEAR(trace.most, -2000.0 * depth, 0.05);
@@ -154,11 +160,7 @@ TEST(ServoLawSurface, ASurfaceThatBecomesTheDeepestLeavesTheOneInForceRendered) 
   const double d = press_along_x(law, in, 0.005);
   ASSERT_NEAR(run_on_contacts(law, in, 200).rendered_wrench.x(), -2000.0 * d, 0.05);
   add_plane(in, kSlanted, 0.008);  // 8 mm deep: deeper than the first
-  ForceTrace trace;
-  trace.add(-2000.0 * d, true);
-  for (int k = 0; k < 300; ++k) {
-    trace.add(run_on_contacts(law, in, 1).rendered_wrench.x(), false);
-  }
+  const ForceTrace trace = held_still(law, in, -2000.0 * d, 300);
   EXPECT_LT(trace.largest_step, 1.0) << "N per 1 ms cycle";
   EXPECT_NEAR(trace.least, -2000.0 * d, 0.05) << "the first surface still pushes";
   EXPECT_NEAR(trace.most, -2000.0 * d, 0.05);

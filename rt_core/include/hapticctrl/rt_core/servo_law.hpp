@@ -243,8 +243,12 @@ class ServoLaw {
     double friction_dynamic = 0.0;
     double stiffness = 0.0;  ///< N/m, base metres
     double damping = 0.0;    ///< N.s/m
-    /// The memory slot it is rendered in (render_surfaces); kSurfaces: not rendered.
+    /// The memory slot that follows it (render_surfaces gives every surface found one);
+    /// kSurfaces: none yet.
     std::size_t slot = RenderMemory::kSurfaces;
+    /// Fresh, touching and with the handle's point inside: rendered (render_surface). Safe in
+    /// the cycle.
+    [[nodiscard]] HAPTICCTRL_RT bool pressed() const noexcept { return share > 0.0 && depth > 0.0; }
   };
   /// The surfaces the client reports, one per direction (contacts whose normals agree within
   /// kSameSurface are one plane, the deepest of them), the deepest kSurfaces of them first.
@@ -311,8 +315,9 @@ class ServoLaw {
   /// Adds `s` to the surfaces found: merged into the one it shares its normal with (the deeper
   /// stays), or added, or in place of the shallowest when they are full and it is deeper.
   HAPTICCTRL_RT static void add_surface(Surfaces& found, const Surface& s) noexcept;
-  /// Renders every reported surface in force, each in the memory slot that follows it, and
-  /// forgets the slots of the rest; bounds their stiffness together (the sum, by 2 B / T).
+  /// Gives every surface found the memory slot that follows it (forgetting the slots no surface
+  /// continues), bounds their stiffness together (the sum, by 2 B / T) and renders those
+  /// pressed; a surface not pressed is remembered where it is reported.
   HAPTICCTRL_RT void render_surfaces(Surfaces& surfaces, const ChainState& chain,
                                      const Vector6d& twist, double dt) noexcept;
   HAPTICCTRL_RT void render_surface(Surface& surface, RenderMemory::SurfaceMemory& m,

@@ -1,5 +1,5 @@
 // Implements hand_motion.hpp: a simulated operator's hand for `hapticctrl-hmi play --hand`: a
-// spring-damper grip (shm:.
+// spring-damper grip (shm::HandGrip) with an optional wrist, its anchor wandering at random.
 #include "hapticctrl/hmi/hand_motion.hpp"
 
 #include <algorithm>
@@ -29,16 +29,20 @@ double smoothstep_rate(double x) noexcept {
 
 }  // namespace
 
-HandMotion::HandMotion(const HandOptions& options, const std::array<double, 3>& grip_point)
-    : options_(options), grip_point_(grip_point) {
+HandMotion::HandMotion(const HandOptions& options, const std::array<double, 3>& grip_point,
+                       const std::array<double, 4>& grip_rotation)
+    : options_(options), grip_point_(grip_point), grip_rotation_(grip_rotation) {
   shm::HandGrip full;
   full.anchor = grip_point;
   full.stiffness = options.stiffness;
   full.damping = options.damping;
+  full.anchor_rotation = grip_rotation;
+  full.angular_stiffness = options.angular_stiffness;
+  full.angular_damping = options.angular_damping;
   if (!shm::hand_acceptable(full)) {
     throw std::invalid_argument(
-        "the hand's stiffness must be within 0..3000 N/m, its damping within 0..100 N.s/m, and "
-        "the handle within 2 m of the base");
+        "the hand's stiffness must be within 0..3000 N/m, its damping within 0..100 N.s/m, its "
+        "wrist's within 0..30 N.m/rad and 0..1 N.m.s/rad, and the handle within 2 m of the base");
   }
   if (!(options.wander >= 0.0 && options.wander <= kMaxWander)) {
     throw std::invalid_argument("the hand's wander must be within 0..0.1 m");
@@ -61,6 +65,9 @@ shm::HandGrip HandMotion::at(double t) const noexcept {
   const double grip = smoothstep(t / kGripRamp);
   g.stiffness = grip * options_.stiffness;
   g.damping = grip * options_.damping;
+  g.anchor_rotation = grip_rotation_;
+  g.angular_stiffness = grip * options_.angular_stiffness;
+  g.angular_damping = grip * options_.angular_damping;
   const double fade = smoothstep(t / kWanderFadeIn);
   const double fade_rate = smoothstep_rate(t / kWanderFadeIn) / kWanderFadeIn;
   for (std::size_t axis = 0; axis < 3; ++axis) {

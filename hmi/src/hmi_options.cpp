@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cstdint>
 #include <map>
+#include <string>
+#include <vector>
 #include <stdexcept>
 
 #include "hapticctrl/program/options.hpp"
@@ -49,9 +51,10 @@ constexpr const char* kDescription =
     "  zero-force              release the handle (and let go of a simulated hand)\n"
     "  play FILE               play a force sequence (t fx fy fz tx ty tz per line) and log\n"
     "                          the arm's response per cycle (--log, default\n"
-    "                          hapticctrl-sequence.csv); --hand K,B: a spring-damper hand\n"
-    "                          grips the handle meanwhile, its anchor wandering at random\n"
-    "                          up to --wander M per axis (0.2-2 Hz, --seed N)\n"
+    "                          hapticctrl-sequence.csv); --hand K,B[,KA,BA]: a spring-damper\n"
+    "                          hand grips the handle meanwhile (a wrist holding its rotation),\n"
+    "                          its anchor wandering at random up to --wander M per axis\n"
+    "                          (0.2-2 Hz, --seed N)\n"
     "Exit status: 0 done, 1 error or no effect within the timeout, 64 usage, 75 the\n"
     "operator asked for a new controller (--offer-restart).";
 
@@ -78,18 +81,33 @@ void declare(program::Options& o, HmiOptions& h, std::vector<std::string>& posit
       "play: the per-cycle log");
   o.flag("--power-on", h.power_on, "play: power on first");
   o.custom(
-      "--hand", "K,B",
+      "--hand", "K,B[,KA,BA]",
       [&h, &play_only](const std::string& text) {
-        const auto comma = text.find(',');
-        if (comma == std::string::npos) {
-          throw std::invalid_argument("needs K,B (stiffness N/m, damping N.s/m)");
+        std::vector<std::string> parts;
+        for (std::size_t from = 0;;) {
+          const auto comma = text.find(',', from);
+          parts.push_back(text.substr(from, comma - from));
+          if (comma == std::string::npos) {
+            break;
+          }
+          from = comma + 1;
         }
-        h.hand.stiffness = number_of(text.substr(0, comma), "the stiffness");
-        h.hand.damping = number_of(text.substr(comma + 1), "the damping");
+        if (parts.size() != 2 && parts.size() != 4) {
+          throw std::invalid_argument(
+              "needs K,B (stiffness N/m, damping N.s/m) or K,B,KA,BA (and the wrist's N.m/rad, "
+              "N.m.s/rad)");
+        }
+        h.hand.stiffness = number_of(parts[0], "the stiffness");
+        h.hand.damping = number_of(parts[1], "the damping");
+        if (parts.size() == 4) {
+          h.hand.angular_stiffness = number_of(parts[2], "the wrist's stiffness");
+          h.hand.angular_damping = number_of(parts[3], "the wrist's damping");
+        }
         h.with_hand = true;
         play_only.emplace_back("--hand");
       },
-      "play: a spring-damper hand grips the handle (N/m, N.s/m)");
+      "play: a spring-damper hand grips the handle (N/m, N.s/m), its wrist holding the "
+      "handle's rotation (N.m/rad, N.m.s/rad)");
   o.custom(
       "--wander", "M",
       [&h, &play_only](const std::string& v) {

@@ -123,7 +123,8 @@ void Operator::tick(TimePoint now) {
 }
 
 void Operator::release_hand() {
-  if (!force_available() || (hand_.stiffness == 0.0 && hand_.damping == 0.0)) {
+  if (!force_available() || (hand_.stiffness == 0.0 && hand_.damping == 0.0 &&
+                              hand_.angular_stiffness == 0.0 && hand_.angular_damping == 0.0)) {
     return;
   }
   const shm::HandGrip held = hand_;
@@ -135,6 +136,8 @@ void Operator::release_hand() {
     g.anchor_velocity = {};
     g.stiffness *= grip;
     g.damping *= grip;
+    g.angular_stiffness *= grip;
+    g.angular_damping *= grip;
     (void)set_hand(g);  // within the held grip's range
     tick(MonotonicClock::now());
     std::this_thread::sleep_for(kPoll);

@@ -3,7 +3,9 @@
 // publishes).
 #include "hapticctrl/hmi/sequence_player.hpp"
 
+#include <array>
 #include <chrono>
+#include <cmath>
 #include <optional>
 
 namespace hapticctrl::hmi {
@@ -32,6 +34,12 @@ void write_row(std::ostream& log, double t, const shm::Vector6& requested,
 std::array<double, 3> handle_point(const ControllerStatus& s) {
   return {s.position.handle_pose[0], s.position.handle_pose[1], s.position.handle_pose[2]};
 }
+std::array<double, 4> handle_rotation(const ControllerStatus& s) {
+  const auto& p = s.position.handle_pose;
+  const double n = std::sqrt(p[3] * p[3] + p[4] * p[4] + p[5] * p[5] + p[6] * p[6]);
+  return n > 0.5 ? std::array<double, 4>{p[3] / n, p[4] / n, p[5] / n, p[6] / n}
+                 : std::array<double, 4>{0, 0, 0, 1};
+}
 
 bool still_running(const ControllerStatus& s) {
   return s.vp_ok && s.vp.core_state == static_cast<std::uint32_t>(shm::CoreState::kRunning);
@@ -57,7 +65,7 @@ PlayResult play_sequence(Operator& op, const WrenchSequence& sequence, std::ostr
     if (!s.position_ok) {
       throw HmiError("cannot grip the handle: the controller publishes no position");
     }
-    motion.emplace(*hand, handle_point(s));  // throws std::invalid_argument out of range
+    motion.emplace(*hand, handle_point(s), handle_rotation(s));  // throws std::invalid_argument out of range
   }
   log << sequence_log_header() << '\n';
   PlayResult result;

@@ -4,6 +4,7 @@
 #include "hapticctrl/rt_core/arm_simulator.hpp"
 
 #include <Eigen/Cholesky>
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
@@ -11,6 +12,7 @@
 
 #include "hapticctrl/base/realtime.hpp"
 #include "hapticctrl/shm/force_slew.hpp"
+#include "law_math.hpp"
 
 namespace hapticctrl::rt_core {
 namespace {
@@ -29,6 +31,12 @@ Vector3d HandModel::force(const Vector3d& position, const Vector3d& velocity,
                           double elapsed) const noexcept {
   const Vector3d target = anchor + anchor_velocity * elapsed;
   return stiffness * (target - position) + damping * (anchor_velocity - velocity);
+}
+
+Vector3d HandModel::torque(const Matrix3d& rotation,
+                           const Vector3d& angular_velocity) const noexcept {
+  return angular_stiffness * law_math::rotation_vector(anchor_rotation * rotation.transpose()) -
+         angular_damping * angular_velocity;
 }
 
 ArmSimulator::ArmSimulator(const ArmDynamics& dynamics, const SimulatorOptions& options,
@@ -92,6 +100,7 @@ void ArmSimulator::step(const Vector6d& motor_torque, const Vector6d& operator_w
     if (hand.gripping()) {
       const Vector3d handle_velocity = jacobian.topRows<3>() * qd_;
       target.head<3>() += hand.force(chain_.handle_position, handle_velocity, n * h);
+      target.tail<3>() += hand.torque(chain_.handle_rotation, jacobian.bottomRows<3>() * qd_);
     }
     limit_operator(target, h);
     const Vector6d external = jacobian.transpose() * operator_applied_;
@@ -184,6 +193,12 @@ void SimulatedArm::read_operator_wrench() noexcept {
   hand_.anchor_velocity = to_vector(sample.hand.anchor_velocity);
   hand_.stiffness = sample.hand.stiffness;
   hand_.damping = sample.hand.damping;
+  const auto& q = sample.hand.anchor_rotation;
+  hand_.anchor_rotation = q[3] * q[3] + q[0] * q[0] + q[1] * q[1] + q[2] * q[2] > 0.5
+                              ? Eigen::Quaterniond(q[3], q[0], q[1], q[2]).toRotationMatrix()
+                              : Matrix3d::Identity();
+  hand_.angular_stiffness = sample.hand.angular_stiffness;
+  hand_.angular_damping = sample.hand.angular_damping;
 }
 
 void SimulatedArm::send_commands(const ArmCommands& commands, TimePoint /*now*/,

@@ -24,10 +24,17 @@ bool hand_acceptable(const HandGrip& hand, const ForceLimits& limits) noexcept {
   };
   const double distance = norm(hand.anchor);
   const double speed = norm(hand.anchor_velocity);
+  const auto& q = hand.anchor_rotation;
+  const double unit = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3];
+  // A zeroed region (no wrist, no rotation) is a valid "no hand".
+  const bool wrist = hand.angular_stiffness != 0.0 || hand.angular_damping != 0.0;
   // Written so that a NaN anywhere fails a comparison and refuses the grip.
   return hand.stiffness >= 0.0 && hand.stiffness <= limits.max_hand_stiffness &&
          hand.damping >= 0.0 && hand.damping <= limits.max_hand_damping &&
-         distance <= limits.max_anchor_distance && speed <= limits.max_anchor_speed;
+         distance <= limits.max_anchor_distance && speed <= limits.max_anchor_speed &&
+         hand.angular_stiffness >= 0.0 && hand.angular_stiffness <= limits.max_wrist_stiffness &&
+         hand.angular_damping >= 0.0 && hand.angular_damping <= limits.max_wrist_damping &&
+         (std::abs(unit - 1.0) <= 1e-6 || (unit == 0.0 && !wrist));
 }
 
 bool ForceSlew::set_target(const Vector6& wrench) noexcept {

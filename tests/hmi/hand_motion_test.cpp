@@ -26,6 +26,20 @@ TEST(HandMotion, GripsWhereTheHandleIsThroughARampAndHoldsStillWithoutWander) {
   }
 }
 
+TEST(HandMotion, TheWristHoldsTheGripsRotationThroughTheSameRamp) {
+  constexpr std::array<double, 4> kTurned{0.0, 0.6, 0.0, 0.8};
+  const HandMotion hand({100.0, 5.0, 0.01, 1, 2.0, 0.05}, kGrip, kTurned);
+  EXPECT_EQ(hand.at(0.0).angular_stiffness, 0.0);
+  EXPECT_NEAR(hand.at(0.1).angular_stiffness / 2.0, hand.at(0.1).stiffness / 100.0, 1e-12);
+  for (const double t : {0.3, 5.0}) {
+    const shm::HandGrip g = hand.at(t);
+    EXPECT_EQ(g.angular_stiffness, 2.0);
+    EXPECT_EQ(g.angular_damping, 0.05);
+    EXPECT_EQ(g.anchor_rotation, kTurned) << "the rotation does not wander";
+  }
+  EXPECT_EQ(HandMotion({100.0, 5.0}, kGrip).at(1.0).angular_stiffness, 0.0);
+}
+
 TEST(HandMotion, WandersWithinItsAmplitudeWithAConsistentVelocityAndIsReproducible) {
   const HandOptions options{300.0, 5.0, 0.02, 7};
   const HandMotion hand(options, kGrip);
@@ -63,6 +77,9 @@ TEST(HandMotion, RefusesAGripOrWanderOutOfRange) {
   EXPECT_THROW(HandMotion({300.0, 5.0, 0.5, 1}, kGrip), std::invalid_argument);
   EXPECT_THROW(HandMotion({300.0, 5.0, std::nan(""), 1}, kGrip), std::invalid_argument);
   EXPECT_THROW(HandMotion({300.0, 5.0, 0.0, 1}, {3.0, 0.0, 0.0}), std::invalid_argument);
+  EXPECT_THROW(HandMotion({300.0, 5.0, 0.0, 1, 31.0, 0.0}, kGrip), std::invalid_argument);
+  EXPECT_THROW(HandMotion({300.0, 5.0, 0.0, 1, 2.0, 0.05}, kGrip, {0.0, 0.0, 0.0, 2.0}),
+               std::invalid_argument);
 }
 
 }  // namespace

@@ -35,6 +35,11 @@ TEST(HmiOptions, ParsesOneShotCommandsWithTheirArguments) {
   EXPECT_EQ(hand.hand.damping, 8.0);
   EXPECT_EQ(hand.hand.wander, 0.02);
   EXPECT_EQ(hand.hand.seed, 9U);
+  EXPECT_EQ(hand.hand.angular_stiffness, 0.0) << "no wrist unless asked";
+  const HmiOptions wrist = HmiOptions::parse({"play", "s.txt", "--hand", "100,5,2,0.05"});
+  EXPECT_EQ(wrist.hand.stiffness, 100.0);
+  EXPECT_EQ(wrist.hand.angular_stiffness, 2.0);
+  EXPECT_EQ(wrist.hand.angular_damping, 0.05);
   EXPECT_FALSE(play.with_hand);
   EXPECT_EQ(HmiOptions::parse({"--timeout-ms", "250", "reset"}).timeout.count(), 250);
 }
@@ -55,8 +60,13 @@ TEST(HmiOptions, RefusesWhatItCannotDoWithAClearMessage) {
   EXPECT_NE(message({"force", "nan", "0", "0", "0", "0", "0"}).find("finite"), std::string::npos);
   EXPECT_EQ(message({"play"}), "play needs one sequence file");
   EXPECT_EQ(message({"power-on", "now"}), "unexpected argument 'now'");
-  EXPECT_EQ(message({"play", "s", "--hand", "400"}),
-            "--hand: needs K,B (stiffness N/m, damping N.s/m)");
+  const std::string needs =
+      "--hand: needs K,B (stiffness N/m, damping N.s/m) or K,B,KA,BA (and the wrist's N.m/rad, "
+      "N.m.s/rad)";
+  EXPECT_EQ(message({"play", "s", "--hand", "400"}), needs);
+  EXPECT_EQ(message({"play", "s", "--hand", "400,5,2"}), needs);
+  EXPECT_NE(message({"play", "s", "--hand", "400,5,40,0.1"}).find("0..30 N.m/rad"),
+            std::string::npos);
   EXPECT_NE(message({"play", "s", "--hand", "9000,5"}).find("0..3000 N/m"), std::string::npos);
   EXPECT_NE(message({"play", "s", "--hand", "400,5", "--wander", "1"}).find("0..0.1 m"),
             std::string::npos);

@@ -159,7 +159,8 @@ INSTANTIATE_TEST_SUITE_P(J3, HeavyLift, ::testing::Values(0, 5, 20),
 class PegPath : public ::testing::TestWithParam<int> {};
 
 TEST_P(PegPath, AScriptedOperatorGuidesThePegOntoTheAxisAndIntoTheHole) {
-  // The operator's path, in forces (a hand of 100 N/m and 5 N.s/m holding the handle): from the
+  // The operator's path, in forces (a hand of 100 N/m and 5 N.s/m holding the handle, its wrist
+  // its rotation with 2 N.m/rad and 0.05 N.m.s/rad): from the
   // peg's start, 2 cm above the mouth and 4 mm off the axis along +x, lower it with 1 N while
   // drawing it 0.5 N toward the axis for 2 s, then push 3 N down to the end; the chamfer and the
   // hole's walls, felt through the arm, guide it in. It ends on the hole's floor (30 mm down,
@@ -170,7 +171,7 @@ TEST_P(PegPath, AScriptedOperatorGuidesThePegOntoTheAxisAndIntoTheHole) {
     const HandRun run("peg", attempt, delay_ms, "peg_in_hole", 8,
                       "0 0 0 0 0 0 0\n0.5 -0.5 0 -1 0 0 0\n2 -0.5 0 -1 0 0 0\n"
                       "2.5 0 0 -3 0 0 0\n7 0 0 -3 0 0 0\n",
-                      "100,5");
+                      "100,5,2,0.05");
     const std::vector<double> resting = run.column("z", 5.0, 6.5);
     if (run.disturbed(name, resting.size(), 1000)) {
       return false;

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <atomic>
 #include <memory>
 #include <thread>
@@ -159,6 +160,52 @@ TEST(HandModel, PullsTowardsTheMovingAnchorAndDampsTheRelativeSpeed) {
   EXPECT_NEAR(f.y(), -400.0 * 0.01, 1e-9);
   EXPECT_NEAR(f.z(), -10.0 * 0.3, 1e-9);
   EXPECT_FALSE(HandModel{}.gripping());
+}
+
+TEST(HandModel, TheWristTurnsTowardsItsRotationAndDampsTheTurning) {
+  HandModel hand;
+  hand.angular_stiffness = 2.0;
+  hand.angular_damping = 0.05;
+  EXPECT_TRUE(hand.gripping());
+  // The handle turned 0.1 rad about z from the wrist's rotation, turning on at 1 rad/s about x.
+  const Matrix3d turned = Eigen::AngleAxisd(0.1, Vector3d::UnitZ()).toRotationMatrix();
+  const Vector3d t = hand.torque(turned, Vector3d(1.0, 0.0, 0.0));
+  EXPECT_NEAR(t.z(), -2.0 * 0.1, 1e-9);
+  EXPECT_NEAR(t.x(), -0.05, 1e-9);
+  EXPECT_NEAR(t.y(), 0.0, 1e-12);
+}
+
+TEST_F(ArmSimulatorTest, AWristHoldsTheHandlesRotationAgainstATorque) {
+  // Motors off, no brakes: a hand (1000 N/m) and the firmest wrist the force region accepts
+  // (30 N.m/rad, 1 N.m.s/rad) hold the handle where it was while 0.2 N.m turns it about x: it
+  // turns by the torque over the wrist's stiffness (the arm's own weight adds its share) and
+  // comes to rest; without the wrist the same torque turns it on.
+  const auto turned_by = [this](double wrist_k, double wrist_b) {
+    ArmSimulator sim(dynamics_, SimulatorOptions{}, kReady);
+    HandModel hand;
+    hand.anchor = sim.chain().handle_position;
+    hand.stiffness = 1000.0;
+    hand.damping = 20.0;
+    hand.anchor_rotation = sim.chain().handle_rotation;
+    hand.angular_stiffness = wrist_k;
+    hand.angular_damping = wrist_b;
+    const Vector6d torque = (Vector6d() << 0, 0, 0, 0.2, 0, 0).finished();
+    double fastest_late = 0.0;
+    for (int k = 0; k < 3000; ++k) {
+      sim.step(Vector6d::Zero(), torque, 1e-3, false, hand);
+      if (k >= 2000) {
+        fastest_late = std::max(fastest_late, sim.velocity().norm());
+      }
+    }
+    const Eigen::AngleAxisd turn(hand.anchor_rotation.transpose() * sim.chain().handle_rotation);
+    return std::pair{turn.angle(), fastest_late};
+  };
+  const auto [held, held_speed] = turned_by(30.0, 1.0);
+  EXPECT_LT(held, 0.03) << "0.2 N.m / 30 N.m/rad = 0.0067 rad, plus the arm's own weight";
+  EXPECT_LT(held_speed, 0.01) << "at rest, not ringing";
+  const auto [free, free_speed] = turned_by(0.0, 0.0);
+  EXPECT_GT(free, 5.0 * held) << "without a wrist the torque turns the handle on";
+  (void)free_speed;
 }
 
 TEST_F(ArmSimulatorTest, AHandHoldsTheUnpoweredButReleasedArmNearItsAnchor) {

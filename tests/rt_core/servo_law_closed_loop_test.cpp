@@ -2,6 +2,7 @@
 // compensation, brakes, coupling equilibrium, passivity under delay and loss.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <cstdio>
 #include <deque>
 #include <memory>
@@ -255,6 +256,153 @@ TEST(ClosedLoop, WithoutTheGuardDelayAndLossMakeTheUserPortActive) {
   std::printf("guard off, delay 10 ms: lowest %.4f J, object %.2f m/s, handle %.2f m/s\n",
               run.lowest_energy, run.max_object_speed, run.max_handle_speed);
   EXPECT_LT(run.lowest_energy, -1.0) << "the unguarded port pumps energy into the hand";
+}
+
+/// A peg held in contact (J3's: 6e-6 kg.m^2 about every axis, its engine's step 1 ms) that a
+/// contact turns: 0.05 N.m about y from 1 s to 3 s (a chamfer's, docs/mujoco.md), nothing
+/// after. Its rotation only: the client closes its side locally (protocol 1.3) while the contact
+/// is reported, with the gains the answers carry, on the handle's delayed rotation; otherwise
+/// it gets the controller's delayed wrench. A hand (300 N/m) holds the handle's position and,
+/// with `wrist`, its rotation (2 N.m/rad, 0.05 N.m.s/rad).
+struct TurnRun {
+  double turned_under_torque = 0.0;  ///< rad, the peg from its start, at 3 s
+  double late_handle_spin = 0.0;     ///< rad/s, the fastest over 4-5 s (the arm's true spin)
+  double late_peg_spin = 0.0;        ///< rad/s, the fastest over 4-5 s
+  double k_angular = 0.0;            ///< the answer's angular stiffness at 3 s
+};
+
+TurnRun run_turned_peg(int delay_ms, bool local, bool wrist, double moment = 6e-6) {
+  Loop loop(kReady);
+  const Vector3d p = loop.handle();
+  shm::ForcePayload grip;
+  grip.hand.anchor = {p.x(), p.y(), p.z()};
+  grip.hand.stiffness = 300.0;
+  grip.hand.damping = 5.0;
+  const Eigen::Quaterniond start(loop.arm.simulator().chain().handle_rotation);
+  if (wrist) {
+    grip.hand.anchor_rotation = {start.x(), start.y(), start.z(), start.w()};
+    grip.hand.angular_stiffness = 2.0;
+    grip.hand.angular_damping = 0.05;
+  }
+  loop.force->publish(grip, 0);
+  ClientSample& c = loop.in.client;
+  c.session_id = 1;
+  c.command = ClientCommand::kVirtmech;
+  c.object_attached = true;
+  c.object_mass = 0.1;
+  c.object_inertia = {moment, moment, moment};
+  c.time_step = 1e-3;
+  c.local_coupling = local;
+  c.energy_in = -1.0;
+  c.object_pose = {p.x(), p.y(), p.z(), start.x(), start.y(), start.z(), start.w()};
+  c.contact_count = 1;
+  ClientContact& floor = c.contacts[0];
+  floor.normal = {0, 0, 1};
+  floor.stiffness = 160'000.0;
+  floor.damping = 50.0;
+  floor.received = loop.in.now - 1s;  // none before the first sample
+  loop.in.client_valid = true;
+  loop.in.loop_delay = (2 * delay_ms + 1) * kDt;
+  Eigen::Quaterniond peg = start;
+  Vector3d spin = Vector3d::Zero();
+  struct Answer {
+    Eigen::Quaterniond handle;
+    Vector3d handle_spin;
+    Vector3d controller_torque;
+    double k = 0.0;
+    double b = 0.0;
+    double share = 0.0;
+  };
+  std::deque<std::pair<Eigen::Quaterniond, Vector3d>> to_controller;
+  std::deque<Answer> to_client;
+  Answer last{start, Vector3d::Zero(), Vector3d::Zero()};
+  TurnRun run;
+  for (int k = 0; k < 5000; ++k) {
+    to_controller.emplace_back(peg, spin);
+    loop.in.new_sample = false;
+    loop.in.client_age += kDt;
+    if (static_cast<int>(to_controller.size()) > delay_ms) {
+      const auto [q, w] = to_controller.front();
+      to_controller.pop_front();
+      c.object_pose = {p.x(), p.y(), p.z(), q.x(), q.y(), q.z(), q.w()};
+      c.object_twist = {0, 0, 0, w.x(), w.y(), w.z()};
+      floor.object_pose = c.object_pose;
+      floor.received = loop.in.now;
+      loop.in.client_age = delay_ms * kDt;
+      loop.in.client_silence = 0ns;
+      loop.in.new_sample = true;
+      loop.in.loop_delay = (2 * delay_ms + 1) * kDt;
+    }
+    loop.cycle();
+    to_client.push_back({Eigen::Quaterniond(loop.arm.simulator().chain().handle_rotation),
+                         loop.out.handle_twist.tail<3>(), loop.out.object_wrench.tail<3>(),
+                         loop.out.gains.k_angular, loop.out.gains.b_angular,
+                         std::min(1.0, loop.out.contact_normal.norm())});
+    if (static_cast<int>(to_client.size()) > delay_ms) {
+      last = to_client.front();
+      to_client.pop_front();
+    }
+    // The client's step: its local closure in the contact's share (local_coupling.cpp).
+    const Eigen::AngleAxisd turn(last.handle * peg.conjugate());
+    const Vector3d closed =
+        last.k * turn.axis() * turn.angle() + last.b * (last.handle_spin - spin);
+    const double share = local ? last.share : 0.0;
+    const Vector3d chamfer =
+        k >= 1000 && k < 3000 ? Vector3d(0.0, 0.05, 0.0) : Vector3d::Zero();
+    spin += ((1.0 - share) * last.controller_torque + share * closed + chamfer) / moment * 1e-3;
+    if (spin.norm() * 1e-3 > 1e-12) {
+      peg = Eigen::AngleAxisd(spin.norm() * 1e-3, spin.normalized()) * peg;
+      peg.normalize();
+    }
+    if (k == 2999) {
+      run.turned_under_torque = Eigen::AngleAxisd(peg * start.conjugate()).angle();
+      run.k_angular = loop.out.gains.k_angular;
+    }
+    if (k >= 4000) {  // the handle's true spin (the encoders' estimate is noisier)
+      const ArmSimulator& arm = loop.arm.simulator();
+      const Vector3d handle_spin =
+          (default_dynamics().jacobian(arm.chain()) * arm.velocity()).tail<3>();
+      run.late_handle_spin = std::max(run.late_handle_spin, handle_spin.norm());
+      run.late_peg_spin =
+          std::max(run.late_peg_spin, std::isfinite(spin.norm()) ? spin.norm() : 1e9);
+    }
+  }
+  return run;
+}
+
+TEST(ClosedLoop, AContactHeldObjectsRotationIsHeldOnBothEndsAtAnyDelay) {
+  // The peg of J3 tipped over at 5 ms one way: its rotation held by the loop's gains alone
+  // (0.009 N.m/rad), a chamfer's 0.05 N.m turned it 47 degrees. In contact both ends hold it
+  // with the gains the object's own step and the handle's damper keep stable at any delay
+  // (ServoLaw::contact_hold).
+  const TurnRun free = run_turned_peg(5, false, true);
+  const TurnRun held = run_turned_peg(5, true, true);
+  std::printf("5 ms, wrist: free gains turned %.3f rad (k %.4f), held %.3f rad (k %.3f); late "
+              "spin free %.4f %.4f, held %.4f %.4f\n",
+              free.turned_under_torque, free.k_angular, held.turned_under_torque, held.k_angular,
+              free.late_handle_spin, free.late_peg_spin, held.late_handle_spin,
+              held.late_peg_spin);
+  EXPECT_GT(free.turned_under_torque, 0.5);
+  EXPECT_LT(held.turned_under_torque, 0.1)
+      << "0.05 N.m over the contact's 1.5 N.m/rad and the wrist's 2 N.m/rad: 0.058 rad";
+  // At rest: what is left is the joints' stick-slip on their Coulomb friction (+-0.007 rad/s
+  // on the handle) and the peg following the handle's spin as the encoders estimate it
+  // (0.01-0.05 rad/s, 2026-12-08); an unstable loop grows to rad/s.
+  EXPECT_LT(held.late_handle_spin, 0.05);
+  EXPECT_LT(held.late_peg_spin, 0.1);
+  // Stable with nothing holding the handle's rotation but its own damping, whatever the delay.
+  for (const int delay : {0, 1, 5, 20, 50, 100}) {
+    const TurnRun loose = run_turned_peg(delay, true, false);
+    std::printf("%d ms, no wrist: turned %.3f rad, late spin handle %.4f peg %.4f rad/s\n",
+                delay, loose.turned_under_torque, loose.late_handle_spin, loose.late_peg_spin);
+    EXPECT_LT(loose.late_handle_spin, 0.05) << delay << " ms";
+    EXPECT_LT(loose.late_peg_spin, 0.1) << delay << " ms";
+    const TurnRun heavy = run_turned_peg(delay, true, false, 2e-4);
+    std::printf("%d ms, no wrist, 2e-4 kg.m^2: k %.3f, late spin handle %.4f object %.4f rad/s\n",
+                delay, heavy.k_angular, heavy.late_handle_spin, heavy.late_peg_spin);
+    EXPECT_LT(heavy.late_handle_spin, 0.05) << delay << " ms";
+    EXPECT_LT(heavy.late_peg_spin, 0.1) << delay << " ms";
+  }
 }
 
 /// A client in a joint-space mode, its command in force from the first cycle.

@@ -53,12 +53,24 @@ TEST(HandAcceptable, RefusesNonFiniteAndOutOfRangeGrips) {
   g.stiffness = 500.0;
   g.damping = 10.0;
   EXPECT_TRUE(hand_acceptable(g));
+  g.anchor_rotation = {0.0, 0.0, 0.0, 0.0};
+  EXPECT_TRUE(hand_acceptable(g)) << "a zeroed rotation without a wrist";
+  g.anchor_rotation = {0.0, 0.6, 0.0, 0.8};
+  g.angular_stiffness = 2.0;
+  g.angular_damping = 0.05;
+  EXPECT_TRUE(hand_acceptable(g));
   for (auto bad :
        {+[](HandGrip& h) { h.stiffness = 3001.0; }, +[](HandGrip& h) { h.stiffness = -1.0; },
         +[](HandGrip& h) { h.damping = 101.0; }, +[](HandGrip& h) { h.damping = std::nan(""); },
         +[](HandGrip& h) { h.anchor[1] = 2.5; },
         +[](HandGrip& h) { h.anchor[2] = std::numeric_limits<double>::infinity(); },
-        +[](HandGrip& h) { h.anchor_velocity[0] = 6.0; }}) {
+        +[](HandGrip& h) { h.anchor_velocity[0] = 6.0; },
+        +[](HandGrip& h) { h.angular_stiffness = 31.0; },
+        +[](HandGrip& h) { h.angular_damping = -0.1; },
+        +[](HandGrip& h) { h.angular_damping = std::nan(""); },
+        +[](HandGrip& h) { h.anchor_rotation = {0.0, 0.0, 0.0, 0.0}; },
+        +[](HandGrip& h) { h.anchor_rotation = {0.0, 0.0, 0.0, 1.1}; },
+        +[](HandGrip& h) { h.anchor_rotation[0] = std::nan(""); }}) {
     HandGrip h = g;
     bad(h);
     EXPECT_FALSE(hand_acceptable(h));

@@ -38,15 +38,19 @@ struct SimulatorOptions {
 };
 
 /// The operator's hand on the handle: a spring-damper pulling the handle point towards a moving
-/// anchor (translation; shm::HandGrip in the `force` region). Stiffness and damping 0: no hand.
+/// anchor, and a wrist turning the handle towards a fixed rotation (shm::HandGrip in the `force`
+/// region). All gains 0: no hand.
 struct HandModel {
   Vector3d anchor = Vector3d::Zero();
   Vector3d anchor_velocity = Vector3d::Zero();
   double stiffness = 0.0;  ///< N/m
   double damping = 0.0;    ///< N.s/m
+  Matrix3d anchor_rotation = Matrix3d::Identity();
+  double angular_stiffness = 0.0;  ///< N.m/rad
+  double angular_damping = 0.0;    ///< N.m.s/rad
 
   [[nodiscard]] HAPTICCTRL_RT bool gripping() const noexcept {
-    return stiffness > 0.0 || damping > 0.0;
+    return stiffness > 0.0 || damping > 0.0 || angular_stiffness > 0.0 || angular_damping > 0.0;
   }
   /// Force the hand's spring-damper puts on a handle point at `position` moving at `velocity`,
   /// `elapsed` seconds after the anchor was given (it moves on at anchor_velocity); the
@@ -54,6 +58,10 @@ struct HandModel {
   /// contract: noexcept, no allocation.
   [[nodiscard]] HAPTICCTRL_RT Vector3d force(const Vector3d& position, const Vector3d& velocity,
                                              double elapsed) const noexcept;
+  /// Torque the wrist puts on a handle turned to `rotation` (base frame) turning at
+  /// `angular_velocity`. Real-time contract: noexcept, no allocation.
+  [[nodiscard]] HAPTICCTRL_RT Vector3d torque(const Matrix3d& rotation,
+                                              const Vector3d& angular_velocity) const noexcept;
 };
 
 /// The pure simulator. Real-time contract of every method: noexcept, no allocation.

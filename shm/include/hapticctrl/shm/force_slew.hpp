@@ -20,6 +20,10 @@ struct ForceLimits {
   double max_hand_damping = 100.0;     ///< N.s/m
   double max_anchor_distance = 2.0;    ///< m from the base
   double max_anchor_speed = 5.0;       ///< m/s
+  /// A simulated wrist: a firm one (a grip on a stylus is far softer); the handle's rotors
+  /// (0.001 kg.m^2 each, ../shared/ARM_REFERENCE.md) keep both stable at the 125 us sub-step.
+  double max_wrist_stiffness = 30.0;  ///< N.m/rad
+  double max_wrist_damping = 1.0;     ///< N.m.s/rad
 };
 
 /// Whether every component of an operator wrench is finite and within `limits`' magnitudes:
@@ -29,7 +33,7 @@ struct ForceLimits {
                                                    const ForceLimits& limits = {}) noexcept;
 
 /// Whether a hand grip is finite and within `limits` (stiffness, damping, anchor distance and
-/// speed); the acceptance test of the hand in the `force` region, applied by its writer and the
+/// speed, the wrist's stiffness and damping, its rotation a unit quaternion within 1e-6, or all zero without a wrist); the acceptance test of the hand in the `force` region, applied by its writer and the
 /// core. Real-time contract: noexcept, allocation-free; safe in the cycle.
 [[nodiscard]] HAPTICCTRL_RT bool hand_acceptable(const HandGrip& hand,
                                                  const ForceLimits& limits = {}) noexcept;

@@ -46,8 +46,8 @@ namespace hapticctrl::shm {
 // protocol 1.3); 8: the blackbox region (J4); 9: VP the surface rendered on the handle (J2);
 // 10: VPr the joint-space commands (J6, protocol 1.4); 11: names that say their frame (VP
 // object_wrench, client_handle_pose/twist; position rendered_wrench), the link figures in
-// link_stats instead of a round trip through VP (J7)
-inline constexpr std::uint32_t kAbiVersion = 11;
+// link_stats instead of a round trip through VP (J7); 12: force's hand has a wrist (J3)
+inline constexpr std::uint32_t kAbiVersion = 12;
 /// "HAPTICC1" as a little-endian word; stored last when the segment is ready, cleared at exit.
 inline constexpr std::uint64_t kSegmentMagic = 0x3143434954504148ULL;
 inline constexpr std::size_t kPageSize = 4096;

@@ -28,6 +28,7 @@ inline constexpr std::array<const char*, 7> kPoseParts{"x", "y", "z", "qx", "qy"
 inline constexpr std::array<const char*, 6> kSpatialParts{"x", "y", "z", "rx", "ry", "rz"};
 inline constexpr std::array<const char*, 6> kJointParts{"1", "2", "3", "4", "5", "6"};
 inline constexpr std::array<const char*, 3> kXyzParts{"x", "y", "z"};
+inline constexpr std::array<const char*, 4> kQuaternionParts{"qx", "qy", "qz", "qw"};
 inline constexpr std::array<const char*, 4> kGainParts{"k_lin", "b_lin", "k_ang", "b_ang"};
 inline constexpr std::array<const char*, 2> kForceTorqueParts{"force", "torque"};
 inline constexpr std::array<const char*, 2> kStiffnessDampingParts{"stiffness", "damping"};
@@ -90,6 +91,9 @@ constexpr void for_each_field(Q& h, V&& v) {
   v(Field{"anchor_velocity", "m/s", "base", kXyzParts}, h.anchor_velocity);
   v(Field{"stiffness", "N/m", ""}, h.stiffness);
   v(Field{"damping", "N.s/m", ""}, h.damping);
+  v(Field{"anchor_rotation", "quaternion", "base", kQuaternionParts}, h.anchor_rotation);
+  v(Field{"angular_stiffness", "N.m/rad", ""}, h.angular_stiffness);
+  v(Field{"angular_damping", "N.m.s/rad", ""}, h.angular_damping);
 }
 
 template <Either<VprPayload> Q, typename V>

@@ -207,14 +207,18 @@ struct VpPayload {
 
 /// A spring-damper hand gripping the simulated handle: it pulls the handle point towards
 /// `anchor` (which moves at `anchor_velocity`) with `stiffness` and resists the handle's speed
-/// relative to the anchor with `damping`; translation only. Stiffness and damping 0: no hand.
+/// relative to the anchor with `damping`; its wrist turns the handle towards `anchor_rotation`
+/// with `angular_stiffness` and resists its rotation with `angular_damping`. All four 0: no hand.
 /// The operator model of the coupling benchmark and tests (a person's grip is 100-1000 N/m,
 /// 2-20 N.s/m; ../shared/HAPTICS_REFERENCE.md).
 struct HandGrip {
-  std::array<double, 3> anchor{};           ///< base frame [m]
-  std::array<double, 3> anchor_velocity{};  ///< base frame [m/s]
-  double stiffness = 0.0;                   ///< N/m
-  double damping = 0.0;                     ///< N.s/m
+  std::array<double, 3> anchor{};                     ///< base frame [m]
+  std::array<double, 3> anchor_velocity{};            ///< base frame [m/s]
+  double stiffness = 0.0;                             ///< N/m
+  double damping = 0.0;                               ///< N.s/m
+  std::array<double, 4> anchor_rotation{0, 0, 0, 1};  ///< base frame, quaternion x y z w
+  double angular_stiffness = 0.0;                     ///< N.m/rad
+  double angular_damping = 0.0;                       ///< N.m.s/rad
 };
 
 /// force: the operator on the simulated handle (written by the HMI side): a wrench, plus an
@@ -349,7 +353,7 @@ struct LinkStatsPayload {
 static_assert(sizeof(ContactSlot) == 160);
 static_assert(sizeof(VprPayload) == 1896);
 static_assert(sizeof(VpPayload) == 512);
-static_assert(sizeof(ForcePayload) == 112);
+static_assert(sizeof(ForcePayload) == 160);
 static_assert(sizeof(PositionPayload) == 360);
 static_assert(sizeof(LatencySummary) == 64);
 static_assert(sizeof(TelemetryPayload) == 496);

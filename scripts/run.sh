@@ -22,7 +22,8 @@
 # --scene NAME (first, or after --supervise): a MuJoCo scene as the client instead of the demo
 # (hapticctrl-mujoco with mujoco/scenes/NAME.xml: table_blocks, peg_in_hole, door_latch,
 # heavy_lift; docs/mujoco.md); the handle holds the scene's tool. Without a terminal its scenario
-# pushes the tool 3 N down for 3 s and prints where it went and the contact force.
+# (an operator's hand holding the handle and its rotation) pushes the tool 3 N down for 3 s and
+# prints where it went and the contact force.
 #
 # --supervise (first argument): keep a controller running: one that failed safe is started
 # again at once (powered off), and without a terminal run.sh serves until Ctrl-C or SIGTERM

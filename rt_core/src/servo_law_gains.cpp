@@ -100,8 +100,8 @@ ContactHold ServoLaw::contact_hold(const ClientSample& c, const CouplingGains& f
   // torques the hand never paid: the lifted weight felt 9.2 N for 7.85 N.
   ContactHold hold;
   hold.gains = free;
-  if (!c.local_coupling || !(share > 0.0)) {
-    return hold;
+  if (!c.local_coupling || !(share > 0.0) || c.gain_override[2] > 0.0) {
+    return hold;  // not closed by the client, not in contact, or the client's own gain
   }
   const ArmModel& model = dynamics_->model();
   const ArmLimits& lim = model.limits;

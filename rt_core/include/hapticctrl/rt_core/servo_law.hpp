@@ -203,7 +203,8 @@ class ServoLaw {
   /// The coupling's angular gains while the object is in contact (`share` 0..1 of its stiffest
   /// contact in force), for a client that closes its object's side itself (protocol 1.3): raised
   /// towards what the object's own step and the handle's angular damper keep stable at any
-  /// delay, with that damper on the handle's rotation; `free` unchanged otherwise. `period`: the
+  /// delay, with that damper on the handle's rotation; `free` unchanged otherwise (and under
+  /// the client's own angular stiffness, ClientSample::gain_override). `period`: the
   /// servo period, s. Real-time contract: safe in the cycle.
   [[nodiscard]] HAPTICCTRL_RT ContactHold contact_hold(const ClientSample& client,
                                                        const CouplingGains& free, double share,

@@ -10,8 +10,8 @@
 #   hapticctrl-hmi   the operator panel, in this terminal
 # Quitting the panel (q), or Ctrl-C, stops everything: the controller in its fail-safe order,
 # then the others; no process is left, and the shared memory (a sealed memfd) goes with them.
-# Without a terminal it plays a short scenario instead (power on, push the handle into the fixed
-# sphere, read the contact force) and prints the outcome. Extra arguments go to hapticctrl-core.
+# Without a terminal it plays a short scenario instead (power on, a simulated hand pushes the
+# handle into the fixed sphere, read the contact force) and prints the outcome. Extra arguments go to hapticctrl-core.
 #
 # When the controller fails safe the panel says why and when, and R starts a new controller
 # (powered off, as after any fail-safe); the bridges and the demo re-attach by themselves, and

@@ -383,8 +383,8 @@ TEST(ClosedLoop, AContactHeldObjectsRotationIsHeldOnBothEndsAtAnyDelay) {
               free.late_handle_spin, free.late_peg_spin, held.late_handle_spin,
               held.late_peg_spin);
   EXPECT_GT(free.turned_under_torque, 0.5);
-  EXPECT_LT(held.turned_under_torque, 0.1)
-      << "0.05 N.m over the contact's 1.5 N.m/rad and the wrist's 2 N.m/rad: 0.058 rad";
+  EXPECT_LT(held.turned_under_torque, 0.2)
+      << "0.05 N.m over the contact's 0.375 N.m/rad and the wrist's 2 N.m/rad: 0.158 rad";
   // At rest: what is left is the joints' stick-slip on their Coulomb friction (+-0.007 rad/s
   // on the handle) and the peg following the handle's spin as the encoders estimate it
   // (0.01-0.05 rad/s, 2026-12-08); an unstable loop grows to rad/s.

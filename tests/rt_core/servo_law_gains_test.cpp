@@ -66,7 +66,7 @@ TEST(ServoLaw, TheAngularGainsAreBoundedByTheSmallestPrincipalMoment) {
 
 TEST(ServoLaw, InContactTheRotationIsHeldWithinTheObjectsStepAndTheHandlesDamper) {
   // The peg (6e-6 kg.m^2, 1 ms engine step) at 5 ms one way: free 0.0104 N.m/rad; in contact
-  // 0.25 I / T^2 = 1.5 N.m/rad, under the handle's bound B^2 / (2 (I_h + I)) with B = 0.1
+  // I / (16 T^2) = 0.375 N.m/rad, under the handle's bound B^2 / (2 (I_h + I)) with B = 0.1
   // N.m.s/rad and the wrist's rotors (0.001 kg.m^2): 4.97 N.m/rad.
   ServoLaw law(default_dynamics());
   ClientSample c;
@@ -77,13 +77,13 @@ TEST(ServoLaw, InContactTheRotationIsHeldWithinTheObjectsStepAndTheHandlesDamper
   const CouplingGains free = law.derive_gains(c, 0.011);
   EXPECT_NEAR(free.k_angular, 0.25 * 6.0e-6 / (0.012 * 0.012), 1e-12);
   const ContactHold held = law.contact_hold(c, free, 1.0, 1e-3);
-  EXPECT_NEAR(held.gains.k_angular, 1.5, 1e-12);
-  EXPECT_NEAR(held.gains.b_angular, 2.0 * 0.7 * std::sqrt(1.5 * 6.0e-6), 1e-12);
+  EXPECT_NEAR(held.gains.k_angular, 0.375, 1e-12);
+  EXPECT_NEAR(held.gains.b_angular, 2.0 * 0.7 * std::sqrt(0.375 * 6.0e-6), 1e-12);
   EXPECT_DOUBLE_EQ(held.handle_damping, 0.1);
   EXPECT_DOUBLE_EQ(held.share, 1.0);
   EXPECT_EQ(held.gains.k_linear, free.k_linear) << "the rotation only";
   const ContactHold half = law.contact_hold(c, free, 0.5, 1e-3);
-  EXPECT_NEAR(half.gains.k_angular, free.k_angular + 0.5 * (1.5 - free.k_angular), 1e-12);
+  EXPECT_NEAR(half.gains.k_angular, free.k_angular + 0.5 * (0.375 - free.k_angular), 1e-12);
   EXPECT_DOUBLE_EQ(half.handle_damping, 0.05);
   // A heavier object: the handle's side bounds it; at a 10 ms period its damper is half.
   c.object_inertia = {2e-4, 2e-4, 2e-4};

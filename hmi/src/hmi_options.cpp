@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <cstdint>
 #include <map>
+#include <stdexcept>
 #include <string>
 #include <vector>
-#include <stdexcept>
 
 #include "hapticctrl/program/options.hpp"
 #include "number_text.hpp"

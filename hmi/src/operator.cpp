@@ -124,7 +124,7 @@ void Operator::tick(TimePoint now) {
 
 void Operator::release_hand() {
   if (!force_available() || (hand_.stiffness == 0.0 && hand_.damping == 0.0 &&
-                              hand_.angular_stiffness == 0.0 && hand_.angular_damping == 0.0)) {
+                             hand_.angular_stiffness == 0.0 && hand_.angular_damping == 0.0)) {
     return;
   }
   const shm::HandGrip held = hand_;

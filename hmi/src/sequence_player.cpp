@@ -65,7 +65,8 @@ PlayResult play_sequence(Operator& op, const WrenchSequence& sequence, std::ostr
     if (!s.position_ok) {
       throw HmiError("cannot grip the handle: the controller publishes no position");
     }
-    motion.emplace(*hand, handle_point(s), handle_rotation(s));  // throws std::invalid_argument out of range
+    // Throws std::invalid_argument out of range.
+    motion.emplace(*hand, handle_point(s), handle_rotation(s));
   }
   log << sequence_log_header() << '\n';
   PlayResult result;

@@ -45,7 +45,6 @@ ServoLaw::ObjectImage ServoLaw::object_image(const ServoInputs& in,
   const Vector3d w = image.twist.tail<3>();
   image.ahead = image.twist.head<3>() * horizon;
   image.position += image.ahead + memory_.drift.head<3>();
-  image.turned_ahead = w * horizon;
   if (w.norm() * horizon > 1e-12) {
     image.rotation = Eigen::AngleAxisd(w.norm() * horizon, w.normalized()) * image.rotation;
   }
@@ -113,6 +112,7 @@ ServoLaw::Coupling ServoLaw::client_wrench(const ServoInputs& in, const ClientFr
   }
   ObjectImage image = object_image(in, frame);
   const CouplingGains g = slew_gains(derive_gains(c, to_seconds(memory_.design_delay)), in.dt);
+  out.gains = g;
   // Along a contact the object is held by its surface: the coupling may be as stiff as the
   // device allows there (unilateral: only while it pushes the object into the surface), and the
   // object is not extrapolated along it: held, its velocity there is the jitter of its contact
@@ -120,25 +120,15 @@ ServoLaw::Coupling ServoLaw::client_wrench(const ServoInputs& in, const ClientFr
   const Stiffening stiff =
       contact_stiffening(in, frame, image.position - image.ahead - memory_.drift.head<3>(), g);
   out.contacts = stiff.fresh;
-  // Held by its contact, the object's rotation is held on both ends, stiffer (contact_hold); its
-  // gains go out with the answer, so the client's own closure uses the same.
-  const ContactHold hold = contact_hold(c, g, stiff.share, to_seconds(in.dt));
-  out.gains = hold.gains;
   image.position -= stiff.share * image.ahead.dot(stiff.normal) * stiff.normal;
-  // Nor is its rotation, where that hold is raised: extrapolated over 50-100 ms, it led the
-  // stiffer spring by the object's spin and the loop rang (2e-4 kg.m^2, 2026-12-08).
-  const Vector3d back = -hold.share * image.turned_ahead;
-  if (back.norm() > 1e-12) {
-    image.rotation = Eigen::AngleAxisd(back.norm(), back.normalized()) * image.rotation;
-  }
   Vector6d stretch;
   stretch << image.position - chain.handle_position,
       rotation_vector(image.rotation * chain.handle_rotation.transpose());
   const Vector6d used = stretch_in_use(stretch, twist, to_seconds(in.dt));
   coupling.stretch = used;
   Vector6d relative = image.twist - twist;
-  coupling.spring << g.k_linear * used.head<3>(), hold.gains.k_angular * used.tail<3>();
-  coupling.damper << g.b_linear * relative.head<3>(), hold.gains.b_angular * relative.tail<3>();
+  coupling.spring << g.k_linear * used.head<3>(), g.k_angular * used.tail<3>();
+  coupling.damper << g.b_linear * relative.head<3>(), g.b_angular * relative.tail<3>();
   Vector3d object_pressed = Vector3d::Zero();  // what the object's side adds along its contact
   if (stiff.share > 0.0) {
     const Vector3d& n = stiff.normal;
@@ -170,7 +160,6 @@ ServoLaw::Coupling ServoLaw::client_wrench(const ServoInputs& in, const ClientFr
   coupling.object_damper = coupling.damper * scale;
   coupling.spring *= scale;
   coupling.damper *= scale;
-  coupling.damper.tail<3>() -= hold.handle_damping * twist.tail<3>();  // the device's own
   // ... and the hand the surfaces the object touches, rendered here at their stiffness with no
   // delay in their loop, in place of the coupling's force (along the normal and along the
   // surface, where the friction proxy acts) while a surface pushes. Through the coupling

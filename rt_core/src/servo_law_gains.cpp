@@ -14,12 +14,6 @@ namespace {
 /// stiffness, and the damping ratio of the derived damping.
 constexpr double kStiffnessFraction = 0.25;
 constexpr double kDampingRatio = 0.7;
-/// The share of the object's own step bound a contact's hold of its rotation takes (a quarter of
-/// the free design's): the application's own contact terms share that step. The demo's sphere on
-/// the fixed one at a 10 ms step (its rolling patch at half the bound, the library's passivity
-/// damper at half) rang at the step's Nyquist rate with the hold at the free design's quarter
-/// (+-0.2 N.m a step; the client's end put out 3.9-4.3 J for the core's 0.02 J, 2026-12-08).
-constexpr double kHoldFraction = kStiffnessFraction * kStiffnessFraction;
 /// The loop-delay envelope follows the median of the recent samples up at once and down by this
 /// share per new sample (about 200 samples, 0.2 s at 1 kHz): the gains drop as soon as the link
 /// slows and rise back slowly. The median ignores single long loops (a lost answer makes the
@@ -44,16 +38,6 @@ HAPTICCTRL_RT double bounded(double value, double upper) noexcept {
   return std::clamp(value, 0.0, upper);
 }
 
-/// The object's smallest principal moment (it bounds the angular coupling on every axis);
-/// without a declared inertia, a solid 5 cm sphere of its mass.
-HAPTICCTRL_RT double smallest_moment(const ClientSample& c, double mass) noexcept {
-  double smallest = 0.0;
-  for (const double moment : c.object_inertia) {
-    smallest = moment > 0.0 && (smallest == 0.0 || moment < smallest) ? moment : smallest;
-  }
-  return smallest > 0.0 ? smallest : 0.4 * mass * 0.05 * 0.05;
-}
-
 }  // namespace
 
 CouplingGains ServoLaw::derive_gains(const ClientSample& c, double loop_delay) const noexcept {
@@ -66,8 +50,15 @@ CouplingGains ServoLaw::derive_gains(const ClientSample& c, double loop_delay) c
   const double step = client_step + std::max(0.0, loop_delay);
   // The angular coupling acts on every axis of the object: its smallest principal moment bounds
   // it (J3: a 19 mm x 60 mm MuJoCo peg, 3.3e-5 and 6e-6 kg.m^2, held with gains for its largest
-  // moment, went unstable about its long axis in 0.27 s, 2026-12-05).
-  const double inertia = smallest_moment(c, mass);
+  // moment, went unstable about its long axis in 0.27 s, 2026-12-05). Without a declared
+  // inertia: a solid 5 cm sphere of the object's mass.
+  double smallest_inertia = 0.0;
+  for (const double moment : c.object_inertia) {
+    smallest_inertia = moment > 0.0 && (smallest_inertia == 0.0 || moment < smallest_inertia)
+                           ? moment
+                           : smallest_inertia;
+  }
+  const double inertia = smallest_inertia > 0.0 ? smallest_inertia : 0.4 * mass * 0.05 * 0.05;
   CouplingGains g;
   g.k_linear = bounded(kStiffnessFraction * mass / (step * step), lim.max_stiffness_linear);
   g.b_linear = bounded(2.0 * kDampingRatio * std::sqrt(g.k_linear * mass),
@@ -89,55 +80,6 @@ CouplingGains ServoLaw::derive_gains(const ClientSample& c, double loop_delay) c
     g.b_angular = bounded(o[3], lim.max_damping_angular);
   }
   return g;
-}
-
-ContactHold ServoLaw::contact_hold(const ClientSample& c, const CouplingGains& free,
-                                   double share, double period) const noexcept {
-  // In contact, a rotation held by the loop's gains alone lets the contact turn the object: a
-  // peg pushed 3 N down with its edge on a chamfer got 0.03-0.06 N.m from it against the
-  // coupling's 0.009 N.m/rad and tipped over at 5 ms one way (J3, 2026-12-08). A client that
-  // closes its object's side itself (protocol 1.3) tracks the handle's delayed rotation with
-  // its own step in the loop, not the network's: there the object's step bounds the gain. On the
-  // handle's side the spring pulls towards the object, which follows the handle a loop late; an
-  // angular damper on the handle (the device's, B) keeps that loop's gain below 1 at every
-  // frequency, whatever the delay, while k < B^2 / (2 (I_handle + I_object)) (the handle a rotor
-  // inertia, the object a follower: |L(jw)| < 1 for all w > 0; docs/control.md). Only one side
-  // raised (the object's, 2026-12-08, taken back), the object was pressed into its surfaces with
-  // torques the hand never paid: the lifted weight felt 9.2 N for 7.85 N.
-  ContactHold hold;
-  hold.gains = free;
-  if (!c.local_coupling || !(share > 0.0) || c.gain_override[2] > 0.0) {
-    return hold;  // not closed by the client, not in contact, or the client's own gain
-  }
-  const ArmModel& model = dynamics_->model();
-  const ArmLimits& lim = model.limits;
-  const double mass = c.object_mass > 0.0 ? c.object_mass : config_.default_object_mass;
-  const double step = c.time_step > 0.0 ? c.time_step : config_.default_time_step;
-  const double object = smallest_moment(c, mass);
-  double handle = 0.0;  // the wrist's rotors: the least the handle's rotation carries
-  for (std::size_t j = 3; j < model.joints.size(); ++j) {
-    const double rotor = model.joints[j].rotor_inertia;
-    handle = handle == 0.0 ? rotor : std::min(handle, rotor);
-  }
-  if (!(handle > 0.0) || !(period > 0.0)) {
-    return hold;
-  }
-  // A damper sampled at the period is stable well inside I / T.
-  const double damper = std::min(lim.max_damping_angular, 0.5 * handle / period);
-  const double k = std::min({kHoldFraction * object / (step * step),
-                             damper * damper / (2.0 * (handle + object)),
-                             lim.max_stiffness_angular});
-  if (!(k > free.k_angular)) {
-    return hold;
-  }
-  const double b = bounded(2.0 * kDampingRatio * std::sqrt(k * object),
-                           std::min(lim.max_damping_angular, object / step));
-  const double s = std::min(1.0, share);
-  hold.gains.k_angular += s * (k - free.k_angular);
-  hold.gains.b_angular += s * std::max(0.0, b - free.b_angular);
-  hold.handle_damping = s * damper;
-  hold.share = s;
-  return hold;
 }
 
 void ServoLaw::track_loop_delay(const ServoInputs& in) noexcept {

@@ -64,48 +64,6 @@ TEST(ServoLaw, TheAngularGainsAreBoundedByTheSmallestPrincipalMoment) {
   EXPECT_NEAR(law.derive_gains(c, 0.002).k_angular, g.k_angular, 1e-12);
 }
 
-TEST(ServoLaw, InContactTheRotationIsHeldWithinTheObjectsStepAndTheHandlesDamper) {
-  // The peg (6e-6 kg.m^2, 1 ms engine step) at 5 ms one way: free 0.0104 N.m/rad; in contact
-  // I / (16 T^2) = 0.375 N.m/rad, under the handle's bound B^2 / (2 (I_h + I)) with B = 0.1
-  // N.m.s/rad and the wrist's rotors (0.001 kg.m^2): 4.97 N.m/rad.
-  ServoLaw law(default_dynamics());
-  ClientSample c;
-  c.object_mass = 0.1;
-  c.object_inertia = {3.3e-5, 3.3e-5, 6.0e-6};
-  c.time_step = 1e-3;
-  c.local_coupling = true;
-  const CouplingGains free = law.derive_gains(c, 0.011);
-  EXPECT_NEAR(free.k_angular, 0.25 * 6.0e-6 / (0.012 * 0.012), 1e-12);
-  const ContactHold held = law.contact_hold(c, free, 1.0, 1e-3);
-  EXPECT_NEAR(held.gains.k_angular, 0.375, 1e-12);
-  EXPECT_NEAR(held.gains.b_angular, 2.0 * 0.7 * std::sqrt(0.375 * 6.0e-6), 1e-12);
-  EXPECT_DOUBLE_EQ(held.handle_damping, 0.1);
-  EXPECT_DOUBLE_EQ(held.share, 1.0);
-  EXPECT_EQ(held.gains.k_linear, free.k_linear) << "the rotation only";
-  const ContactHold half = law.contact_hold(c, free, 0.5, 1e-3);
-  EXPECT_NEAR(half.gains.k_angular, free.k_angular + 0.5 * (0.375 - free.k_angular), 1e-12);
-  EXPECT_DOUBLE_EQ(half.handle_damping, 0.05);
-  // A heavier object: the handle's side bounds it; at a 10 ms period its damper is half.
-  c.object_inertia = {2e-4, 2e-4, 2e-4};
-  const CouplingGains heavy = law.derive_gains(c, 0.011);
-  EXPECT_NEAR(law.contact_hold(c, heavy, 1.0, 1e-3).gains.k_angular,
-              0.1 * 0.1 / (2.0 * (1e-3 + 2e-4)), 1e-9);
-  const ContactHold coarse = law.contact_hold(c, heavy, 1.0, 10e-3);
-  EXPECT_DOUBLE_EQ(coarse.handle_damping, 0.05);
-  EXPECT_NEAR(coarse.gains.k_angular, 0.05 * 0.05 / (2.0 * (1e-3 + 2e-4)), 1e-9);
-  // Nothing raised: out of contact, a client that does not close its side, the client's own
-  // angular stiffness, or free gains already stiffer (a short loop).
-  EXPECT_EQ(law.contact_hold(c, heavy, 0.0, 1e-3).gains.k_angular, heavy.k_angular);
-  c.local_coupling = false;
-  EXPECT_EQ(law.contact_hold(c, heavy, 1.0, 1e-3).handle_damping, 0.0);
-  c.local_coupling = true;
-  c.gain_override = {0, 0, 0.5, 0};
-  EXPECT_EQ(law.contact_hold(c, heavy, 1.0, 1e-3).gains.k_angular, heavy.k_angular);
-  c.gain_override = {};
-  const CouplingGains short_loop = law.derive_gains(c, 0.0);
-  EXPECT_EQ(law.contact_hold(c, short_loop, 1.0, 1e-3).gains.k_angular, short_loop.k_angular);
-}
-
 TEST(ServoLaw, TheLoopDelayEnvelopeFollowsTheMedianUpAtOnceAndDownSlowly) {
   ServoLaw law(default_dynamics());
   ServoInputs in = coupled_to_object_ahead(0.0);

@@ -68,8 +68,12 @@ TEST(HandAcceptable, RefusesNonFiniteAndOutOfRangeGrips) {
         +[](HandGrip& h) { h.angular_stiffness = 31.0; },
         +[](HandGrip& h) { h.angular_damping = -0.1; },
         +[](HandGrip& h) { h.angular_damping = std::nan(""); },
-        +[](HandGrip& h) { h.anchor_rotation = {0.0, 0.0, 0.0, 0.0}; },
-        +[](HandGrip& h) { h.anchor_rotation = {0.0, 0.0, 0.0, 1.1}; },
+        +[](HandGrip& h) {
+          h.anchor_rotation = {0.0, 0.0, 0.0, 0.0};
+        },
+        +[](HandGrip& h) {
+          h.anchor_rotation = {0.0, 0.0, 0.0, 1.1};
+        },
         +[](HandGrip& h) { h.anchor_rotation[0] = std::nan(""); }}) {
     HandGrip h = g;
     bad(h);

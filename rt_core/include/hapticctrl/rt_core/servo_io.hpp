@@ -44,14 +44,6 @@ struct CouplingGains {
   double b_angular = 0.0;
 };
 
-/// The coupling's gains while its object is held by a contact (ServoLaw::contact_hold), and the
-/// angular damper the handle's rotation gets with them (N·m·s/rad, on the handle alone).
-struct ContactHold {
-  CouplingGains gains;
-  double handle_damping = 0.0;
-  double share = 0.0;  ///< how much of the raised hold is in force: 0..1
-};
-
 struct ServoOutputs {
   ArmCommands commands;
   /// Wrench the coupling applies to the client's object (what VP reports), base frame.

@@ -200,16 +200,6 @@ class ServoLaw {
   [[nodiscard]] HAPTICCTRL_RT CouplingGains derive_gains(const ClientSample& client,
                                                          double loop_delay) const noexcept;
 
-  /// The coupling's angular gains while the object is in contact (`share` 0..1 of its stiffest
-  /// contact in force), for a client that closes its object's side itself (protocol 1.3): raised
-  /// towards what the object's own step and the handle's angular damper keep stable at any
-  /// delay, with that damper on the handle's rotation; `free` unchanged otherwise (and under
-  /// the client's own angular stiffness, ClientSample::gain_override). `period`: the
-  /// servo period, s. Real-time contract: safe in the cycle.
-  [[nodiscard]] HAPTICCTRL_RT ContactHold contact_hold(const ClientSample& client,
-                                                       const CouplingGains& free, double share,
-                                                       double period) const noexcept;
-
   /// Net energy the user has given the rendering port at the handle (J): negative means the port
   /// delivered more energy to the hand than it received (the guard then adds damping).
   [[nodiscard]] double observed_energy() const noexcept { return memory_.observed_energy; }
@@ -276,7 +266,6 @@ class ServoLaw {
     Vector3d position = Vector3d::Zero();
     Vector3d ahead = Vector3d::Zero();  ///< the extrapolation over the sample's age (in position)
     Matrix3d rotation = Matrix3d::Identity();
-    Vector3d turned_ahead = Vector3d::Zero();  ///< the extrapolation (rotation vector)
     Vector6d twist = Vector6d::Zero();
   };
   /// The stiffening along the dominant contact (base frame).

@@ -33,8 +33,9 @@ struct ForceLimits {
                                                    const ForceLimits& limits = {}) noexcept;
 
 /// Whether a hand grip is finite and within `limits` (stiffness, damping, anchor distance and
-/// speed, the wrist's stiffness and damping, its rotation a unit quaternion within 1e-6, or all zero without a wrist); the acceptance test of the hand in the `force` region, applied by its writer and the
-/// core. Real-time contract: noexcept, allocation-free; safe in the cycle.
+/// speed, the wrist's stiffness and damping, its rotation a unit quaternion within 1e-6, or all
+/// zero without a wrist); the acceptance test of the hand in the `force` region, applied by its
+/// writer and the core. Real-time contract: noexcept, allocation-free; safe in the cycle.
 [[nodiscard]] HAPTICCTRL_RT bool hand_acceptable(const HandGrip& hand,
                                                  const ForceLimits& limits = {}) noexcept;
 

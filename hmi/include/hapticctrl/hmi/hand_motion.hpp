@@ -1,13 +1,13 @@
 #pragma once
 /// @file hand_motion.hpp
 /// A simulated operator's hand for `hapticctrl-hmi play --hand`: a spring-damper grip
-/// (shm::HandGrip), with an optional wrist that holds the handle's rotation where the grip
-/// found it, whose anchor starts where the handle is and, with a wander amplitude, moves
-/// at random - the "random hand motion" of the coupling benchmark (H1). Per axis the anchor's
-/// offset is a sum of sines at log-spaced frequencies over 0.2-2 Hz (a hand's voluntary band)
-/// with seeded random phases, so a run is reproducible; its peak stays within the amplitude and
-/// it fades in over the first second. The grip's (and wrist's) gains ramp in and out (no
-/// force step when the hand takes or lets go). Not for the cycle: plain value code.
+/// (shm::HandGrip) whose anchor starts where the handle is and, with a wander amplitude, moves
+/// at random - the "random hand motion" of the coupling benchmark (H1); an optional wrist holds
+/// the handle's rotation where the grip found it. Per axis the anchor's offset is a sum of
+/// sines at log-spaced frequencies over 0.2-2 Hz (a hand's voluntary band) with seeded random
+/// phases, so a run is reproducible; its peak stays within the amplitude and it fades in over
+/// the first second. The grip's and the wrist's gains ramp in and out (no force step when the
+/// hand takes or lets go). Not for the cycle: plain value code.
 #include <array>
 #include <cstdint>
 

@@ -100,7 +100,9 @@ void ArmSimulator::step(const Vector6d& motor_torque, const Vector6d& operator_w
     if (hand.gripping()) {
       const Vector3d handle_velocity = jacobian.topRows<3>() * qd_;
       target.head<3>() += hand.force(chain_.handle_position, handle_velocity, n * h);
-      target.tail<3>() += hand.torque(chain_.handle_rotation, jacobian.bottomRows<3>() * qd_);
+      if (hand.holds_rotation()) {  // no rotation vector per sub-step for a hand without a wrist
+        target.tail<3>() += hand.torque(chain_.handle_rotation, jacobian.bottomRows<3>() * qd_);
+      }
     }
     limit_operator(target, h);
     const Vector6d external = jacobian.transpose() * operator_applied_;
@@ -194,9 +196,10 @@ void SimulatedArm::read_operator_wrench() noexcept {
   hand_.stiffness = sample.hand.stiffness;
   hand_.damping = sample.hand.damping;
   const auto& q = sample.hand.anchor_rotation;
-  hand_.anchor_rotation = q[3] * q[3] + q[0] * q[0] + q[1] * q[1] + q[2] * q[2] > 0.5
-                              ? Eigen::Quaterniond(q[3], q[0], q[1], q[2]).toRotationMatrix()
-                              : Matrix3d::Identity();
+  hand_.anchor_rotation =
+      q[3] * q[3] + q[0] * q[0] + q[1] * q[1] + q[2] * q[2] > 0.5
+          ? Eigen::Quaterniond(q[3], q[0], q[1], q[2]).normalized().toRotationMatrix()
+          : Matrix3d::Identity();
   hand_.angular_stiffness = sample.hand.angular_stiffness;
   hand_.angular_damping = sample.hand.angular_damping;
 }

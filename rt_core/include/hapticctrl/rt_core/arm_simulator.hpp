@@ -49,8 +49,11 @@ struct HandModel {
   double angular_stiffness = 0.0;  ///< N.m/rad
   double angular_damping = 0.0;    ///< N.m.s/rad
 
+  [[nodiscard]] HAPTICCTRL_RT bool holds_rotation() const noexcept {
+    return angular_stiffness > 0.0 || angular_damping > 0.0;
+  }
   [[nodiscard]] HAPTICCTRL_RT bool gripping() const noexcept {
-    return stiffness > 0.0 || damping > 0.0 || angular_stiffness > 0.0 || angular_damping > 0.0;
+    return stiffness > 0.0 || damping > 0.0 || holds_rotation();
   }
   /// Force the hand's spring-damper puts on a handle point at `position` moving at `velocity`,
   /// `elapsed` seconds after the anchor was given (it moves on at anchor_velocity); the
